@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs every Debian package neomesh needs, then configures and builds it (Release) in
+# ./build. Run as root on Debian 12 (or with sudo available). Safe to run again.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  cmake g++ make pkg-config clang-format
+  libpetsc-real-dev            # DMPlex, Vec/Mat/KSP, hypre, MUMPS, SuiteSparse, MPI
+  libeigen3-dev libcli11-dev libfmt-dev nlohmann-json3-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libcairo2-dev libmuparser-dev
+  python3 python3-numpy python3-meshio gmsh   # tests: independent reader, example meshes
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$(nproc)"

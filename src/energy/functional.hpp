@@ -1,0 +1,82 @@
+// The global mesh functional F(x) = Σ_K ∫_{optimal cell of K} W(∇γ_K) (MATH.md §2) over
+// this rank's cells, with its gradient and the quasi-Newton matrix H(α) = B1 + α B2 + B3
+// (§3), plus the Riesz Laplacian L (§4). All vectors are global PETSc Vecs laid out by a
+// DofMap; every method is collective.
+//
+// Fixed dofs (boundary vertices by default) are eliminated: the gradient is zero there,
+// and the rows and columns of H(α) and L are those of the identity, so that the Newton
+// defect is the free-dof norm of the gradient and every linear solve leaves fixed dofs
+// unchanged.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "core/petsc.hpp"
+#include "energy/neo_hooke.hpp"
+#include "mesh/dof_map.hpp"
+#include "mesh/mesh_view.hpp"
+
+namespace neomesh {
+
+struct EnergyOptions {
+  double lambda = 1.0;
+  double mu = 10.0;
+  double kappa = -1.0;           // < 0 means κ = λ (enough for convexity, thesis §4.3)
+  int gauss_points = 3;          // per direction for Q1 cells; 3 reproduces the thesis
+};
+
+// Which matrix represents the H¹₀ inner product for the Riesz representative (MATH.md §4).
+enum class RieszLaplacian {
+  OptimalCells,  // ∫ over the optimal cells = B3/μ; the thesis' choice; built once per volumes
+  CurrentMesh,   // stiffness matrix of the current mesh; depends on x
+};
+
+struct CellFields {
+  std::vector<double> energy;     // ∫ W over the cell's optimal cell
+  std::vector<double> min_det;    // min over quadrature points of det G (+∞ never: see below)
+  std::vector<double> volume_ratio;  // Q = actual volume / desired volume
+};
+
+class Functional {
+ public:
+  // `fixed` marks local vertices whose coordinates do not move (MeshView order).
+  Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
+             std::vector<std::uint8_t> fixed);
+  ~Functional();
+  Functional(const Functional&) = delete;
+  Functional& operator=(const Functional&) = delete;
+
+  // Desired (absolute) volume per local cell, MeshView order. Must be set before use.
+  void set_desired_volumes(std::span<const double> volumes);
+  const std::vector<double>& desired_volumes() const;
+
+  // F(x); +∞ when any cell has det G ≤ 0 at a quadrature point (never NaN).
+  double value(Vec x) const;
+  // F(x) and its gradient (zero at fixed dofs). Returns +∞ (gradient unspecified) if inverted.
+  double value_and_gradient(Vec x, Vec gradient) const;
+
+  // A matrix with the sparsity of H(α) and L (one-time pattern), not yet assembled.
+  OwnedMat create_matrix() const;
+  // H(α) at x into a matrix made by create_matrix (values only; the pattern is reused).
+  void assemble_hessian(Vec x, double alpha, Mat H) const;
+  // The Riesz Laplacian into a matrix made by create_matrix. `x` is used only for
+  // RieszLaplacian::CurrentMesh.
+  void assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const;
+
+  // Per-cell energy, min det G and volume ratio Q at x (MeshView order).
+  CellFields cell_fields(Vec x) const;
+
+  const DofMap& dofs() const;
+  // 1 for free dofs, 0 for fixed ones (global Vec laid out by dofs()).
+  Vec free_mask() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Total volume of the mesh at x (sum over all ranks).
+double mesh_volume(const MeshView& view, const DofMap& dofs, Vec x);
+
+}  // namespace neomesh

@@ -1,0 +1,49 @@
+// DofMap: how a per-vertex field with `dim` components (coordinates, gradient, direction)
+// is laid out across ranks. A global PETSc Vec stores each vertex once, on its owning rank
+// (dof = dim * vertex + component in PETSc's global numbering); a local array stores every
+// vertex of the rank's MeshView, ghosts included, in MeshView's local vertex order.
+//
+// The numerics (energy/, solver/) see only this interface, never the DMPlex behind it.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <petscsf.h>
+#include <petscvec.h>
+
+#include "core/petsc.hpp"
+
+namespace neomesh {
+
+class DofMap {
+ public:
+  // `sf` maps local dofs (leaves) to owned global dofs (roots); `global_dof` holds, per local
+  // dof, its index in the global numbering. Takes a reference on `sf`.
+  DofMap(MPI_Comm comm, int dim, PetscInt num_local_vertices, PetscInt num_owned_dofs,
+         PetscSF sf, std::vector<PetscInt> global_dof);
+
+  MPI_Comm comm() const { return comm_; }
+  int dim() const { return dim_; }
+  PetscInt num_local_dofs() const { return static_cast<PetscInt>(global_dof_.size()); }
+  PetscInt num_owned_dofs() const { return num_owned_dofs_; }
+  PetscInt num_global_dofs() const { return num_global_dofs_; }
+  const std::vector<PetscInt>& global_dof() const { return global_dof_; }
+
+  // A global vector (num_owned_dofs() entries on this rank), zeroed.
+  OwnedVec create_global_vector() const;
+  // local[i] = global value of local dof i (owned and ghost).
+  void global_to_local(Vec global, std::span<double> local) const;
+  // global += sum over ranks of their local contributions (ghost entries are sent to owners).
+  void add_local_to_global(std::span<const double> local, Vec global) const;
+
+ private:
+  MPI_Comm comm_;
+  int dim_;
+  PetscInt num_owned_dofs_;
+  PetscInt num_global_dofs_ = 0;
+  OwnedSF sf_;
+  std::vector<PetscInt> global_dof_;
+};
+
+}  // namespace neomesh

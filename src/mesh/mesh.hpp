@@ -1,0 +1,59 @@
+// Mesh: a DMPlex plus what neomesh needs around it — where it came from (for error
+// messages), its physical groups, and the flat views the numerics run on.
+//
+// Serial by default; under `mpiexec -n P` load/from_data read on rank 0 and distribute the
+// cells over the ranks (DMPlexDistribute, no overlap).
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/petsc.hpp"
+#include "mesh/dof_map.hpp"
+#include "mesh/mesh_data.hpp"
+#include "mesh/mesh_view.hpp"
+
+namespace neomesh {
+
+class Mesh {
+ public:
+  // Reads .msh (Gmsh 2.2/4.1, ASCII or binary) or .xml (FEAT3). Validates the mesh (see
+  // validate.hpp): throws Error naming the file (and cell) for anything neomesh cannot use.
+  static Mesh load(const std::filesystem::path& path, MPI_Comm comm = PETSC_COMM_WORLD);
+  // Builds a mesh from arrays given on rank 0 (other ranks pass an empty MeshData).
+  static Mesh from_data(const MeshData& data, const std::string& source,
+                        MPI_Comm comm = PETSC_COMM_WORLD);
+
+  Mesh(Mesh&&) noexcept;
+  Mesh& operator=(Mesh&&) noexcept;
+  ~Mesh();
+
+  MPI_Comm comm() const;
+  DM dm() const;
+  int dim() const;
+  const std::string& source() const;  // file name or generator name, for messages
+  PetscInt global_num_cells() const;
+  PetscInt global_num_vertices() const;
+
+  // This rank's cells and vertices as flat arrays (built once, cached).
+  const MeshView& view() const;
+  // The layout of per-vertex vectors with dim() components (built once, cached).
+  const DofMap& dofs() const;
+
+  // Current vertex coordinates as a global Vec laid out by dofs() (a new Vec).
+  OwnedVec coordinates() const;
+  // Moves the vertices: `coords` is a global Vec laid out by dofs(). Updates the DMPlex
+  // coordinates (for writing) and view().coords.
+  void set_coordinates(Vec coords);
+
+ private:
+  struct Impl;
+  explicit Mesh(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+  friend struct MeshAccess;  // for the writers in this layer
+};
+
+}  // namespace neomesh

@@ -1,0 +1,34 @@
+// Writing meshes. The format follows the extension: .vtu (ParaView, with fields) or
+// .msh (Gmsh 4.1 ASCII, keeping the input's physical groups). Every write goes to a
+// temporary file beside the target, renamed over it only when complete, so a failed or
+// interrupted run never leaves a partial output file. Collective: rank 0 writes.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+
+namespace neomesh {
+
+// A named field with one value per local cell (MeshView order) or per local vertex.
+struct Field {
+  std::string name;
+  std::vector<double> values;
+  int components = 1;
+};
+
+struct MeshFields {
+  std::vector<Field> cell;
+  std::vector<Field> vertex;
+};
+
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path,
+                const MeshFields& fields = {});
+
+// Throws Error unless `path` has an extension neomesh can read (.msh, .xml) / write.
+void check_readable_format(const std::filesystem::path& path);
+void check_writable_format(const std::filesystem::path& path);
+
+}  // namespace neomesh
