@@ -8,8 +8,12 @@ namespace {
 Verbosity current = Verbosity::Normal;
 }
 
-void set_verbosity(Verbosity v) { current = v; }
-Verbosity verbosity() { return current; }
+void set_verbosity(Verbosity v) {
+  current = v;
+}
+Verbosity verbosity() {
+  return current;
+}
 
 bool is_root_rank() {
   int initialized = 0;

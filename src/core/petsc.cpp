@@ -16,13 +16,17 @@ VecReadView::VecReadView(Vec v) : vec_(v) {
   NM_PETSC(VecGetLocalSize(v, &size_));
   NM_PETSC(VecGetArrayRead(v, &data_));
 }
-VecReadView::~VecReadView() { VecRestoreArrayRead(vec_, &data_); }
+VecReadView::~VecReadView() {
+  VecRestoreArrayRead(vec_, &data_);
+}
 
 VecWriteView::VecWriteView(Vec v) : vec_(v) {
   NM_PETSC(VecGetLocalSize(v, &size_));
   NM_PETSC(VecGetArray(v, &data_));
 }
-VecWriteView::~VecWriteView() { VecRestoreArray(vec_, &data_); }
+VecWriteView::~VecWriteView() {
+  VecRestoreArray(vec_, &data_);
+}
 
 int mpi_rank(MPI_Comm comm) {
   int r = 0;

@@ -20,8 +20,11 @@ class DofMap {
  public:
   // `sf` maps local dofs (leaves) to owned global dofs (roots); `global_dof` holds, per local
   // dof, its index in the global numbering. Takes a reference on `sf`.
-  DofMap(MPI_Comm comm, int dim, PetscInt num_local_vertices, PetscInt num_owned_dofs,
-         PetscSF sf, std::vector<PetscInt> global_dof);
+  DofMap(MPI_Comm comm, int dim, PetscInt num_local_vertices, PetscInt num_owned_dofs, PetscSF sf,
+         std::vector<PetscInt> global_dof);
+
+  // A single process owning all `num_vertices` vertices (tests, serial tools).
+  static DofMap serial(int dim, PetscInt num_vertices);
 
   MPI_Comm comm() const { return comm_; }
   int dim() const { return dim_; }

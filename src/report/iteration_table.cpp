@@ -1,0 +1,30 @@
+#include "report/iteration_table.hpp"
+
+#include <fmt/format.h>
+
+namespace neomesh {
+
+std::string iteration_table_header() {
+  return fmt::format("{:>4} {:>6} {:>10} {:>10} {:>10} {:>5} {:>5} {:>6} {:>9} {:>6} {:>5}", "k",
+                     "armijo", "defect", "|delta|", "F", "eta", "alpha", "ksp_d", "res_d", "ksp_s",
+                     "dir");
+}
+
+std::string iteration_table_row(const IterationRecord& rec) {
+  const std::string ksp_delta = rec.delta_solved ? fmt::format("{}", rec.krylov_delta) : "-";
+  const std::string res_delta = rec.delta_solved ? fmt::format("{:.2E}", rec.residual_delta) : "-";
+  const char* direction = !rec.used_s ? "delta" : rec.delta_failed ? "s!" : "s";
+  return fmt::format(
+      "{:>4} {:>6} {:>10.2E} {:>10.2E} {:>10.2E} {:>5.2f} {:>5.2f} {:>6} {:>9} "
+      "{:>6} {:>5}{}",
+      rec.k, rec.armijo_steps, rec.defect, rec.direction_norm, rec.energy, rec.eta, rec.alpha,
+      ksp_delta, res_delta, rec.krylov_s, direction,
+      rec.roundoff_step ? "  (round-off: full step)" : "");
+}
+
+std::string progress_line(const IterationRecord& rec) {
+  return fmt::format("iteration {}: defect {:.2e}, F {:.4e}, {:.2f} s", rec.k, rec.defect,
+                     rec.energy, rec.seconds);
+}
+
+}  // namespace neomesh

@@ -1,0 +1,47 @@
+// The two linear solves of each quasi-Newton iteration (MATH.md §4) as PETSc KSPs with
+// option prefixes, so that users tune them without recompiling: `-hess_` for the
+// quasi-Newton system H(α) δ̃ = −g, `-riesz_` for the Riesz representative L s = g.
+//
+// --linear-solver picks the defaults; any -hess_ksp_* / -riesz_pc_* option still wins:
+//   amg     CG + hypre BoomerAMG (mesh-independent iteration counts; the default)
+//   jacobi  CG + Jacobi (the thesis' PCG)
+//   direct  Cholesky (MUMPS, works in parallel; the thesis used UMFPACK)
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "core/petsc.hpp"
+
+namespace neomesh {
+
+enum class LinearSolverKind { Amg, Jacobi, Direct };
+
+LinearSolverKind parse_linear_solver(std::string_view name);
+std::string_view name(LinearSolverKind kind);
+
+class LinearSolver {
+ public:
+  // `rtol`: relative reduction of the (unpreconditioned) residual at which to stop.
+  LinearSolver(MPI_Comm comm, LinearSolverKind kind, const std::string& prefix, double rtol);
+
+  // Uses `A` for the next solves. With `same_values` the preconditioner (AMG hierarchy,
+  // factorization) of the previous operator is kept.
+  void set_operator(Mat A, bool same_values);
+
+  struct Outcome {
+    bool converged = false;
+    int iterations = 0;
+    double residual = 0.0;  // final unpreconditioned residual norm
+  };
+  // Solves A x = b from x = 0; stops at rtol or when the residual is below `atol`.
+  Outcome solve(Vec b, Vec x, double atol = 0.0);
+
+  KSP ksp() const { return ksp_; }
+
+ private:
+  OwnedKSP ksp_;
+  double rtol_;
+};
+
+}  // namespace neomesh

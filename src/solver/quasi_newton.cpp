@@ -1,0 +1,311 @@
+#include "solver/quasi_newton.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <mpi.h>
+
+namespace neomesh {
+
+namespace {
+
+// α heuristic of thesis §5.1: g(t) = 0.15 + 6.51657 / (3.66657 + e^(1.38629 t)), through
+// (0, 1.5464), (1, 1), (2, 0.4814): α grows while the defect falls fast.
+double alpha_factor(double defect_ratio) {
+  return 0.15 + 6.51657 / (3.66657 + std::exp(1.38629 * defect_ratio));
+}
+
+double dot(Vec a, Vec b) {
+  double r = 0.0;
+  NM_PETSC(VecDot(a, b, &r));
+  return r;
+}
+double norm(Vec a) {
+  double r = 0.0;
+  NM_PETSC(VecNorm(a, NORM_2, &r));
+  return r;
+}
+
+class Stopwatch {
+ public:
+  explicit Stopwatch(double& total) : total_(total), start_(MPI_Wtime()) {}
+  ~Stopwatch() { total_ += MPI_Wtime() - start_; }
+
+ private:
+  double& total_;
+  double start_;
+};
+
+}  // namespace
+
+std::string describe(StopReason reason) {
+  switch (reason) {
+    case StopReason::DefectAbsolute:
+      return "Newton defect below the absolute tolerance";
+    case StopReason::DefectRelative:
+      return "Newton defect below the relative tolerance";
+    case StopReason::Practical:
+      return "practical criterion: energy and vertex positions stopped changing";
+    case StopReason::MaxIterations:
+      return "maximum number of iterations reached";
+    case StopReason::LineSearchFailed:
+      return "line search failed: no step along the direction decreases the energy";
+  }
+  return "?";
+}
+
+double energy_roundoff(const EnergyOptions& energy, int dim, double mesh_volume) {
+  return 1e-15 * (energy.lambda + energy.mu) * dim * mesh_volume;
+}
+
+struct QuasiNewton::Impl {
+  const Functional& functional;
+  QuasiNewtonOptions options;
+  Vec cell_size;
+  LinearSolver hessian_solver;
+  LinearSolver riesz_solver;
+  OwnedMat hessian, laplacian;
+  OwnedVec gradient, s, delta_tilde, delta, trial, work, rhs;
+
+  double energy = 0.0;
+  double defect = 0.0;
+  double initial_defect = -1.0;
+  double previous_defect = 0.0;
+  double alpha = 0.0;
+  int k = 0;
+  int antigradient_left = 0;
+  std::optional<StopReason> stop;
+  PhaseTimes times;
+  double start_time = MPI_Wtime();
+
+  Impl(const Functional& f, const QuasiNewtonOptions& o, Vec size)
+      : functional(f),
+        options(o),
+        cell_size(size),
+        hessian_solver(f.dofs().comm(), o.linear_solver, "hess_", o.hessian_rtol),
+        riesz_solver(f.dofs().comm(), o.linear_solver, "riesz_", o.riesz_rtol),
+        previous_defect(o.initial_previous_defect),
+        alpha(o.alpha0) {
+    hessian = functional.create_matrix();
+    laplacian = functional.create_matrix();
+    for (OwnedVec* v : {&gradient, &s, &delta_tilde, &delta, &trial, &work, &rhs})
+      *v = functional.dofs().create_global_vector();
+  }
+
+  void evaluate_gradient(Vec x) {
+    Stopwatch watch(times.gradient);
+    energy = functional.value_and_gradient(x, gradient);
+    if (!std::isfinite(energy))
+      fail("the mesh has an inverted or degenerate cell: its energy is not finite");
+    defect = norm(gradient);
+  }
+
+  void assemble_laplacian(Vec x) {
+    Stopwatch watch(times.riesz_setup);
+    functional.assemble_laplacian(options.riesz, x, laplacian);
+    riesz_solver.set_operator(laplacian, false);
+  }
+
+  // (u, v)_L = uᵀ L v
+  double inner_L(Vec u, Vec v) {
+    NM_PETSC(MatMult(laplacian, v, work));
+    return dot(u, work);
+  }
+
+  // Solves H(α) δ̃ = −g loosely (thesis §5.2) and applies the angle test; returns true if δ̃
+  // is the direction to take (copied into `delta`).
+  bool quasi_newton_direction(Vec x, IterationRecord& rec) {
+    {
+      Stopwatch watch(times.hessian_assembly);
+      functional.assemble_hessian(x, alpha, hessian);
+    }
+    LinearSolver::Outcome out;
+    {
+      Stopwatch watch(times.hessian_solve);
+      hessian_solver.set_operator(hessian, false);
+      NM_PETSC(VecAXPBY(rhs, -1.0, 0.0, gradient));
+      out = hessian_solver.solve(rhs, delta_tilde, options.hessian_defect_factor * defect);
+    }
+    rec.delta_solved = true;
+    rec.krylov_delta = out.iterations;
+    rec.residual_delta = out.residual;
+    if (!out.converged) {
+      rec.delta_failed = true;
+      return false;
+    }
+    // η_k = −(s, δ̃)_L / (‖s‖_L ‖δ̃‖_L)
+    const double s_delta = inner_L(s, delta_tilde);
+    const double s_s = inner_L(s, s);
+    const double delta_delta = inner_L(delta_tilde, delta_tilde);
+    rec.eta = -s_delta / std::sqrt(s_s * delta_delta);
+    if (!(rec.eta >= options.eta)) return false;
+    NM_PETSC(VecCopy(delta_tilde, delta));
+    return true;
+  }
+
+  // Armijo backtracking: the largest σ = 0.5^j with F(x + σδ) finite and
+  // F(x) − F(x + σδ) ≥ β σ (−gᵀδ). Leaves the accepted point in `trial`.
+  bool line_search(Vec x, IterationRecord& rec, double& new_energy, double& sigma) {
+    Stopwatch watch(times.line_search);
+    const double predicted = -dot(gradient, delta);
+    sigma = 1.0;
+    for (int halvings = 0; halvings <= options.max_halvings; ++halvings, sigma *= 0.5) {
+      NM_PETSC(VecWAXPY(trial, sigma, delta, x));
+      new_energy = functional.value(trial);
+      rec.armijo_steps = halvings;
+      if (!std::isfinite(new_energy)) continue;
+      // Below round-off the test compares noise (MATH.md §4): take the step.
+      if (sigma * predicted <= options.energy_roundoff) {
+        rec.roundoff_step = true;
+        return true;
+      }
+      if (energy - new_energy >= options.armijo_beta * sigma * predicted) return true;
+    }
+    return false;
+  }
+
+  double max_relative_move(double sigma) {
+    NM_PETSC(VecPointwiseDivide(work, delta, cell_size));
+    double m = 0.0;
+    NM_PETSC(VecNorm(work, NORM_INFINITY, &m));
+    return std::abs(sigma) * m;
+  }
+
+  std::optional<StopReason> defect_stop() const {
+    if (defect <= options.defect_atol) return StopReason::DefectAbsolute;
+    if (defect <= options.defect_rtol * initial_defect) return StopReason::DefectRelative;
+    if (k >= options.max_iterations) return StopReason::MaxIterations;
+    return std::nullopt;
+  }
+
+  IterationRecord step(Vec x) {
+    IterationRecord rec;
+    rec.k = ++k;
+    rec.defect = defect;
+    rec.alpha = alpha;
+
+    if (options.riesz == RieszLaplacian::CurrentMesh) assemble_laplacian(x);
+    {
+      Stopwatch watch(times.riesz_solve);
+      const auto out = riesz_solver.solve(gradient, s);
+      if (!out.converged)
+        fail(
+            "the Riesz-representative solve (L s = g) did not converge in {} iterations; "
+            "try --linear-solver direct",
+            out.iterations);
+      rec.krylov_s = out.iterations;
+    }
+
+    const bool antigradient_step = antigradient_left > 0;
+    const bool take_delta = !antigradient_step && quasi_newton_direction(x, rec);
+    if (!take_delta) {
+      NM_PETSC(VecAXPBY(delta, -1.0, 0.0, s));
+      rec.used_s = true;
+      if (!rec.delta_solved || rec.delta_failed) rec.eta = 1.0;
+    }
+    rec.direction_norm = norm(delta);
+
+    double new_energy = energy, sigma = 0.0;
+    if (!line_search(x, rec, new_energy, sigma)) {
+      stop = StopReason::LineSearchFailed;
+      rec.energy = energy;
+      rec.seconds = MPI_Wtime() - start_time;
+      return rec;
+    }
+    rec.max_move = max_relative_move(sigma);
+    NM_PETSC(VecCopy(trial, x));
+    const double old_energy = energy;
+    evaluate_gradient(x);
+    rec.energy = energy;
+
+    // α for the next iteration (MATH.md §4, "α indexing").
+    if (antigradient_left > 0) --antigradient_left;
+    if (rec.delta_failed)
+      alpha = 0.1 * alpha;
+    else if (antigradient_left == 0)
+      alpha = std::min(1.0, alpha * alpha_factor(rec.defect / previous_defect));
+    previous_defect = rec.defect;
+
+    const double energy_change =
+        std::abs(old_energy - energy) / std::max(std::abs(old_energy), 1e-300);
+    if (options.practical && energy_change < options.energy_rtol &&
+        rec.max_move < options.move_rtol)
+      stop = StopReason::Practical;
+    rec.seconds = MPI_Wtime() - start_time;
+    return rec;
+  }
+};
+
+QuasiNewton::QuasiNewton(const Functional& functional, const QuasiNewtonOptions& options,
+                         Vec cell_size)
+    : impl_(std::make_unique<Impl>(functional, options, cell_size)) {}
+QuasiNewton::~QuasiNewton() = default;
+
+void QuasiNewton::restart(Vec x) {
+  impl_->evaluate_gradient(x);
+  if (impl_->initial_defect < 0) impl_->initial_defect = impl_->defect;
+  impl_->assemble_laplacian(x);
+  impl_->antigradient_left = impl_->options.kmin;
+  impl_->stop.reset();
+}
+
+std::optional<StopReason> QuasiNewton::stop_reason() const {
+  if (impl_->stop) return impl_->stop;
+  return impl_->defect_stop();
+}
+
+IterationRecord QuasiNewton::step(Vec x) {
+  return impl_->step(x);
+}
+double QuasiNewton::energy() const {
+  return impl_->energy;
+}
+double QuasiNewton::defect() const {
+  return impl_->defect;
+}
+const PhaseTimes& QuasiNewton::times() const {
+  return impl_->times;
+}
+
+QuasiNewtonResult minimize(const Functional& functional, Vec x, const QuasiNewtonOptions& options,
+                           Vec cell_size,
+                           const std::function<void(const IterationRecord&)>& observe) {
+  QuasiNewton method(functional, options, cell_size);
+  method.restart(x);
+  QuasiNewtonResult result;
+  result.initial_energy = method.energy();
+  result.initial_defect = method.defect();
+  while (!method.stop_reason()) {
+    result.history.push_back(method.step(x));
+    if (observe) observe(result.history.back());
+  }
+  result.reason = *method.stop_reason();
+  result.final_energy = method.energy();
+  result.final_defect = method.defect();
+  result.times = method.times();
+  return result;
+}
+
+OwnedVec local_cell_size(const MeshView& view, const DofMap& dofs,
+                         std::span<const double> desired_volumes) {
+  const int d = view.dim;
+  std::vector<double> size_sum(view.coords.size(), 0.0), count(view.coords.size(), 0.0);
+  for (const CellBlock& block : view.blocks) {
+    const int nv = num_vertices(block.type);
+    for (PetscInt c = 0; c < block.size(); ++c) {
+      const double h = std::pow(desired_volumes[block.first_cell + c], 1.0 / d);
+      for (int i = 0; i < nv; ++i)
+        for (int j = 0; j < d; ++j) {
+          size_sum[block.cell(c)[i] * d + j] += h;
+          count[block.cell(c)[i] * d + j] += 1.0;
+        }
+    }
+  }
+  OwnedVec sum = dofs.create_global_vector(), n = dofs.create_global_vector();
+  dofs.add_local_to_global(size_sum, sum);
+  dofs.add_local_to_global(count, n);
+  NM_PETSC(VecPointwiseDivide(sum, sum, n));
+  return sum;
+}
+
+}  // namespace neomesh
