@@ -1,0 +1,236 @@
+// Generators on a structured lattice (the moved-midpoint cases, the random square, the
+// boxes), plus rotation and boundary detection for any MeshData.
+#include "mesh/generate.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <random>
+#include <unordered_set>
+
+#include "core/error.hpp"
+
+namespace neomesh {
+
+namespace {
+
+using Index = std::array<int, 3>;
+
+// Vertex (i, j[, k]) of a lattice with n cells per direction.
+std::int64_t lattice_vertex(int dim, int n, const Index& ijk) {
+  std::int64_t v = 0;
+  for (int d = dim - 1; d >= 0; --d) v = v * (n + 1) + ijk[d];
+  return v;
+}
+
+// n^dim quads/hexes in tensor order on a lattice whose vertex (i, j[, k]) sits at
+// `place(ijk, x)`; the sides i = 0, i = n, j = 0, ... become the boundary parts.
+MeshData lattice_mesh(int dim, int n, const std::function<void(const Index&, double*)>& place) {
+  if (n < 1) fail("a mesh needs at least 1 cell per direction (got {})", n);
+  MeshData mesh;
+  mesh.dim = dim;
+  mesh.cell_type = dim == 2 ? CellType::Quadrilateral : CellType::Hexahedron;
+  const int nk = dim == 3 ? n + 1 : 1;
+  mesh.coords.resize(static_cast<std::size_t>(n + 1) * (n + 1) * nk * dim);
+  for (int k = 0; k < nk; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const Index ijk{i, j, k};
+        place(ijk, mesh.coords.data() + dim * lattice_vertex(dim, n, ijk));
+      }
+
+  const int corners = 1 << dim;
+  for (int k = 0; k < (dim == 3 ? n : 1); ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (int l = 0; l < corners; ++l)
+          mesh.cells.push_back(
+              lattice_vertex(dim, n, {i + (l & 1), j + ((l >> 1) & 1), k + ((l >> 2) & 1)}));
+
+  static constexpr std::array<const char*, 6> side_names = {"left", "right", "bottom",
+                                                            "top",  "front", "back"};
+  for (int side = 0; side < 2 * dim; ++side) {
+    VertexSet part{side_names[side], side + 1, {}};
+    const int axis = side / 2, fixed = side % 2 ? n : 0;
+    for (int k = 0; k < nk; ++k)
+      for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+          const Index ijk{i, j, k};
+          if (ijk[axis] == fixed) part.vertices.push_back(lattice_vertex(dim, n, ijk));
+        }
+    mesh.boundary_parts.push_back(std::move(part));
+  }
+  return mesh;
+}
+
+// The moved-midpoint meshes: a 2^dim coarse lattice whose points are `coarse(a)` (a_j ∈
+// {0,1,2}), each coarse cell subdivided as the multilinear image of a uniform (n/2)^dim grid.
+MeshData moved_midpoint(int dim, int n, const std::function<void(const Index&, double*)>& coarse) {
+  if (n < 2 || n % 2 != 0)
+    fail("the moved-midpoint meshes need an even number of cells per direction (got {})", n);
+  const int m = n / 2;
+  return lattice_mesh(dim, n, [&](const Index& ijk, double* x) {
+    Index cell{};
+    std::array<double, 3> s{};
+    for (int d = 0; d < dim; ++d) {
+      cell[d] = std::min(ijk[d] / m, 1);
+      s[d] = static_cast<double>(ijk[d] - cell[d] * m) / m;
+    }
+    for (int d = 0; d < dim; ++d) x[d] = 0.0;
+    for (int l = 0; l < (1 << dim); ++l) {
+      double weight = 1.0;
+      Index corner{};
+      for (int d = 0; d < dim; ++d) {
+        const bool upper = (l >> d) & 1;
+        weight *= upper ? s[d] : 1.0 - s[d];
+        corner[d] = cell[d] + upper;
+      }
+      std::array<double, 3> p{};
+      coarse(corner, p.data());
+      for (int d = 0; d < dim; ++d) x[d] += weight * p[d];
+    }
+  });
+}
+
+// Uniform in [0, 1) from 32 random bits: the same numbers on every standard library.
+double uniform01(std::mt19937& random) {
+  return random() * 0x1p-32;
+}
+
+double simplex_det(const MeshData& mesh, const std::int64_t* cell) {
+  const int d = mesh.dim;
+  auto x = [&](int i, int c) {
+    return mesh.coords[d * cell[i] + c] - mesh.coords[d * cell[0] + c];
+  };
+  if (d == 2) return x(1, 0) * x(2, 1) - x(1, 1) * x(2, 0);
+  return x(1, 0) * (x(2, 1) * x(3, 2) - x(2, 2) * x(3, 1)) -
+         x(1, 1) * (x(2, 0) * x(3, 2) - x(2, 2) * x(3, 0)) +
+         x(1, 2) * (x(2, 0) * x(3, 1) - x(2, 1) * x(3, 0));
+}
+
+// Splits every quad/hex of a lattice mesh into simplices that share the diagonal from local
+// vertex 0 to the opposite one (Kuhn's triangulation), so neighbouring cells' facets match.
+void split_into_simplices(MeshData& mesh) {
+  const int dim = mesh.dim;
+  const int corners = 1 << dim;
+  std::vector<std::vector<int>> pieces;
+  if (dim == 2) {
+    pieces = {{0, 1, 3}, {0, 3, 2}};
+  } else {
+    std::array<int, 3> axes{0, 1, 2};
+    do {
+      pieces.push_back({0, 1 << axes[0], (1 << axes[0]) | (1 << axes[1]), 7});
+    } while (std::next_permutation(axes.begin(), axes.end()));
+  }
+  std::vector<std::int64_t> simplices;
+  for (std::size_t c = 0; c * corners < mesh.cells.size(); ++c)
+    for (const auto& piece : pieces)
+      for (int l : piece) simplices.push_back(mesh.cells[c * corners + l]);
+  mesh.cells = std::move(simplices);
+  mesh.cell_type = dim == 2 ? CellType::Triangle : CellType::Tetrahedron;
+  // Half of Kuhn's tets are negatively oriented; swapping two vertices fixes that.
+  for (std::size_t c = 0; c * (dim + 1) < mesh.cells.size(); ++c) {
+    std::int64_t* cell = mesh.cells.data() + c * (dim + 1);
+    if (simplex_det(mesh, cell) < 0) std::swap(cell[dim - 1], cell[dim]);
+  }
+}
+
+// Local vertices of each facet of a cell, canonical order.
+std::vector<std::vector<int>> facets(CellType type) {
+  switch (type) {
+    case CellType::Triangle:
+      return {{0, 1}, {1, 2}, {0, 2}};
+    case CellType::Quadrilateral:
+      return {{0, 1}, {2, 3}, {0, 2}, {1, 3}};
+    case CellType::Tetrahedron:
+      return {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+    case CellType::Hexahedron:
+      return {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 4, 5}, {2, 3, 6, 7}, {0, 2, 4, 6}, {1, 3, 5, 7}};
+  }
+  return {};
+}
+
+}  // namespace
+
+MeshData square_midpoint(int cells_per_direction) {
+  return moved_midpoint(2, cells_per_direction, [](const Index& a, double* p) {
+    const bool centre = a[0] == 1 && a[1] == 1;
+    for (int d = 0; d < 2; ++d) p[d] = centre ? 0.26 : 0.5 * a[d];
+  });
+}
+
+MeshData cube_midpoint(int cells_per_direction) {
+  return moved_midpoint(3, cells_per_direction, [](const Index& a, double* p) {
+    const bool centre = a[0] == 1 && a[1] == 1 && a[2] == 1;
+    for (int d = 0; d < 3; ++d) p[d] = centre ? 1.2 : a[d];
+  });
+}
+
+MeshData square_random(int cells_per_direction, double amplitude, unsigned seed) {
+  // Corner Jacobians stay positive while every edge vector is off by less than h/2.
+  if (!(amplitude >= 0.0 && amplitude < 0.25))
+    fail("the random displacement amplitude must be in [0, 0.25) (got {})", amplitude);
+  const int n = cells_per_direction;
+  MeshData mesh = lattice_mesh(2, n, [n](const Index& ijk, double* x) {
+    for (int d = 0; d < 2; ++d) x[d] = static_cast<double>(ijk[d]) / n;
+  });
+  std::mt19937 random(seed);
+  const double h = 1.0 / n;
+  for (int j = 1; j < n; ++j)
+    for (int i = 1; i < n; ++i)
+      for (int d = 0; d < 2; ++d)
+        mesh.coords[2 * lattice_vertex(2, n, {i, j, 0}) + d] +=
+            amplitude * h * (2.0 * uniform01(random) - 1.0);
+  return mesh;
+}
+
+MeshData box(CellType type, int cells_per_direction) {
+  const int dim = dimension(type), n = cells_per_direction;
+  MeshData mesh = lattice_mesh(dim, n, [dim, n](const Index& ijk, double* x) {
+    for (int d = 0; d < dim; ++d) x[d] = -1.0 + 2.0 * ijk[d] / n;
+  });
+  if (is_simplex(type)) split_into_simplices(mesh);
+  return mesh;
+}
+
+void rotate(MeshData& mesh, double degrees) {
+  const double angle = degrees * std::numbers::pi / 180.0;
+  const double c = std::cos(angle), s = std::sin(angle);
+  for (std::size_t v = 0; v < mesh.coords.size(); v += mesh.dim) {
+    const double x = mesh.coords[v], y = mesh.coords[v + 1];
+    mesh.coords[v] = c * x - s * y;
+    mesh.coords[v + 1] = s * x + c * y;
+  }
+}
+
+std::vector<std::uint8_t> boundary_vertices(const MeshData& mesh) {
+  // A facet seen a second time is interior and dropped at once, so the set only holds the
+  // facets between visited and unvisited cells plus the boundary: small for ordered meshes.
+  using Facet = std::array<std::int64_t, 4>;  // sorted vertices, -1 for unused entries
+  struct FacetHash {
+    std::size_t operator()(const Facet& f) const {
+      std::size_t h = 0;
+      for (std::int64_t v : f) h = h * 0x9E3779B97F4A7C15ull + static_cast<std::size_t>(v);
+      return h;
+    }
+  };
+  std::unordered_set<Facet, FacetHash> open;
+  const int nv = num_vertices(mesh.cell_type);
+  const auto local_facets = facets(mesh.cell_type);
+  for (std::int64_t c = 0; c < mesh.num_cells(); ++c)
+    for (const auto& local : local_facets) {
+      Facet facet{-1, -1, -1, -1};
+      for (std::size_t i = 0; i < local.size(); ++i) facet[i] = mesh.cells[c * nv + local[i]];
+      std::sort(facet.begin(), facet.end());
+      if (auto [it, inserted] = open.insert(facet); !inserted) open.erase(it);
+    }
+  std::vector<std::uint8_t> on_boundary(mesh.num_vertices(), 0);
+  for (const Facet& facet : open)
+    for (std::int64_t v : facet)
+      if (v >= 0) on_boundary[v] = 1;
+  return on_boundary;
+}
+
+}  // namespace neomesh
