@@ -86,8 +86,7 @@ int run(int argc, char** argv) {
   cli.add_flag("-v,--verbose", verbose, "also print linear-solver details");
   cli.set_config("--config", "", "read options from a TOML/INI file (command line wins)");
 
-  std::vector<Subcommand> commands = {add_generate(cli), add_quality(cli), add_convert(cli),
-                                      add_smooth(cli)};
+  std::vector<Subcommand> commands = {add_generate(cli), add_quality(cli), add_convert(cli)};
   for (auto& c : commands) c.cli->fallthrough();
 
   try {

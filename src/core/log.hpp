@@ -31,7 +31,7 @@ void detail(fmt::format_string<Args...> format, Args&&... args) {
 
 // Final results, shown even with --quiet.
 template <typename... Args>
-void result(fmt::format_string<Args...> format, Args&&... args) {
+void always(fmt::format_string<Args...> format, Args&&... args) {
   if (is_root_rank()) fmt::print(stdout, format, std::forward<Args>(args)...), std::fflush(stdout);
 }
 

@@ -1,0 +1,27 @@
+// Options of the optimization method shared by `smooth` and `adapt`: the energy (λ, μ, κ,
+// quadrature), the quasi-Newton method (α₀, η, k_min, tolerances) and the linear solvers.
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "energy/functional.hpp"
+#include "solver/quasi_newton.hpp"
+
+namespace neomesh::app {
+
+struct MethodOptions {
+  EnergyOptions energy;
+  QuasiNewtonOptions solver;
+  std::string linear_solver = "amg";
+  std::string riesz = "optimal";
+  bool no_practical = false;
+  bool thesis = false;
+};
+
+void add_method_options(CLI::App& cmd, MethodOptions& options);
+// Checks ranges and resolves names; throws Error with a one-line message naming the option.
+void finalize(MethodOptions& options);
+
+}  // namespace neomesh::app

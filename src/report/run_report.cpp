@@ -1,0 +1,87 @@
+#include "report/run_report.hpp"
+
+#include "core/atomic_file.hpp"
+#include "core/log.hpp"
+
+namespace neomesh {
+
+namespace {
+// JSON has no infinity; an infinite or NaN value (which a finished run never reports,
+// but a failed line search might) becomes null.
+nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nullptr; }
+}  // namespace
+
+nlohmann::json to_json(const IterationRecord& r) {
+  return {{"k", r.k},
+          {"armijo_steps", r.armijo_steps},
+          {"defect", number(r.defect)},
+          {"direction_norm", number(r.direction_norm)},
+          {"energy", number(r.energy)},
+          {"eta", number(r.eta)},
+          {"alpha", r.alpha},
+          {"krylov_delta", r.krylov_delta},
+          {"residual_delta", number(r.residual_delta)},
+          {"delta_solved", r.delta_solved},
+          {"delta_failed", r.delta_failed},
+          {"krylov_s", r.krylov_s},
+          {"used_s", r.used_s},
+          {"roundoff_step", r.roundoff_step},
+          {"max_move", number(r.max_move)},
+          {"seconds", r.seconds}};
+}
+
+nlohmann::json to_json(const PhaseTimes& t) {
+  return {{"gradient", t.gradient},           {"hessian_assembly", t.hessian_assembly},
+          {"hessian_solve", t.hessian_solve}, {"riesz_setup", t.riesz_setup},
+          {"riesz_solve", t.riesz_solve},     {"line_search", t.line_search}};
+}
+
+nlohmann::json to_json(const QuasiNewtonOptions& o) {
+  return {{"alpha0", o.alpha0},
+          {"eta", o.eta},
+          {"kmin", o.kmin},
+          {"max_iterations", o.max_iterations},
+          {"defect_atol", o.defect_atol},
+          {"defect_rtol", o.defect_rtol},
+          {"practical", o.practical},
+          {"energy_rtol", o.energy_rtol},
+          {"move_rtol", o.move_rtol},
+          {"armijo_beta", o.armijo_beta},
+          {"max_halvings", o.max_halvings},
+          {"initial_previous_defect", o.initial_previous_defect},
+          {"linear_solver", std::string(name(o.linear_solver))},
+          {"hessian_rtol", o.hessian_rtol},
+          {"hessian_defect_factor", o.hessian_defect_factor},
+          {"riesz_rtol", o.riesz_rtol},
+          {"riesz_laplacian",
+           o.riesz == RieszLaplacian::OptimalCells ? "optimal-cells" : "current-mesh"}};
+}
+
+nlohmann::json to_json(const EnergyOptions& o) {
+  return {{"lambda", o.lambda},
+          {"mu", o.mu},
+          {"kappa", o.kappa < 0 ? o.lambda : o.kappa},
+          {"gauss_points", o.gauss_points}};
+}
+
+nlohmann::json to_json(const QuasiNewtonResult& r) {
+  nlohmann::json history = nlohmann::json::array();
+  for (const auto& rec : r.history) history.push_back(to_json(rec));
+  return {{"iterations", r.history.size()},
+          {"stop_reason", describe(r.reason)},
+          {"initial_energy", number(r.initial_energy)},
+          {"final_energy", number(r.final_energy)},
+          {"initial_defect", number(r.initial_defect)},
+          {"final_defect", number(r.final_defect)},
+          {"times", to_json(r.times)},
+          {"history", history}};
+}
+
+void write_json(const nlohmann::json& report, const std::filesystem::path& path) {
+  if (!is_root_rank()) return;
+  AtomicFile file(path);
+  file.stream() << report.dump(2) << '\n';
+  file.commit();
+}
+
+}  // namespace neomesh

@@ -1,0 +1,171 @@
+// The chapter-5 cases of the thesis (CASES.md) as tests of the quasi-Newton method.
+#include "solver/quasi_newton.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "mesh/generate.hpp"
+#include "solver/thesis_problem.hpp"
+
+namespace neomesh {
+namespace {
+
+std::string e2(double x) { return fmt::format("{:.2E}", x); }
+std::string f2(double x) { return fmt::format("{:.2f}", x); }
+
+// Largest distance of a vertex from the uniform n×n grid on [0,1]² (after undoing a rotation).
+double distance_to_uniform_grid(const ThesisProblem& p, int n, double degrees = 0.0) {
+  const double a = -degrees * M_PI / 180.0;
+  VecReadView x(p.x);
+  double worst = 0.0;
+  for (PetscInt v = 0; v < p.view.num_vertices; ++v) {
+    const double px = std::cos(a) * x[2 * v] - std::sin(a) * x[2 * v + 1];
+    const double py = std::sin(a) * x[2 * v] + std::cos(a) * x[2 * v + 1];
+    worst = std::max({worst, std::abs(px * n - std::round(px * n)) / n,
+                      std::abs(py * n - std::round(py * n)) / n});
+  }
+  return worst;
+}
+
+// Thesis Table 5.1, the rows printed while the defect is above 1e-8.
+void expect_table_5_1(const QuasiNewtonResult& r) {
+  const std::vector<std::string> defect = {"1.16E+01", "3.12E+00", "7.85E-01", "3.17E-01",
+                                           "8.36E-02", "1.15E-02", "3.76E-06"};
+  const std::vector<std::string> delta = {"2.11E+00", "4.50E-01", "1.40E-01",
+                                          "3.94E-02", "8.06E-03", "8.78E-04"};
+  const std::vector<std::string> energy = {"2.18E-01", "1.74E-02", "2.29E-03", "1.48E-04",
+                                           "2.64E-06"};
+  const std::vector<std::string> eta = {"0.77", "0.96", "1.00", "1.00", "1.00", "1.00"};
+  const std::vector<std::string> alpha = {"0.30", "0.27", "0.38", "0.55", "0.74", "1.00"};
+  ASSERT_GE(r.history.size(), defect.size());
+  for (size_t k = 0; k < defect.size(); ++k) {
+    SCOPED_TRACE(fmt::format("iteration {}", k + 1));
+    const IterationRecord& rec = r.history[k];
+    EXPECT_EQ(e2(rec.defect), defect[k]);
+    if (k < delta.size()) EXPECT_EQ(e2(rec.direction_norm), delta[k]);
+    if (k < energy.size()) EXPECT_EQ(e2(rec.energy), energy[k]);
+    if (k < eta.size()) EXPECT_EQ(f2(rec.eta), eta[k]);
+    if (k < alpha.size()) EXPECT_EQ(f2(rec.alpha), alpha[k]);
+    EXPECT_EQ(rec.armijo_steps, 0);
+    EXPECT_FALSE(rec.used_s);
+  }
+}
+
+TEST(SquareMidpoint, ReproducesThesisTable51WithDirectSolver) {
+  ThesisProblem p(square_midpoint(16));
+  const QuasiNewtonResult r = p.minimize(p.thesis_options());
+  expect_table_5_1(r);
+  EXPECT_EQ(r.history.size(), 7u) << "defect < 1e-10 after 7 iterations";
+  EXPECT_LT(r.final_defect, 1e-10);
+  EXPECT_LT(distance_to_uniform_grid(p, 16), 1e-8);
+}
+
+TEST(SquareMidpoint, RotatedBy27DegreesGivesTheSameTable) {
+  MeshData mesh = square_midpoint(16);
+  rotate(mesh, 27.0);
+  ThesisProblem p(std::move(mesh));
+  const QuasiNewtonResult r = p.minimize(p.thesis_options());
+  expect_table_5_1(r);
+  EXPECT_LT(r.final_defect, 1e-10);
+  EXPECT_LT(distance_to_uniform_grid(p, 16, 27.0), 1e-8);
+}
+
+TEST(SquareMidpoint, JacobiPcgWithLooseRuleNeedsAboutOneKrylovIteration) {
+  ThesisProblem p(square_midpoint(16));
+  QuasiNewtonOptions o = p.thesis_options();
+  o.linear_solver = LinearSolverKind::Jacobi;
+  const QuasiNewtonResult r = p.minimize(o);
+  EXPECT_LT(r.final_defect, 1e-10);
+  EXPECT_NEAR(static_cast<double>(r.history.size()), 7.0, 1.0);  // thesis Table 5.6: ±1
+  int delta_solves = 0, delta_iterations = 0;
+  for (const auto& rec : r.history)
+    if (rec.delta_solved) ++delta_solves, delta_iterations += rec.krylov_delta;
+  EXPECT_LE(delta_iterations, 3 * delta_solves) << "a few PCG iterations per δ̃, not hundreds";
+}
+
+TEST(SquareMidpoint, ConvergesForEveryKmin) {
+  for (int kmin : {0, 2, 4}) {
+    SCOPED_TRACE(fmt::format("kmin {}", kmin));
+    ThesisProblem p(square_midpoint(32));
+    QuasiNewtonOptions o = p.thesis_options();
+    o.kmin = kmin;
+    o.linear_solver = LinearSolverKind::Amg;
+    const QuasiNewtonResult r = p.minimize(o);
+    EXPECT_LT(r.final_defect, 1e-10);
+    for (int k = 0; k < kmin; ++k) EXPECT_TRUE(r.history[k].used_s);
+  }
+}
+
+TEST(SquareMidpoint, DoesNotStallOnRoundOffAt64x64) {
+  ThesisProblem p(square_midpoint(64));
+  QuasiNewtonOptions o = p.thesis_options();
+  o.linear_solver = LinearSolverKind::Amg;
+  const QuasiNewtonResult r = p.minimize(o);
+  EXPECT_EQ(r.reason, StopReason::DefectAbsolute);
+  EXPECT_LT(r.final_defect, 1e-10);
+  EXPECT_LT(r.history.size(), 20u);
+}
+
+TEST(CubeMidpoint, ReproducesThesisTable518) {
+  ThesisProblem p(cube_midpoint(16));
+  const QuasiNewtonResult r = p.minimize(p.thesis_options());
+  const std::vector<std::string> defect = {"1.77E+00", "6.31E-01", "2.19E-01",
+                                           "5.02E-02", "4.12E-03", "5.98E-07"};
+  const std::vector<std::string> alpha = {"0.30", "0.44", "0.61", "0.84", "1.00"};
+  ASSERT_GE(r.history.size(), defect.size());
+  for (size_t k = 0; k < defect.size(); ++k) {
+    SCOPED_TRACE(fmt::format("iteration {}", k + 1));
+    EXPECT_EQ(e2(r.history[k].defect), defect[k]);
+    if (k < alpha.size()) EXPECT_EQ(f2(r.history[k].alpha), alpha[k]);
+    EXPECT_EQ(r.history[k].armijo_steps, 0);
+  }
+  EXPECT_EQ(r.history.size(), 6u);
+}
+
+TEST(SquareRandom, ConvergesToTheUniformGrid) {
+  ThesisProblem p(square_random(16, 0.2, 1));
+  QuasiNewtonOptions o = p.thesis_options();
+  o.kmin = 2;  // thesis Table 5.13
+  const QuasiNewtonResult r = p.minimize(o);
+  EXPECT_LT(r.final_defect, 1e-10);
+  EXPECT_LE(r.history.size(), 12u);
+  EXPECT_LT(distance_to_uniform_grid(p, 16), 1e-8);
+}
+
+// The cases whose meshes the thesis does not specify fully (generate.hpp documents the
+// meshes built here): each converges to defect < 1e-10 without stalling, with k_min = 2.
+struct QualitativeCase {
+  const char* name;
+  MeshData (*mesh)();
+  size_t max_iterations;
+};
+
+class ThesisQualitativeCase : public ::testing::TestWithParam<QualitativeCase> {};
+
+TEST_P(ThesisQualitativeCase, ConvergesWithoutStalling) {
+  ThesisProblem p(GetParam().mesh());
+  QuasiNewtonOptions o = p.thesis_options();
+  o.kmin = 2;
+  o.linear_solver = LinearSolverKind::Amg;
+  const QuasiNewtonResult r = p.minimize(o);
+  EXPECT_EQ(r.reason, StopReason::DefectAbsolute) << describe(r.reason);
+  EXPECT_LT(r.final_defect, 1e-10);
+  EXPECT_LE(r.history.size(), GetParam().max_iterations);
+  EXPECT_LT(r.final_energy, r.initial_energy);
+  RecordProperty("final_energy", fmt::format("{:.6f}", r.final_energy));
+  RecordProperty("iterations", static_cast<int>(r.history.size()));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Chapter5, ThesisQualitativeCase,
+    ::testing::Values(QualitativeCase{"transition", [] { return transition(3); }, 30},
+                      QualitativeCase{"circle_quad", [] { return circle_quad(3); }, 30},
+                      QualitativeCase{"triangle_equilateral",
+                                      [] { return triangle_equilateral(4, 1); }, 30},
+                      QualitativeCase{"triangle_curved", [] { return triangle_curved(3); }, 40}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace neomesh

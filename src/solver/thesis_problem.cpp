@@ -1,0 +1,37 @@
+#include "solver/thesis_problem.hpp"
+
+namespace neomesh {
+
+ThesisProblem::ThesisProblem(MeshData mesh_data, EnergyOptions energy_options)
+    : data(std::move(mesh_data)),
+      view(serial_view(data)),
+      dofs(DofMap::serial(view.dim, view.num_vertices)),
+      energy(energy_options) {
+  functional = std::make_unique<Functional>(view, dofs, energy, view.on_boundary);
+  x = dofs.create_global_vector();
+  {
+    VecWriteView out(x);
+    for (PetscInt i = 0; i < out.size(); ++i) out[i] = view.coords[i];
+  }
+  volume = mesh_volume(view, dofs, x);
+  const std::vector<double> volumes(view.num_cells, volume / view.num_cells);
+  functional->set_desired_volumes(volumes);
+  cell_size = local_cell_size(view, dofs, volumes);
+}
+
+QuasiNewtonOptions ThesisProblem::thesis_options() const {
+  QuasiNewtonOptions o;
+  o.linear_solver = LinearSolverKind::Direct;
+  o.kmin = 0;
+  o.practical = false;
+  o.defect_atol = 1e-10;
+  o.defect_rtol = 0.0;
+  o.energy_roundoff = energy_roundoff(energy, view.dim, volume);
+  return o;
+}
+
+QuasiNewtonResult ThesisProblem::minimize(const QuasiNewtonOptions& options) {
+  return neomesh::minimize(*functional, x, options, cell_size);
+}
+
+}  // namespace neomesh

@@ -1,0 +1,33 @@
+// A thesis test case as a serial problem: a generated mesh, uniform desired volumes, fixed
+// boundary vertices and the thesis' parameters (CASES.md: λ = 1, μ = 10, α₀ = 0.3, η = 0.6).
+// Used by the solver tests and benchmarks.
+#pragma once
+
+#include <memory>
+
+#include "energy/functional.hpp"
+#include "mesh/dof_map.hpp"
+#include "mesh/mesh_data.hpp"
+#include "mesh/serial_view.hpp"
+#include "solver/quasi_newton.hpp"
+
+namespace neomesh {
+
+struct ThesisProblem {
+  explicit ThesisProblem(MeshData mesh_data, EnergyOptions energy = {});
+
+  MeshData data;
+  MeshView view;
+  DofMap dofs;
+  EnergyOptions energy;
+  std::unique_ptr<Functional> functional;
+  OwnedVec x;          // initial coordinates; minimize() moves them
+  OwnedVec cell_size;
+  double volume = 0.0;
+
+  // The thesis' method options: direct solver, k_min = 0, no practical criterion.
+  QuasiNewtonOptions thesis_options() const;
+  QuasiNewtonResult minimize(const QuasiNewtonOptions& options);
+};
+
+}  // namespace neomesh
