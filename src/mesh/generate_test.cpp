@@ -128,4 +128,187 @@ TEST(SerialView, HoldsTheWholeMeshWithBoundaryParts) {
   EXPECT_EQ(view.global_cell[7], 7);
 }
 
+TEST(CubeMidpoint, Level3MeshHas4096HexesAndTheMovedMidpoint) {
+  const MeshData m = cube_midpoint(16);
+  EXPECT_EQ(m.cell_type, CellType::Hexahedron);
+  EXPECT_EQ(m.num_cells(), 4096);
+  EXPECT_GE(find_vertex(m, {1.2, 1.2, 1.2}), 0);
+  EXPECT_LT(find_vertex(m, {1.0, 1.0, 1.0}), 0);
+  EXPECT_GT(min_corner_det(m), 0.0);
+  const auto on_boundary = boundary_vertices(m);
+  for (std::int64_t v = 0; v < m.num_vertices(); ++v) {
+    bool on_cube = false;
+    for (int d = 0; d < 3; ++d) on_cube |= coord(m, v, d) == 0.0 || coord(m, v, d) == 2.0;
+    EXPECT_EQ(on_boundary[v] != 0, on_cube);
+  }
+  EXPECT_EQ(m.boundary_parts.size(), 6u);
+  for (std::int64_t v : part(m, "back").vertices) EXPECT_EQ(coord(m, v, 2), 2.0);
+  expect_parts_cover_boundary(m);
+}
+
+TEST(SquareRandom, DisplacesOnlyInteriorVerticesWithinTheAmplitude) {
+  const int n = 10;
+  const double amplitude = 0.2, h = 1.0 / n;
+  const MeshData m = square_random(n, amplitude, 42);
+  const MeshData uniform = box(CellType::Quadrilateral, n);  // [-1,1]²: same lattice, scaled
+  const auto on_boundary = boundary_vertices(m);
+  int moved = 0;
+  for (std::int64_t v = 0; v < m.num_vertices(); ++v)
+    for (int d = 0; d < 2; ++d) {
+      const double grid = 0.5 * (coord(uniform, v, d) + 1.0);
+      const double shift = std::abs(coord(m, v, d) - grid);
+      if (on_boundary[v]) {
+        EXPECT_NEAR(shift, 0.0, 1e-15);
+      }
+      EXPECT_LE(shift, amplitude * h + 1e-15);
+      moved += shift > 1e-3 * h;
+    }
+  EXPECT_GT(moved, 100);  // of 2·81 interior coordinates
+  EXPECT_GT(min_corner_det(m), 0.0);
+}
+
+TEST(SquareRandom, IsDeterministicPerSeed) {
+  EXPECT_EQ(square_random(8, 0.2, 7).coords, square_random(8, 0.2, 7).coords);
+  EXPECT_NE(square_random(8, 0.2, 7).coords, square_random(8, 0.2, 8).coords);
+  // std::mt19937 is fully specified: seeded with 5489 its first output is 3499211612, which
+  // moves the only interior vertex (4) of a 2×2 grid first.
+  const MeshData m = square_random(2, 0.2, 5489);
+  const double first = 0.2 * 0.5 * (2.0 * 3499211612.0 * 0x1p-32 - 1.0);
+  EXPECT_DOUBLE_EQ(coord(m, 4, 0), 0.5 + first);
+  EXPECT_THROW(square_random(8, 0.25, 1), Error);
+}
+
+TEST(Transition, OneQuadRefinedIntoFiveThenUniformly) {
+  for (int r = 0; r <= 3; ++r) EXPECT_EQ(transition(r).num_cells(), 5 << (2 * r));
+  const MeshData m = transition(2);
+  EXPECT_GT(min_corner_det(m), 0.0);
+  EXPECT_GE(find_vertex(m, {0.25, 0.25}), 0);
+  EXPECT_GE(find_vertex(m, {0.75, 0.75}), 0);
+  const auto on_boundary = boundary_vertices(m);
+  for (std::int64_t v = 0; v < m.num_vertices(); ++v) {
+    const double x = coord(m, v, 0), y = coord(m, v, 1);
+    EXPECT_EQ(on_boundary[v] != 0, x == 0.0 || x == 1.0 || y == 0.0 || y == 1.0);
+  }
+  for (std::int64_t v : part(m, "right").vertices) EXPECT_EQ(coord(m, v, 0), 1.0);
+  EXPECT_EQ(part(m, "bottom").vertices.size(), 5u);
+  expect_parts_cover_boundary(m);
+}
+
+TEST(CircleQuad, BoundaryVerticesLieOnTheUnitCircle) {
+  for (int r = 0; r <= 3; ++r) EXPECT_EQ(circle_quad(r).num_cells(), 5 << (2 * r));
+  const MeshData m = circle_quad(3);
+  EXPECT_GT(min_corner_det(m), 0.0);
+  const auto on_boundary = boundary_vertices(m);
+  int count = 0;
+  for (std::int64_t v = 0; v < m.num_vertices(); ++v) {
+    const double radius = std::hypot(coord(m, v, 0), coord(m, v, 1));
+    if (on_boundary[v])
+      EXPECT_NEAR(radius, 1.0, 1e-14);
+    else
+      EXPECT_LT(radius, 1.0 - 1e-3);
+    count += on_boundary[v];
+  }
+  EXPECT_EQ(count, 32);
+  EXPECT_EQ(part(m, "circle").vertices.size(), 32u);
+  expect_parts_cover_boundary(m);
+  // Point symmetric about the origin.
+  for (std::int64_t v = 0; v < m.num_vertices(); ++v)
+    EXPECT_GE(find_vertex(m, {-coord(m, v, 0), -coord(m, v, 1)}), 0);
+}
+
+TEST(TriangleEquilateral, RefinesIntoEquilateralTrianglesAndMovesSomeInteriorVertices) {
+  for (int r = 0; r <= 3; ++r) EXPECT_EQ(triangle_equilateral(r, 1).num_cells(), 1 << (2 * r));
+  const int r = 3;
+  const MeshData m = triangle_equilateral(r, 1);
+  EXPECT_GT(min_corner_det(m), 0.0);
+  const double s3 = std::sqrt(3.0);
+  const auto on_boundary = boundary_vertices(m);
+  int interior = 0, moved = 0;
+  for (std::int64_t v = 0; v < m.num_vertices(); ++v) {
+    const double x = coord(m, v, 0), y = coord(m, v, 1);
+    // Distances to the sides y = 0, √3 x - y = 0, √3 (1 - x) - y = 0.
+    const double to_side = std::min({y, (s3 * x - y) / 2, (s3 * (1 - x) - y) / 2});
+    if (on_boundary[v]) {
+      EXPECT_NEAR(to_side, 0.0, 1e-15);
+      continue;
+    }
+    ++interior;
+    // Lattice points have y = k·(√3/2)·h and x = (i + k/2)·h.
+    const double h = 1.0 / (1 << r), k = y / (s3 / 2 * h), i = x / h - k / 2;
+    moved += std::abs(k - std::round(k)) > 1e-9 || std::abs(i - std::round(i)) > 1e-9;
+  }
+  EXPECT_EQ(interior, 21);
+  EXPECT_GT(moved, 0);
+  EXPECT_LT(moved, interior);
+  EXPECT_EQ(triangle_equilateral(r, 1).coords, m.coords);
+  EXPECT_NE(triangle_equilateral(r, 2).coords, m.coords);
+  expect_parts_cover_boundary(m);
+}
+
+TEST(TriangleCurved, BoundaryFollowsTheCurvesAndTheMeshIsPointSymmetric) {
+  for (int r = 0; r <= 3; ++r) EXPECT_EQ(triangle_curved(r).num_cells(), 8 << (2 * r));
+  const MeshData m = triangle_curved(3);
+  EXPECT_GT(min_corner_det(m), 0.0);
+  // Mid points of the bottom (bulging out) and the right side (bulging in).
+  EXPECT_GE(find_vertex(m, {0.5, -0.1875}), 0);
+  EXPECT_GE(find_vertex(m, {0.8125, 0.5}), 0);
+  for (std::int64_t v : part(m, "bottom").vertices) EXPECT_LE(coord(m, v, 1), 0.0);
+  for (std::int64_t v : part(m, "left").vertices) EXPECT_GE(coord(m, v, 0), 0.0);
+  for (std::int64_t v = 0; v < m.num_vertices(); ++v)
+    EXPECT_GE(find_vertex(m, {1.0 - coord(m, v, 0), 1.0 - coord(m, v, 1)}), 0);
+  EXPECT_EQ(part(m, "top").vertices.size(), 17u);
+  expect_parts_cover_boundary(m);
+}
+
+TEST(Box, CountsOrientationAndConformingDiagonals) {
+  const int n = 4;
+  const std::vector<std::pair<CellType, int>> expected = {{CellType::Quadrilateral, 16},
+                                                          {CellType::Triangle, 32},
+                                                          {CellType::Hexahedron, 64},
+                                                          {CellType::Tetrahedron, 384}};
+  for (const auto& [type, cells] : expected) {
+    const MeshData m = box(type, n);
+    EXPECT_EQ(m.cell_type, type);
+    EXPECT_EQ(m.num_cells(), cells);
+    EXPECT_GT(min_corner_det(m), 0.0) << name(type);
+    // Matching diagonals leave no interior facet unpaired: boundary = surface vertices.
+    const auto on_boundary = boundary_vertices(m);
+    const int d = m.dim;
+    const int surface = d == 2 ? 4 * n : (n + 1) * (n + 1) * (n + 1) - (n - 1) * (n - 1) * (n - 1);
+    EXPECT_EQ(std::count(on_boundary.begin(), on_boundary.end(), 1), surface) << name(type);
+    for (std::int64_t v = 0; v < m.num_vertices(); ++v) {
+      double largest = 0.0;
+      for (int j = 0; j < d; ++j) largest = std::max(largest, std::abs(coord(m, v, j)));
+      EXPECT_EQ(on_boundary[v] != 0, largest == 1.0);
+    }
+    expect_parts_cover_boundary(m);
+  }
+}
+
+TEST(Rotate, PreservesEdgeLengthsAndTurnsCounterClockwise) {
+  MeshData m = square_midpoint(4);
+  const MeshData before = m;
+  rotate(m, 27.0);
+  const double a = 27.0 * std::numbers::pi / 180.0;
+  const std::int64_t v = find_vertex(before, {1.0, 0.0});
+  EXPECT_NEAR(coord(m, v, 0), std::cos(a), 1e-15);
+  EXPECT_NEAR(coord(m, v, 1), std::sin(a), 1e-15);
+  auto length = [](const MeshData& mesh, std::int64_t p, std::int64_t q) {
+    double sum = 0.0;
+    for (int d = 0; d < mesh.dim; ++d) sum += std::pow(coord(mesh, p, d) - coord(mesh, q, d), 2);
+    return std::sqrt(sum);
+  };
+  for (std::int64_t c = 0; c < m.num_cells(); ++c)
+    for (auto [i, j] : {std::pair{0, 1}, {2, 3}, {0, 2}, {1, 3}}) {
+      const std::int64_t p = m.cells[4 * c + i], q = m.cells[4 * c + j];
+      EXPECT_NEAR(length(m, p, q), length(before, p, q), 1e-14);
+    }
+  MeshData cube = cube_midpoint(2);
+  rotate(cube, 90.0);
+  const std::int64_t top = find_vertex(cube_midpoint(2), {2.0, 0.0, 2.0});
+  EXPECT_NEAR(coord(cube, top, 0), 0.0, 1e-15);
+  EXPECT_NEAR(coord(cube, top, 1), 2.0, 1e-15);
+  EXPECT_EQ(coord(cube, top, 2), 2.0);
+}
+
 }  // namespace neomesh
