@@ -1,0 +1,269 @@
+#include "geometry/quality.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "geometry/reference_cell.hpp"
+
+namespace neomesh {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr double kDegrees = 180.0 / std::numbers::pi;
+// |volume| below this fraction of the mean cell volume counts as degenerate.
+constexpr double kDegenerateVolume = 1e-14;
+
+struct Measures {
+  double volume, min_corner_det, min_gauss_det, scaled_jacobian, min_angle, max_angle, edge_ratio;
+};
+
+template <int Dim>
+double angle_between(const Vector<Dim>& a, const Vector<Dim>& b) {
+  const double c = a.dot(b) / (a.norm() * b.norm());
+  return std::acos(std::clamp(c, -1.0, 1.0)) * kDegrees;
+}
+
+template <CellType Type>
+double edge_ratio(const typename CellTraits<Type>::Coordinates& x) {
+  constexpr int n = CellTraits<Type>::vertices;
+  double shortest = kInfinity, longest = 0.0;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) {
+      // Q1 edges join vertices that differ in one reference coordinate (one bit).
+      if (!CellTraits<Type>::simplex && std::popcount(static_cast<unsigned>(a ^ b)) != 1) continue;
+      const double length = (x.col(b) - x.col(a)).norm();
+      shortest = std::min(shortest, length);
+      longest = std::max(longest, length);
+    }
+  return shortest > 0.0 ? longest / shortest : kInfinity;
+}
+
+template <CellType Type>
+Measures measure_simplex(const typename CellTraits<Type>::Coordinates& x) {
+  constexpr int d = CellTraits<Type>::dim;
+  Matrix<d> edges;
+  for (int j = 0; j < d; ++j) edges.col(j) = x.col(j + 1) - x.col(0);
+  const double det = edges.determinant();
+  // det / (product of the corner's edge lengths) on the equilateral / regular simplex.
+  const double ideal = d == 2 ? std::sqrt(3.0) / 2.0 : std::sqrt(2.0) / 2.0;
+
+  Measures m{};
+  m.volume = det / (d == 2 ? 2.0 : 6.0);
+  m.min_corner_det = m.min_gauss_det = det;
+  m.scaled_jacobian = kInfinity;
+  m.min_angle = kInfinity;
+  m.max_angle = 0.0;
+  for (int i = 0; i <= d; ++i) {
+    double product = 1.0;
+    for (int j = 0; j <= d; ++j)
+      if (j != i) product *= (x.col(j) - x.col(i)).norm();
+    m.scaled_jacobian = std::min(m.scaled_jacobian, det / product / ideal);
+  }
+  auto record = [&m](double angle) {
+    m.min_angle = std::min(m.min_angle, angle);
+    m.max_angle = std::max(m.max_angle, angle);
+  };
+  if constexpr (d == 2) {
+    for (int i = 0; i < 3; ++i)
+      record(angle_between<2>(x.col((i + 1) % 3) - x.col(i), x.col((i + 2) % 3) - x.col(i)));
+  } else {
+    // Dihedral angle at edge (a, b): between the normals of its faces towards c and d.
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        int others[2], k = 0;
+        for (int c = 0; c < 4; ++c)
+          if (c != a && c != b) others[k++] = c;
+        const Vector<3> e = x.col(b) - x.col(a);
+        record(angle_between<3>(e.cross(Vector<3>(x.col(others[0]) - x.col(a))),
+                                e.cross(Vector<3>(x.col(others[1]) - x.col(a)))));
+      }
+  }
+  m.edge_ratio = edge_ratio<Type>(x);
+  return m;
+}
+
+template <CellType Type>
+Measures measure_q1(const typename CellTraits<Type>::Coordinates& x) {
+  constexpr int d = CellTraits<Type>::dim, n = CellTraits<Type>::vertices;
+  Measures m{};
+  m.min_corner_det = m.min_gauss_det = m.scaled_jacobian = m.min_angle = kInfinity;
+  m.max_angle = 0.0;
+  for (int c = 0; c < n; ++c) {
+    // Edges along the reference axes, pointing the way the axes do (so the unit cell has J = I).
+    Matrix<d> edges;
+    double product = 1.0;
+    for (int j = 0; j < d; ++j) {
+      const double sign = ((c >> j) & 1) ? -1.0 : 1.0;
+      edges.col(j) = sign * (x.col(c ^ (1 << j)) - x.col(c));
+      product *= edges.col(j).norm();
+    }
+    const double det = edges.determinant();
+    m.min_corner_det = std::min(m.min_corner_det, det);
+    m.scaled_jacobian = std::min(m.scaled_jacobian, det / product);
+    for (int j = 0; j < d; ++j)
+      for (int k = j + 1; k < d; ++k) {
+        // The actual edges leave the corner; the angle between them is the one inside the
+        // cell unless the corner is reflex (2D) or inverted.
+        double angle =
+            angle_between<d>(x.col(c ^ (1 << j)) - x.col(c), x.col(c ^ (1 << k)) - x.col(c));
+        if (d == 2 && det <= 0.0) angle = 360.0 - angle;
+        m.min_angle = std::min(m.min_angle, angle);
+        m.max_angle = std::max(m.max_angle, angle);
+      }
+  }
+  // 2 Gauss points per direction integrate det J exactly (degree ≤ 1 in 2D, ≤ 2 per axis in 3D).
+  static const TensorGaussRule<d> volume_rule(2), det_rule(3);
+  for (int q = 0; q < volume_rule.size; ++q)
+    m.volume += volume_rule.weights[q] *
+                (x * q1_gradients<d>(volume_rule.points[q]).transpose()).determinant();
+  for (int q = 0; q < det_rule.size; ++q) {
+    const Matrix<d> jacobian = 2.0 * x * q1_gradients<d>(det_rule.points[q]).transpose();
+    m.min_gauss_det = std::min(m.min_gauss_det, jacobian.determinant());
+  }
+  m.edge_ratio = edge_ratio<Type>(x);
+  return m;
+}
+
+template <CellType Type>
+void measure_block(const CellBlock& block, std::span<const double> coords, CellQuality& out) {
+  using Traits = CellTraits<Type>;
+  typename Traits::Coordinates x;
+  for (PetscInt c = 0; c < block.size(); ++c) {
+    const PetscInt* cell = block.cell(c);
+    for (int i = 0; i < Traits::vertices; ++i)
+      for (int k = 0; k < Traits::dim; ++k) x(k, i) = coords[Traits::dim * cell[i] + k];
+    Measures m;
+    if constexpr (Traits::simplex) {
+      m = measure_simplex<Type>(x);
+    } else {
+      m = measure_q1<Type>(x);
+    }
+    const std::size_t i = block.first_cell + c;
+    out.type[i] = Type;
+    out.volume[i] = m.volume;
+    out.min_corner_det[i] = m.min_corner_det;
+    out.min_gauss_det[i] = m.min_gauss_det;
+    out.scaled_jacobian[i] = m.scaled_jacobian;
+    out.min_angle[i] = m.min_angle;
+    out.max_angle[i] = m.max_angle;
+    out.edge_ratio[i] = m.edge_ratio;
+  }
+}
+
+MetricStats reduce(const std::vector<double>& values, std::int64_t global_count, MPI_Comm comm) {
+  double low = kInfinity, high = -kInfinity, sum = 0.0;
+  for (double v : values) {
+    low = std::min(low, v);
+    high = std::max(high, v);
+    sum += v;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &low, 1, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &high, 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return {low, global_count > 0 ? sum / global_count : 0.0, high};
+}
+
+}  // namespace
+
+CellQuality cell_quality(const MeshView& view, std::span<const double> coords) {
+  if (coords.size() != static_cast<std::size_t>(view.num_vertices) * view.dim)
+    fail("cell_quality: {} coordinates given for {} vertices in {}D", coords.size(),
+         view.num_vertices, view.dim);
+  CellQuality q;
+  for (auto* field : {&q.volume, &q.min_corner_det, &q.min_gauss_det, &q.scaled_jacobian,
+                      &q.min_angle, &q.max_angle, &q.edge_ratio})
+    field->resize(view.num_cells);
+  q.type.resize(view.num_cells);
+  for (const CellBlock& block : view.blocks) {
+    switch (block.type) {
+      case CellType::Triangle:
+        measure_block<CellType::Triangle>(block, coords, q);
+        break;
+      case CellType::Quadrilateral:
+        measure_block<CellType::Quadrilateral>(block, coords, q);
+        break;
+      case CellType::Tetrahedron:
+        measure_block<CellType::Tetrahedron>(block, coords, q);
+        break;
+      case CellType::Hexahedron:
+        measure_block<CellType::Hexahedron>(block, coords, q);
+        break;
+    }
+  }
+  return q;
+}
+
+std::vector<std::pair<std::string_view, MetricStats>> QualitySummary::metrics() const {
+  return {{"volume", volume},
+          {"min_det_corners", min_corner_det},
+          {"min_det_gauss", min_gauss_det},
+          {"scaled_jacobian", scaled_jacobian},
+          {"min_angle", min_angle},
+          {"max_angle", max_angle},
+          {"edge_ratio", edge_ratio}};
+}
+
+QualitySummary summarize(const CellQuality& quality, MPI_Comm comm) {
+  QualitySummary s;
+  for (CellType t : quality.type) ++s.cells_by_type[static_cast<int>(t)];
+  MPI_Allreduce(MPI_IN_PLACE, s.cells_by_type.data(), 4, MPI_INT64_T, MPI_SUM, comm);
+  for (std::int64_t n : s.cells_by_type) s.cells += n;
+
+  s.volume = reduce(quality.volume, s.cells, comm);
+  s.min_corner_det = reduce(quality.min_corner_det, s.cells, comm);
+  s.min_gauss_det = reduce(quality.min_gauss_det, s.cells, comm);
+  s.scaled_jacobian = reduce(quality.scaled_jacobian, s.cells, comm);
+  s.min_angle = reduce(quality.min_angle, s.cells, comm);
+  s.max_angle = reduce(quality.max_angle, s.cells, comm);
+  s.edge_ratio = reduce(quality.edge_ratio, s.cells, comm);
+
+  double abs_volume = 0.0;
+  for (double v : quality.volume) abs_volume += std::abs(v);
+  MPI_Allreduce(MPI_IN_PLACE, &abs_volume, 1, MPI_DOUBLE, MPI_SUM, comm);
+  const double tiny = kDegenerateVolume * (s.cells > 0 ? abs_volume / s.cells : 0.0);
+  std::array<std::int64_t, 2> counts{};  // inverted, degenerate
+  for (std::size_t c = 0; c < quality.size(); ++c) {
+    counts[0] += std::min(quality.min_corner_det[c], quality.min_gauss_det[c]) <= 0.0;
+    counts[1] += std::abs(quality.volume[c]) <= tiny || std::isinf(quality.edge_ratio[c]);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, counts.data(), 2, MPI_INT64_T, MPI_SUM, comm);
+  s.inverted = counts[0];
+  s.degenerate = counts[1];
+  return s;
+}
+
+std::string format_table(const QualitySummary& s) {
+  std::string out = fmt::format("cells: {}", s.cells);
+  for (int t = 0; t < 4; ++t)
+    if (s.cells_by_type[t] > 0)
+      out += fmt::format(", {} {}s", s.cells_by_type[t], name(static_cast<CellType>(t)));
+  out += fmt::format("\n{:<18}{:>14}{:>14}{:>14}\n", "metric", "min", "mean", "max");
+  for (const auto& [metric, stats] : s.metrics())
+    out += fmt::format("{:<18}{:>14.6g}{:>14.6g}{:>14.6g}\n", metric, stats.min, stats.mean,
+                       stats.max);
+  out += fmt::format("inverted cells: {}, degenerate cells: {}\n", s.inverted, s.degenerate);
+  return out;
+}
+
+nlohmann::json to_json(const QualitySummary& s) {
+  nlohmann::json cells = {{"total", s.cells}};
+  for (int t = 0; t < 4; ++t)
+    if (s.cells_by_type[t] > 0)
+      cells[std::string(name(static_cast<CellType>(t)))] = s.cells_by_type[t];
+  nlohmann::json metrics = nlohmann::json::object();
+  for (const auto& [metric, stats] : s.metrics())
+    metrics[std::string(metric)] = {{"min", stats.min}, {"mean", stats.mean}, {"max", stats.max}};
+  return {{"cells", cells},
+          {"metrics", metrics},
+          {"inverted", s.inverted},
+          {"degenerate", s.degenerate}};
+}
+
+}  // namespace neomesh

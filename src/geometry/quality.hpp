@@ -1,0 +1,74 @@
+// Cell quality metrics: what a user looks at before and after smoothing.
+//
+// Conventions (the same for every cell type, so that 1 and 90° read alike everywhere):
+// - Jacobians are taken with respect to the unit reference cell: at a Q1 corner, the
+//   columns are the corner's edge vectors along the reference axes (so the unit square has
+//   det 1 at every corner); at a Gauss point, 2^d times the Jacobian from [-1,1]^d; for a
+//   simplex, the edge matrix [x1-x0, x2-x0(, x3-x0)].
+// - Scaled Jacobian: minimum over the corners of det J / (product of the lengths of the
+//   corner's d edges); for simplices divided by its value on the equilateral triangle
+//   (√3/2) or the regular tetrahedron (√2/2). 1 for the ideal cell, ≤ 0 for inverted ones.
+// - Angles, in degrees: triangles and quads, the interior angle at each corner (a quad
+//   corner with det J ≤ 0 counts as reflex, 360° minus the angle between its edges);
+//   hexahedra, the angles between the edges at each corner (ideal 90°); tetrahedra, the six
+//   dihedral angles (ideal arccos(1/3) ≈ 70.53°), which reveal slivers where face angles
+//   do not.
+// - Edge ratio: longest over shortest edge; +∞ for a zero-length edge.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include <mpi.h>
+#include <nlohmann/json.hpp>
+
+#include "mesh/cell_type.hpp"
+#include "mesh/mesh_view.hpp"
+
+namespace neomesh {
+
+// Per cell of a MeshView (its cell order), for the coordinates given.
+struct CellQuality {
+  std::vector<CellType> type;
+  std::vector<double> volume;           // signed (negative for inverted simplices)
+  std::vector<double> min_corner_det;   // min det J over the corners
+  std::vector<double> min_gauss_det;    // min det J over 3^d Gauss points (simplex: the constant)
+  std::vector<double> scaled_jacobian;  // see above
+  std::vector<double> min_angle, max_angle;
+  std::vector<double> edge_ratio;
+
+  std::size_t size() const { return volume.size(); }
+};
+
+// `coords` holds view.num_vertices × view.dim values in the view's local vertex order (e.g.
+// view.coords, or the current coordinates of a run).
+CellQuality cell_quality(const MeshView& view, std::span<const double> coords);
+
+struct MetricStats {
+  double min = 0.0, mean = 0.0, max = 0.0;
+};
+
+// The quality of a whole (possibly distributed) mesh.
+struct QualitySummary {
+  std::int64_t cells = 0;
+  std::array<std::int64_t, 4> cells_by_type{};  // indexed by CellType
+  MetricStats volume, min_corner_det, min_gauss_det, scaled_jacobian, min_angle, max_angle,
+      edge_ratio;
+  std::int64_t inverted = 0;    // det J ≤ 0 at a corner or Gauss point
+  std::int64_t degenerate = 0;  // |volume| < 1e-14 · mean |volume|, or an edge of length 0
+
+  // The metrics with their names (as in the table and the JSON), in display order.
+  std::vector<std::pair<std::string_view, MetricStats>> metrics() const;
+};
+
+// Collective over `comm`: every rank passes the quality of its own cells.
+QualitySummary summarize(const CellQuality& quality, MPI_Comm comm);
+
+// A readable table: cell counts, min/mean/max of each metric, inverted and degenerate cells.
+std::string format_table(const QualitySummary& summary);
+nlohmann::json to_json(const QualitySummary& summary);
+
+}  // namespace neomesh

@@ -1,0 +1,159 @@
+#include "geometry/quality.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mesh/generate.hpp"
+#include "mesh/serial_view.hpp"
+
+namespace neomesh {
+
+namespace {
+
+// The quality of a single cell with the given vertices (canonical order).
+CellQuality one_cell(CellType type, std::vector<double> coords) {
+  MeshData mesh;
+  mesh.dim = dimension(type);
+  mesh.cell_type = type;
+  mesh.coords = std::move(coords);
+  for (int i = 0; i < num_vertices(type); ++i) mesh.cells.push_back(i);
+  const MeshView view = serial_view(mesh);
+  return cell_quality(view, view.coords);
+}
+
+QualitySummary summary_of(const MeshData& mesh) {
+  const MeshView view = serial_view(mesh);
+  return summarize(cell_quality(view, view.coords), MPI_COMM_WORLD);
+}
+
+}  // namespace
+
+TEST(CellQuality, UnitSquareIsIdeal) {
+  const CellQuality q = one_cell(CellType::Quadrilateral, {0, 0, 1, 0, 0, 1, 1, 1});
+  EXPECT_DOUBLE_EQ(q.volume[0], 1.0);
+  EXPECT_DOUBLE_EQ(q.min_corner_det[0], 1.0);
+  EXPECT_DOUBLE_EQ(q.min_gauss_det[0], 1.0);
+  EXPECT_DOUBLE_EQ(q.scaled_jacobian[0], 1.0);
+  EXPECT_DOUBLE_EQ(q.min_angle[0], 90.0);
+  EXPECT_DOUBLE_EQ(q.max_angle[0], 90.0);
+  EXPECT_DOUBLE_EQ(q.edge_ratio[0], 1.0);
+}
+
+TEST(CellQuality, EquilateralTriangleIsIdeal) {
+  const double h = std::sqrt(3.0) / 2;
+  const CellQuality q = one_cell(CellType::Triangle, {0, 0, 1, 0, 0.5, h});
+  EXPECT_DOUBLE_EQ(q.volume[0], h / 2);
+  EXPECT_DOUBLE_EQ(q.min_corner_det[0], h);
+  EXPECT_NEAR(q.scaled_jacobian[0], 1.0, 1e-15);
+  EXPECT_NEAR(q.min_angle[0], 60.0, 1e-12);
+  EXPECT_NEAR(q.max_angle[0], 60.0, 1e-12);
+  EXPECT_NEAR(q.edge_ratio[0], 1.0, 1e-15);
+}
+
+TEST(CellQuality, RightTriangleHasAnglesOf45And90) {
+  const CellQuality q = one_cell(CellType::Triangle, {0, 0, 1, 0, 0, 1});
+  EXPECT_NEAR(q.min_angle[0], 45.0, 1e-12);
+  EXPECT_NEAR(q.max_angle[0], 90.0, 1e-12);
+  // Smallest sin of a corner angle: sin 45° = 1/√2, relative to sin 60°.
+  EXPECT_NEAR(q.scaled_jacobian[0], (1 / std::sqrt(2.0)) / (std::sqrt(3.0) / 2), 1e-15);
+  EXPECT_NEAR(q.edge_ratio[0], std::sqrt(2.0), 1e-15);
+}
+
+TEST(CellQuality, ShearedQuadHasAnglesOf45And135) {
+  // Parallelogram with the top edge shifted by 1: area 1, sides 1 and √2.
+  const CellQuality q = one_cell(CellType::Quadrilateral, {0, 0, 1, 0, 1, 1, 2, 1});
+  EXPECT_NEAR(q.volume[0], 1.0, 1e-15);
+  EXPECT_NEAR(q.min_corner_det[0], 1.0, 1e-15);
+  EXPECT_NEAR(q.min_gauss_det[0], 1.0, 1e-15);
+  EXPECT_NEAR(q.scaled_jacobian[0], 1 / std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(q.min_angle[0], 45.0, 1e-12);
+  EXPECT_NEAR(q.max_angle[0], 135.0, 1e-12);
+  EXPECT_NEAR(q.edge_ratio[0], std::sqrt(2.0), 1e-15);
+}
+
+TEST(CellQuality, TrapezoidHasBilinearVolumeAndGaussDeterminants) {
+  // Bottom edge 2, top edge 1, height 1: area 1.5; det J (unit reference) = 2 - ξ₁ along η.
+  const CellQuality q = one_cell(CellType::Quadrilateral, {0, 0, 2, 0, 0.5, 1, 1.5, 1});
+  EXPECT_NEAR(q.volume[0], 1.5, 1e-15);
+  EXPECT_NEAR(q.min_corner_det[0], 1.0, 1e-15);
+  // Lowest Gauss point η = (1 + √(3/5))/2 of [0,1]: det = 2 - η.
+  EXPECT_NEAR(q.min_gauss_det[0], 2.0 - (1 + std::sqrt(0.6)) / 2, 1e-14);
+}
+
+TEST(CellQuality, MirroredQuadIsInverted) {
+  const CellQuality q = one_cell(CellType::Quadrilateral, {0, 0, -1, 0, 0, 1, -1, 1});
+  EXPECT_DOUBLE_EQ(q.volume[0], -1.0);
+  EXPECT_DOUBLE_EQ(q.min_corner_det[0], -1.0);
+  EXPECT_DOUBLE_EQ(q.scaled_jacobian[0], -1.0);
+  MeshData mesh;
+  mesh.coords = {0, 0, -1, 0, 0, 1, -1, 1};
+  mesh.cells = {0, 1, 2, 3};
+  EXPECT_EQ(summary_of(mesh).inverted, 1);
+}
+
+TEST(CellQuality, ReflexCornerOfANonConvexQuad) {
+  // Vertex 3 pushed inside the triangle of the others: its corner is reflex.
+  const CellQuality q = one_cell(CellType::Quadrilateral, {0, 0, 1, 0, 0, 1, 0.3, 0.3});
+  EXPECT_LT(q.min_corner_det[0], 0.0);
+  EXPECT_GT(q.max_angle[0], 180.0);
+  EXPECT_LT(q.scaled_jacobian[0], 0.0);
+}
+
+TEST(CellQuality, RegularTetrahedronIsIdeal) {
+  const double s = std::sqrt(3.0), t = std::sqrt(6.0);
+  const CellQuality q =
+      one_cell(CellType::Tetrahedron, {0, 0, 0, 1, 0, 0, 0.5, s / 2, 0, 0.5, s / 6, t / 3});
+  EXPECT_NEAR(q.volume[0], std::sqrt(2.0) / 12, 1e-15);
+  EXPECT_NEAR(q.scaled_jacobian[0], 1.0, 1e-14);
+  EXPECT_NEAR(q.min_angle[0], std::acos(1.0 / 3) * 180 / M_PI, 1e-10);
+  EXPECT_NEAR(q.max_angle[0], std::acos(1.0 / 3) * 180 / M_PI, 1e-10);
+  EXPECT_NEAR(q.edge_ratio[0], 1.0, 1e-14);
+}
+
+TEST(CellQuality, UnitCubeIsIdeal) {
+  std::vector<double> x;
+  for (int i = 0; i < 8; ++i)
+    for (int d = 0; d < 3; ++d) x.push_back((i >> d) & 1);
+  const CellQuality q = one_cell(CellType::Hexahedron, x);
+  EXPECT_DOUBLE_EQ(q.volume[0], 1.0);
+  EXPECT_DOUBLE_EQ(q.min_corner_det[0], 1.0);
+  EXPECT_DOUBLE_EQ(q.min_gauss_det[0], 1.0);
+  EXPECT_DOUBLE_EQ(q.scaled_jacobian[0], 1.0);
+  EXPECT_DOUBLE_EQ(q.min_angle[0], 90.0);
+  EXPECT_DOUBLE_EQ(q.max_angle[0], 90.0);
+  EXPECT_DOUBLE_EQ(q.edge_ratio[0], 1.0);
+}
+
+TEST(QualitySummary, SquareMidpointLevel3) {
+  const QualitySummary s = summary_of(square_midpoint(16));
+  EXPECT_EQ(s.cells, 256);
+  EXPECT_EQ(s.cells_by_type[static_cast<int>(CellType::Quadrilateral)], 256);
+  EXPECT_EQ(s.inverted, 0);
+  EXPECT_EQ(s.degenerate, 0);
+  EXPECT_NEAR(s.volume.mean, 1.0 / 256, 1e-15);
+  EXPECT_LT(s.scaled_jacobian.min, 1.0);
+  EXPECT_NE(format_table(s).find("256 quadrilaterals"), std::string::npos);
+  const nlohmann::json j = to_json(s);
+  EXPECT_EQ(j["cells"]["quadrilateral"], 256);
+  EXPECT_EQ(j["inverted"], 0);
+  EXPECT_DOUBLE_EQ(j["metrics"]["volume"]["max"].get<double>(), s.volume.max);
+}
+
+TEST(QualitySummary, BoxVolumesAddUpAndCollapsedCellsAreDegenerate) {
+  for (CellType type : {CellType::Triangle, CellType::Tetrahedron, CellType::Hexahedron}) {
+    const MeshView view = serial_view(box(type, 2));
+    const CellQuality q = cell_quality(view, view.coords);
+    double total = 0.0;
+    for (double v : q.volume) total += v;
+    EXPECT_NEAR(total, std::pow(2.0, dimension(type)), 1e-13) << name(type);
+  }
+  MeshData mesh = box(CellType::Quadrilateral, 2);
+  mesh.coords[2 * 4] = mesh.coords[2 * 1];  // centre onto the bottom midpoint
+  mesh.coords[2 * 4 + 1] = mesh.coords[2 * 1 + 1];
+  const QualitySummary s = summary_of(mesh);
+  EXPECT_EQ(s.degenerate, 2);  // the two cells below the centre have a zero-length edge
+  EXPECT_EQ(s.inverted, 2);
+}
+
+}  // namespace neomesh
