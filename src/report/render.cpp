@@ -1,0 +1,288 @@
+#include "report/render.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "report/canvas.hpp"
+
+namespace neomesh {
+
+namespace {
+
+constexpr Rgb kInvalidColour{0.85, 0.11, 0.11};  // red: absent from viridis
+constexpr Rgb kInk{0.15, 0.15, 0.15};            // text, outlines and edges
+constexpr Rgb kMutedInk{0.45, 0.45, 0.45};
+constexpr int kMinWidth = 200, kMaxWidth = 20000;
+// Edges of cells smaller than this (mean size in pixels) would only darken the picture.
+constexpr double kMinCellPixelsForEdges = 2.0;
+// Quads are stored in tensor order (cell_type.hpp); their outline visits 0, 1, 3, 2.
+constexpr int kQuadOutline[4] = {0, 1, 3, 2};
+// Colour-bar ticks: their length and the gap to their label, in font sizes.
+constexpr double kTickLength = 0.35, kTickLabelGap = 0.6;
+
+// Maps a value to its position t ∈ [0, 1] on the colour bar (in log10 units for log scale).
+struct ColourScale {
+  double lo = 0, hi = 1;
+  bool log = false;
+
+  double position(double v) const {
+    const double u = !log ? v : v > 0 ? std::log10(v) : -std::numeric_limits<double>::infinity();
+    return (u - lo) / (hi - lo);
+  }
+  double value_at(double t) const {
+    const double u = lo + t * (hi - lo);
+    return log ? std::pow(10.0, u) : u;
+  }
+};
+
+ColourScale colour_scale(std::span<const double> values, const RenderOptions& o) {
+  if (o.min && o.max && !(*o.min < *o.max))
+    fail("colour range {},{} is empty: the minimum must be below the maximum", *o.min, *o.max);
+  if (o.log_scale && ((o.min && *o.min <= 0) || (o.max && *o.max <= 0)))
+    fail("a log-scale colour range must be positive (got {},{})", o.min.value_or(1),
+         o.max.value_or(1));
+  ColourScale s;
+  s.log = o.log_scale;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (double v : values)
+    if (std::isfinite(v) && (!s.log || v > 0)) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (lo > hi) lo = hi = s.log ? 1.0 : 0.0;  // no drawable value at all
+  lo = o.min.value_or(lo);
+  hi = o.max.value_or(hi);
+  s.lo = s.log ? std::log10(lo) : lo;
+  s.hi = s.log ? std::log10(hi) : hi;
+  // A constant field (or a one-sided range beyond the data) still needs a bar to read.
+  if (!(s.hi - s.lo > 1e-12 * std::max(1.0, std::abs(s.lo)))) {
+    const double pad = s.log ? 0.5 : s.lo != 0 ? 0.05 * std::abs(s.lo) : 1.0;
+    if (o.min && !o.max)
+      s.hi = s.lo + 2 * pad;
+    else if (o.max && !o.min)
+      s.lo = s.hi - 2 * pad;
+    else
+      s.lo -= pad, s.hi += pad;
+  }
+  return s;
+}
+
+std::string tick_label(double v) {
+  const double a = std::abs(v);
+  if (a == 0 || (a >= 1e-3 && a < 1e5)) return fmt::format("{:.3g}", v);
+  return fmt::format("{:.2e}", v);
+}
+
+// The texts beside the colour bar; known before the layout, which makes room for them.
+struct Legend {
+  std::string name;
+  std::array<std::string, 3> tick_labels;  // at the bottom, middle and top of the bar
+  std::string invalid;                     // "2 inverted", or empty
+  std::string count;                       // "16 cells"
+};
+
+Legend legend(const ColourScale& scale, const RenderOptions& o, std::span<const double> values) {
+  Legend g;
+  g.name = o.field_name + (o.log_scale ? " (log scale)" : "");
+  for (int i = 0; i < 3; ++i) g.tick_labels[i] = tick_label(scale.value_at(i / 2.0));
+  const auto invalid =
+      std::count_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); });
+  if (invalid > 0) g.invalid = fmt::format("{} {}", invalid, o.invalid_label);
+  g.count = fmt::format("{} cells", values.size());
+  return g;
+}
+
+// Where everything goes, in picture units.
+struct Layout {
+  int width = 0, height = 0;
+  double margin = 0, font = 0, title_font = 0, title_y = 0;
+  double scale = 0, x0 = 0, y0 = 0;  // a point (x, y) goes to (x0 + scale x, y0 − scale y)
+  double legend_x = 0, legend_top = 0, bar_width = 0, bar_height = 0;
+
+  double px(double x) const { return x0 + scale * x; }
+  double py(double y) const { return y0 - scale * y; }
+};
+
+Layout layout(std::span<const double> coords, const RenderOptions& o, const Legend& g) {
+  if (o.width < kMinWidth || o.width > kMaxWidth)
+    fail("picture width {} is outside {}..{}", o.width, kMinWidth, kMaxWidth);
+  double xmin = std::numeric_limits<double>::infinity(), xmax = -xmin, ymin = xmin, ymax = -xmin;
+  for (std::size_t i = 0; i + 1 < coords.size(); i += 2) {
+    xmin = std::min(xmin, coords[i]), xmax = std::max(xmax, coords[i]);
+    ymin = std::min(ymin, coords[i + 1]), ymax = std::max(ymax, coords[i + 1]);
+  }
+  // A degenerate extent (all vertices on a line) gets the other one, so that scale is finite.
+  double w = xmax - xmin, h = ymax - ymin;
+  if (!(w > 0)) w = h > 0 ? h : 1.0;
+  if (!(h > 0)) h = w;
+
+  Layout l;
+  l.width = o.width;
+  const double W = o.width;
+  l.margin = 0.035 * W;
+  l.font = std::max(10.0, 0.013 * W);
+  l.title_font = 1.35 * l.font;
+  const double title_height = o.title.empty() ? 0.0 : 2.6 * l.title_font;
+  l.bar_width = 0.022 * W;
+  double labels = 0;
+  for (const std::string& label : g.tick_labels)
+    labels = std::max(labels, text_width(label, l.font));
+  const double legend_width = 0.035 * W + std::max({text_width(g.name, l.font, true),
+                                                    l.bar_width + kTickLength * l.font + labels,
+                                                    1.5 * l.font + text_width(g.invalid, l.font)});
+  const double map_width = std::max(W - 2 * l.margin - legend_width, 0.3 * W);
+  // Very flat or very tall meshes get a frame of bounded height, the mesh centred in it.
+  const double map_height = std::clamp(map_width * h / w, 0.3 * W, 1.2 * W);
+  const double top = l.margin + title_height;
+  l.height = static_cast<int>(std::ceil(top + map_height + l.margin));
+  l.title_y = l.margin + 0.5 * l.title_font;
+
+  l.scale = std::min(map_width / w, map_height / h);
+  l.x0 = l.margin + 0.5 * (map_width - l.scale * w) - l.scale * xmin;
+  l.y0 = top + 0.5 * (map_height + l.scale * h) + l.scale * ymin;
+
+  l.legend_x = l.margin + map_width + 0.035 * W;
+  l.legend_top = top + 2.0 * l.font;
+  l.bar_height = std::min(map_height - 6.0 * l.font, 0.5 * W);
+  return l;
+}
+
+template <typename Visit>
+void for_each_cell(const MeshView& view, Visit&& visit) {
+  for (const CellBlock& block : view.blocks)
+    for (PetscInt c = 0; c < block.size(); ++c) visit(block, c, block.first_cell + c);
+}
+
+void trace_cell(cairo_t* cr, const Layout& l, std::span<const double> coords,
+                const CellBlock& block, PetscInt c) {
+  const PetscInt* v = block.cell(c);
+  const int n = num_vertices(block.type);
+  for (int i = 0; i < n; ++i) {
+    const PetscInt vertex = v[block.type == CellType::Quadrilateral ? kQuadOutline[i] : i];
+    const double x = l.px(coords[2 * vertex]), y = l.py(coords[2 * vertex + 1]);
+    i == 0 ? cairo_move_to(cr, x, y) : cairo_line_to(cr, x, y);
+  }
+  cairo_close_path(cr);
+}
+
+// Mean cell size on the picture: the square root of the mean |area| in picture units².
+double mean_cell_pixels(const MeshView& view, const Layout& l, std::span<const double> coords) {
+  double area = 0;
+  for_each_cell(view, [&](const CellBlock& block, PetscInt c, PetscInt) {
+    const PetscInt* v = block.cell(c);
+    const int n = num_vertices(block.type);
+    double twice = 0;  // shoelace formula along the outline
+    for (int i = 0; i < n; ++i) {
+      const int j = (i + 1) % n;
+      const PetscInt a = v[block.type == CellType::Quadrilateral ? kQuadOutline[i] : i];
+      const PetscInt b = v[block.type == CellType::Quadrilateral ? kQuadOutline[j] : j];
+      twice += coords[2 * a] * coords[2 * b + 1] - coords[2 * b] * coords[2 * a + 1];
+    }
+    area += 0.5 * std::abs(twice);
+  });
+  return l.scale * std::sqrt(area / std::max<PetscInt>(view.num_cells, 1));
+}
+
+void draw_cells(cairo_t* cr, const MeshView& view, const Layout& l, std::span<const double> coords,
+                std::span<const double> values, const ColourScale& scale) {
+  // Stroking each cell in its own colour closes the hairline seams that antialiasing
+  // leaves between neighbouring fills.
+  cairo_set_line_width(cr, 0.6);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for_each_cell(view, [&](const CellBlock& block, PetscInt c, PetscInt cell) {
+    const double v = values[cell];
+    set_colour(cr, std::isfinite(v) ? viridis(scale.position(v)) : kInvalidColour);
+    trace_cell(cr, l, coords, block, c);
+    cairo_fill_preserve(cr);
+    cairo_stroke(cr);
+  });
+}
+
+// All edges as one path, so that an edge shared by two cells is not darkened twice.
+void draw_edges(cairo_t* cr, const MeshView& view, const Layout& l, std::span<const double> coords,
+                double cell_pixels) {
+  const double width = std::clamp(0.03 * cell_pixels, 0.3, 1.2);
+  const double alpha = std::clamp(cell_pixels / 30, 0.1, 0.7);  // fading out as cells shrink
+  for_each_cell(view, [&](const CellBlock& block, PetscInt c, PetscInt) {
+    trace_cell(cr, l, coords, block, c);
+  });
+  set_colour(cr, kInk, alpha);
+  cairo_set_line_width(cr, width);
+  cairo_stroke(cr);
+}
+
+void draw_colour_bar(cairo_t* cr, const Layout& l, const Legend& g) {
+  const double x = l.legend_x, top = l.legend_top, bottom = top + l.bar_height;
+  set_colour(cr, kInk);
+  draw_text(cr, g.name, x, top - 1.2 * l.font, l.font, Anchor::Left, true);
+
+  cairo_pattern_t* gradient = cairo_pattern_create_linear(0, bottom, 0, top);
+  for (const ColormapStop& stop : viridis_stops())
+    cairo_pattern_add_color_stop_rgb(gradient, stop.t, stop.colour.r, stop.colour.g, stop.colour.b);
+  cairo_rectangle(cr, x, top, l.bar_width, l.bar_height);
+  cairo_set_source(cr, gradient);
+  cairo_fill_preserve(cr);
+  cairo_pattern_destroy(gradient);
+  set_colour(cr, kInk);
+  cairo_set_line_width(cr, 0.8);
+  cairo_stroke(cr);
+
+  const double right = x + l.bar_width;
+  for (int i = 0; i < 3; ++i) {
+    const double y = bottom - 0.5 * i * l.bar_height;
+    cairo_move_to(cr, right, y);
+    cairo_line_to(cr, right + kTickLength * l.font, y);
+    cairo_stroke(cr);
+    draw_text(cr, g.tick_labels[i], right + (kTickLength + kTickLabelGap) * l.font, y, l.font);
+  }
+
+  double y = bottom + 2.0 * l.font;
+  if (!g.invalid.empty()) {
+    set_colour(cr, kInvalidColour);
+    cairo_rectangle(cr, x, y - 0.5 * l.font, l.font, l.font);
+    cairo_fill(cr);
+    set_colour(cr, kInk);
+    draw_text(cr, g.invalid, x + 1.5 * l.font, y, l.font);
+    y += 1.8 * l.font;
+  }
+  set_colour(cr, kMutedInk);
+  draw_text(cr, g.count, x, y, 0.85 * l.font);
+}
+
+}  // namespace
+
+void render_mesh(const MeshView& view, std::span<const double> coords,
+                 std::span<const double> cell_values, const std::filesystem::path& out,
+                 const RenderOptions& options) {
+  if (view.dim != 2)
+    fail(
+        "render draws 2D meshes; open the .vtu output in ParaView for 3D (see "
+        "docs/user-guide.md)");
+  if (coords.size() != static_cast<std::size_t>(2 * view.num_vertices) ||
+      cell_values.size() != static_cast<std::size_t>(view.num_cells))
+    fail(
+        "render: {} coordinates and {} cell values do not fit a mesh of {} vertices and {} "
+        "cells",
+        coords.size(), cell_values.size(), view.num_vertices, view.num_cells);
+  picture_format(out);  // an unknown extension fails before any work
+  const ColourScale scale = colour_scale(cell_values, options);
+  const Legend g = legend(scale, options, cell_values);
+  const Layout l = layout(coords, options, g);
+
+  Canvas canvas(out, l.width, l.height);
+  cairo_t* cr = canvas.cr();
+  if (!options.title.empty()) {
+    set_colour(cr, kInk);
+    draw_text(cr, options.title, l.margin, l.title_y, l.title_font, Anchor::Left, true);
+  }
+  draw_cells(cr, view, l, coords, cell_values, scale);
+  const double cell_pixels = mean_cell_pixels(view, l, coords);
+  if (options.draw_edges && cell_pixels >= kMinCellPixelsForEdges)
+    draw_edges(cr, view, l, coords, cell_pixels);
+  draw_colour_bar(cr, l, g);
+  canvas.finish();
+}
+
+}  // namespace neomesh

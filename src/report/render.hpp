@@ -1,0 +1,33 @@
+// Pictures of 2D meshes: every cell filled with the viridis colour of one value per cell
+// (a quality metric, the energy, ...), with a colour bar, written as PNG or SVG.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "mesh/mesh_view.hpp"
+
+namespace neomesh {
+
+struct RenderOptions {
+  int width = 1200;  // of the whole picture; the height follows the mesh's aspect ratio
+  std::string title;
+  std::string field_name;  // shown above the colour bar
+  bool log_scale = false;  // colour by log10 of the value (values ≤ 0 get the lowest colour)
+  std::optional<double> min, max;  // colour range; default: the range of the finite values
+  bool draw_edges = true;          // skipped anyway when cells are too small to show them
+  // What non-finite values mean, for the legend ("3 inverted").
+  std::string invalid_label = "inverted";
+};
+
+// Draws `view`'s cells at `coords` (num_vertices × 2, MeshView order), coloured by
+// `cell_values` (one per cell, MeshView order; NaN/±inf drawn in red and counted), to `out`
+// (.png or .svg). Throws Error for 3D meshes and for files that cannot be written; never
+// leaves a partial file.
+void render_mesh(const MeshView& view, std::span<const double> coords,
+                 std::span<const double> cell_values, const std::filesystem::path& out,
+                 const RenderOptions& options = {});
+
+}  // namespace neomesh

@@ -1,0 +1,167 @@
+#include "report/render.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <vector>
+
+#include <cairo.h>
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "core/testing/test_data.hpp"
+
+namespace neomesh {
+namespace {
+
+// An n × n grid of unit-square quads on [0, n]², slightly sheared so that cells differ.
+MeshView quad_grid(int n) {
+  MeshView view;
+  view.dim = 2;
+  view.num_vertices = (n + 1) * (n + 1);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      view.coords.push_back(i + 0.15 * j * j / n);
+      view.coords.push_back(j);
+    }
+  CellBlock block{CellType::Quadrilateral, 0, {}};
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const PetscInt v = j * (n + 1) + i;  // tensor order: (0,0), (1,0), (0,1), (1,1)
+      block.vertices.insert(block.vertices.end(), {v, v + 1, v + n + 1, v + n + 2});
+    }
+  view.num_cells = n * n;
+  view.blocks.push_back(std::move(block));
+  return view;
+}
+
+// A 2:1 rectangle [0, 2] × [0, 1] of 2 × 3 × 3 counter-clockwise triangles.
+MeshView triangle_strip() {
+  MeshView view;
+  view.dim = 2;
+  const int nx = 6, ny = 3;
+  view.num_vertices = (nx + 1) * (ny + 1);
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      view.coords.push_back(2.0 * i / nx);
+      view.coords.push_back(1.0 * j / ny);
+    }
+  CellBlock block{CellType::Triangle, 0, {}};
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const PetscInt v = j * (nx + 1) + i;
+      block.vertices.insert(block.vertices.end(),
+                            {v, v + 1, v + nx + 2, v, v + nx + 2, v + nx + 1});
+    }
+  view.num_cells = block.size();
+  view.blocks.push_back(std::move(block));
+  return view;
+}
+
+std::vector<double> ramp(PetscInt n) {
+  std::vector<double> values;
+  for (PetscInt c = 0; c < n; ++c) values.push_back(0.2 + 0.8 * c / (n - 1));
+  return values;
+}
+
+struct Png {
+  int width = 0, height = 0;
+  double non_white_fraction = 0;
+};
+
+Png read_png(const std::filesystem::path& path) {
+  cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
+  EXPECT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS) << path;
+  Png png{cairo_image_surface_get_width(s), cairo_image_surface_get_height(s), 0};
+  cairo_surface_flush(s);
+  const unsigned char* data = cairo_image_surface_get_data(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  long non_white = 0;
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x) {
+      const auto pixel = reinterpret_cast<const std::uint32_t*>(data + y * stride)[x];
+      non_white += (pixel & 0xffffff) != 0xffffff;
+    }
+  png.non_white_fraction = static_cast<double>(non_white) / (png.width * png.height);
+  cairo_surface_destroy(s);
+  return png;
+}
+
+TEST(RenderMesh, QuadGridToPngFillsMostOfThePicture) {
+  const auto dir = testing::scratch_dir("render_quads");
+  const MeshView view = quad_grid(4);
+  const auto values = ramp(view.num_cells);
+  RenderOptions options;
+  options.width = 800;
+  options.title = "4 x 4 quads";
+  options.field_name = "scaled Jacobian";
+  render_mesh(view, view.coords, values, dir / "quads.png", options);
+
+  const Png png = read_png(dir / "quads.png");
+  EXPECT_EQ(png.width, 800);
+  EXPECT_GT(png.height, 400);  // a square mesh plus the title
+  EXPECT_GT(png.non_white_fraction, 0.3);
+  EXPECT_LT(png.non_white_fraction, 0.9);  // margins and legend stay white
+  std::vector<std::filesystem::path> files;  // the picture and no temporary file
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    files.push_back(entry.path().filename());
+  EXPECT_EQ(files, std::vector<std::filesystem::path>{"quads.png"});
+}
+
+TEST(RenderMesh, TrianglesWithInvertedCellsToPng) {
+  const auto dir = testing::scratch_dir("render_triangles");
+  const MeshView view = triangle_strip();
+  auto values = ramp(view.num_cells);
+  values[3] = std::numeric_limits<double>::infinity();
+  values[7] = std::numeric_limits<double>::quiet_NaN();
+  RenderOptions options;
+  options.width = 600;
+  options.field_name = "energy";
+  options.log_scale = true;
+  render_mesh(view, view.coords, values, dir / "triangles.png", options);
+
+  const Png png = read_png(dir / "triangles.png");
+  EXPECT_EQ(png.width, 600);
+  EXPECT_GT(png.non_white_fraction, 0.3);
+}
+
+TEST(RenderMesh, SvgByExtension) {
+  const auto dir = testing::scratch_dir("render_svg");
+  const MeshView view = quad_grid(4);
+  render_mesh(view, view.coords, ramp(view.num_cells), dir / "quads.SVG");
+  std::ifstream in(dir / "quads.SVG");
+  std::string head(5, '\0');
+  in.read(head.data(), 5);
+  EXPECT_TRUE(head == "<?xml" || head.starts_with("<svg")) << head;
+}
+
+TEST(RenderMesh, ConstantFieldAndManySmallCellsStillDraw) {
+  const auto dir = testing::scratch_dir("render_constant");
+  const MeshView view = quad_grid(150);  // cells of about 3 pixels: edges would be noise
+  const std::vector<double> values(view.num_cells, 1.0);
+  RenderOptions options;
+  options.width = 500;
+  render_mesh(view, view.coords, values, dir / "fine.png", options);
+  EXPECT_GT(read_png(dir / "fine.png").non_white_fraction, 0.3);
+}
+
+TEST(RenderMesh, ThreeDimensionalMeshIsRefused) {
+  MeshView view;
+  view.dim = 3;
+  EXPECT_THROW(render_mesh(view, {}, {}, "never.png"), Error);
+}
+
+TEST(RenderMesh, BadOutputPathsFailWithoutWriting) {
+  const auto dir = testing::scratch_dir("render_errors");
+  const MeshView view = quad_grid(2);
+  const auto values = ramp(view.num_cells);
+  EXPECT_THROW(render_mesh(view, view.coords, values, dir / "mesh.jpg"), Error);
+  EXPECT_THROW(render_mesh(view, view.coords, values, dir / "missing" / "mesh.png"), Error);
+  RenderOptions empty_range;
+  empty_range.min = 2.0, empty_range.max = 1.0;
+  EXPECT_THROW(render_mesh(view, view.coords, values, dir / "mesh.png", empty_range), Error);
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+}  // namespace
+}  // namespace neomesh
