@@ -1,0 +1,29 @@
+#include "mesh/input_mesh.hpp"
+
+#include <algorithm>
+
+namespace neomesh {
+
+InputMesh input_from_data(const MeshData& data) {
+  InputMesh mesh;
+  mesh.dim = data.dim;
+  mesh.coords = data.coords;
+  const int nv = num_vertices(data.cell_type);
+  for (std::int64_t c = 0; c < data.num_cells(); ++c) {
+    PetscInt v[8];
+    for (int i = 0; i < nv; ++i) v[i] = static_cast<PetscInt>(data.cells[c * nv + i]);
+    mesh.add_cell(data.cell_type, v, 0);
+  }
+  for (std::size_t s = 0; s < data.boundary_parts.size(); ++s) {
+    VertexSet set = data.boundary_parts[s];
+    if (set.tag <= 0) set.tag = static_cast<int>(s) + 1;
+    mesh.groups.push_back({data.dim - 1, set.tag, set.name});
+    mesh.vertex_sets.push_back(std::move(set));
+  }
+  std::sort(mesh.groups.begin(), mesh.groups.end(), [](const auto& a, const auto& b) {
+    return std::pair(a.dim, a.tag) < std::pair(b.dim, b.tag);
+  });
+  return mesh;
+}
+
+}  // namespace neomesh

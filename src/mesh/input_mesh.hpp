@@ -1,0 +1,64 @@
+// InputMesh: a whole mesh as read from a file (or given as MeshData), on rank 0 only, before
+// it becomes a distributed DMPlex. Cells are in canonical vertex order (cell_type.hpp) and
+// in input order; physical groups keep their Gmsh (dim, tag, name).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <petscsys.h>
+
+#include "mesh/cell_type.hpp"
+#include "mesh/mesh_data.hpp"
+
+namespace neomesh {
+
+// A Gmsh physical group: cells (dim = mesh dim), boundary facets (dim - 1) or points (0).
+struct PhysicalGroup {
+  int dim = 0;
+  int tag = 0;
+  std::string name;
+};
+
+// Entities of one kind with their vertices (CSR) and one physical tag each.
+struct TaggedEntities {
+  std::vector<PetscInt> offsets = {0};
+  std::vector<PetscInt> vertices;
+  std::vector<int> tags;
+
+  PetscInt size() const { return static_cast<PetscInt>(tags.size()); }
+  void add(const PetscInt* v, PetscInt n, int tag) {
+    vertices.insert(vertices.end(), v, v + n);
+    offsets.push_back(static_cast<PetscInt>(vertices.size()));
+    tags.push_back(tag);
+  }
+};
+
+struct InputMesh {
+  int dim = 2;
+  std::vector<double> coords;        // `dim` values per vertex
+  std::vector<CellType> cell_types;  // per cell
+  std::vector<PetscInt> cell_offsets = {0};
+  std::vector<PetscInt> cell_vertices;  // canonical order
+  std::vector<int> cell_tags;           // per cell: Gmsh physical tag, or 0 for none
+  TaggedEntities facets;                // boundary facets in physical groups
+  std::vector<VertexSet> vertex_sets;   // named vertex sets (turned into facets when built)
+  TaggedEntities points;                // single vertices in physical groups
+  std::vector<PhysicalGroup> groups;    // every group above, sorted by (dim, tag)
+
+  PetscInt num_vertices() const { return static_cast<PetscInt>(coords.size()) / dim; }
+  PetscInt num_cells() const { return static_cast<PetscInt>(cell_types.size()); }
+  void add_cell(CellType t, const PetscInt* v, int tag) {
+    cell_types.push_back(t);
+    cell_vertices.insert(cell_vertices.end(), v, v + num_vertices_of(t));
+    cell_offsets.push_back(static_cast<PetscInt>(cell_vertices.size()));
+    cell_tags.push_back(tag);
+  }
+
+ private:
+  static int num_vertices_of(CellType t) { return neomesh::num_vertices(t); }
+};
+
+InputMesh input_from_data(const MeshData& data);
+
+}  // namespace neomesh

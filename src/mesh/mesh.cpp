@@ -1,0 +1,350 @@
+#include "mesh/mesh.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "mesh/cell_order.hpp"
+#include "mesh/collective_error.hpp"
+#include "mesh/feat_reader.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "mesh/mesh_impl.hpp"
+#include "mesh/mesh_io.hpp"
+#include "mesh/plex_builder.hpp"
+#include "mesh/validate.hpp"
+
+namespace neomesh {
+
+namespace {
+
+using Impl = MeshAccess::Impl;
+
+void check_input_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) fail("{}: no such file", path.string());
+  if (std::filesystem::is_directory(status))
+    fail("{}: is a directory, not a mesh file", path.string());
+  if (!std::ifstream(path)) fail("{}: cannot be opened for reading", path.string());
+}
+
+void broadcast_groups(MPI_Comm comm, std::vector<PhysicalGroup>& groups) {
+  std::ostringstream out;
+  for (const auto& g : groups) out << g.dim << ' ' << g.tag << ' ' << g.name << '\n';
+  std::string text = out.str();
+  int size = static_cast<int>(text.size());
+  MPI_Bcast(&size, 1, MPI_INT, 0, comm);
+  text.resize(size);
+  MPI_Bcast(text.data(), size, MPI_CHAR, 0, comm);
+  groups.clear();
+  std::istringstream in(text);
+  PhysicalGroup g;
+  while (in >> g.dim >> g.tag) {
+    in.get();
+    std::getline(in, g.name);
+    groups.push_back(g);
+  }
+}
+
+// Distributes the cells over the ranks (no overlap). Returns, per local point, its point
+// number in the undistributed DM.
+std::vector<PetscInt> distribute(Impl& m) {
+  PetscInt pStart, pEnd;
+  OwnedSF migration;
+  if (mpi_size(m.comm) > 1) {
+    PetscPartitioner partitioner;
+    NM_PETSC(DMPlexGetPartitioner(m.dm, &partitioner));
+    NM_PETSC(PetscPartitionerSetFromOptions(partitioner));
+    OwnedDM distributed;
+    NM_PETSC(DMPlexDistribute(m.dm, 0, migration.out(), distributed.out()));
+    if (distributed) m.dm = std::move(distributed);
+  }
+  NM_PETSC(DMPlexGetChart(m.dm, &pStart, &pEnd));
+  std::vector<PetscInt> original(pEnd - pStart);
+  for (PetscInt p = pStart; p < pEnd; ++p) original[p - pStart] = p;
+  if (migration) {
+    PetscInt nroots, nleaves;
+    const PetscInt* ilocal;
+    const PetscSFNode* iremote;
+    NM_PETSC(PetscSFGetGraph(migration, &nroots, &nleaves, &ilocal, &iremote));
+    for (PetscInt i = 0; i < nleaves; ++i)
+      original[(ilocal ? ilocal[i] : i) - pStart] = iremote[i].index;
+  }
+  return original;
+}
+
+std::vector<PetscInt> closure_vertices(DM dm, PetscInt point, PetscInt vStart, PetscInt vEnd) {
+  PetscInt n = 0, *closure = nullptr;
+  NM_PETSC(DMPlexGetTransitiveClosure(dm, point, PETSC_TRUE, &n, &closure));
+  std::vector<PetscInt> vertices;
+  for (PetscInt i = 0; i < n; ++i)
+    if (closure[2 * i] >= vStart && closure[2 * i] < vEnd)
+      vertices.push_back(closure[2 * i] - vStart);
+  NM_PETSC(DMPlexRestoreTransitiveClosure(dm, point, PETSC_TRUE, &n, &closure));
+  return vertices;
+}
+
+// Local points that another rank owns (leaves of the point SF).
+std::vector<std::uint8_t> ghost_points(DM dm) {
+  PetscInt pStart, pEnd;
+  NM_PETSC(DMPlexGetChart(dm, &pStart, &pEnd));
+  std::vector<std::uint8_t> ghost(pEnd - pStart, 0);
+  PetscSF sf;
+  NM_PETSC(DMGetPointSF(dm, &sf));
+  PetscInt nroots, nleaves;
+  const PetscInt* ilocal;
+  const PetscSFNode* iremote;
+  NM_PETSC(PetscSFGetGraph(sf, &nroots, &nleaves, &ilocal, &iremote));
+  for (PetscInt i = 0; nroots >= 0 && i < nleaves; ++i)
+    ghost[(ilocal ? ilocal[i] : i) - pStart] = 1;
+  return ghost;
+}
+
+// Points of `label` with `value`, or none.
+std::vector<PetscInt> stratum(DM dm, const char* label_name, PetscInt value) {
+  DMLabel label = nullptr;
+  NM_PETSC(DMGetLabel(dm, label_name, &label));
+  std::vector<PetscInt> points;
+  if (!label) return points;
+  OwnedIS is;
+  NM_PETSC(DMLabelGetStratumIS(label, value, is.out()));
+  if (!is) return points;
+  PetscInt n;
+  const PetscInt* p;
+  NM_PETSC(ISGetLocalSize(is, &n));
+  NM_PETSC(ISGetIndices(is, &p));
+  points.assign(p, p + n);
+  NM_PETSC(ISRestoreIndices(is, &p));
+  return points;
+}
+
+// Makes a per-point flag the same on every rank that has the point: the maximum over them.
+void share_max(DM dm, std::vector<PetscInt>& flag) {
+  PetscSF sf;
+  NM_PETSC(DMGetPointSF(dm, &sf));
+  std::vector<PetscInt> leaves = flag;
+  NM_PETSC(PetscSFReduceBegin(sf, MPIU_INT, leaves.data(), flag.data(), MPI_MAX));
+  NM_PETSC(PetscSFReduceEnd(sf, MPIU_INT, leaves.data(), flag.data(), MPI_MAX));
+  NM_PETSC(PetscSFBcastBegin(sf, MPIU_INT, flag.data(), flag.data(), MPI_REPLACE));
+  NM_PETSC(PetscSFBcastEnd(sf, MPIU_INT, flag.data(), flag.data(), MPI_REPLACE));
+}
+
+void build_cells(Impl& m, const std::vector<PetscInt>& original, MeshView& view) {
+  PetscInt cStart, cEnd, vStart, vEnd;
+  NM_PETSC(DMPlexGetHeightStratum(m.dm, 0, &cStart, &cEnd));
+  NM_PETSC(DMPlexGetDepthStratum(m.dm, 0, &vStart, &vEnd));
+  std::vector<CellType> type(cEnd - cStart);
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    DMPolytopeType polytope;
+    NM_PETSC(DMPlexGetCellType(m.dm, c, &polytope));
+    if (!cell_type_of(polytope, type[c - cStart])) fail("{}: unsupported cell type", m.source);
+  }
+  for (CellType t :
+       {CellType::Triangle, CellType::Quadrilateral, CellType::Tetrahedron, CellType::Hexahedron}) {
+    CellBlock block{t, view.num_cells, {}};
+    for (PetscInt c = cStart; c < cEnd; ++c) {
+      if (type[c - cStart] != t) continue;
+      const auto plex = closure_vertices(m.dm, c, vStart, vEnd);
+      for (int i = 0; i < num_vertices(t); ++i)
+        block.vertices.push_back(plex[canonical_from_plex(t)[i]]);
+      m.view_cell_point.push_back(c);
+      view.global_cell.push_back(original[c]);  // cells come first in the original chart
+    }
+    view.num_cells += block.size();
+    if (block.size() > 0) view.blocks.push_back(std::move(block));
+  }
+}
+
+void build_boundary(Impl& m, MeshView& view) {
+  PetscInt pStart, pEnd, vStart, vEnd;
+  NM_PETSC(DMPlexGetChart(m.dm, &pStart, &pEnd));
+  NM_PETSC(DMPlexGetDepthStratum(m.dm, 0, &vStart, &vEnd));
+  const PetscInt nv = vEnd - vStart;
+  view.on_boundary.assign(nv, 0);
+  for (PetscInt p : stratum(m.dm, kBoundaryLabel, 1))
+    if (p >= vStart && p < vEnd) view.on_boundary[p - vStart] = 1;
+
+  view.boundary_part.assign(nv, -1);
+  view.part_count.assign(nv, 0);
+  const bool parallel = mpi_size(m.comm) > 1;
+  for (const PhysicalGroup& g : m.groups) {
+    if (g.dim != m.dim - 1 && g.dim != 0) continue;
+    const int part = static_cast<int>(view.parts.size());
+    view.parts.push_back({g.name, g.tag});
+    // A vertex's facets of this part may all be on another rank: share membership.
+    std::vector<PetscInt> member(pEnd - pStart, 0);
+    const char* label = g.dim == 0 ? "Vertex Sets" : "Face Sets";
+    for (PetscInt p : stratum(m.dm, label, g.tag))
+      for (PetscInt v : closure_vertices(m.dm, p, vStart, vEnd)) member[vStart + v - pStart] = 1;
+    if (parallel) share_max(m.dm, member);
+    for (PetscInt v = 0; v < nv; ++v) {
+      if (!member[vStart + v - pStart]) continue;
+      if (view.boundary_part[v] < 0) view.boundary_part[v] = part;
+      ++view.part_count[v];
+    }
+  }
+}
+
+void build_view(Impl& m, const std::vector<PetscInt>& original, PetscInt root_vStart) {
+  auto view = std::make_unique<MeshView>();
+  view->dim = m.dim;
+  PetscInt pStart, pEnd, vStart, vEnd;
+  NM_PETSC(DMPlexGetChart(m.dm, &pStart, &pEnd));
+  NM_PETSC(DMPlexGetDepthStratum(m.dm, 0, &vStart, &vEnd));
+  view->num_vertices = vEnd - vStart;
+
+  Vec local;
+  NM_PETSC(DMGetCoordinatesLocal(m.dm, &local));
+  VecReadView x(local);
+  // Built from a cell list, the coordinate section is dim values per vertex, in vertex order.
+  if (x.size() != view->num_vertices * m.dim) fail("{}: unexpected coordinate layout", m.source);
+  view->coords.assign(x.data(), x.data() + x.size());
+
+  const auto ghost = ghost_points(m.dm);
+  view->owned.resize(view->num_vertices);
+  m.input_vertex.resize(view->num_vertices);
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    view->owned[v - vStart] = !ghost[v - pStart];
+    m.input_vertex[v - vStart] = original[v - pStart] - root_vStart;
+  }
+  build_cells(m, original, *view);
+  build_boundary(m, *view);
+  m.view = std::move(view);
+}
+
+// Per-vertex vectors with dim components: a section with dim dofs on every vertex; its
+// global section numbers the owned dofs and encodes a ghost's global dof g as -(g+1).
+void build_dofs(Impl& m) {
+  PetscInt pStart, pEnd, vStart, vEnd;
+  NM_PETSC(DMPlexGetChart(m.dm, &pStart, &pEnd));
+  NM_PETSC(DMPlexGetDepthStratum(m.dm, 0, &vStart, &vEnd));
+  OwnedSection local, global;
+  NM_PETSC(PetscSectionCreate(m.comm, local.out()));
+  NM_PETSC(PetscSectionSetChart(local, pStart, pEnd));
+  for (PetscInt v = vStart; v < vEnd; ++v) NM_PETSC(PetscSectionSetDof(local, v, m.dim));
+  NM_PETSC(PetscSectionSetUp(local));
+  PetscSF point_sf;
+  NM_PETSC(DMGetPointSF(m.dm, &point_sf));
+  NM_PETSC(
+      PetscSectionCreateGlobalSection(local, point_sf, PETSC_FALSE, PETSC_FALSE, global.out()));
+  PetscInt owned_dofs;
+  NM_PETSC(PetscSectionGetConstrainedStorageSize(global, &owned_dofs));
+
+  std::vector<PetscInt> global_dof((vEnd - vStart) * m.dim);
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt offset;
+    NM_PETSC(PetscSectionGetOffset(global, v, &offset));
+    if (offset < 0) offset = -(offset + 1);
+    for (int d = 0; d < m.dim; ++d) global_dof[(v - vStart) * m.dim + d] = offset + d;
+  }
+  PetscLayout layout;
+  NM_PETSC(PetscLayoutCreateFromSizes(m.comm, owned_dofs, PETSC_DECIDE, 1, &layout));
+  OwnedSF sf;
+  NM_PETSC(PetscSFCreate(m.comm, sf.out()));
+  NM_PETSC(PetscSFSetGraphLayout(sf, layout, static_cast<PetscInt>(global_dof.size()), nullptr,
+                                 PETSC_OWN_POINTER, global_dof.data()));
+  NM_PETSC(PetscLayoutDestroy(&layout));
+  NM_PETSC(PetscSFSetUp(sf));
+  m.dofs =
+      std::make_unique<DofMap>(m.comm, m.dim, vEnd - vStart, owned_dofs, sf, std::move(global_dof));
+}
+
+// The common end of load and from_data: validate on rank 0, build, distribute, view.
+Mesh create(MPI_Comm comm, InputMesh& input, const std::string& source) {
+  validate(input, source, comm);
+  auto m = std::make_unique<Impl>();
+  m->comm = comm;
+  m->source = source;
+  m->dm = build_plex(comm, input);
+  PetscInt dim, vStart, vEnd, cStart, cEnd;
+  NM_PETSC(DMGetDimension(m->dm, &dim));
+  m->dim = static_cast<int>(dim);
+  NM_PETSC(DMPlexGetDepthStratum(m->dm, 0, &vStart, &vEnd));
+  NM_PETSC(DMPlexGetHeightStratum(m->dm, 0, &cStart, &cEnd));
+  PetscInt root[3] = {cEnd - cStart, vEnd - vStart, vStart};
+  MPI_Bcast(root, 3, MPIU_INT, 0, comm);
+  m->global_num_cells = root[0];
+  m->global_num_vertices = root[1];
+  m->groups = input.groups;
+  broadcast_groups(comm, m->groups);
+
+  const auto original = distribute(*m);
+  build_view(*m, original, root[2]);
+  build_dofs(*m);
+  return MeshAccess::create(std::move(m));
+}
+
+}  // namespace
+
+Mesh Mesh::load(const std::filesystem::path& path, MPI_Comm comm) {
+  InputMesh input;
+  on_root(comm, [&] {
+    check_input_file(path);
+    check_readable_format(path);
+    input = path.extension() == ".msh" ? read_gmsh(path) : input_from_data(read_feat(path));
+  });
+  return create(comm, input, path.string());
+}
+
+Mesh Mesh::from_data(const MeshData& data, const std::string& source, MPI_Comm comm) {
+  InputMesh input = mpi_rank(comm) == 0 ? input_from_data(data) : InputMesh{};
+  return create(comm, input, source);
+}
+
+Mesh::Mesh(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Mesh::Mesh(Mesh&&) noexcept = default;
+Mesh& Mesh::operator=(Mesh&&) noexcept = default;
+Mesh::~Mesh() = default;
+
+MPI_Comm Mesh::comm() const {
+  return impl_->comm;
+}
+DM Mesh::dm() const {
+  return impl_->dm;
+}
+int Mesh::dim() const {
+  return impl_->dim;
+}
+const std::string& Mesh::source() const {
+  return impl_->source;
+}
+PetscInt Mesh::global_num_cells() const {
+  return impl_->global_num_cells;
+}
+PetscInt Mesh::global_num_vertices() const {
+  return impl_->global_num_vertices;
+}
+const MeshView& Mesh::view() const {
+  return *impl_->view;
+}
+const DofMap& Mesh::dofs() const {
+  return *impl_->dofs;
+}
+
+OwnedVec Mesh::coordinates() const {
+  const DofMap& dofs = *impl_->dofs;
+  const MeshView& view = *impl_->view;
+  OwnedVec x = dofs.create_global_vector();
+  PetscInt first;
+  NM_PETSC(VecGetOwnershipRange(x, &first, nullptr));
+  VecWriteView out(x);
+  for (PetscInt i = 0; i < dofs.num_local_dofs(); ++i)
+    if (view.owned[i / view.dim]) out[dofs.global_dof()[i] - first] = view.coords[i];
+  return x;
+}
+
+void Mesh::set_coordinates(Vec coords) {
+  MeshView& view = *impl_->view;
+  impl_->dofs->global_to_local(coords, view.coords);
+  Vec current;
+  NM_PETSC(DMGetCoordinatesLocal(impl_->dm, &current));
+  OwnedVec moved;
+  NM_PETSC(VecDuplicate(current, moved.out()));
+  {
+    VecWriteView x(moved);
+    std::copy(view.coords.begin(), view.coords.end(), x.data());
+  }
+  NM_PETSC(DMSetCoordinatesLocal(impl_->dm, moved));
+}
+
+}  // namespace neomesh

@@ -1,0 +1,35 @@
+// What a Mesh holds, for the files of the mesh layer (readers, writers); other layers use
+// mesh.hpp only.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mesh/input_mesh.hpp"
+#include "mesh/mesh.hpp"
+
+namespace neomesh {
+
+struct Mesh::Impl {
+  MPI_Comm comm = MPI_COMM_NULL;
+  OwnedDM dm;  // distributed, interpolated, labelled as in plex_builder.hpp
+  int dim = 2;
+  std::string source;
+  PetscInt global_num_cells = 0;
+  PetscInt global_num_vertices = 0;
+  std::vector<PhysicalGroup> groups;      // the same on every rank, sorted by (dim, tag)
+  std::vector<PetscInt> view_cell_point;  // per MeshView cell: its DMPlex point
+  std::vector<PetscInt> input_vertex;     // per local vertex: its number in the input (0-based)
+  std::unique_ptr<MeshView> view;
+  std::unique_ptr<DofMap> dofs;
+};
+
+// The mesh layer's way in: Impl by name, and Mesh's private constructor.
+struct MeshAccess {
+  using Impl = Mesh::Impl;
+  static const Impl& impl(const Mesh& mesh) { return *mesh.impl_; }
+  static Mesh create(std::unique_ptr<Impl> impl) { return Mesh(std::move(impl)); }
+};
+
+}  // namespace neomesh

@@ -1,0 +1,37 @@
+#include "mesh/mesh_io.hpp"
+
+#include "core/atomic_file.hpp"
+#include "mesh/collective_error.hpp"
+#include "mesh/gather.hpp"
+#include "mesh/mesh_writers.hpp"
+
+namespace neomesh {
+
+void check_readable_format(const std::filesystem::path& path) {
+  const auto ext = path.extension();
+  if (ext != ".msh" && ext != ".xml")
+    fail("{}: unknown mesh format '{}' (neomesh reads Gmsh .msh and FEAT3 .xml)", path.string(),
+         ext.string());
+}
+
+void check_writable_format(const std::filesystem::path& path) {
+  const auto ext = path.extension();
+  if (ext != ".msh" && ext != ".vtu")
+    fail("{}: unknown output format '{}' (neomesh writes VTK .vtu and Gmsh .msh)", path.string(),
+         ext.string());
+}
+
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const MeshFields& fields) {
+  check_writable_format(path);
+  const GatheredMesh gathered = gather_mesh(mesh, fields);
+  on_root(mesh.comm(), [&] {
+    AtomicFile file(path);
+    if (path.extension() == ".vtu")
+      write_vtu(gathered, file.stream());
+    else
+      write_msh(gathered, file.stream());
+    file.commit();
+  });
+}
+
+}  // namespace neomesh

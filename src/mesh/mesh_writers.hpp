@@ -1,0 +1,18 @@
+// The two output formats, written from a GatheredMesh on rank 0 to a stream.
+#pragma once
+
+#include <ostream>
+
+#include "mesh/gather.hpp"
+
+namespace neomesh {
+
+// VTK XML UnstructuredGrid (.vtu), ASCII: cell and vertex fields, plus the cell field
+// "physical" when the cells carry physical groups.
+void write_vtu(const GatheredMesh& mesh, std::ostream& out);
+
+// Gmsh 4.1 ASCII (.msh): cells and the boundary facets and points of physical groups, one
+// entity per physical group, so that reading the file back gives the same groups.
+void write_msh(const GatheredMesh& mesh, std::ostream& out);
+
+}  // namespace neomesh

@@ -1,0 +1,150 @@
+#include <algorithm>
+#include <map>
+
+#include <fmt/ostream.h>
+
+#include "mesh/cell_order.hpp"
+#include "mesh/mesh_writers.hpp"
+
+namespace neomesh {
+
+namespace {
+
+// Gmsh element type numbers.
+int gmsh_cell_type(CellType t) {
+  switch (t) {
+    case CellType::Triangle:
+      return 2;
+    case CellType::Quadrilateral:
+      return 3;
+    case CellType::Tetrahedron:
+      return 4;
+    case CellType::Hexahedron:
+      return 5;
+  }
+  return 0;
+}
+int gmsh_facet_type(int dim, PetscInt num_vertices) {
+  if (num_vertices == 1) return 15;  // point
+  if (dim == 2) return 1;            // line
+  return num_vertices == 3 ? 2 : 3;  // triangle or quadrilateral face
+}
+
+// One entity per (dim, physical tag); cells without a tag get the entity of tag 0.
+struct Entities {
+  std::map<std::pair<int, int>, int> tag;  // (dim, physical tag) → entity tag
+  int count(int dim) const {
+    return static_cast<int>(
+        std::count_if(tag.begin(), tag.end(), [&](const auto& e) { return e.first.first == dim; }));
+  }
+  void add(int dim, int physical) {
+    if (!tag.contains({dim, physical})) tag[{dim, physical}] = count(dim) + 1;
+  }
+};
+
+// An element block: elements of one type on one entity, as vertex lists (input numbers).
+struct Block {
+  int dim, entity, type;
+  std::vector<std::vector<PetscInt>> elements;
+};
+
+void write_entities(std::ostream& f, const GatheredMesh& g, const Entities& entities) {
+  const InputMesh& mesh = g.mesh;
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (int d = 0; d < mesh.dim; ++d) {
+    lo[d] = INFINITY, hi[d] = -INFINITY;
+    for (PetscInt v = 0; v < mesh.num_vertices(); ++v) {
+      lo[d] = std::min(lo[d], mesh.coords[v * mesh.dim + d]);
+      hi[d] = std::max(hi[d], mesh.coords[v * mesh.dim + d]);
+    }
+  }
+  fmt::print(f, "$Entities\n{} {} {} {}\n", entities.count(0), entities.count(1), entities.count(2),
+             entities.count(3));
+  for (const auto& [key, entity] : entities.tag) {  // sorted by dim, as Gmsh wants
+    const auto [dim, physical] = key;
+    const std::string physicals = physical > 0 ? fmt::format("1 {}", physical) : "0";
+    if (dim == 0)
+      fmt::print(f, "{} {} {} {} {}\n", entity, lo[0], lo[1], lo[2], physicals);
+    else
+      fmt::print(f, "{} {} {} {} {} {} {} {} 0\n", entity, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2],
+                 physicals);
+  }
+  fmt::print(f, "$EndEntities\n");
+}
+
+std::vector<Block> element_blocks(const GatheredMesh& g, Entities& entities) {
+  const InputMesh& mesh = g.mesh;
+  std::map<std::tuple<int, int, int>, Block> blocks;  // by (dim, physical tag, type)
+  for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
+    const CellType t = mesh.cell_types[c];
+    entities.add(mesh.dim, mesh.cell_tags[c]);
+    auto& block = blocks[{mesh.dim, mesh.cell_tags[c], gmsh_cell_type(t)}];
+    std::vector<PetscInt> vertices(num_vertices(t));
+    const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
+    for (int i = 0; i < num_vertices(t); ++i) vertices[i] = cell[gmsh_from_canonical(t)[i]];
+    block.elements.push_back(std::move(vertices));
+  }
+  for (const TaggedEntities* tagged : {&mesh.facets, &mesh.points})
+    for (PetscInt k = 0; k < tagged->size(); ++k) {
+      const PetscInt n = tagged->offsets[k + 1] - tagged->offsets[k];
+      const int dim = n == 1 ? 0 : mesh.dim - 1;
+      entities.add(dim, tagged->tags[k]);
+      blocks[{dim, tagged->tags[k], gmsh_facet_type(mesh.dim, n)}].elements.emplace_back(
+          tagged->vertices.begin() + tagged->offsets[k],
+          tagged->vertices.begin() + tagged->offsets[k + 1]);
+    }
+  std::vector<Block> out;
+  for (auto& [key, block] : blocks) {
+    const auto [dim, physical, type] = key;
+    out.push_back({dim, entities.tag.at({dim, physical}), type, std::move(block.elements)});
+  }
+  // Cells first, then facets and points: element numbers then follow the input's cells.
+  std::stable_sort(out.begin(), out.end(),
+                   [](const Block& a, const Block& b) { return a.dim > b.dim; });
+  return out;
+}
+
+}  // namespace
+
+void write_msh(const GatheredMesh& g, std::ostream& f) {
+  const InputMesh& mesh = g.mesh;
+  fmt::print(f, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
+  const auto named = std::count_if(mesh.groups.begin(), mesh.groups.end(),
+                                   [](const auto& group) { return !group.name.empty(); });
+  if (named > 0) {
+    fmt::print(f, "$PhysicalNames\n{}\n", named);
+    for (const PhysicalGroup& group : mesh.groups)
+      if (!group.name.empty()) fmt::print(f, "{} {} \"{}\"\n", group.dim, group.tag, group.name);
+    fmt::print(f, "$EndPhysicalNames\n");
+  }
+
+  Entities entities;
+  const std::vector<Block> blocks = element_blocks(g, entities);
+  write_entities(f, g, entities);
+
+  // All nodes on the first cell entity; Gmsh and PETSc accept nodes classified there.
+  const PetscInt nv = mesh.num_vertices();
+  fmt::print(f, "$Nodes\n1 {} 1 {}\n{} {} 0 {}\n", nv, nv, mesh.dim, blocks.front().entity, nv);
+  for (PetscInt v = 0; v < nv; ++v) fmt::print(f, "{}\n", v + 1);
+  for (PetscInt v = 0; v < nv; ++v) {
+    const double* x = mesh.coords.data() + v * mesh.dim;
+    fmt::print(f, "{:.17g} {:.17g} {:.17g}\n", x[0], x[1], mesh.dim == 3 ? x[2] : 0.0);
+  }
+  fmt::print(f, "$EndNodes\n");
+
+  std::size_t total = 0;
+  for (const Block& b : blocks) total += b.elements.size();
+  fmt::print(f, "$Elements\n{} {} 1 {}\n", blocks.size(), total, total);
+  std::size_t tag = 0;
+  for (const Block& b : blocks) {
+    fmt::print(f, "{} {} {} {}\n", b.dim, b.entity, b.type, b.elements.size());
+    for (const auto& element : b.elements) {
+      fmt::print(f, "{}", ++tag);
+      for (PetscInt v : element) fmt::print(f, " {}", v + 1);
+      fmt::print(f, "\n");
+    }
+  }
+  fmt::print(f, "$EndElements\n");
+}
+
+}  // namespace neomesh

@@ -1,0 +1,83 @@
+// Every bad input ends in one neomesh::Error whose message names the file (and the cell).
+#include "mesh/validate.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "core/testing/test_data.hpp"
+#include "mesh/mesh.hpp"
+
+namespace neomesh {
+namespace {
+
+using testing::data_path;
+
+// The message of the Error that loading `path` throws ("" if it loads).
+std::string load_error(const std::filesystem::path& path) {
+  try {
+    Mesh::load(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+struct BadInput {
+  const char* file;
+  const char* reason;  // a part of the message
+};
+
+class RejectsBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(RejectsBadInput, WithOneLineNamingTheFile) {
+  const auto path = data_path(GetParam().file);
+  const std::string message = load_error(path);
+  EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  EXPECT_NE(message.find(GetParam().reason), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, RejectsBadInput,
+    ::testing::Values(BadInput{"no_such_file.msh", "no such file"},
+                      BadInput{"geo", "is a directory"},
+                      BadInput{"geo/square_tri.geo", "unknown mesh format"},
+                      BadInput{"bad_empty.msh", "not a valid Gmsh mesh file"},
+                      BadInput{"bad_garbage.msh", "not a valid Gmsh mesh file"},
+                      BadInput{"bad_truncated.msh", "not a valid Gmsh mesh file"},
+                      BadInput{"bad_nan.msh", "vertex 5 (0-based) has a non-finite coordinate"},
+                      BadInput{"bad_inverted.msh", "cell 0 (0-based, a triangle) is inverted"},
+                      BadInput{"bad_repeated_vertex.msh", "cell 0 (0-based) has a repeated vertex"},
+                      BadInput{"bad_prism.msh", "cell 0 (0-based) is a triangular_prism"},
+                      BadInput{"bad_second_order.msh", "second-order"},
+                      BadInput{"bad_lines_only.msh", "no 2D or 3D cells"},
+                      BadInput{"bad_mixed_dim.msh", "2D and 3D cells mixed"},
+                      BadInput{"bad_feat_truncated.xml", "unexpected end of file"},
+                      BadInput{"bad_feat_inverted.xml",
+                               "cell 2 (0-based, a quadrilateral) is inverted"}),
+    [](const auto& info) {
+      std::string name = info.param.file;
+      std::replace_if(
+          name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
+      return name;
+    });
+
+TEST(Validate, FlagsDegenerateTriangle) {
+  InputMesh mesh;
+  mesh.coords = {0, 0, 1, 0, 2, 0};
+  const PetscInt cell[3] = {0, 1, 2};
+  mesh.add_cell(CellType::Triangle, cell, 0);
+  EXPECT_NE(find_defect(mesh).find("degenerate"), std::string::npos) << find_defect(mesh);
+}
+
+TEST(Validate, TensorOrderUnitCubeIsPositive) {
+  double x[24];
+  for (int i = 0; i < 8; ++i)
+    for (int d = 0; d < 3; ++d) x[3 * i + d] = (i >> d) & 1;
+  EXPECT_DOUBLE_EQ(min_scaled_corner_jacobian(CellType::Hexahedron, x), 1.0);
+  std::swap(x[0], x[3]);  // vertices 0 and 1 exchange their x: inverted
+  EXPECT_LT(min_scaled_corner_jacobian(CellType::Hexahedron, x), 0.0);
+}
+
+}  // namespace
+}  // namespace neomesh
