@@ -127,6 +127,24 @@ Packet pack(const Mesh& mesh, const MeshFields& fields) {
   return out;
 }
 
+// Orders entities by (tag, vertices), so the order does not depend on the partition.
+void sort_entities(TaggedEntities& entities) {
+  auto key = [&](PetscInt k) {
+    return std::pair(entities.tags[k],
+                     std::vector<PetscInt>(entities.vertices.begin() + entities.offsets[k],
+                                           entities.vertices.begin() + entities.offsets[k + 1]));
+  };
+  std::vector<PetscInt> order(entities.size());
+  std::iota(order.begin(), order.end(), PetscInt{0});
+  std::sort(order.begin(), order.end(), [&](PetscInt a, PetscInt b) { return key(a) < key(b); });
+  TaggedEntities sorted;
+  for (PetscInt k : order) {
+    const auto [tag, vertices] = key(k);
+    sorted.add(vertices.data(), static_cast<PetscInt>(vertices.size()), tag);
+  }
+  entities = std::move(sorted);
+}
+
 }  // namespace
 
 GatheredMesh gather_mesh(const Mesh& mesh, const MeshFields& fields) {
@@ -187,6 +205,8 @@ GatheredMesh gather_mesh(const Mesh& mesh, const MeshFields& fields) {
     }
   }
   for (PetscInt c = 0; c < nc; ++c) out.mesh.add_cell(types[c], cells[c].data(), tags[c]);
+  sort_entities(out.mesh.facets);
+  sort_entities(out.mesh.points);
   return out;
 }
 

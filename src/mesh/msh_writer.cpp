@@ -75,6 +75,7 @@ void write_entities(std::ostream& f, const GatheredMesh& g, const Entities& enti
 std::vector<Block> element_blocks(const GatheredMesh& g, Entities& entities) {
   const InputMesh& mesh = g.mesh;
   std::map<std::tuple<int, int, int>, Block> blocks;  // by (dim, physical tag, type)
+  for (const PhysicalGroup& group : mesh.groups) entities.add(group.dim, group.tag);
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
     const CellType t = mesh.cell_types[c];
     entities.add(mesh.dim, mesh.cell_tags[c]);

@@ -1,0 +1,153 @@
+// Under `mpiexec -n 2`: a distributed mesh is the serial mesh, split.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <sstream>
+
+#include "core/testing/test_data.hpp"
+#include "mesh/mesh.hpp"
+#include "mesh/mesh_io.hpp"
+#include "mesh/mesh_test_util.hpp"
+
+namespace neomesh {
+namespace {
+
+using testing::data_path;
+
+using Point = std::array<double, 3>;
+
+Point point(const MeshView& view, PetscInt v) {
+  Point p{0, 0, 0};
+  for (int d = 0; d < view.dim; ++d) p[d] = view.coords[v * view.dim + d];
+  return p;
+}
+
+// Per vertex (by position): how many cells contain it.
+std::map<Point, int> incidence(const MeshView& view) {
+  std::map<Point, int> count;
+  for (const CellBlock& block : view.blocks)
+    for (PetscInt v : block.vertices) ++count[point(view, v)];
+  return count;
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ostringstream s;
+  s << std::ifstream(path).rdbuf();
+  return s.str();
+}
+
+class Distributed : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(Distributed, SplitsTheSerialMesh) {
+  ASSERT_EQ(mpi_size(), 2);
+  Mesh serial = Mesh::load(data_path(GetParam()), PETSC_COMM_SELF);
+  Mesh mesh = Mesh::load(data_path(GetParam()));
+  const MeshView& view = mesh.view();
+  EXPECT_EQ(mesh.global_num_cells(), serial.global_num_cells());
+  EXPECT_EQ(mesh.global_num_vertices(), serial.global_num_vertices());
+  EXPECT_GT(view.num_cells, 0);  // both ranks got cells
+  EXPECT_GT(testing::min_view_jacobian(view), 0.0);
+
+  // Every cell in exactly one rank.
+  const int n = static_cast<int>(view.num_cells);
+  std::vector<int> counts(2), offsets(3, 0);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, PETSC_COMM_WORLD);
+  std::partial_sum(counts.begin(), counts.end(), offsets.begin() + 1);
+  std::vector<PetscInt> all(offsets[2]);
+  MPI_Allgatherv(view.global_cell.data(), n, MPIU_INT, all.data(), counts.data(), offsets.data(),
+                 MPIU_INT, PETSC_COMM_WORLD);
+  std::sort(all.begin(), all.end());
+  std::vector<PetscInt> expected(serial.global_num_cells());
+  std::iota(expected.begin(), expected.end(), PetscInt{0});
+  EXPECT_EQ(all, expected);
+
+  // Every vertex owned by exactly one rank.
+  PetscInt owned = std::count(view.owned.begin(), view.owned.end(), 1), total = 0;
+  MPI_Allreduce(&owned, &total, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
+  EXPECT_EQ(total, serial.global_num_vertices());
+
+  // Boundary flags and parts as in the serial mesh, ghosts included.
+  const MeshView& whole = serial.view();
+  std::map<Point, std::pair<int, int>> boundary;
+  for (PetscInt v = 0; v < whole.num_vertices; ++v)
+    boundary[point(whole, v)] = {whole.on_boundary[v], whole.part_count[v]};
+  for (PetscInt v = 0; v < view.num_vertices; ++v) {
+    const auto [on_boundary, parts] = boundary.at(point(view, v));
+    EXPECT_EQ(view.on_boundary[v], on_boundary);
+    EXPECT_EQ(view.part_count[v], parts);
+  }
+}
+
+TEST_P(Distributed, DofMapSumsOverRanks) {
+  Mesh serial = Mesh::load(data_path(GetParam()), PETSC_COMM_SELF);
+  Mesh mesh = Mesh::load(data_path(GetParam()));
+  const MeshView& view = mesh.view();
+  const DofMap& dofs = mesh.dofs();
+  // Each local cell adds 1 to every dof of its vertices.
+  std::vector<double> local(dofs.num_local_dofs(), 0.0);
+  for (const CellBlock& block : view.blocks)
+    for (PetscInt v : block.vertices)
+      for (int d = 0; d < view.dim; ++d) local[v * view.dim + d] += 1.0;
+  OwnedVec global = dofs.create_global_vector();
+  dofs.add_local_to_global(local, global);
+  std::vector<double> back(dofs.num_local_dofs());
+  dofs.global_to_local(global, back);
+  const auto count = incidence(serial.view());
+  for (PetscInt v = 0; v < view.num_vertices; ++v)
+    for (int d = 0; d < view.dim; ++d) EXPECT_EQ(back[v * view.dim + d], count.at(point(view, v)));
+}
+
+TEST_P(Distributed, CoordinatesRoundTripIncludingGhosts) {
+  Mesh mesh = Mesh::load(data_path(GetParam()));
+  const std::vector<double> before = mesh.view().coords;
+  OwnedVec x = mesh.coordinates();
+  NM_PETSC(VecScale(x, 3.0));
+  mesh.set_coordinates(x);
+  for (std::size_t i = 0; i < before.size(); ++i)
+    EXPECT_DOUBLE_EQ(mesh.view().coords[i], 3.0 * before[i]);
+}
+
+TEST_P(Distributed, WritesTheSameFileAsSerial) {
+  const auto dir = std::filesystem::temp_directory_path() / "neomesh-mpitest-write";
+  if (mpi_rank() == 0) {
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  Mesh mesh = Mesh::load(data_path(GetParam()));
+  MeshFields fields;
+  fields.cell.push_back({"input_cell", {}, 1});
+  for (PetscInt c : mesh.view().global_cell) fields.cell[0].values.push_back(c);
+  for (const char* ext : {".msh", ".vtu"}) write_mesh(mesh, dir / (std::string("p") + ext), fields);
+  if (mpi_rank() == 0) {
+    Mesh serial = Mesh::load(data_path(GetParam()), PETSC_COMM_SELF);
+    MeshFields serial_fields;
+    serial_fields.cell.push_back({"input_cell", {}, 1});
+    for (PetscInt c : serial.view().global_cell) serial_fields.cell[0].values.push_back(c);
+    for (const char* ext : {".msh", ".vtu"}) {
+      write_mesh(serial, dir / (std::string("s") + ext), serial_fields);
+      EXPECT_EQ(read_file(dir / (std::string("p") + ext)),
+                read_file(dir / (std::string("s") + ext)))
+          << ext;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Files, Distributed,
+                         ::testing::Values("square_quad_v41.msh", "cube_tet_v41.msh",
+                                           "mixed_tri_quad_v41.msh", "feat_square_quad.xml"),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           return name.substr(0, name.find('.'));
+                         });
+
+TEST(DistributedErrors, BadFileThrowsOnEveryRank) {
+  EXPECT_THROW(Mesh::load(data_path("bad_inverted.msh")), Error);
+  EXPECT_THROW(Mesh::load(data_path("bad_mixed_dim.msh")), Error);
+  EXPECT_THROW(Mesh::load(data_path("bad_truncated.msh")), Error);
+}
+
+}  // namespace
+}  // namespace neomesh
