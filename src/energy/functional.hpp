@@ -9,6 +9,8 @@
 // unchanged.
 #pragma once
 
+#include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -22,8 +24,8 @@ namespace neomesh {
 struct EnergyOptions {
   double lambda = 1.0;
   double mu = 10.0;
-  double kappa = -1.0;           // < 0 means κ = λ (enough for convexity, thesis §4.3)
-  int gauss_points = 3;          // per direction for Q1 cells; 3 reproduces the thesis
+  double kappa = -1.0;   // < 0 means κ = λ (enough for convexity, thesis §4.3)
+  int gauss_points = 3;  // per direction for Q1 cells; 3 reproduces the thesis
 };
 
 // Which matrix represents the H¹₀ inner product for the Riesz representative (MATH.md §4).
@@ -33,8 +35,8 @@ enum class RieszLaplacian {
 };
 
 struct CellFields {
-  std::vector<double> energy;     // ∫ W over the cell's optimal cell
-  std::vector<double> min_det;    // min over quadrature points of det G (+∞ never: see below)
+  std::vector<double> energy;        // ∫ W over the cell's optimal cell
+  std::vector<double> min_det;       // min over quadrature points of det G (+∞ never: see below)
   std::vector<double> volume_ratio;  // Q = actual volume / desired volume
 };
 

@@ -1,0 +1,208 @@
+// energy/cell_kernels.hpp — the energy of one cell and its derivatives (MATH.md §1–3).
+//
+// A cell K is given by its vertex coordinates X (Dim × vertices, one column per vertex, in
+// canonical local order) and its desired volume v. Its optimal cell has volume v; γ_K maps
+// the optimal cell onto K, G = ∇γ_K:
+// - simplex: G = E_K · E_opt⁻¹ (constant), one quadrature point of weight v;
+// - Q1 cell: G(ξ) = ∇τ(ξ) · (2/h), h = v^(1/d), Gauss points ξ_q with weights w_q (h/2)^d.
+// In both cases G = X · D_qᵀ where column i of D_q is ∇φ̂_i, the gradient of basis function
+// i with respect to the optimal cell's coordinates at point q (the same chain rule as G).
+//
+// Local dofs are numbered vertex-major, dof = Dim · vertex + component (the DofMap's order);
+// a cell gradient is a Dim × vertices matrix whose column-major storage is in that order.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
+#include "energy/neo_hooke.hpp"
+#include "geometry/reference_cell.hpp"
+
+namespace neomesh {
+
+// A cell type as a type, for dispatching once per block to code compiled per cell type.
+template <CellType Type>
+using CellTag = std::integral_constant<CellType, Type>;
+
+// The quadrature rule on the optimal cell of unit volume: per point, the basis gradients
+// D̂_q (Dim × vertices) and the weight ŵ_q (Σ ŵ_q = 1). For desired volume v the optimal
+// cell is scaled by s = v^(1/d): D_q = D̂_q / s and the weights become v ŵ_q.
+template <CellType Type>
+struct OptimalCellQuadrature {
+  static constexpr int dim = CellTraits<Type>::dim;
+  static constexpr int vertices = CellTraits<Type>::vertices;
+  static constexpr int max_points =
+      CellTraits<Type>::simplex ? 1 : TensorGaussRule<dim>::max_points;
+  using Gradients = typename CellTraits<Type>::Coordinates;
+
+  int size = 0;
+  std::array<Gradients, max_points> unit_gradients;
+  std::array<double, max_points> unit_weights{};
+
+  // `gauss_points` per direction for Q1 cells; simplices need one point (G is constant).
+  explicit OptimalCellQuadrature(int gauss_points) {
+    if constexpr (CellTraits<Type>::simplex) {
+      // Barycentric gradients on the reference simplex: ∇φ_0 = −Σ e_j, ∇φ_j = e_j; pulled back
+      // to the optimal cell x = a0 + E_opt ξ: ∇φ̂ = E_opt⁻ᵀ ∇_ξ φ.
+      Gradients reference = Gradients::Zero();
+      reference.col(0).setConstant(-1.0);
+      reference.template rightCols<dim>().setIdentity();
+      size = 1;
+      unit_gradients[0] = unit_optimal_simplex_edges<dim>().inverse().transpose() * reference;
+      unit_weights[0] = 1.0;
+    } else {
+      // Unit cube [-1/2,1/2]^d (h = 1): ∇φ̂ = (2/h) ∇_ξ N, weight w_q (h/2)^d.
+      const TensorGaussRule<dim> rule(gauss_points);
+      size = rule.size;
+      for (int q = 0; q < size; ++q) {
+        unit_gradients[q] = 2.0 * q1_gradients<dim>(rule.points[q]);
+        unit_weights[q] = rule.weights[q] / double(1 << dim);
+      }
+    }
+  }
+};
+
+// Actual volume of a cell and the smallest det G over its quadrature points.
+struct CellMeasure {
+  double volume;
+  double min_det;
+};
+
+template <CellType Type>
+class CellKernel {
+ public:
+  static constexpr int dim = CellTraits<Type>::dim;
+  static constexpr int vertices = CellTraits<Type>::vertices;
+  static constexpr int dofs = dim * vertices;
+  using Coordinates = typename CellTraits<Type>::Coordinates;  // X, one column per vertex
+  using Gradient = Coordinates;                                // ∂(cell energy)/∂X
+  using Block = Eigen::Matrix<double, dofs, dofs>;             // (dof, dof) in local order
+
+  CellKernel(const NeoHooke<dim>& law, int gauss_points) : law_(law), rule_(gauss_points) {}
+
+  // ∫_{optimal cell} W(G) dx = Σ_q v ŵ_q W(G_q); +∞ if det G ≤ 0 at some point.
+  double energy(const Coordinates& x, double volume) const {
+    const double scale = inverse_edge(volume);
+    double sum = 0.0;
+    for (int q = 0; q < rule_.size; ++q) {
+      const Deformation<dim> d(x * (scale * rule_.unit_gradients[q]).transpose());
+      if (!d.admissible()) return std::numeric_limits<double>::infinity();
+      sum += volume * rule_.unit_weights[q] * law_.energy(d);
+    }
+    return sum;
+  }
+
+  // The cell energy and its gradient: ∂/∂X_ai = Σ_q v ŵ_q (P(G_q) D_q)_ai, i.e.
+  // F′[φ] = ∫ P(G) : ∇φ̂ for φ = e_a φ_i. Returns +∞ (gradient unspecified) if inverted.
+  double energy_and_gradient(const Coordinates& x, double volume, Gradient& gradient) const {
+    const double scale = inverse_edge(volume);
+    double sum = 0.0;
+    gradient.setZero();
+    for (int q = 0; q < rule_.size; ++q) {
+      const Gradient basis = scale * rule_.unit_gradients[q];
+      const Deformation<dim> d(x * basis.transpose());
+      if (!d.admissible()) return std::numeric_limits<double>::infinity();
+      const double weight = volume * rule_.unit_weights[q];
+      sum += weight * law_.energy(d);
+      gradient.noalias() += weight * law_.stress(d) * basis;
+    }
+    return sum;
+  }
+
+  // H(α) = B1 + α B2 + B3 on the cell. With m_i = G⁻ᵀ ∇φ̂_i, the (i,a),(j,b) entry of
+  // ∫ (B1 + α B2 + B3)[e_b ∇φ̂_jᵀ] : e_a ∇φ̂_iᵀ is, per quadrature point,
+  //   volumetric m_i[a] m_j[b] − (growth + α b) m_j[a] m_i[b] + μ δ_ab ∇φ̂_i·∇φ̂_j,
+  // so block (i,j) is volumetric m_i m_jᵀ − (growth + α b) m_j m_iᵀ + μ (∇φ̂_i·∇φ̂_j) I.
+  // Returns false (block unspecified) if det G ≤ 0 at some point.
+  bool hessian(const Coordinates& x, double volume, double alpha, Eigen::Ref<Block> block) const {
+    const double scale = inverse_edge(volume);
+    block.setZero();
+    for (int q = 0; q < rule_.size; ++q) {
+      const Gradient basis = scale * rule_.unit_gradients[q];
+      const Deformation<dim> d(x * basis.transpose());
+      if (!d.admissible()) return false;
+      const TangentSplit split = law_.split(d);
+      const double weight = volume * rule_.unit_weights[q];
+      const double volumetric = weight * split.volumetric;
+      const double rotational = weight * split.rotational(alpha);
+      const double mu = weight * split.mu;
+      const Gradient m = d.inv_t * basis;
+      const Eigen::Matrix<double, vertices, vertices> gram = basis.transpose() * basis;
+      for (int j = 0; j < vertices; ++j) {
+        for (int i = 0; i < vertices; ++i) {
+          block.template block<dim, dim>(dim * i, dim * j) +=
+              volumetric * m.col(i) * m.col(j).transpose() -
+              rotational * m.col(j) * m.col(i).transpose() +
+              mu * gram(i, j) * Matrix<dim>::Identity();
+        }
+      }
+    }
+    make_exactly_symmetric(block);
+    return true;
+  }
+
+  // Vector Laplacian on the optimal cell: ∫ ∇φ̂_i·∇φ̂_j δ_ab (= B3/μ); independent of X.
+  void optimal_laplacian(double volume, Eigen::Ref<Block> block) const {
+    const double scale = inverse_edge(volume);
+    block.setZero();
+    for (int q = 0; q < rule_.size; ++q) {
+      const Gradient basis = scale * rule_.unit_gradients[q];
+      add_scalar_laplacian(volume * rule_.unit_weights[q] * basis.transpose() * basis, block);
+    }
+    make_exactly_symmetric(block);
+  }
+
+  // Vector Laplacian on the actual cell K: ∫_K ∇φ_i·∇φ_j dx = ∫_{optimal} det G (G⁻ᵀ∇φ̂_i)·
+  // (G⁻ᵀ∇φ̂_j). Returns false (block unspecified) if det G ≤ 0 at some point.
+  bool current_laplacian(const Coordinates& x, double volume, Eigen::Ref<Block> block) const {
+    const double scale = inverse_edge(volume);
+    block.setZero();
+    for (int q = 0; q < rule_.size; ++q) {
+      const Gradient basis = scale * rule_.unit_gradients[q];
+      const Deformation<dim> d(x * basis.transpose());
+      if (!d.admissible()) return false;
+      const Gradient m = d.inv_t * basis;
+      add_scalar_laplacian(volume * rule_.unit_weights[q] * d.det * m.transpose() * m, block);
+    }
+    make_exactly_symmetric(block);
+    return true;
+  }
+
+  // Actual volume Σ_q v ŵ_q det G_q (exact for ≥ 2 Gauss points per direction) and min det G.
+  CellMeasure measure(const Coordinates& x, double volume) const {
+    const double scale = inverse_edge(volume);
+    CellMeasure m{0.0, std::numeric_limits<double>::infinity()};
+    for (int q = 0; q < rule_.size; ++q) {
+      const double det = (x * (scale * rule_.unit_gradients[q]).transpose()).determinant();
+      m.volume += volume * rule_.unit_weights[q] * det;
+      m.min_det = std::min(m.min_det, det);
+    }
+    return m;
+  }
+
+ private:
+  // 1/s with s = v^(1/d), the edge scale of the optimal cell of volume v.
+  static double inverse_edge(double volume) { return std::pow(volume, -1.0 / dim); }
+
+  // Copies the lower triangle onto the upper one: the block is symmetric in exact arithmetic,
+  // and this makes it so in floating point (PETSc may then rely on MAT_SYMMETRIC).
+  static void make_exactly_symmetric(Eigen::Ref<Block> block) {
+    block.template triangularView<Eigen::StrictlyUpper>() = block.transpose().eval();
+  }
+
+  // block((i,a),(j,b)) += scalar(i,j) δ_ab
+  static void add_scalar_laplacian(const Eigen::Matrix<double, vertices, vertices>& scalar,
+                                   Eigen::Ref<Block> block) {
+    for (int j = 0; j < vertices; ++j)
+      for (int i = 0; i < vertices; ++i)
+        block.template block<dim, dim>(dim * i, dim * j).diagonal().array() += scalar(i, j);
+  }
+
+  NeoHooke<dim> law_;
+  OptimalCellQuadrature<Type> rule_;
+};
+
+}  // namespace neomesh

@@ -1,0 +1,212 @@
+#include "energy/cell_kernels.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <random>
+
+namespace neomesh {
+namespace {
+
+constexpr double kFdTolerance = 1e-6;  // relative error allowed against central differences
+
+template <CellType Type>
+using Coordinates = typename CellKernel<Type>::Coordinates;
+
+// The optimal cell of volume v (MATH.md §1), vertex 0 at the origin for simplices and the
+// square/cube [0, h]^d for Q1 cells.
+template <CellType Type>
+Coordinates<Type> optimal_cell(double volume) {
+  constexpr int dim = CellTraits<Type>::dim;
+  Coordinates<Type> x;
+  const double edge = std::pow(volume, 1.0 / dim);
+  if constexpr (CellTraits<Type>::simplex) {
+    x.col(0).setZero();
+    x.template rightCols<dim>() = edge * unit_optimal_simplex_edges<dim>();
+  } else {
+    for (int i = 0; i < CellTraits<Type>::vertices; ++i)
+      x.col(i) = 0.5 * edge * (q1_vertex<dim>(i) + Vector<dim>::Ones());
+  }
+  return x;
+}
+
+// The optimal cell of volume `volume`, sheared and stretched by a random map near the
+// identity and with every vertex moved by up to 15% of the edge length: a valid, generic cell.
+template <CellType Type>
+Coordinates<Type> perturbed_cell(double volume, std::mt19937& rng) {
+  constexpr int dim = CellTraits<Type>::dim;
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Matrix<dim> map = Matrix<dim>::Identity();
+  for (int i = 0; i < dim; ++i)
+    for (int j = 0; j < dim; ++j) map(i, j) += 0.25 * u(rng);
+  Coordinates<Type> x = 1.3 * map * optimal_cell<Type>(volume);
+  const double edge = std::pow(volume, 1.0 / dim);
+  for (int i = 0; i < x.size(); ++i) x.data()[i] += 0.15 * edge * u(rng);
+  return x;
+}
+
+template <typename A, typename B>
+double relative_error(const A& analytic, const B& fd) {
+  return (analytic - fd).norm() / analytic.norm();
+}
+
+template <typename T>
+class CellKernelTest : public ::testing::Test {};
+using CellTypes = ::testing::Types<CellTag<CellType::Triangle>, CellTag<CellType::Quadrilateral>,
+                                   CellTag<CellType::Tetrahedron>, CellTag<CellType::Hexahedron>>;
+TYPED_TEST_SUITE(CellKernelTest, CellTypes);
+
+template <CellType Type>
+CellKernel<Type> thesis_kernel() {
+  return CellKernel<Type>(NeoHooke<CellTraits<Type>::dim>{1.0, 10.0, 1.0}, 3);
+}
+
+TYPED_TEST(CellKernelTest, OptimalCellHasZeroEnergyAndGradient) {
+  constexpr CellType Type = TypeParam::value;
+  const CellKernel<Type> kernel = thesis_kernel<Type>();
+  for (double volume : {1.0, 0.01, 7.0}) {
+    const Coordinates<Type> x = optimal_cell<Type>(volume);
+    typename CellKernel<Type>::Gradient g;
+    EXPECT_NEAR(kernel.energy_and_gradient(x, volume, g), 0.0, 1e-14);
+    EXPECT_LT(g.norm(), 1e-13);
+    const CellMeasure m = kernel.measure(x, volume);
+    EXPECT_NEAR(m.volume, volume, 1e-14 * volume);
+    EXPECT_NEAR(m.min_det, 1.0, 1e-14);
+  }
+}
+
+TYPED_TEST(CellKernelTest, GradientMatchesFiniteDifferencesOfEnergy) {
+  constexpr CellType Type = TypeParam::value;
+  const CellKernel<Type> kernel = thesis_kernel<Type>();
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 5; ++trial) {
+    const double volume = 0.5 + trial;
+    Coordinates<Type> x = perturbed_cell<Type>(volume, rng);
+    typename CellKernel<Type>::Gradient g, fd;
+    kernel.energy_and_gradient(x, volume, g);
+    const double step = 1e-6 * std::pow(volume, 1.0 / CellTraits<Type>::dim);
+    for (int k = 0; k < x.size(); ++k) {
+      const double saved = x.data()[k];
+      x.data()[k] = saved + step;
+      const double plus = kernel.energy(x, volume);
+      x.data()[k] = saved - step;
+      fd.data()[k] = (plus - kernel.energy(x, volume)) / (2 * step);
+      x.data()[k] = saved;
+    }
+    EXPECT_LT(relative_error(g, fd), kFdTolerance) << "analytic\n" << g << "\nfd\n" << fd;
+  }
+}
+
+TYPED_TEST(CellKernelTest, HessianMatchesFiniteDifferencesOfGradient) {
+  constexpr CellType Type = TypeParam::value;
+  using Kernel = CellKernel<Type>;
+  const Kernel kernel = thesis_kernel<Type>();
+  std::mt19937 rng(12);
+  for (int trial = 0; trial < 5; ++trial) {
+    const double volume = 0.5 + trial;
+    Coordinates<Type> x = perturbed_cell<Type>(volume, rng);
+    typename Kernel::Block h, fd;
+    ASSERT_TRUE(kernel.hessian(x, volume, 1.0, h));
+    const double step = 1e-6 * std::pow(volume, 1.0 / Kernel::dim);
+    typename Kernel::Gradient plus, minus;
+    for (int k = 0; k < x.size(); ++k) {
+      const double saved = x.data()[k];
+      x.data()[k] = saved + step;
+      kernel.energy_and_gradient(x, volume, plus);
+      x.data()[k] = saved - step;
+      kernel.energy_and_gradient(x, volume, minus);
+      x.data()[k] = saved;
+      fd.col(k) = Eigen::Map<const Eigen::Matrix<double, Kernel::dofs, 1>>(
+                      typename Kernel::Gradient(plus - minus).data()) /
+                  (2 * step);
+    }
+    EXPECT_LT(relative_error(h, fd), kFdTolerance);
+    EXPECT_EQ((h - h.transpose()).norm(), 0.0);  // exactly symmetric
+  }
+}
+
+// H(α) = B1 + α B2 + B3 is affine in α, and B3/μ at any cell is the optimal-cell Laplacian.
+TYPED_TEST(CellKernelTest, HessianSplitsIntoLaplacianAndRest) {
+  constexpr CellType Type = TypeParam::value;
+  using Kernel = CellKernel<Type>;
+  const Kernel kernel = thesis_kernel<Type>();
+  std::mt19937 rng(13);
+  const double volume = 2.0;
+  const Coordinates<Type> x = perturbed_cell<Type>(volume, rng);
+  typename Kernel::Block h0, h1, half, laplacian;
+  kernel.hessian(x, volume, 0.0, h0);
+  kernel.hessian(x, volume, 1.0, h1);
+  kernel.hessian(x, volume, 0.5, half);
+  EXPECT_LT(relative_error(half, 0.5 * (h0 + h1)), 1e-14);
+  kernel.optimal_laplacian(volume, laplacian);
+  const Kernel laplacian_only(NeoHooke<Kernel::dim>{1e-300, 1.0, 0.0}, 3);  // λ → 0, μ = 1
+  typename Kernel::Block b3;
+  laplacian_only.hessian(x, volume, 0.0, b3);
+  EXPECT_LT(relative_error(b3, laplacian), 1e-13);
+}
+
+TYPED_TEST(CellKernelTest, LaplacianOfCurrentCellEqualsOptimalAtOptimalCell) {
+  constexpr CellType Type = TypeParam::value;
+  using Kernel = CellKernel<Type>;
+  const Kernel kernel = thesis_kernel<Type>();
+  const double volume = 0.3;
+  typename Kernel::Block optimal, current;
+  kernel.optimal_laplacian(volume, optimal);
+  ASSERT_TRUE(kernel.current_laplacian(optimal_cell<Type>(volume), volume, current));
+  EXPECT_LT(relative_error(current, optimal), 1e-13);
+  // Translations are in the kernel: each row sums to zero over each component.
+  const Coordinates<Type> ones = Coordinates<Type>::Ones();
+  EXPECT_LT(
+      (optimal * Eigen::Map<const Eigen::Matrix<double, Kernel::dofs, 1>>(ones.data())).norm(),
+      1e-12 * optimal.norm());
+}
+
+TYPED_TEST(CellKernelTest, InvertedCellIsInfiniteAndRejected) {
+  constexpr CellType Type = TypeParam::value;
+  using Kernel = CellKernel<Type>;
+  const Kernel kernel = thesis_kernel<Type>();
+  Coordinates<Type> x = optimal_cell<Type>(1.0);
+  x.row(0) *= -1.0;  // mirror image: det G < 0 everywhere
+  EXPECT_TRUE(std::isinf(kernel.energy(x, 1.0)));
+  typename Kernel::Gradient g;
+  EXPECT_TRUE(std::isinf(kernel.energy_and_gradient(x, 1.0, g)));
+  typename Kernel::Block h;
+  EXPECT_FALSE(kernel.hessian(x, 1.0, 1.0, h));
+  EXPECT_LT(kernel.measure(x, 1.0).min_det, 0.0);
+}
+
+// Renumbering the vertices by a symmetry of the optimal cell that keeps the orientation
+// (even permutations of a simplex; rotations of the square/cube in tensor order) leaves
+// the cell energy unchanged.
+template <CellType Type>
+std::vector<std::array<int, CellTraits<Type>::vertices>> orientation_preserving_renumberings() {
+  if constexpr (Type == CellType::Triangle) {
+    return {{1, 2, 0}, {2, 0, 1}};
+  } else if constexpr (Type == CellType::Tetrahedron) {
+    return {{1, 2, 0, 3}, {0, 2, 3, 1}, {1, 0, 3, 2}, {3, 2, 1, 0}, {2, 3, 0, 1}};
+  } else if constexpr (Type == CellType::Quadrilateral) {
+    // Vertex i moves to the position of the 90° rotation of ξ_i: (ξ0, ξ1) → (−ξ1, ξ0).
+    return {{1, 3, 0, 2}, {3, 2, 1, 0}, {2, 0, 3, 1}};
+  } else {
+    // Rotations by 90° about z: (ξ0, ξ1, ξ2) → (−ξ1, ξ0, ξ2); by 120° about the diagonal:
+    // (ξ0, ξ1, ξ2) → (ξ2, ξ0, ξ1); by 180° about z: (ξ0, ξ1, ξ2) → (−ξ0, −ξ1, ξ2).
+    return {{1, 3, 0, 2, 5, 7, 4, 6}, {0, 2, 4, 6, 1, 3, 5, 7}, {3, 2, 1, 0, 7, 6, 5, 4}};
+  }
+}
+
+TYPED_TEST(CellKernelTest, EnergyIndependentOfVertexNumberingUpToSymmetry) {
+  constexpr CellType Type = TypeParam::value;
+  const CellKernel<Type> kernel = thesis_kernel<Type>();
+  std::mt19937 rng(14);
+  const double volume = 0.7;
+  const Coordinates<Type> x = perturbed_cell<Type>(volume, rng);
+  const double energy = kernel.energy(x, volume);
+  for (const auto& renumbering : orientation_preserving_renumberings<Type>()) {
+    Coordinates<Type> y;
+    for (int i = 0; i < CellTraits<Type>::vertices; ++i) y.col(i) = x.col(renumbering[i]);
+    EXPECT_NEAR(kernel.energy(y, volume), energy, 1e-13 * energy);
+  }
+}
+
+}  // namespace
+}  // namespace neomesh

@@ -1,0 +1,252 @@
+#include "energy/functional.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "mesh/generate.hpp"
+#include "mesh/serial_view.hpp"
+
+namespace neomesh {
+namespace {
+
+constexpr double kFdTolerance = 1e-6;  // relative error allowed against central differences
+
+// A serial mesh with boundary vertices fixed and the Functional on it. Not movable: the
+// Functional keeps references to the view and the DofMap.
+struct Problem {
+  MeshData data;
+  MeshView view;
+  DofMap dofs;
+  Functional functional;
+  OwnedVec x;
+
+  explicit Problem(MeshData mesh, const EnergyOptions& options = {})
+      : data(std::move(mesh)),
+        view(serial_view(data)),
+        dofs(DofMap::serial(data.dim, static_cast<PetscInt>(data.num_vertices()))),
+        functional(view, dofs, options, view.on_boundary),
+        x(dofs.create_global_vector()) {
+    VecWriteView out(x);
+    for (std::size_t i = 0; i < data.coords.size(); ++i)
+      out[static_cast<PetscInt>(i)] = data.coords[i];
+  }
+  Problem(const Problem&) = delete;
+
+  // Equal desired volumes whose sum is the mesh's volume, each scaled by a factor in
+  // [1 − spread, 1 + spread].
+  void set_volumes(double spread = 0.0, unsigned seed = 0) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-spread, spread);
+    const double mean = mesh_volume(view, dofs, x) / view.num_cells;
+    std::vector<double> volumes(view.num_cells);
+    for (double& v : volumes) v = mean * (1.0 + u(rng));
+    functional.set_desired_volumes(volumes);
+  }
+
+  std::vector<double> free_dofs() const {
+    std::vector<double> mask(dofs.num_local_dofs());
+    dofs.global_to_local(functional.free_mask(), mask);
+    return mask;
+  }
+};
+
+// Moves each interior vertex by up to `amplitude` in each coordinate.
+void perturb_interior(MeshData& mesh, double amplitude, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amplitude, amplitude);
+  const std::vector<std::uint8_t> boundary = boundary_vertices(mesh);
+  for (std::int64_t v = 0; v < mesh.num_vertices(); ++v)
+    if (!boundary[v])
+      for (int d = 0; d < mesh.dim; ++d) mesh.coords[v * mesh.dim + d] += u(rng);
+}
+
+// A box [-1,1]^d with n cells per direction, interior vertices moved by up to 20% of h.
+MeshData perturbed_box(CellType type, int n, unsigned seed) {
+  MeshData mesh = box(type, n);
+  perturb_interior(mesh, 0.2 * 2.0 / n, seed);
+  return mesh;
+}
+
+double entry(Vec v, PetscInt i) {
+  VecReadView view(v);
+  return view[i];
+}
+
+void set_entry(Vec v, PetscInt i, double value) {
+  VecWriteView view(v);
+  view[i] = value;
+}
+
+double norm(Vec v) {
+  PetscReal n = 0.0;
+  NM_PETSC(VecNorm(v, NORM_2, &n));
+  return n;
+}
+
+class FunctionalTest : public ::testing::TestWithParam<CellType> {};
+
+INSTANTIATE_TEST_SUITE_P(AllCellTypes, FunctionalTest,
+                         ::testing::Values(CellType::Triangle, CellType::Quadrilateral,
+                                           CellType::Tetrahedron, CellType::Hexahedron),
+                         [](const auto& info) { return std::string(name(info.param)); });
+
+int cells_per_direction(CellType type) {
+  return dimension(type) == 2 ? 4 : 3;
+}
+
+TEST_P(FunctionalTest, GradientMatchesFiniteDifferencesOfValue) {
+  Problem p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 21));
+  p.set_volumes(0.5, 22);
+  OwnedVec gradient = p.dofs.create_global_vector();
+  p.functional.value_and_gradient(p.x, gradient);
+  OwnedVec fd = p.dofs.create_global_vector();
+  const std::vector<double> free = p.free_dofs();
+  const double step = 1e-7;
+  for (PetscInt i = 0; i < p.dofs.num_global_dofs(); ++i) {
+    if (!free[i]) {
+      EXPECT_EQ(entry(gradient, i), 0.0);
+      continue;
+    }
+    const double saved = entry(p.x, i);
+    set_entry(p.x, i, saved + step);
+    const double plus = p.functional.value(p.x);
+    set_entry(p.x, i, saved - step);
+    const double minus = p.functional.value(p.x);
+    set_entry(p.x, i, saved);
+    set_entry(fd, i, (plus - minus) / (2 * step));
+  }
+  NM_PETSC(VecAXPY(fd, -1.0, gradient));
+  EXPECT_LT(norm(fd), kFdTolerance * norm(gradient));
+}
+
+TEST_P(FunctionalTest, HessianMatchesFiniteDifferencesOfGradient) {
+  Problem p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 23));
+  p.set_volumes(0.5, 24);
+  OwnedMat H = p.functional.create_matrix();
+  p.functional.assemble_hessian(p.x, 1.0, H);
+  const std::vector<double> free = p.free_dofs();
+  OwnedVec unit = p.dofs.create_global_vector(), column = p.dofs.create_global_vector();
+  OwnedVec plus = p.dofs.create_global_vector(), minus = p.dofs.create_global_vector();
+  const double step = 1e-7;
+  double error = 0.0, size = 0.0;  // Frobenius norms over all columns
+  for (PetscInt j = 0; j < p.dofs.num_global_dofs(); ++j) {
+    set_entry(unit, j, 1.0);
+    NM_PETSC(MatMult(H, unit, column));
+    set_entry(unit, j, 0.0);
+    if (free[j]) {
+      const double saved = entry(p.x, j);
+      set_entry(p.x, j, saved + step);
+      p.functional.value_and_gradient(p.x, plus);
+      set_entry(p.x, j, saved - step);
+      p.functional.value_and_gradient(p.x, minus);
+      set_entry(p.x, j, saved);
+      NM_PETSC(VecAXPY(plus, -1.0, minus));
+      NM_PETSC(VecScale(plus, 1.0 / (2 * step)));  // central difference of the gradient
+    } else {
+      NM_PETSC(VecZeroEntries(plus));  // a fixed dof's column is the identity's
+      set_entry(plus, j, 1.0);
+    }
+    size += std::pow(norm(column), 2);
+    NM_PETSC(VecAXPY(plus, -1.0, column));
+    error += std::pow(norm(plus), 2);
+  }
+  EXPECT_LT(std::sqrt(error), kFdTolerance * std::sqrt(size));
+  PetscBool symmetric = PETSC_FALSE;
+  NM_PETSC(MatIsSymmetric(H, 0.0, &symmetric));
+  EXPECT_TRUE(symmetric);
+}
+
+// Every cell of a uniform square/cube grid with equal desired volumes is its optimal cell.
+TEST_P(FunctionalTest, UniformQ1GridWithEqualVolumesIsOptimal) {
+  if (is_simplex(GetParam())) GTEST_SKIP() << "a box split into simplices is not equilateral";
+  Problem p(box(GetParam(), 4));
+  p.set_volumes();
+  OwnedVec gradient = p.dofs.create_global_vector();
+  EXPECT_NEAR(p.functional.value_and_gradient(p.x, gradient), 0.0, 1e-13);
+  EXPECT_LT(norm(gradient), 1e-12);
+  const CellFields fields = p.functional.cell_fields(p.x);
+  for (PetscInt c = 0; c < p.view.num_cells; ++c) {
+    EXPECT_NEAR(fields.energy[c], 0.0, 1e-14);
+    EXPECT_NEAR(fields.min_det[c], 1.0, 1e-13);
+    EXPECT_NEAR(fields.volume_ratio[c], 1.0, 1e-13);
+  }
+}
+
+TEST_P(FunctionalTest, InvariantUnderRotationAndTranslation) {
+  const CellType type = GetParam();
+  MeshData moved = perturbed_box(type, cells_per_direction(type), 25);
+  Problem original(moved);
+  original.set_volumes(0.3, 26);
+  rotate(moved, 27.0);
+  for (std::size_t i = 0; i < moved.coords.size(); ++i) moved.coords[i] += 0.5 + i % moved.dim;
+  Problem rigid(std::move(moved));
+  rigid.functional.set_desired_volumes(original.functional.desired_volumes());
+  const double f = original.functional.value(original.x);
+  EXPECT_GT(f, 0.0);
+  EXPECT_NEAR(rigid.functional.value(rigid.x), f, 1e-13 * f);
+}
+
+// On a mesh whose cells are their optimal cells, the current mesh's Laplacian is the
+// optimal cells' one; either has the identity's rows at fixed dofs.
+TEST_P(FunctionalTest, LaplaciansAgreeOnOptimalMesh) {
+  if (is_simplex(GetParam())) GTEST_SKIP() << "a box split into simplices is not equilateral";
+  Problem p(box(GetParam(), 3));
+  p.set_volumes();
+  OwnedMat optimal = p.functional.create_matrix(), current = p.functional.create_matrix();
+  p.functional.assemble_laplacian(RieszLaplacian::OptimalCells, p.x, optimal);
+  p.functional.assemble_laplacian(RieszLaplacian::CurrentMesh, p.x, current);
+  PetscReal size = 0.0, difference = 0.0;
+  NM_PETSC(MatNorm(optimal, NORM_FROBENIUS, &size));
+  NM_PETSC(MatAXPY(current, -1.0, optimal, SAME_NONZERO_PATTERN));
+  NM_PETSC(MatNorm(current, NORM_FROBENIUS, &difference));
+  EXPECT_LT(difference, 1e-13 * size);
+  // A constant free field: L·1 vanishes at interior vertices whose neighbours are all free.
+  PetscInt fixed_row = -1;
+  const std::vector<double> free = p.free_dofs();
+  for (PetscInt i = 0; i < p.dofs.num_global_dofs() && fixed_row < 0; ++i)
+    if (!free[i]) fixed_row = i;
+  PetscScalar diagonal = 0.0;
+  NM_PETSC(MatGetValues(optimal, 1, &fixed_row, 1, &fixed_row, &diagonal));
+  EXPECT_EQ(diagonal, 1.0);
+}
+
+TEST(Functional, InvertedCellGivesInfiniteValueAndRejectsHessian) {
+  MeshData mesh = box(CellType::Quadrilateral, 2);
+  mesh.coords[2 * 4] = 1.5;  // the centre vertex (1,1 in lattice order) moves outside
+  Problem p(std::move(mesh));
+  p.functional.set_desired_volumes(std::vector<double>(4, 1.0));
+  EXPECT_TRUE(std::isinf(p.functional.value(p.x)));
+  OwnedVec gradient = p.dofs.create_global_vector();
+  EXPECT_TRUE(std::isinf(p.functional.value_and_gradient(p.x, gradient)));
+  OwnedMat H = p.functional.create_matrix();
+  EXPECT_THROW(p.functional.assemble_hessian(p.x, 1.0, H), Error);
+}
+
+TEST(Functional, MeshVolumeAndFreeMask) {
+  Problem p(box(CellType::Hexahedron, 3));
+  EXPECT_NEAR(mesh_volume(p.view, p.dofs, p.x), 8.0, 1e-13);
+  PetscScalar free = 0.0;
+  NM_PETSC(VecSum(p.functional.free_mask(), &free));
+  EXPECT_EQ(free, 3.0 * 8.0);  // 2×2×2 interior vertices
+}
+
+// Thesis Table 5.1: the moved-midpoint square at level 3 (16×16 quads), equal desired
+// volumes 1/256, λ = 1, μ = 10, 3×3 Gauss points, boundary fixed. The first row's Newton
+// defect (1.16E+01) is the free-dof gradient norm at the initial mesh.
+TEST(SquareMidpoint, InitialEnergyAndDefectOfThesisTable51) {
+  for (double degrees : {0.0, 27.0}) {  // Table 5.3: the same mesh rotated by 27°
+    MeshData mesh = square_midpoint(16);
+    rotate(mesh, degrees);
+    Problem p(std::move(mesh));
+    p.functional.set_desired_volumes(std::vector<double>(256, 1.0 / 256.0));
+    OwnedVec gradient = p.dofs.create_global_vector();
+    const double f = p.functional.value_and_gradient(p.x, gradient);
+    EXPECT_NEAR(f, 2.665203, 5e-7) << "rotated by " << degrees;
+    EXPECT_NEAR(norm(gradient), 11.6383, 5e-5) << "rotated by " << degrees;
+  }
+}
+
+}  // namespace
+}  // namespace neomesh
