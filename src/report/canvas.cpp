@@ -3,11 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <fstream>
 #include <string>
-#include <system_error>
 
 #include <cairo-svg.h>
-#include <unistd.h>
 
 #include "core/error.hpp"
 
@@ -33,6 +32,12 @@ double advance(cairo_t* cr, const std::string& text) {
   return extents.x_advance;
 }
 
+cairo_status_t write_to_stream(void* stream, const unsigned char* data, unsigned int length) {
+  auto& out = *static_cast<std::ofstream*>(stream);
+  out.write(reinterpret_cast<const char*>(data), length);
+  return out ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
 }  // namespace
 
 PictureFormat picture_format(const std::filesystem::path& path) {
@@ -46,17 +51,17 @@ PictureFormat picture_format(const std::filesystem::path& path) {
 }
 
 Canvas::Canvas(const std::filesystem::path& path, int width, int height)
-    : path_(path), format_(picture_format(path)), width_(width), height_(height) {
-  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
-  if (!std::filesystem::is_directory(dir))
-    fail("cannot write {}: directory {} does not exist", path.string(), dir.string());
-  // Hidden and unique per process, so that concurrent runs never share a temporary file.
-  temporary_ = dir / fmt::format(".{}.{}.tmp", path.filename().string(), getpid());
-  surface_ = format_ == PictureFormat::Png
-                 ? cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height)
-                 : cairo_svg_surface_create(temporary_.c_str(), width, height);
+    : path_(path),
+      format_(picture_format(path)),
+      width_(width),
+      height_(height),
+      file_(path, /*binary=*/true) {
+  surface_ =
+      format_ == PictureFormat::Png
+          ? cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height)
+          : cairo_svg_surface_create_for_stream(write_to_stream, &file_.stream(), width, height);
   if (cairo_surface_status(surface_) != CAIRO_STATUS_SUCCESS)
-    fail("cannot write {}: {}", path.string(),
+    fail("cannot draw {}: {}", path.string(),
          cairo_status_to_string(cairo_surface_status(surface_)));
   cr_ = cairo_create(surface_);
   cairo_set_source_rgb(cr_, 1, 1, 1);
@@ -64,30 +69,23 @@ Canvas::Canvas(const std::filesystem::path& path, int width, int height)
 }
 
 Canvas::~Canvas() {
-  if (cr_) cairo_destroy(cr_);
-  if (surface_) cairo_surface_destroy(surface_);
-  if (!finished_) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary_, ignored);
-  }
+  cairo_destroy(cr_);
+  cairo_surface_destroy(surface_);
 }
 
 void Canvas::finish() {
   cairo_status_t status = cairo_status(cr_);
   if (status == CAIRO_STATUS_SUCCESS) {
     if (format_ == PictureFormat::Png) {
-      status = cairo_surface_write_to_png(surface_, temporary_.c_str());
+      status = cairo_surface_write_to_png_stream(surface_, write_to_stream, &file_.stream());
     } else {
-      cairo_surface_finish(surface_);  // flushes the SVG file
+      cairo_surface_finish(surface_);  // writes the rest of the SVG
       status = cairo_surface_status(surface_);
     }
   }
   if (status != CAIRO_STATUS_SUCCESS)
     fail("cannot write {}: {}", path_.string(), cairo_status_to_string(status));
-  std::error_code error;
-  std::filesystem::rename(temporary_, path_, error);
-  if (error) fail("cannot write {}: {}", path_.string(), error.message());
-  finished_ = true;
+  file_.commit();
 }
 
 void set_colour(cairo_t* cr, const Rgb& c, double alpha) {

@@ -1,6 +1,6 @@
 // A cairo drawing surface for one picture file, PNG or SVG by the file's extension, plus the
-// few text helpers the pictures share. Everything goes to a temporary file beside the
-// target that finish() renames over it, so a failed run never leaves a partial picture.
+// few text helpers the pictures share. The file is an AtomicFile: it appears only when
+// finish() succeeds, so a failed run never leaves a partial picture.
 //
 // Units: one user unit is one pixel (PNG) or one point (SVG); y grows downwards.
 #pragma once
@@ -10,6 +10,7 @@
 
 #include <cairo.h>
 
+#include "core/atomic_file.hpp"
 #include "report/colormap.hpp"
 
 namespace neomesh {
@@ -22,9 +23,9 @@ PictureFormat picture_format(const std::filesystem::path& path);
 class Canvas {
  public:
   // A white width × height picture for `path`. Throws Error if the format is unknown or
-  // the directory does not exist.
+  // the directory is not writable.
   Canvas(const std::filesystem::path& path, int width, int height);
-  ~Canvas();  // removes the temporary file unless finish() succeeded
+  ~Canvas();
   Canvas(const Canvas&) = delete;
   Canvas& operator=(const Canvas&) = delete;
 
@@ -32,16 +33,16 @@ class Canvas {
   int width() const { return width_; }
   int height() const { return height_; }
 
-  // Writes the picture and renames it over the target; throws Error on any failure.
+  // Writes the picture and commits the file; throws Error on any failure.
   void finish();
 
  private:
-  std::filesystem::path path_, temporary_;
+  std::filesystem::path path_;
   PictureFormat format_;
   int width_, height_;
+  AtomicFile file_;
   cairo_surface_t* surface_ = nullptr;
   cairo_t* cr_ = nullptr;
-  bool finished_ = false;
 };
 
 void set_colour(cairo_t* cr, const Rgb& c, double alpha = 1.0);

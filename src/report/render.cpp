@@ -8,12 +8,16 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "mesh/collective_error.hpp"
+#include "mesh/gather.hpp"
 #include "report/canvas.hpp"
 
 namespace neomesh {
 
 namespace {
 
+constexpr const char* kOnly2D =
+    "render draws 2D meshes; open the .vtu output in ParaView for 3D (see docs/user-guide.md)";
 constexpr Rgb kInvalidColour{0.85, 0.11, 0.11};  // red: absent from viridis
 constexpr Rgb kInk{0.15, 0.15, 0.15};            // text, outlines and edges
 constexpr Rgb kMutedInk{0.45, 0.45, 0.45};
@@ -251,6 +255,29 @@ void draw_colour_bar(cairo_t* cr, const Layout& l, const Legend& g) {
   draw_text(cr, g.count, x, y, 0.85 * l.font);
 }
 
+// The gathered mesh as a MeshView with one block per cell type, and its values in that order.
+std::pair<MeshView, std::vector<double>> whole_view(const GatheredMesh& gathered) {
+  const InputMesh& m = gathered.mesh;
+  const std::vector<double>& input_values = gathered.fields.cell.front().values;
+  MeshView view;
+  view.dim = m.dim;
+  view.num_vertices = m.num_vertices();
+  view.num_cells = m.num_cells();
+  view.coords = m.coords;
+  std::vector<double> values;
+  for (CellType type : {CellType::Triangle, CellType::Quadrilateral}) {
+    CellBlock block{type, static_cast<PetscInt>(values.size()), {}};
+    for (PetscInt c = 0; c < m.num_cells(); ++c)
+      if (m.cell_types[c] == type) {
+        block.vertices.insert(block.vertices.end(), m.cell_vertices.begin() + m.cell_offsets[c],
+                              m.cell_vertices.begin() + m.cell_offsets[c + 1]);
+        values.push_back(input_values[c]);
+      }
+    if (block.size() > 0) view.blocks.push_back(std::move(block));
+  }
+  return {std::move(view), std::move(values)};
+}
+
 }  // namespace
 
 void render_mesh(const MeshView& view, std::span<const double> coords,
@@ -283,6 +310,19 @@ void render_mesh(const MeshView& view, std::span<const double> coords,
     draw_edges(cr, view, l, coords, cell_pixels);
   draw_colour_bar(cr, l, g);
   canvas.finish();
+}
+
+void render_mesh(const Mesh& mesh, std::span<const double> cell_values,
+                 const std::filesystem::path& out, const RenderOptions& options) {
+  if (mesh.dim() != 2) throw Error(kOnly2D);
+  picture_format(out);  // an unknown extension fails before the gather
+  MeshFields fields;
+  fields.cell.push_back({"value", {cell_values.begin(), cell_values.end()}, 1});
+  const GatheredMesh gathered = gather_mesh(mesh, fields);
+  on_root(mesh.comm(), [&] {
+    const auto [view, values] = whole_view(gathered);
+    render_mesh(view, view.coords, values, out, options);
+  });
 }
 
 }  // namespace neomesh

@@ -7,6 +7,7 @@
 #include <span>
 #include <string>
 
+#include "mesh/mesh.hpp"
 #include "mesh/mesh_view.hpp"
 
 namespace neomesh {
@@ -29,5 +30,10 @@ struct RenderOptions {
 void render_mesh(const MeshView& view, std::span<const double> coords,
                  std::span<const double> cell_values, const std::filesystem::path& out,
                  const RenderOptions& options = {});
+
+// The same for a whole, possibly distributed mesh at its current coordinates: collective;
+// rank 0 gathers the cells and `cell_values` (one per local cell, MeshView order) and draws.
+void render_mesh(const Mesh& mesh, std::span<const double> cell_values,
+                 const std::filesystem::path& out, const RenderOptions& options = {});
 
 }  // namespace neomesh

@@ -10,6 +10,8 @@
 
 #include "core/error.hpp"
 #include "core/testing/test_data.hpp"
+#include "mesh/generate.hpp"
+#include "mesh/mesh.hpp"
 
 namespace neomesh {
 namespace {
@@ -101,7 +103,7 @@ TEST(RenderMesh, QuadGridToPngFillsMostOfThePicture) {
   EXPECT_EQ(png.width, 800);
   EXPECT_GT(png.height, 400);  // a square mesh plus the title
   EXPECT_GT(png.non_white_fraction, 0.3);
-  EXPECT_LT(png.non_white_fraction, 0.9);  // margins and legend stay white
+  EXPECT_LT(png.non_white_fraction, 0.9);    // margins and legend stay white
   std::vector<std::filesystem::path> files;  // the picture and no temporary file
   for (const auto& entry : std::filesystem::directory_iterator(dir))
     files.push_back(entry.path().filename());
@@ -145,10 +147,21 @@ TEST(RenderMesh, ConstantFieldAndManySmallCellsStillDraw) {
   EXPECT_GT(read_png(dir / "fine.png").non_white_fraction, 0.3);
 }
 
+TEST(RenderMesh, WholeMeshOfTriangles) {
+  const auto dir = testing::scratch_dir("render_whole_mesh");
+  const Mesh mesh = Mesh::from_data(box(CellType::Triangle, 8), "box-tri");
+  render_mesh(mesh, ramp(mesh.view().num_cells), dir / "box.png");
+  const Png png = read_png(dir / "box.png");
+  EXPECT_EQ(png.width, 1200);
+  EXPECT_GT(png.non_white_fraction, 0.3);
+}
+
 TEST(RenderMesh, ThreeDimensionalMeshIsRefused) {
   MeshView view;
   view.dim = 3;
   EXPECT_THROW(render_mesh(view, {}, {}, "never.png"), Error);
+  const Mesh cube = Mesh::from_data(box(CellType::Hexahedron, 1), "box-hex");
+  EXPECT_THROW(render_mesh(cube, std::vector<double>(1, 1.0), "never.png"), Error);
 }
 
 TEST(RenderMesh, BadOutputPathsFailWithoutWriting) {
