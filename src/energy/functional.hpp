@@ -42,7 +42,9 @@ struct CellFields {
 
 class Functional {
  public:
-  // `fixed` marks local vertices whose coordinates do not move (MeshView order).
+  // `fixed` marks local vertices whose coordinates do not move (MeshView order). `view` and
+  // `dofs` are kept by reference and must outlive the Functional; only their connectivity
+  // and layout are used (coordinates always come from the Vec x of each call).
   Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
              std::vector<std::uint8_t> fixed);
   ~Functional();
@@ -70,7 +72,7 @@ class Functional {
   CellFields cell_fields(Vec x) const;
 
   const DofMap& dofs() const;
-  // 1 for free dofs, 0 for fixed ones (global Vec laid out by dofs()).
+  // 1 for free dofs, 0 for fixed ones (global Vec laid out by dofs(); owned by the Functional).
   Vec free_mask() const;
 
  private:
