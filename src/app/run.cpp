@@ -86,7 +86,8 @@ int run(int argc, char** argv) {
   cli.add_flag("-v,--verbose", verbose, "also print linear-solver details");
   cli.set_config("--config", "", "read options from a TOML/INI file (command line wins)");
 
-  std::vector<Subcommand> commands = {add_generate(cli), add_quality(cli), add_convert(cli)};
+  std::vector<Subcommand> commands = {add_generate(cli), add_quality(cli), add_convert(cli),
+                                      add_smooth(cli), add_render(cli)};
   for (auto& c : commands) c.cli->fallthrough();
 
   try {

@@ -17,5 +17,6 @@ Subcommand add_generate(CLI::App& app);
 Subcommand add_quality(CLI::App& app);
 Subcommand add_convert(CLI::App& app);
 Subcommand add_smooth(CLI::App& app);
+Subcommand add_render(CLI::App& app);
 
 }  // namespace neomesh::app

@@ -148,7 +148,7 @@ Layout layout(std::span<const double> coords, const RenderOptions& o, const Lege
   l.y0 = top + 0.5 * (map_height + l.scale * h) + l.scale * ymin;
 
   l.legend_x = l.margin + map_width + 0.035 * W;
-  l.legend_top = top + 2.0 * l.font;
+  l.legend_top = top + 2.4 * l.font;
   l.bar_height = std::min(map_height - 6.0 * l.font, 0.5 * W);
   return l;
 }
@@ -220,7 +220,7 @@ void draw_edges(cairo_t* cr, const MeshView& view, const Layout& l, std::span<co
 void draw_colour_bar(cairo_t* cr, const Layout& l, const Legend& g) {
   const double x = l.legend_x, top = l.legend_top, bottom = top + l.bar_height;
   set_colour(cr, kInk);
-  draw_text(cr, g.name, x, top - 1.2 * l.font, l.font, Anchor::Left, true);
+  draw_text(cr, g.name, x, top - 1.5 * l.font, l.font, Anchor::Left, true);
 
   cairo_pattern_t* gradient = cairo_pattern_create_linear(0, bottom, 0, top);
   for (const ColormapStop& stop : viridis_stops())

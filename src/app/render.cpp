@@ -1,0 +1,134 @@
+// `neomesh render`: a picture of a 2D mesh coloured by a quality metric, the energy or the
+// volume ratio Q of its cells.
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/subcommand.hpp"
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "energy/functional.hpp"
+#include "geometry/quality.hpp"
+#include "mesh/mesh.hpp"
+#include "mesh/mesh_io.hpp"
+#include "report/canvas.hpp"
+#include "report/render.hpp"
+#include "solver/desired_volumes.hpp"
+
+namespace neomesh::app {
+
+namespace {
+
+struct RenderCommandOptions {
+  std::string input, output, field = "scaled-jacobian", sizes = "smoothed", title;
+  int width = 1200;
+  std::vector<double> range;
+  bool log_scale = false;
+};
+
+struct FieldInfo {
+  const char* option;  // --field value
+  const char* legend;  // shown above the colour bar
+};
+
+constexpr std::array<FieldInfo, 7> kFields = {{
+    {"scaled-jacobian", "scaled Jacobian"},
+    {"min-angle", "min angle (deg)"},
+    {"max-angle", "max angle (deg)"},
+    {"edge-ratio", "edge ratio"},
+    {"volume", "cell volume"},
+    {"energy", "energy of the cell"},
+    {"Q", "Q = volume / desired"},
+}};
+
+const FieldInfo& field_info(const std::string& option) {
+  for (const FieldInfo& f : kFields)
+    if (option == f.option) return f;
+  fail("unknown field '{}'", option);  // CLI11 checks the choices first
+}
+
+// Energy and Q compare each cell with its optimal cell, whose volume --sizes decides.
+std::vector<double> energy_field(const Mesh& mesh, const CellQuality& quality,
+                                 const RenderCommandOptions& o) {
+  const MeshView& view = mesh.view();
+  Functional functional(view, mesh.dofs(), EnergyOptions{}, view.on_boundary);
+  functional.set_desired_volumes(
+      desired_volumes(parse_size_mode(o.sizes), view, mesh.dofs(), quality.volume));
+  const OwnedVec x = mesh.coordinates();
+  CellFields fields = functional.cell_fields(x);
+  return o.field == "energy" ? std::move(fields.energy) : std::move(fields.volume_ratio);
+}
+
+std::vector<double> field_values(const Mesh& mesh, const RenderCommandOptions& o) {
+  const MeshView& view = mesh.view();
+  const CellQuality quality = cell_quality(view, view.coords);
+  std::vector<double> values = o.field == "scaled-jacobian" ? quality.scaled_jacobian
+                               : o.field == "min-angle"     ? quality.min_angle
+                               : o.field == "max-angle"     ? quality.max_angle
+                               : o.field == "edge-ratio"    ? quality.edge_ratio
+                               : o.field == "volume"        ? quality.volume
+                                                            : energy_field(mesh, quality, o);
+  // Inverted cells stand out in red whatever the field (render counts non-finite values).
+  for (std::size_t c = 0; c < values.size(); ++c)
+    if (!(quality.min_corner_det[c] > 0 && quality.min_gauss_det[c] > 0))
+      values[c] = std::numeric_limits<double>::quiet_NaN();
+  return values;
+}
+
+void run_render(const RenderCommandOptions& o) {
+  picture_format(o.output);  // fail before the (possibly long) load
+  check_readable_format(o.input);
+  if (!o.range.empty() && o.range.size() != 2)
+    fail("--range takes MIN,MAX (got {} numbers)", o.range.size());
+  const Mesh mesh = Mesh::load(o.input);
+
+  RenderOptions options;
+  options.width = o.width;
+  options.title = o.title.empty() ? std::filesystem::path(o.input).filename().string() : o.title;
+  options.field_name = field_info(o.field).legend;
+  options.log_scale = o.log_scale;
+  if (!o.range.empty()) options.min = o.range[0], options.max = o.range[1];
+  render_mesh(mesh, field_values(mesh, o), o.output, options);
+  say("wrote {}: {} of {} cells\n", o.output, o.field, mesh.global_num_cells());
+}
+
+}  // namespace
+
+Subcommand add_render(CLI::App& app) {
+  auto options = std::make_shared<RenderCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "render",
+      "Draw a 2D mesh with every cell coloured by a quality metric, its energy or its volume "
+      "ratio Q, to a .png or .svg picture. Inverted cells are drawn in red and counted. For 3D "
+      "meshes, open a .vtu output in ParaView instead.");
+  cmd->add_option("mesh", options->input, "mesh file (.msh or .xml)")->required();
+  cmd->add_option("-o,--output", options->output, "picture file (.png or .svg)")->required();
+  std::vector<std::string> fields;
+  for (const FieldInfo& f : kFields) fields.emplace_back(f.option);
+  cmd->add_option("--field", options->field,
+                  "what colours the cells: a quality metric (see `neomesh quality`), the "
+                  "Neo-Hookean energy of the cell, or Q = volume / desired volume")
+      ->check(CLI::IsMember(fields))
+      ->capture_default_str();
+  cmd->add_option("--sizes", options->sizes,
+                  "desired cell volumes for energy and Q, as in `neomesh smooth`: uniform (mesh "
+                  "volume / cells), input (each cell's own volume) or smoothed")
+      ->check(CLI::IsMember({"uniform", "input", "smoothed"}))
+      ->capture_default_str();
+  cmd->add_option("--title", options->title, "title above the mesh (default: the file name)");
+  cmd->add_option("--width", options->width, "picture width in pixels (PNG) or points (SVG)")
+      ->capture_default_str();
+  cmd->add_option("--range", options->range,
+                  "colour range MIN,MAX (default: the range of the values); values outside get "
+                  "the end colours")
+      ->delimiter(',')
+      ->expected(2);
+  cmd->add_flag("--log", options->log_scale, "colour by the logarithm of the value");
+  return {cmd, [options] { run_render(*options); }};
+}
+
+}  // namespace neomesh::app
