@@ -1,0 +1,53 @@
+// `neomesh convert IN -o OUT`: read a mesh, check it, write it in another format (or the
+// same one, normalized: Gmsh 4.1 ASCII with the input's physical groups).
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "app/subcommand.hpp"
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "mesh/mesh.hpp"
+#include "mesh/mesh_io.hpp"
+
+namespace neomesh::app {
+
+namespace {
+
+struct ConvertOptions {
+  std::string input;
+  std::string output;
+  bool force = false;
+};
+
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code ec;
+  return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
+}
+
+void run_convert(const ConvertOptions& o) {
+  check_readable_format(o.input);
+  check_writable_format(o.output);
+  if (!o.force && same_file(o.input, o.output))
+    fail("{}: output is the input file; choose another -o or pass --force", o.output);
+  const Mesh mesh = Mesh::load(o.input);
+  write_mesh(mesh, o.output);
+  say("wrote {}: {} cells, {} vertices\n", o.output, mesh.global_num_cells(),
+      mesh.global_num_vertices());
+}
+
+}  // namespace
+
+Subcommand add_convert(CLI::App& app) {
+  auto options = std::make_shared<ConvertOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "convert",
+      "Read a mesh (Gmsh .msh 2.2/4.1, FEAT3 .xml), check it (no inverted or degenerate cells) "
+      "and write it as .vtu (ParaView) or .msh (Gmsh 4.1, keeping physical groups).");
+  cmd->add_option("input", options->input, "input mesh (.msh or .xml)")->required();
+  cmd->add_option("-o,--output", options->output, "output mesh (.vtu or .msh)")->required();
+  cmd->add_flag("--force", options->force, "allow the output to overwrite the input");
+  return {cmd, [options] { run_convert(*options); }};
+}
+
+}  // namespace neomesh::app
