@@ -235,7 +235,7 @@ void plot_history(const std::vector<IterationRecord>& history, double initial_en
 
   const double font = std::max(10.0, 0.014 * W), title_font = 1.3 * font;
   const double left = 0.03 * W + 6.4 * font, right = W - 0.03 * W;
-  const double top = 0.03 * H + (options.title.empty() ? 0 : 2.4 * title_font);
+  const double top = 0.03 * H + 0.8 * font + (options.title.empty() ? 0 : 2.4 * title_font);
   const double bottom = H - 0.03 * H - 3.6 * font, gap = 2.0 * font;
   const double panel_height = 0.5 * (bottom - top - gap);
   const IterationAxis x = iteration_axis(static_cast<int>(history.size()), left, right);

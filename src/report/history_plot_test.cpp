@@ -59,6 +59,23 @@ TEST(PlotHistory, ConvergingRunToPng) {
   cairo_surface_destroy(png);
 }
 
+TEST(PlotHistory, LongStallingRunToPng) {
+  const auto dir = testing::scratch_dir("history_long");
+  std::vector<IterationRecord> history(150);
+  for (int i = 0; i < 150; ++i) {
+    history[i].k = i + 1;
+    history[i].defect = 1e-3 / (1 + i) + 1e-9;
+    history[i].energy = 1e-2 / (1 + i * i) + 1e-31;
+    history[i].used_s = i % 17 == 0;
+  }
+  plot_history(history, 0.5, 1e-2, dir / "long.png");
+  cairo_surface_t* png = cairo_image_surface_create_from_png((dir / "long.png").c_str());
+  ASSERT_EQ(cairo_surface_status(png), CAIRO_STATUS_SUCCESS);
+  EXPECT_EQ(cairo_image_surface_get_width(png), HistoryPlotOptions{}.width);
+  EXPECT_GT(non_white_fraction(png), 0.02);
+  cairo_surface_destroy(png);
+}
+
 TEST(PlotHistory, NoIterationsAndNonPositiveValuesToSvg) {
   const auto dir = testing::scratch_dir("history_svg");
   plot_history({}, 0.0, 0.0, dir / "empty.svg");
