@@ -8,6 +8,7 @@
 #include "app/subcommand.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "geometry/quality.hpp"
 #include "mesh/generate.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/mesh_io.hpp"
@@ -101,7 +102,7 @@ void run_generate(const GenerateOptions& o) {
   const CellType type = data.cell_type;
   const Mesh mesh = Mesh::from_data(data, c.name);
   write_mesh(mesh, o.output);
-  say("wrote {}: {} {}s, {} vertices\n", o.output, mesh.global_num_cells(), name(type),
+  say("wrote {}: {} {}, {} vertices\n", o.output, mesh.global_num_cells(), plural_name(type),
       mesh.global_num_vertices());
 }
 

@@ -239,11 +239,25 @@ QualitySummary summarize(const CellQuality& quality, MPI_Comm comm) {
   return s;
 }
 
+std::string_view plural_name(CellType type) {
+  switch (type) {
+    case CellType::Triangle:
+      return "triangles";
+    case CellType::Quadrilateral:
+      return "quadrilaterals";
+    case CellType::Tetrahedron:
+      return "tetrahedra";
+    case CellType::Hexahedron:
+      return "hexahedra";
+  }
+  return "cells";
+}
+
 std::string format_table(const QualitySummary& s) {
   std::string out = fmt::format("cells: {}", s.cells);
   for (int t = 0; t < 4; ++t)
     if (s.cells_by_type[t] > 0)
-      out += fmt::format(", {} {}s", s.cells_by_type[t], name(static_cast<CellType>(t)));
+      out += fmt::format(", {} {}", s.cells_by_type[t], plural_name(static_cast<CellType>(t)));
   out += fmt::format("\n{:<18}{:>14}{:>14}{:>14}\n", "metric", "min", "mean", "max");
   for (const auto& [metric, stats] : s.metrics())
     out += fmt::format("{:<18}{:>14.6g}{:>14.6g}{:>14.6g}\n", metric, stats.min, stats.mean,

@@ -67,6 +67,9 @@ struct QualitySummary {
 // Collective over `comm`: every rank passes the quality of its own cells.
 QualitySummary summarize(const CellQuality& quality, MPI_Comm comm);
 
+// "quadrilaterals", "hexahedra", ...: for counts in reports.
+std::string_view plural_name(CellType type);
+
 // A readable table: cell counts, min/mean/max of each metric, inverted and degenerate cells.
 std::string format_table(const QualitySummary& summary);
 nlohmann::json to_json(const QualitySummary& summary);
