@@ -6,6 +6,7 @@
 #include "mesh/cell_order.hpp"
 #include "mesh/collective_error.hpp"
 #include "mesh/mesh_impl.hpp"
+#include "mesh/plex_util.hpp"
 
 namespace neomesh {
 
@@ -44,37 +45,24 @@ void check_sizes(const Mesh& mesh, const MeshFields& fields) {
            view.num_vertices);
 }
 
-void pack_tagged(const MeshAccess::Impl& m, const std::vector<std::uint8_t>& ghost, Packet& out) {
+// Tagged facets and points this rank owns (another rank's ghosts are written by their owner).
+void pack_tagged(const MeshAccess::Impl& m, Packet& out) {
   const std::size_t count_at = out.ints.size() - 1;
   PetscInt pStart, pEnd, vStart, vEnd;
   NM_PETSC(DMPlexGetChart(m.dm, &pStart, &pEnd));
   NM_PETSC(DMPlexGetDepthStratum(m.dm, 0, &vStart, &vEnd));
+  const auto ghost = ghost_points(m.dm);
   for (const PhysicalGroup& g : m.groups) {
     if (g.dim == m.dim) continue;
-    DMLabel label;
-    NM_PETSC(DMGetLabel(m.dm, g.dim == 0 ? "Vertex Sets" : "Face Sets", &label));
-    OwnedIS is;
-    NM_PETSC(DMLabelGetStratumIS(label, g.tag, is.out()));
-    if (!is) continue;
-    PetscInt n;
-    const PetscInt* points;
-    NM_PETSC(ISGetLocalSize(is, &n));
-    NM_PETSC(ISGetIndices(is, &points));
-    for (PetscInt k = 0; k < n; ++k) {
-      if (ghost[points[k] - pStart]) continue;
-      PetscInt size = 0, *closure = nullptr;
-      NM_PETSC(DMPlexGetTransitiveClosure(m.dm, points[k], PETSC_TRUE, &size, &closure));
-      std::vector<PetscInt> vertices;
-      for (PetscInt i = 0; i < size; ++i)
-        if (closure[2 * i] >= vStart && closure[2 * i] < vEnd)
-          vertices.push_back(m.input_vertex[closure[2 * i] - vStart]);
-      NM_PETSC(DMPlexRestoreTransitiveClosure(m.dm, points[k], PETSC_TRUE, &size, &closure));
+    for (PetscInt p : stratum(m.dm, g.dim == 0 ? "Vertex Sets" : "Face Sets", g.tag)) {
+      if (ghost[p - pStart]) continue;
+      auto vertices = closure_vertices(m.dm, p, vStart, vEnd);
+      for (PetscInt& v : vertices) v = m.input_vertex[v];
       ++out.ints[count_at];
       out.ints.insert(out.ints.end(),
                       {g.dim == 0 ? 0 : 1, g.tag, static_cast<PetscInt>(vertices.size())});
       out.ints.insert(out.ints.end(), vertices.begin(), vertices.end());
     }
-    NM_PETSC(ISRestoreIndices(is, &points));
   }
 }
 
@@ -82,19 +70,6 @@ Packet pack(const Mesh& mesh, const MeshFields& fields) {
   const auto& m = MeshAccess::impl(mesh);
   const MeshView& view = mesh.view();
   Packet out;
-  PetscInt pStart, pEnd;
-  NM_PETSC(DMPlexGetChart(m.dm, &pStart, &pEnd));
-  // Points other ranks own (leaves of the point SF): written by their owner.
-  std::vector<std::uint8_t> ghost(pEnd - pStart, 0);
-  PetscSF sf;
-  NM_PETSC(DMGetPointSF(m.dm, &sf));
-  PetscInt nroots, nleaves;
-  const PetscInt* ilocal;
-  const PetscSFNode* iremote;
-  NM_PETSC(PetscSFGetGraph(sf, &nroots, &nleaves, &ilocal, &iremote));
-  for (PetscInt i = 0; nroots >= 0 && i < nleaves; ++i)
-    ghost[(ilocal ? ilocal[i] : i) - pStart] = 1;
-
   out.ints.push_back(std::count(view.owned.begin(), view.owned.end(), 1));
   for (PetscInt v = 0; v < view.num_vertices; ++v) {
     if (!view.owned[v]) continue;
@@ -123,7 +98,7 @@ Packet pack(const Mesh& mesh, const MeshFields& fields) {
                          f.values.begin() + (cell + 1) * f.components);
     }
   out.ints.push_back(0);  // the number of tagged facets and points, counted by pack_tagged
-  pack_tagged(m, ghost, out);
+  pack_tagged(m, out);
   return out;
 }
 

@@ -8,6 +8,7 @@
 
 #include "core/petsc.hpp"
 #include "mesh/cell_order.hpp"
+#include "mesh/plex_util.hpp"
 
 namespace neomesh {
 
@@ -67,18 +68,6 @@ OwnedDM read_plex(const std::filesystem::path& path) {
         "mixed?); neomesh needs cells of one dimension",
         path.string());
   fail("{}: not a valid Gmsh mesh file ({})", path.string(), reason);
-}
-
-// Vertices of `point`'s closure in closure order, as 0-based vertex numbers.
-std::vector<PetscInt> closure_vertices(DM dm, PetscInt point, PetscInt vStart, PetscInt vEnd) {
-  PetscInt n = 0, *closure = nullptr;
-  NM_PETSC(DMPlexGetTransitiveClosure(dm, point, PETSC_TRUE, &n, &closure));
-  std::vector<PetscInt> vertices;
-  for (PetscInt i = 0; i < n; ++i)
-    if (closure[2 * i] >= vStart && closure[2 * i] < vEnd)
-      vertices.push_back(closure[2 * i] - vStart);
-  NM_PETSC(DMPlexRestoreTransitiveClosure(dm, point, PETSC_TRUE, &n, &closure));
-  return vertices;
 }
 
 // Adds every point of `label_name` in [pStart, pEnd) to `out`, with its label value as tag.

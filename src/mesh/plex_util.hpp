@@ -1,0 +1,21 @@
+// Small queries on a DMPlex shared by the mesh layer's readers, view and writers.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/petsc.hpp"
+
+namespace neomesh {
+
+// Vertices of `point`'s closure in closure order, as numbers relative to vStart.
+std::vector<PetscInt> closure_vertices(DM dm, PetscInt point, PetscInt vStart, PetscInt vEnd);
+
+// Per local point (relative to the chart start): 1 if another rank owns it (a leaf of the
+// point SF).
+std::vector<std::uint8_t> ghost_points(DM dm);
+
+// The points where label `label_name` has `value` (none if the label does not exist).
+std::vector<PetscInt> stratum(DM dm, const char* label_name, PetscInt value);
+
+}  // namespace neomesh
