@@ -65,7 +65,6 @@ double sum_over_ranks(double local, MPI_Comm comm) {
 struct Functional::Impl {
   const MeshView& view;
   const DofMap& dofs;
-  EnergyOptions options;
   Kernels kernels;
   std::vector<std::uint8_t> fixed;  // per local vertex
   std::vector<double> volumes;      // desired volume per local cell
@@ -80,10 +79,11 @@ struct Functional::Impl {
   // Work arrays reused between calls.
   mutable std::vector<double> local_x;
   mutable std::vector<double> thread_gradients;  // one local gradient per OpenMP thread
+  mutable std::vector<double> local_gradient;
   mutable std::vector<PetscScalar> coo_values;
 
   Impl(const MeshView& v, const DofMap& d, const EnergyOptions& o, std::vector<std::uint8_t> f)
-      : view(v), dofs(d), options(o), kernels(make_kernels(o)), fixed(std::move(f)) {}
+      : view(v), dofs(d), kernels(make_kernels(o)), fixed(std::move(f)) {}
 
   template <CellType Type>
   const CellKernel<Type>& kernel() const {
@@ -283,10 +283,9 @@ double Functional::value(Vec x) const {
 
 double Functional::value_and_gradient(Vec x, Vec gradient) const {
   impl_->load_coordinates(x);
-  std::vector<double> local_gradient;
-  const double local = impl_->local_energy_and_gradient(local_gradient);
+  const double local = impl_->local_energy_and_gradient(impl_->local_gradient);
   NM_PETSC(VecZeroEntries(gradient));
-  impl_->dofs.add_local_to_global(local_gradient, gradient);
+  impl_->dofs.add_local_to_global(impl_->local_gradient, gradient);
   return sum_over_ranks(local, impl_->dofs.comm());
 }
 
