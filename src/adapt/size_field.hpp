@@ -27,10 +27,13 @@ struct SizeFieldOptions {
   // Largest over smallest desired volume (0: unbounded, the thesis). The smallest volumes
   // are raised to max/ratio, because no mesh of fixed connectivity can shrink a cell on the
   // surface to the 1e-8-fold of its neighbours.
-  double max_ratio = 0.0;
+  double max_ratio = 100.0;
   // Passes of averaging log v over neighbouring cells (0: none, the thesis): limits how fast
   // the desired volume may change from a cell to its neighbour.
-  int smoothing_passes = 0;
+  int smoothing_passes = 1;
+
+  // The thesis' field: v = 1e-8 + d, nothing bounded or smoothed.
+  static SizeFieldOptions thesis() { return {.max_ratio = 0.0, .smoothing_passes = 0}; }
 };
 
 class SizeField {

@@ -81,8 +81,9 @@ TEST(SizeField, DesiredVolumesSumToTheMeshVolume) {
   const MeshView view = serial_view(mesh);
   const DofMap dofs = DofMap::serial(2, view.num_vertices);
   const SizeField circle = SizeField::sphere({0.0, 0.0}, 0.7);
-  for (const SizeFieldOptions& o : {SizeFieldOptions{}, SizeFieldOptions{.max_ratio = 10.0},
-                                    SizeFieldOptions{.smoothing_passes = 2}}) {
+  for (const SizeFieldOptions& o :
+       {SizeFieldOptions::thesis(), SizeFieldOptions{.max_ratio = 10.0, .smoothing_passes = 0},
+        SizeFieldOptions{.max_ratio = 0.0, .smoothing_passes = 2}}) {
     const std::vector<double> v = desired_volumes(circle, o, view, dofs, view.coords, 4.0);
     EXPECT_NEAR(std::accumulate(v.begin(), v.end(), 0.0), 4.0, 1e-12);
     const auto [min, max] = std::minmax_element(v.begin(), v.end());
@@ -105,7 +106,7 @@ TEST(SizeField, SmoothingLimitsTheJumpBetweenNeighbours) {
     return worst;
   };
   // At the line, the raw field jumps from 1e-8-ish to 3/16: smoothing brings it near 1.
-  const double raw = worst_jump({.floor = 1e-8});
+  const double raw = worst_jump(SizeFieldOptions::thesis());
   const double smoothed = worst_jump({.floor = 1e-8, .max_ratio = 100, .smoothing_passes = 3});
   EXPECT_GT(raw, 2.0);
   EXPECT_LT(smoothed, 2.0);

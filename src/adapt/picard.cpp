@@ -1,0 +1,87 @@
+#include "adapt/picard.hpp"
+
+#include <cmath>
+
+namespace neomesh {
+
+namespace {
+
+bool converged(StopReason reason) {
+  return reason == StopReason::DefectAbsolute || reason == StopReason::DefectRelative ||
+         reason == StopReason::Practical;
+}
+
+}  // namespace
+
+PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
+                    const std::function<std::vector<double>(Vec x)>& target_volumes,
+                    const std::function<void(const std::vector<double>&)>& set_volumes,
+                    const PicardOptions& options, const QuasiNewtonOptions& method_options,
+                    const PicardObserver& observe) {
+  std::vector<double> volumes = target_volumes(x);
+  set_volumes(volumes);
+  // QuasiNewton keeps this Vec; updates overwrite its values.
+  OwnedVec cell_size = local_cell_size(view, functional.dofs(), volumes);
+  QuasiNewton method(functional, method_options, cell_size);
+  method.restart(x);
+
+  PicardResult result;
+  result.run.initial_energy = method.energy();
+  result.run.initial_defect = method.defect();
+  int since_update = 0;
+  auto update = [&] {
+    const std::vector<double> target = target_volumes(x);
+    const double w = options.relaxation;
+    for (std::size_t i = 0; i < volumes.size(); ++i)
+      volumes[i] = (1.0 - w) * volumes[i] + w * target[i];
+    set_volumes(volumes);
+    OwnedVec size = local_cell_size(view, functional.dofs(), volumes);
+    NM_PETSC(VecCopy(size, cell_size));
+    method.restart(x);  // a new problem: new F, g, Riesz Laplacian, k_min antigradient steps
+    const int k = result.run.history.empty() ? 0 : result.run.history.back().k;
+    result.update_iterations.push_back(k);
+    since_update = 0;
+    if (observe.update) observe.update(k, static_cast<int>(result.update_iterations.size()));
+  };
+  auto updates_left = [&] {
+    return static_cast<int>(result.update_iterations.size()) < options.min_updates;
+  };
+
+  for (;;) {
+    if (const auto stop = method.stop_reason()) {
+      // Converged for these volumes: update them, unless enough updates were made; after
+      // the last update the run ends on a minimizer for well-defined desired volumes.
+      if (!converged(*stop) || !updates_left()) {
+        result.run.reason = *stop;
+        break;
+      }
+      update();
+      continue;
+    }
+    const IterationRecord& rec = result.run.history.emplace_back(method.step(x));
+    if (observe.iteration) observe.iteration(rec);
+    ++since_update;
+    if (!updates_left() || method.stop_reason()) continue;
+    const double step_norm = std::ldexp(rec.direction_norm, -rec.armijo_steps);  // σ‖δ‖
+    const bool settled = (!rec.used_s && rec.max_move <= options.update_move) ||
+                         (options.update_step_norm > 0 && step_norm < options.update_step_norm);
+    if (settled || since_update >= options.update_every) update();
+  }
+  result.run.final_energy = method.energy();
+  result.run.final_defect = method.defect();
+  result.run.times = method.times();
+  return result;
+}
+
+std::function<std::vector<double>(Vec x)> size_field_volumes(const SizeField& field,
+                                                             const SizeFieldOptions& options,
+                                                             const MeshView& view,
+                                                             const DofMap& dofs, double total) {
+  return [&field, &options, &view, &dofs, total](Vec x) {
+    std::vector<double> coords(dofs.num_local_dofs());
+    dofs.global_to_local(x, coords);
+    return desired_volumes(field, options, view, dofs, coords, total);
+  };
+}
+
+}  // namespace neomesh
