@@ -18,5 +18,6 @@ Subcommand add_quality(CLI::App& app);
 Subcommand add_convert(CLI::App& app);
 Subcommand add_smooth(CLI::App& app);
 Subcommand add_render(CLI::App& app);
+Subcommand add_adapt(CLI::App& app);
 
 }  // namespace neomesh::app
