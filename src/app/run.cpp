@@ -87,7 +87,7 @@ int run(int argc, char** argv) {
   cli.set_config("--config", "", "read options from a TOML/INI file (command line wins)");
 
   std::vector<Subcommand> commands = {add_generate(cli), add_quality(cli), add_convert(cli),
-                                      add_smooth(cli), add_render(cli), add_adapt(cli)};
+                                      add_smooth(cli),   add_render(cli),  add_adapt(cli)};
   for (auto& c : commands) c.cli->fallthrough();
 
   try {

@@ -13,10 +13,13 @@ std::string iteration_table_header() {
 std::string iteration_table_row(const IterationRecord& rec) {
   const std::string ksp_delta = rec.delta_solved ? fmt::format("{}", rec.krylov_delta) : "-";
   const std::string res_delta = rec.delta_solved ? fmt::format("{:.2E}", rec.residual_delta) : "-";
-  const char* direction = !rec.used_s ? "delta" : rec.delta_failed ? "s!" : "s";
+  // s! : δ̃ failed and α was cut; delta~ : CG stopped at negative curvature (truncated δ̃).
+  const char* direction = !rec.used_s        ? (rec.delta_truncated ? "delta~" : "delta")
+                          : rec.delta_failed ? "s!"
+                                             : "s";
   return fmt::format(
       "{:>4} {:>6} {:>10.2E} {:>10.2E} {:>10.2E} {:>5.2f} {:>5.2f} {:>6} {:>9} "
-      "{:>6} {:>5}{}",
+      "{:>6} {:>6}{}",
       rec.k, rec.armijo_steps, rec.defect, rec.direction_norm, rec.energy, rec.eta, rec.alpha,
       ksp_delta, res_delta, rec.krylov_s, direction,
       rec.roundoff_step ? "  (round-off: full step)" : "");

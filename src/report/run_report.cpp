@@ -23,6 +23,7 @@ nlohmann::json to_json(const IterationRecord& r) {
           {"residual_delta", number(r.residual_delta)},
           {"delta_solved", r.delta_solved},
           {"delta_failed", r.delta_failed},
+          {"delta_truncated", r.delta_truncated},
           {"krylov_s", r.krylov_s},
           {"used_s", r.used_s},
           {"roundoff_step", r.roundoff_step},

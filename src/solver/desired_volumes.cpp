@@ -65,8 +65,11 @@ std::vector<double> desired_volumes(SizeMode mode, const MeshView& view, const D
   std::vector<double> volumes(cell_volumes.begin(), cell_volumes.end());
   const double total = global_sum(cell_volumes, dofs.comm());
   switch (mode) {
-    case SizeMode::Uniform: std::fill(volumes.begin(), volumes.end(), 1.0); break;
-    case SizeMode::Input: break;
+    case SizeMode::Uniform:
+      std::fill(volumes.begin(), volumes.end(), 1.0);
+      break;
+    case SizeMode::Input:
+      break;
     case SizeMode::Smoothed:
       for (int pass = 0; pass < kSmoothingPasses; ++pass)
         volumes = average_over_neighbours(view, dofs, volumes);

@@ -68,6 +68,7 @@ LinearSolver::Outcome LinearSolver::solve(Vec b, Vec x, double atol) {
   NM_PETSC(KSPGetIterationNumber(ksp_, &its));
   Outcome out;
   out.converged = reason > 0;
+  out.indefinite = reason == KSP_DIVERGED_INDEFINITE_MAT || reason == KSP_DIVERGED_INDEFINITE_PC;
   out.iterations = static_cast<int>(its);
   // For preonly (direct) the residual is not computed by the KSP: compute it.
   OwnedVec r;

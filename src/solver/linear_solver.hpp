@@ -31,6 +31,9 @@ class LinearSolver {
 
   struct Outcome {
     bool converged = false;
+    // CG met negative curvature (the operator is not positive definite); x holds the last
+    // iterate before it, which still decreases the quadratic model.
+    bool indefinite = false;
     int iterations = 0;
     double residual = 0.0;  // final unpreconditioned residual norm
   };

@@ -129,7 +129,11 @@ struct QuasiNewton::Impl {
     rec.delta_solved = true;
     rec.krylov_delta = out.iterations;
     rec.residual_delta = out.residual;
-    if (!out.converged) {
+    // Negative curvature: H(α) is not positive definite here. Like Newton-CG methods, keep
+    // CG's last iterate (it decreases the quadratic model) and let the angle test judge
+    // it; α is not cut, because a direct solve of the same system would not have failed.
+    rec.delta_truncated = !out.converged && out.indefinite && out.iterations > 0;
+    if (!out.converged && !rec.delta_truncated) {
       rec.delta_failed = true;
       return false;
     }

@@ -59,12 +59,13 @@ struct IterationRecord {
   int krylov_delta = 0;         // Krylov iterations for δ̃ (0: not solved)
   double residual_delta = 0.0;
   bool delta_solved = false;
-  bool delta_failed = false;   // the δ̃ solve did not converge
-  int krylov_s = 0;            // Krylov iterations for s
-  bool used_s = false;         // the step went along −s
-  bool roundoff_step = false;  // Armijo skipped: predicted decrease below round-off
-  double max_move = 0.0;       // largest vertex move / local cell size
-  double seconds = 0.0;        // wall time since start
+  bool delta_failed = false;     // the δ̃ solve did not converge (α is then cut to 0.1 α)
+  bool delta_truncated = false;  // CG stopped at negative curvature; its iterate was used
+  int krylov_s = 0;              // Krylov iterations for s
+  bool used_s = false;           // the step went along −s
+  bool roundoff_step = false;    // Armijo skipped: predicted decrease below round-off
+  double max_move = 0.0;         // largest vertex move / local cell size
+  double seconds = 0.0;          // wall time since start
 };
 
 enum class StopReason {

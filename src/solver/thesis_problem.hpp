@@ -21,7 +21,7 @@ struct ThesisProblem {
   DofMap dofs;
   EnergyOptions energy;
   std::unique_ptr<Functional> functional;
-  OwnedVec x;          // initial coordinates; minimize() moves them
+  OwnedVec x;  // initial coordinates; minimize() moves them
   OwnedVec cell_size;
   double volume = 0.0;
 

@@ -1,0 +1,176 @@
+#include "app/optimization.hpp"
+
+#include <mpi.h>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "geometry/quality.hpp"
+#include "mesh/mesh_io.hpp"
+#include "report/history_plot.hpp"
+#include "report/iteration_table.hpp"
+#include "report/run_report.hpp"
+
+namespace neomesh::app {
+
+void check_output_path(const std::filesystem::path& input, const std::filesystem::path& output,
+                       bool force) {
+  check_writable_format(output);
+  std::error_code ignored;
+  if (!force && std::filesystem::equivalent(input, output, ignored))
+    fail("output {} is the input file; choose another name or pass --force to overwrite it",
+         output.string());
+}
+
+struct OptimizationRun::Impl {
+  MethodOptions& method;
+  Mesh mesh;
+  OwnedVec x;
+  std::vector<double> input_volumes;
+  double mesh_volume = 0.0;
+  QualitySummary quality_before;
+  std::unique_ptr<Functional> functional;
+  OwnedVec cell_size;
+  double start = MPI_Wtime();
+
+  Impl(const std::filesystem::path& input, MethodOptions& m)
+      : method(m), mesh(load(input)), x(mesh.coordinates()) {
+    const MeshView& view = mesh.view();
+    const CellQuality quality = cell_quality(view, view.coords);
+    quality_before = summarize(quality, mesh.comm());
+    if (quality_before.inverted > 0 || quality_before.degenerate > 0)
+      fail(
+          "{} has {} inverted and {} degenerate cells; neomesh needs a valid mesh to start "
+          "from (untangling is not supported yet)",
+          input.string(), quality_before.inverted, quality_before.degenerate);
+    input_volumes = quality.volume;
+    double local = 0.0;
+    for (double v : input_volumes) local += v;
+    MPI_Allreduce(&local, &mesh_volume, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
+    functional = std::make_unique<Functional>(view, mesh.dofs(), method.energy, view.on_boundary);
+    method.solver.energy_roundoff = energy_roundoff(method.energy, view.dim, mesh_volume);
+  }
+
+  static Mesh load(const std::filesystem::path& input) {
+    say("reading {} ...\n", input.string());
+    return Mesh::load(input);
+  }
+
+  MeshFields output_fields(const CellQuality& quality) const {
+    const CellFields energy = functional->cell_fields(x);
+    MeshFields fields;
+    fields.cell = {
+        {"energy", energy.energy},         {"det_G_min", energy.min_det},
+        {"Q", energy.volume_ratio},        {"desired_volume", functional->desired_volumes()},
+        {"volume", quality.volume},        {"scaled_jacobian", quality.scaled_jacobian},
+        {"min_angle", quality.min_angle},  {"max_angle", quality.max_angle},
+        {"edge_ratio", quality.edge_ratio}};
+    return fields;
+  }
+};
+
+OptimizationRun::OptimizationRun(const std::filesystem::path& input, MethodOptions& method)
+    : impl_(std::make_unique<Impl>(input, method)) {}
+OptimizationRun::~OptimizationRun() = default;
+
+const MeshView& OptimizationRun::view() const {
+  return impl_->mesh.view();
+}
+const DofMap& OptimizationRun::dofs() const {
+  return impl_->mesh.dofs();
+}
+Vec OptimizationRun::x() const {
+  return impl_->x;
+}
+const std::vector<double>& OptimizationRun::input_volumes() const {
+  return impl_->input_volumes;
+}
+double OptimizationRun::mesh_volume() const {
+  return impl_->mesh_volume;
+}
+const Functional& OptimizationRun::functional() const {
+  return *impl_->functional;
+}
+Vec OptimizationRun::cell_size() const {
+  return impl_->cell_size;
+}
+
+void OptimizationRun::set_desired_volumes(std::vector<double> volumes) {
+  impl_->functional->set_desired_volumes(volumes);
+  impl_->cell_size = local_cell_size(view(), dofs(), volumes);
+}
+
+void OptimizationRun::print_problem() const {
+  const Mesh& mesh = impl_->mesh;
+  const int ranks = mpi_size(mesh.comm());
+  double free = 0.0;
+  NM_PETSC(VecSum(impl_->functional->free_mask(), &free));
+  say("{}: {} cells, {} vertices, {} free coordinates{}\n", mesh.source(), mesh.global_num_cells(),
+      mesh.global_num_vertices(), static_cast<long>(free),
+      ranks > 1 ? fmt::format(" on {} processes", ranks) : "");
+  say("lambda {}, mu {}, alpha0 {}, eta {}, kmin {}, linear solver {}\n",
+      impl_->method.energy.lambda, impl_->method.energy.mu, impl_->method.solver.alpha0,
+      impl_->method.solver.eta, impl_->method.solver.kmin,
+      name(impl_->method.solver.linear_solver));
+}
+
+std::function<void(const IterationRecord&)> OptimizationRun::table_printer(
+    bool progress_only) const {
+  auto header_printed = std::make_shared<bool>(false);
+  return [header_printed, progress_only](const IterationRecord& rec) {
+    if (progress_only) {
+      say("{}\n", progress_line(rec));
+      return;
+    }
+    if (!*header_printed) say("{}\n", iteration_table_header());
+    *header_printed = true;
+    say("{}\n", iteration_table_row(rec));
+  };
+}
+
+void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesystem::path& output,
+                             const std::filesystem::path& report,
+                             const std::filesystem::path& history_plot,
+                             const nlohmann::json& extra) {
+  Impl& r = *impl_;
+  r.mesh.set_coordinates(r.x);
+  const MeshView& view = r.mesh.view();
+  const CellQuality quality = cell_quality(view, view.coords);
+  const QualitySummary after = summarize(quality, r.mesh.comm());
+  // The energy is infinite for an inverted cell, so the method cannot produce one; this
+  // guards the promise that no output file ever contains one.
+  if (after.inverted > 0 || after.degenerate > 0)
+    fail(
+        "the optimized mesh has {} inverted and {} degenerate cells; nothing was written "
+        "(please report this with the input mesh)",
+        after.inverted, after.degenerate);
+
+  always("stopped after {} iterations: {}\nF {:.6g} -> {:.6g}, Newton defect {:.3e} -> {:.3e}\n",
+         result.history.size(), describe(result.reason), result.initial_energy, result.final_energy,
+         result.initial_defect, result.final_defect);
+  say("\nquality before:\n{}\nquality after:\n{}\n", format_table(r.quality_before),
+      format_table(after));
+
+  write_mesh(r.mesh, output, r.output_fields(quality));
+  always("wrote {} ({:.2f} s)\n", output.string(), MPI_Wtime() - r.start);
+
+  if (!report.empty()) {
+    nlohmann::json json = {{"input", r.mesh.source()},
+                           {"output", output.string()},
+                           {"processes", mpi_size(r.mesh.comm())},
+                           {"cells", r.mesh.global_num_cells()},
+                           {"vertices", r.mesh.global_num_vertices()},
+                           {"energy_options", to_json(r.method.energy)},
+                           {"solver_options", to_json(r.method.solver)},
+                           {"result", to_json(result)},
+                           {"quality_before", to_json(r.quality_before)},
+                           {"quality_after", to_json(after)},
+                           {"seconds", MPI_Wtime() - r.start}};
+    if (extra.is_object()) json.update(extra);
+    write_json(json, report);
+  }
+  if (!history_plot.empty() && is_root_rank())
+    plot_history(result.history, result.initial_energy, result.initial_defect, history_plot,
+                 {.width = 1000, .height = 700, .title = "", .final_defect = result.final_defect});
+}
+
+}  // namespace neomesh::app

@@ -1,0 +1,59 @@
+// One optimization run as `smooth` and `adapt` share it: read and check the mesh, build the
+// functional with fixed boundary vertices, print the iteration table while the method runs,
+// then check, write and report the result. The commands differ only in how they choose the
+// desired volumes and drive the quasi-Newton method.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/method_options.hpp"
+#include "energy/functional.hpp"
+#include "mesh/mesh.hpp"
+#include "solver/quasi_newton.hpp"
+
+namespace neomesh::app {
+
+// Throws Error unless `output` has a writable format and differs from `input` (or `force`).
+void check_output_path(const std::filesystem::path& input, const std::filesystem::path& output,
+                       bool force);
+
+class OptimizationRun {
+ public:
+  OptimizationRun(const std::filesystem::path& input, MethodOptions& method);
+  ~OptimizationRun();
+
+  const MeshView& view() const;
+  const DofMap& dofs() const;
+  Vec x() const;  // the coordinates being optimized
+  // Volume of each local cell of the input mesh (MeshView order).
+  const std::vector<double>& input_volumes() const;
+  double mesh_volume() const;
+
+  // (Re)sets the desired cell volumes (absolute, summing to mesh_volume()).
+  void set_desired_volumes(std::vector<double> volumes);
+  const Functional& functional() const;
+  Vec cell_size() const;  // local cell size per dof, for the practical criterion
+
+  void print_problem() const;
+  // Observer for minimize(): the iteration table (or progress lines with `progress_only`).
+  std::function<void(const IterationRecord&)> table_printer(bool progress_only) const;
+
+  // Moves the mesh to x(), checks it has no inverted cell, writes `output` with per-cell
+  // fields, and the optional JSON report (with `extra` merged in) and history plot.
+  void finish(const QuasiNewtonResult& result, const std::filesystem::path& output,
+              const std::filesystem::path& report, const std::filesystem::path& history_plot,
+              const nlohmann::json& extra = {});
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace neomesh::app
