@@ -6,58 +6,76 @@ namespace neomesh::app {
 
 void add_method_options(CLI::App& cmd, MethodOptions& o) {
   const char* energy = "Energy (thesis §4)";
-  cmd.add_option("--lambda", o.energy.lambda, "λ > 0: weight of (log det G)², resists volume change")
-      ->capture_default_str()->group(energy);
+  cmd.add_option("--lambda", o.energy.lambda,
+                 "λ > 0: weight of (log det G)², resists volume change")
+      ->capture_default_str()
+      ->group(energy);
   cmd.add_option("--mu", o.energy.mu, "μ > 0: weight of the shape terms")
-      ->capture_default_str()->group(energy);
+      ->capture_default_str()
+      ->group(energy);
   cmd.add_option("--kappa", o.energy.kappa,
                  "κ > 0: penalty on cells grown beyond e^(μ/λ+1) × their desired volume "
                  "(default: λ)")
       ->group(energy);
   cmd.add_option("--gauss", o.energy.gauss_points,
                  "Gauss points per direction on quadrilaterals/hexahedra (1-5)")
-      ->capture_default_str()->group(energy);
+      ->capture_default_str()
+      ->group(energy);
 
   const char* method = "Quasi-Newton method (thesis §5.1)";
   cmd.add_option("--alpha0", o.solver.alpha0, "initial α in H(α) = B1 + α B2 + B3, in (0, 1]")
-      ->capture_default_str()->group(method);
-  cmd.add_option("--eta", o.solver.eta, "angle test: accept the quasi-Newton direction if η_k ≥ η, η in (0, 1)")
-      ->capture_default_str()->group(method);
+      ->capture_default_str()
+      ->group(method);
+  cmd.add_option("--eta", o.solver.eta,
+                 "angle test: accept the quasi-Newton direction if η_k ≥ η, η in (0, 1)")
+      ->capture_default_str()
+      ->group(method);
   cmd.add_option("--kmin", o.solver.kmin, "initial antigradient steps before quasi-Newton steps")
-      ->capture_default_str()->group(method);
+      ->capture_default_str()
+      ->group(method);
   cmd.add_option("--max-iter", o.solver.max_iterations, "maximum number of iterations")
-      ->capture_default_str()->group(method);
+      ->capture_default_str()
+      ->group(method);
   cmd.add_option("--tol", o.solver.defect_atol, "stop when the Newton defect ‖g‖ is below this")
-      ->capture_default_str()->group(method);
+      ->capture_default_str()
+      ->group(method);
   cmd.add_option("--rtol", o.solver.defect_rtol,
                  "stop when the Newton defect fell by this factor from its start")
-      ->capture_default_str()->group(method);
+      ->capture_default_str()
+      ->group(method);
   cmd.add_flag("--no-practical", o.no_practical,
                "iterate to the defect tolerance even after the mesh stopped changing")
       ->group(method);
   cmd.add_option("--energy-rtol", o.solver.energy_rtol,
                  "practical criterion: relative energy decrease per iteration below this ...")
-      ->capture_default_str()->group(method);
+      ->capture_default_str()
+      ->group(method);
   cmd.add_option("--move-rtol", o.solver.move_rtol,
                  "... and no vertex moved more than this times its local cell size")
-      ->capture_default_str()->group(method);
+      ->capture_default_str()
+      ->group(method);
   cmd.add_option("--alpha-start-defect", o.solver.initial_previous_defect,
                  "defect assumed before the first iteration for the α update (thesis: 10)")
-      ->capture_default_str()->group(method);
+      ->capture_default_str()
+      ->group(method);
 
   const char* linear = "Linear solvers (PETSc prefixes -hess_ and -riesz_)";
   cmd.add_option("--linear-solver", o.linear_solver,
                  "amg (CG + hypre BoomerAMG), jacobi (the thesis' PCG) or direct (Cholesky, MUMPS)")
-      ->capture_default_str()->group(linear);
+      ->capture_default_str()
+      ->group(linear);
   cmd.add_option("--riesz", o.riesz,
                  "Laplacian of the Riesz representative: optimal (over the optimal cells, the "
                  "thesis') or current (stiffness of the current mesh)")
-      ->capture_default_str()->group(linear);
+      ->capture_default_str()
+      ->group(linear);
   cmd.add_option("--hess-rtol", o.solver.hessian_rtol,
                  "relative tolerance of the loose quasi-Newton solve")
-      ->capture_default_str()->group(linear);
+      ->capture_default_str()
+      ->group(linear);
   cmd.add_option("--riesz-rtol", o.solver.riesz_rtol, "relative tolerance of the Riesz solve")
-      ->capture_default_str()->group(linear);
+      ->capture_default_str()
+      ->group(linear);
   cmd.add_flag("--thesis", o.thesis,
                "the thesis' conventions: uniform desired volumes, no practical stopping "
                "criterion (iterate to the defect tolerance)")
@@ -73,7 +91,8 @@ void finalize(MethodOptions& o) {
     fail("--gauss must be between 1 and 5 (got {})", o.energy.gauss_points);
   if (!(o.solver.alpha0 > 0 && o.solver.alpha0 <= 1))
     fail("--alpha0 must be in (0, 1] (got {})", o.solver.alpha0);
-  if (!(o.solver.eta > 0 && o.solver.eta < 1)) fail("--eta must be in (0, 1) (got {})", o.solver.eta);
+  if (!(o.solver.eta > 0 && o.solver.eta < 1))
+    fail("--eta must be in (0, 1) (got {})", o.solver.eta);
   if (o.solver.kmin < 0) fail("--kmin must be 0 or more (got {})", o.solver.kmin);
   if (o.solver.max_iterations < 1)
     fail("--max-iter must be at least 1 (got {})", o.solver.max_iterations);
