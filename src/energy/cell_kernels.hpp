@@ -116,6 +116,7 @@ class CellKernel {
   // ∫ (B1 + α B2 + B3)[e_b ∇φ̂_jᵀ] : e_a ∇φ̂_iᵀ is, per quadrature point,
   //   volumetric m_i[a] m_j[b] − (growth + α b) m_j[a] m_i[b] + μ δ_ab ∇φ̂_i·∇φ̂_j,
   // so block (i,j) is volumetric m_i m_jᵀ − (growth + α b) m_j m_iᵀ + μ (∇φ̂_i·∇φ̂_j) I.
+  // Only the lower triangle is computed; make_exactly_symmetric mirrors it.
   // Returns false (block unspecified) if det G ≤ 0 at some point.
   bool hessian(const Coordinates& x, double volume, double alpha, Eigen::Ref<Block> block) const {
     const double scale = inverse_edge(volume);
@@ -132,7 +133,7 @@ class CellKernel {
       const Gradient m = d.inv_t * basis;
       const Eigen::Matrix<double, vertices, vertices> gram = basis.transpose() * basis;
       for (int j = 0; j < vertices; ++j) {
-        for (int i = 0; i < vertices; ++i) {
+        for (int i = j; i < vertices; ++i) {  // lower blocks; the upper ones are their transposes
           block.template block<dim, dim>(dim * i, dim * j) +=
               volumetric * m.col(i) * m.col(j).transpose() -
               rotational * m.col(j) * m.col(i).transpose() +

@@ -54,10 +54,13 @@ struct TangentSplit {
 
 template <int Dim>
 struct NeoHooke {
-  double lambda, mu, kappa;
+  const double lambda, mu, kappa;
+
+  NeoHooke(double lambda_, double mu_, double kappa_)
+      : lambda(lambda_), mu(mu_), kappa(kappa_), growth_limit_(std::exp(mu / lambda + 1.0)) {}
 
   // c = e^(μ/λ+1): the κ-term only acts on cells grown more than c times their desired volume.
-  double growth_limit() const { return std::exp(mu / lambda + 1.0); }
+  double growth_limit() const { return growth_limit_; }
 
   // Energy density W(G); +∞ when det G ≤ 0.
   double energy(const Deformation<Dim>& d) const {
@@ -101,6 +104,9 @@ struct NeoHooke {
   Matrix<Dim> tangent(const Matrix<Dim>& G, const Matrix<Dim>& H, double alpha) const {
     return tangent(Deformation<Dim>(G), H, alpha);
   }
+
+ private:
+  double growth_limit_;  // computed once: W and P are evaluated per quadrature point
 };
 
 }  // namespace neomesh

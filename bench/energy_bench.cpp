@@ -1,0 +1,131 @@
+// Cost of the energy per cell type: F, F and its gradient, and the assembly of H(α) (cell
+// blocks + MatSetValuesCOO), on perturbed boxes of about 2.5·10⁵ (2D) or 10⁵ (3D) cells.
+// The counter `s_per_Mcell` is the time of one evaluation scaled to a million cells.
+//
+//   OMP_NUM_THREADS=1 ./energy_bench     (serial; the default uses every core)
+#include <benchmark/benchmark.h>
+#include <petscsys.h>
+
+#include <map>
+#include <memory>
+#include <random>
+
+#include "energy/functional.hpp"
+#include "mesh/generate.hpp"
+#include "mesh/serial_view.hpp"
+
+namespace neomesh {
+namespace {
+
+// Cells per direction giving about 2.5·10⁵ (2D) or 10⁵ (3D) cells.
+int cells_per_direction(CellType type) {
+  switch (type) {
+    case CellType::Triangle:
+      return 354;  // 2 n² = 250 632
+    case CellType::Quadrilateral:
+      return 500;  // n² = 250 000
+    case CellType::Tetrahedron:
+      return 26;  // 6 n³ = 105 456
+    case CellType::Hexahedron:
+      return 46;  // n³ = 97 336
+  }
+  return 0;
+}
+
+// A box whose interior vertices are moved by up to 20% of the cell size, equal desired
+// volumes, boundary fixed; built once per cell type and kept for all benchmarks.
+struct Problem {
+  MeshData data;
+  MeshView view;
+  DofMap dofs;
+  Functional functional;
+  OwnedVec x;
+  OwnedMat matrix;
+
+  explicit Problem(CellType type)
+      : data(perturbed_box(type)),
+        view(serial_view(data)),
+        dofs(DofMap::serial(data.dim, static_cast<PetscInt>(data.num_vertices()))),
+        functional(view, dofs, EnergyOptions{}, view.on_boundary),
+        x(dofs.create_global_vector()) {
+    {
+      VecWriteView out(x);
+      std::copy(data.coords.begin(), data.coords.end(), out.data());
+    }
+    const double volume = mesh_volume(view, dofs, x) / view.num_cells;
+    functional.set_desired_volumes(std::vector<double>(view.num_cells, volume));
+    matrix = functional.create_matrix();
+  }
+
+  static MeshData perturbed_box(CellType type) {
+    const int n = cells_per_direction(type);
+    MeshData mesh = box(type, n);
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<double> u(-0.2 * 2.0 / n, 0.2 * 2.0 / n);
+    const std::vector<std::uint8_t> boundary = boundary_vertices(mesh);
+    for (std::int64_t v = 0; v < mesh.num_vertices(); ++v)
+      if (!boundary[v])
+        for (int d = 0; d < mesh.dim; ++d) mesh.coords[v * mesh.dim + d] += u(rng);
+    return mesh;
+  }
+};
+
+// Destroyed by main before PetscFinalize.
+std::map<CellType, std::unique_ptr<Problem>> problems;
+
+Problem& problem(CellType type) {
+  auto& p = problems[type];
+  if (!p) p = std::make_unique<Problem>(type);
+  return *p;
+}
+
+void report_per_cell(benchmark::State& state, const Problem& p) {
+  state.counters["cells"] = static_cast<double>(p.view.num_cells);
+  state.counters["s_per_Mcell"] = benchmark::Counter(
+      static_cast<double>(p.view.num_cells) / 1e6,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+template <CellType Type>
+void Value(benchmark::State& state) {
+  Problem& p = problem(Type);
+  for (auto _ : state) benchmark::DoNotOptimize(p.functional.value(p.x));
+  report_per_cell(state, p);
+}
+
+template <CellType Type>
+void ValueAndGradient(benchmark::State& state) {
+  Problem& p = problem(Type);
+  OwnedVec gradient = p.dofs.create_global_vector();
+  for (auto _ : state) benchmark::DoNotOptimize(p.functional.value_and_gradient(p.x, gradient));
+  report_per_cell(state, p);
+}
+
+template <CellType Type>
+void AssembleHessian(benchmark::State& state) {
+  Problem& p = problem(Type);
+  for (auto _ : state) p.functional.assemble_hessian(p.x, 0.5, p.matrix);
+  report_per_cell(state, p);
+}
+
+#define NEOMESH_ENERGY_BENCH(type)                                                 \
+  BENCHMARK(Value<type>)->Unit(benchmark::kMillisecond)->UseRealTime();            \
+  BENCHMARK(ValueAndGradient<type>)->Unit(benchmark::kMillisecond)->UseRealTime(); \
+  BENCHMARK(AssembleHessian<type>)->Unit(benchmark::kMillisecond)->UseRealTime()
+
+NEOMESH_ENERGY_BENCH(CellType::Triangle);
+NEOMESH_ENERGY_BENCH(CellType::Quadrilateral);
+NEOMESH_ENERGY_BENCH(CellType::Tetrahedron);
+NEOMESH_ENERGY_BENCH(CellType::Hexahedron);
+
+}  // namespace
+}  // namespace neomesh
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  neomesh::problems.clear();
+  return PetscFinalize() != 0;
+}
