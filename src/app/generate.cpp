@@ -72,6 +72,10 @@ int size_of(const Case& c, const GenerateOptions& o) {
     if (c.levels == Levels::Refinements)
       fail("generate {}: --cells does not apply to a refined mesh; use --level (refinements)",
            c.name);
+    // Checked here, on every rank, because only rank 0 runs the generator.
+    if (*o.cells < 1 || (c.levels == Levels::MovedMidpoint && *o.cells % 2 != 0))
+      fail("generate {}: --cells must be {} (got {})", c.name,
+           c.levels == Levels::MovedMidpoint ? "even and >= 2" : ">= 1", *o.cells);
     return *o.cells;
   }
   const int level = *o.level;
@@ -93,6 +97,8 @@ void run_generate(const GenerateOptions& o) {
   check_writable_format(o.output);
   const Case& c = find_case(o.name);
   const int size = size_of(c, o);
+  if (!(o.amplitude >= 0.0 && o.amplitude < 0.25))
+    fail("generate: --amplitude must be in [0, 0.25) (got {})", o.amplitude);
   // The mesh is built on rank 0; Mesh::from_data distributes it.
   MeshData data;
   if (is_root_rank()) {
