@@ -40,6 +40,16 @@ def main():
         check(summary["inverted"] == 0 and summary["degenerate"] == 0, f"json: {summary}")
         check(abs(summary["metrics"]["volume"]["mean"] - 1 / 256) < 1e-12, f"json: {summary}")
 
+        # Two processes print the same summary as one (the mesh is distributed, the
+        # statistics reduced over the ranks).
+        mpiexec = os.environ.get("NEOMESH_MPIEXEC")
+        if mpiexec:
+            proc = subprocess.run([mpiexec, "--allow-run-as-root", "--oversubscribe", "-n", "2",
+                                   NEOMESH, "quality", square], capture_output=True, text=True,
+                                  timeout=120)
+            check(proc.returncode == 0, f"mpiexec -n 2 quality failed:\n{proc.stderr}")
+            check(proc.stdout == out, f"2 ranks printed:\n{proc.stdout}\n1 rank:\n{out}")
+
         # Every case at a small level: expected cell count, nothing inverted.
         cases = {
             "square-midpoint": (1, "16 quadrilaterals"),
