@@ -76,6 +76,11 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
   cmd.add_option("--riesz-rtol", o.solver.riesz_rtol, "relative tolerance of the Riesz solve")
       ->capture_default_str()
       ->group(linear);
+  cmd.add_option("--boundary", o.boundary,
+                 "fixed (boundary vertices stay put, the thesis) or slide (they move within "
+                 "flat axis-aligned boundary faces and along edges; corners stay put)")
+      ->capture_default_str()
+      ->group(energy);
   cmd.add_flag("--thesis", o.thesis,
                "the thesis' conventions: uniform desired volumes, no practical stopping "
                "criterion (iterate to the defect tolerance)")
@@ -110,6 +115,7 @@ void finalize(MethodOptions& o) {
   else
     fail("unknown --riesz '{}' (use optimal or current)", o.riesz);
   o.solver.practical = !(o.no_practical || o.thesis);
+  o.boundary_mode = parse_boundary_mode(o.boundary);
 }
 
 }  // namespace neomesh::app

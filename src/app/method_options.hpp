@@ -1,11 +1,13 @@
 // Options of the optimization method shared by `smooth` and `adapt`: the energy (λ, μ, κ,
-// quadrature), the quasi-Newton method (α₀, η, k_min, tolerances) and the linear solvers.
+// quadrature), the boundary (fixed or sliding vertices), the quasi-Newton method (α₀, η, k_min,
+// tolerances) and the linear solvers.
 #pragma once
 
 #include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "boundary/boundary.hpp"
 #include "energy/functional.hpp"
 #include "solver/quasi_newton.hpp"
 
@@ -16,6 +18,8 @@ struct MethodOptions {
   QuasiNewtonOptions solver;
   std::string linear_solver = "amg";
   std::string riesz = "optimal";
+  std::string boundary = "fixed";  // resolved into boundary_mode by finalize()
+  BoundaryMode boundary_mode = BoundaryMode::Fixed;
   bool no_practical = false;
   bool thesis = false;
 };

@@ -46,7 +46,9 @@ struct OptimizationRun::Impl {
     double local = 0.0;
     for (double v : input_volumes) local += v;
     MPI_Allreduce(&local, &mesh_volume, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
-    functional = std::make_unique<Functional>(view, mesh.dofs(), method.energy, view.on_boundary);
+    functional = std::make_unique<Functional>(
+        view, mesh.dofs(), method.energy,
+        FixedDofs{fixed_dofs(view, mesh.dofs(), method.boundary_mode)});
     method.solver.energy_roundoff = energy_roundoff(method.energy, view.dim, mesh_volume);
   }
 
@@ -107,10 +109,10 @@ void OptimizationRun::print_problem() const {
   say("{}: {} cells, {} vertices, {} free coordinates{}\n", mesh.source(), mesh.global_num_cells(),
       mesh.global_num_vertices(), static_cast<long>(free),
       ranks > 1 ? fmt::format(" on {} processes", ranks) : "");
-  say("lambda {}, mu {}, alpha0 {}, eta {}, kmin {}, linear solver {}\n",
+  say("lambda {}, mu {}, alpha0 {}, eta {}, kmin {}, linear solver {}, boundary {}\n",
       impl_->method.energy.lambda, impl_->method.energy.mu, impl_->method.solver.alpha0,
-      impl_->method.solver.eta, impl_->method.solver.kmin,
-      name(impl_->method.solver.linear_solver));
+      impl_->method.solver.eta, impl_->method.solver.kmin, name(impl_->method.solver.linear_solver),
+      name(impl_->method.boundary_mode));
 }
 
 std::function<void(const IterationRecord&)> OptimizationRun::table_printer(
@@ -161,6 +163,7 @@ void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesys
                            {"vertices", r.mesh.global_num_vertices()},
                            {"energy_options", to_json(r.method.energy)},
                            {"solver_options", to_json(r.method.solver)},
+                           {"boundary", std::string(name(r.method.boundary_mode))},
                            {"result", to_json(result)},
                            {"quality_before", to_json(r.quality_before)},
                            {"quality_after", to_json(after)},

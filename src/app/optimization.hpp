@@ -1,6 +1,6 @@
 // One optimization run as `smooth` and `adapt` share it: read and check the mesh, build the
-// functional with fixed boundary vertices, print the iteration table while the method runs,
-// then check, write and report the result. The commands differ only in how they choose the
+// functional with fixed or sliding boundary vertices, print the iteration table while the method
+// runs, then check, write and report the result. The commands differ only in how they choose the
 // desired volumes and drive the quasi-Newton method.
 #pragma once
 

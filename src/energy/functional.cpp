@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 #include <tuple>
 #include <type_traits>
 
+#include "energy/assembly_pattern.hpp"
 #include "energy/cell_kernels.hpp"
 
 namespace neomesh {
@@ -66,7 +68,7 @@ struct Functional::Impl {
   const MeshView& view;
   const DofMap& dofs;
   Kernels kernels;
-  std::vector<std::uint8_t> fixed;  // per local vertex
+  std::vector<std::uint8_t> fixed;  // per local dof
   std::vector<double> volumes;      // desired volume per local cell
   OwnedVec free_mask;
 
@@ -75,6 +77,12 @@ struct Functional::Impl {
   std::vector<std::size_t> coo_offset;
   std::size_t num_cell_entries = 0;
   std::vector<PetscInt> owned_fixed_dofs;
+
+  // On one rank: the AIJ pattern, built by the first create_matrix and shared by every matrix
+  // (MatDuplicate with MAT_SHARE_NONZERO_PATTERN), and assembly straight into its values.
+  mutable std::optional<AssemblyPattern> pattern;
+  mutable bool pattern_built = false;
+  mutable OwnedMat pattern_matrix;
 
   // Work arrays reused between calls.
   mutable std::vector<double> local_x;
@@ -90,7 +98,7 @@ struct Functional::Impl {
     return std::get<CellKernel<Type>>(kernels);
   }
 
-  bool is_fixed_dof(PetscInt local_dof) const { return fixed[local_dof / dofs.dim()] != 0; }
+  bool is_fixed_dof(PetscInt local_dof) const { return fixed[local_dof] != 0; }
 
   void require_volumes() const {
     if (static_cast<PetscInt>(volumes.size()) != view.num_cells)
@@ -110,6 +118,14 @@ struct Functional::Impl {
   // fails naming the first cell for which fill returned false.
   template <typename Fill>
   void fill_coo_values(Fill&& fill, const char* what) const;
+  // Assembles the cell blocks computed by fill into M (values only), through the pattern
+  // when there is one, else through COO.
+  template <typename Fill>
+  void assemble(Fill&& fill, const char* what, Mat M) const;
+  [[noreturn]] void fail_inverted(const char* what, PetscInt cell) const {
+    fail("{}: local cell {} (input cell {}) is inverted or degenerate (det G <= 0)", what, cell,
+         view.global_cell.empty() ? cell : view.global_cell[cell]);
+  }
 };
 
 double Functional::Impl::local_energy() const {
@@ -217,19 +233,93 @@ void Functional::Impl::fill_coo_values(Fill&& fill, const char* what) const {
       }
     });
   }
-  if (first_bad != std::numeric_limits<PetscInt>::max())
-    fail("{}: local cell {} (input cell {}) is inverted or degenerate (det G <= 0)", what,
-         first_bad, view.global_cell.empty() ? first_bad : view.global_cell[first_bad]);
+  if (first_bad != std::numeric_limits<PetscInt>::max()) fail_inverted(what, first_bad);
 }
 
+template <typename Fill>
+void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M) const {
+  if (!pattern) {
+    fill_coo_values(fill, what);
+    NM_PETSC(MatSetValuesCOO(M, coo_values.data(), INSERT_VALUES));
+    return;
+  }
+  const int d = dofs.dim();
+  PetscScalar* values = nullptr;
+  NM_PETSC(MatSeqAIJGetArrayWrite(M, &values));
+  const std::size_t entries = pattern->num_entries();
+#pragma omp parallel for schedule(static)
+  for (std::size_t e = 0; e < entries; ++e) values[e] = 0.0;
+  PetscInt first_bad = std::numeric_limits<PetscInt>::max();
+  for (std::size_t b = 0; b < view.blocks.size(); ++b) {
+    const CellBlock& block = view.blocks[b];
+    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
+      using Block = typename CellKernel<Type>::Block;
+      constexpr int n = CellKernel<Type>::vertices;
+      const CellKernel<Type>& k = kernel<Type>();
+      const double* desired = volumes.data() + block.first_cell;
+      const std::vector<PetscInt>& order = pattern->colour_order[b];
+      const std::vector<PetscInt>& start = pattern->colour_start[b];
+      for (std::size_t colour = 0; colour + 1 < start.size(); ++colour) {
+        // Cells of one colour share no vertex: their blocks go to disjoint entries.
+#pragma omp parallel for schedule(static) reduction(min : first_bad)
+        for (PetscInt i = start[colour]; i < start[colour + 1]; ++i) {
+          const PetscInt c = order[i];
+          Block cell_block;
+          if (!fill(k, cell_coordinates<Type>(block, c, local_x.data()), desired[c],
+                    Eigen::Map<Block>(cell_block.data()))) {
+            first_bad = std::min(first_bad, block.first_cell + c);
+            continue;
+          }
+          const PetscInt* vertex = block.cell(c);
+          const PetscInt* entry = pattern->block_entry[b].data() + c * n * n;
+          for (int vi = 0; vi < n; ++vi) {
+            const PetscInt stride = pattern->row_stride[vertex[vi]];
+            for (int vj = 0; vj < n; ++vj) {
+              PetscScalar* out = values + entry[vi * n + vj];
+              for (int a = 0; a < d; ++a) {
+                if (is_fixed_dof(d * vertex[vi] + a)) continue;
+                for (int bb = 0; bb < d; ++bb)
+                  if (!is_fixed_dof(d * vertex[vj] + bb))
+                    out[a * stride + bb] += cell_block(d * vi + a, d * vj + bb);
+              }
+            }
+          }
+        }
+      }
+    });
+  }
+  for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l)
+    if (is_fixed_dof(l)) values[pattern->diagonal[l]] = 1.0;
+  NM_PETSC(MatSeqAIJRestoreArrayWrite(M, &values));
+  if (first_bad != std::numeric_limits<PetscInt>::max()) fail_inverted(what, first_bad);
+}
+
+namespace {
+
+// Every coordinate of a fixed vertex is a fixed dof.
+FixedDofs per_dof(const MeshView& view, const std::vector<std::uint8_t>& fixed_vertices) {
+  if (static_cast<PetscInt>(fixed_vertices.size()) != view.num_vertices)
+    fail("Functional: {} fixed flags for {} local vertices", fixed_vertices.size(),
+         view.num_vertices);
+  FixedDofs fixed;
+  for (std::uint8_t f : fixed_vertices) fixed.flags.insert(fixed.flags.end(), view.dim, f);
+  return fixed;
+}
+
+}  // namespace
+
 Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
-                       std::vector<std::uint8_t> fixed)
-    : impl_(std::make_unique<Impl>(view, dofs, options, std::move(fixed))) {
+                       const std::vector<std::uint8_t>& fixed)
+    : Functional(view, dofs, options, per_dof(view, fixed)) {}
+
+Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
+                       FixedDofs fixed)
+    : impl_(std::make_unique<Impl>(view, dofs, options, std::move(fixed.flags))) {
   if (dofs.dim() != view.dim)
     fail("Functional: the mesh is {}D but its DofMap has {} components", view.dim, dofs.dim());
-  if (static_cast<PetscInt>(impl_->fixed.size()) != view.num_vertices)
-    fail("Functional: {} fixed flags for {} local vertices", impl_->fixed.size(),
-         view.num_vertices);
+  if (static_cast<PetscInt>(impl_->fixed.size()) != view.num_vertices * view.dim)
+    fail("Functional: {} fixed flags for {} local dofs", impl_->fixed.size(),
+         view.num_vertices * view.dim);
   if (dofs.num_local_dofs() != view.num_vertices * view.dim)
     fail("Functional: DofMap has {} local dofs, the mesh {} vertices of dimension {}",
          dofs.num_local_dofs(), view.num_vertices, view.dim);
@@ -290,17 +380,34 @@ double Functional::value_and_gradient(Vec x, Vec gradient) const {
 }
 
 OwnedMat Functional::create_matrix() const {
-  const DofMap& dofs = impl_->dofs;
+  Impl& r = *impl_;
+  const DofMap& dofs = r.dofs;
+  if (!r.pattern_built) {
+    r.pattern = make_assembly_pattern(r.view, dofs);
+    r.pattern_built = true;
+  }
   OwnedMat m;
-  NM_PETSC(MatCreate(dofs.comm(), m.out()));
-  NM_PETSC(MatSetSizes(m, dofs.num_owned_dofs(), dofs.num_owned_dofs(), dofs.num_global_dofs(),
-                       dofs.num_global_dofs()));
-  NM_PETSC(MatSetType(m, MATAIJ));
-  NM_PETSC(MatSetBlockSize(m, dofs.dim()));
-  std::vector<PetscInt> rows = impl_->coo_indices(true);
-  std::vector<PetscInt> cols = impl_->coo_indices(false);
-  NM_PETSC(
-      MatSetPreallocationCOO(m, static_cast<PetscCount>(rows.size()), rows.data(), cols.data()));
+  if (r.pattern_matrix) {
+    NM_PETSC(MatDuplicate(r.pattern_matrix, MAT_SHARE_NONZERO_PATTERN, m.out()));
+  } else {
+    NM_PETSC(MatCreate(dofs.comm(), m.out()));
+    NM_PETSC(MatSetSizes(m, dofs.num_owned_dofs(), dofs.num_owned_dofs(), dofs.num_global_dofs(),
+                         dofs.num_global_dofs()));
+    NM_PETSC(MatSetType(m, MATAIJ));
+    NM_PETSC(MatSetBlockSize(m, dofs.dim()));
+    if (r.pattern) {
+      NM_PETSC(MatSeqAIJSetPreallocationCSR(m, r.pattern->row_start.data(),
+                                            r.pattern->column.data(), nullptr));
+      std::vector<PetscInt>().swap(r.pattern->column);  // the matrix has its copy
+      NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(m.get())));
+      r.pattern_matrix = OwnedMat(m.get());
+    } else {
+      std::vector<PetscInt> rows = r.coo_indices(true);
+      std::vector<PetscInt> cols = r.coo_indices(false);
+      NM_PETSC(MatSetPreallocationCOO(m, static_cast<PetscCount>(rows.size()), rows.data(),
+                                      cols.data()));
+    }
+  }
   // H(α) and L are symmetric by construction (cell_kernels.hpp), exactly in floating point.
   NM_PETSC(MatSetOption(m, MAT_SYMMETRIC, PETSC_TRUE));
   NM_PETSC(MatSetOption(m, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
@@ -309,32 +416,26 @@ OwnedMat Functional::create_matrix() const {
 
 void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {
   impl_->load_coordinates(x);
-  impl_->fill_coo_values(
-      [alpha](const auto& kernel, const auto& coordinates, double volume, auto block) {
-        return kernel.hessian(coordinates, volume, alpha, block);
-      },
-      "H(alpha)");
-  NM_PETSC(MatSetValuesCOO(H, impl_->coo_values.data(), INSERT_VALUES));
+  impl_->assemble([alpha](const auto& kernel, const auto& coordinates, double volume,
+                          auto block) { return kernel.hessian(coordinates, volume, alpha, block); },
+                  "H(alpha)", H);
 }
 
 void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const {
   if (kind == RieszLaplacian::CurrentMesh) {
     impl_->load_coordinates(x);
-    impl_->fill_coo_values(
-        [](const auto& kernel, const auto& coordinates, double volume, auto block) {
-          return kernel.current_laplacian(coordinates, volume, block);
-        },
-        "current-mesh Laplacian");
+    impl_->assemble([](const auto& kernel, const auto& coordinates, double volume,
+                       auto block) { return kernel.current_laplacian(coordinates, volume, block); },
+                    "current-mesh Laplacian", L);
   } else {
     impl_->require_volumes();
-    impl_->fill_coo_values(
+    impl_->assemble(
         [](const auto& kernel, const auto&, double volume, auto block) {
           kernel.optimal_laplacian(volume, block);
           return true;
         },
-        "optimal-cell Laplacian");
+        "optimal-cell Laplacian", L);
   }
-  NM_PETSC(MatSetValuesCOO(L, impl_->coo_values.data(), INSERT_VALUES));
 }
 
 CellFields Functional::cell_fields(Vec x) const {

@@ -3,8 +3,9 @@
 // (§3), plus the Riesz Laplacian L (§4). All vectors are global PETSc Vecs laid out by a
 // DofMap; every method is collective.
 //
-// Fixed dofs (boundary vertices by default) are eliminated: the gradient is zero there,
-// and the rows and columns of H(α) and L are those of the identity, so that the Newton
+// Fixed dofs (all coordinates of boundary vertices by default, or single coordinates) are
+// eliminated: the gradient is zero there, and the rows and columns of H(α) and L are those
+// of the identity, so that the Newton
 // defect is the free-dof norm of the gradient and every linear solve leaves fixed dofs
 // unchanged.
 #pragma once
@@ -40,13 +41,22 @@ struct CellFields {
   std::vector<double> volume_ratio;  // Q = actual volume / desired volume
 };
 
+// Per local dof (dim * vertex + component, MeshView order): 1 if that coordinate does not
+// move. Lets a boundary vertex slide within a plane x_j = const (boundary/boundary.hpp).
+struct FixedDofs {
+  std::vector<std::uint8_t> flags;
+};
+
 class Functional {
  public:
   // `fixed` marks local vertices whose coordinates do not move (MeshView order). `view` and
   // `dofs` are kept by reference and must outlive the Functional; only their connectivity
   // and layout are used (coordinates always come from the Vec x of each call).
   Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
-             std::vector<std::uint8_t> fixed);
+             const std::vector<std::uint8_t>& fixed);
+  // The same with single coordinates fixed.
+  Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
+             FixedDofs fixed);
   ~Functional();
   Functional(const Functional&) = delete;
   Functional& operator=(const Functional&) = delete;

@@ -2,12 +2,14 @@
 
 namespace neomesh {
 
-ThesisProblem::ThesisProblem(MeshData mesh_data, EnergyOptions energy_options)
+ThesisProblem::ThesisProblem(MeshData mesh_data, EnergyOptions energy_options,
+                             BoundaryMode boundary)
     : data(std::move(mesh_data)),
       view(serial_view(data)),
       dofs(DofMap::serial(view.dim, view.num_vertices)),
       energy(energy_options) {
-  functional = std::make_unique<Functional>(view, dofs, energy, view.on_boundary);
+  functional =
+      std::make_unique<Functional>(view, dofs, energy, FixedDofs{fixed_dofs(view, dofs, boundary)});
   x = dofs.create_global_vector();
   {
     VecWriteView out(x);

@@ -1,10 +1,11 @@
 // A thesis test case as a serial problem: a generated mesh, uniform desired volumes, fixed
-// boundary vertices and the thesis' parameters (CASES.md: λ = 1, μ = 10, α₀ = 0.3, η = 0.6).
-// Used by the solver tests and benchmarks.
+// (or sliding) boundary vertices and the thesis' parameters (CASES.md: λ = 1, μ = 10, α₀ = 0.3, η =
+// 0.6). Used by the solver tests and benchmarks.
 #pragma once
 
 #include <memory>
 
+#include "boundary/boundary.hpp"
 #include "energy/functional.hpp"
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_data.hpp"
@@ -14,7 +15,8 @@
 namespace neomesh {
 
 struct ThesisProblem {
-  explicit ThesisProblem(MeshData mesh_data, EnergyOptions energy = {});
+  explicit ThesisProblem(MeshData mesh_data, EnergyOptions energy = {},
+                         BoundaryMode boundary = BoundaryMode::Fixed);
 
   MeshData data;
   MeshView view;

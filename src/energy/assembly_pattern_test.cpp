@@ -1,0 +1,63 @@
+#include "energy/assembly_pattern.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "mesh/generate.hpp"
+#include "mesh/serial_view.hpp"
+
+namespace neomesh {
+namespace {
+
+// Every pair of dofs of a cell has its entry, at the column it names; cells of one colour
+// share no vertex; the rows hold exactly the couplings of the mesh.
+void check_pattern(const MeshData& data) {
+  const MeshView view = serial_view(data);
+  const int d = view.dim;
+  const DofMap dofs = DofMap::serial(d, view.num_vertices);
+  const auto pattern = make_assembly_pattern(view, dofs);
+  ASSERT_TRUE(pattern.has_value());
+  std::vector<std::set<PetscInt>> coupled(d * view.num_vertices);
+  for (std::size_t b = 0; b < view.blocks.size(); ++b) {
+    const CellBlock& block = view.blocks[b];
+    const int n = num_vertices(block.type);
+    for (PetscInt c = 0; c < block.size(); ++c)
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+          for (int a = 0; a < d; ++a)
+            for (int bb = 0; bb < d; ++bb) {
+              const PetscInt vi = block.cell(c)[i], vj = block.cell(c)[j];
+              const PetscInt e =
+                  pattern->block_entry[b][(c * n + i) * n + j] + a * pattern->row_stride[vi] + bb;
+              EXPECT_EQ(pattern->column[e], d * vj + bb);
+              EXPECT_GE(e, pattern->row_start[d * vi + a]);
+              EXPECT_LT(e, pattern->row_start[d * vi + a + 1]);
+              coupled[d * vi + a].insert(d * vj + bb);
+            }
+    const auto& order = pattern->colour_order[b];
+    const auto& start = pattern->colour_start[b];
+    EXPECT_EQ(start.back(), block.size());
+    for (std::size_t k = 0; k + 1 < start.size(); ++k) {
+      std::set<PetscInt> seen;
+      for (PetscInt i = start[k]; i < start[k + 1]; ++i)
+        for (int v = 0; v < n; ++v) EXPECT_TRUE(seen.insert(block.cell(order[i])[v]).second);
+    }
+  }
+  for (PetscInt row = 0; row < d * view.num_vertices; ++row) {
+    EXPECT_EQ(pattern->row_start[row + 1] - pattern->row_start[row],
+              static_cast<PetscInt>(coupled[row].size()));
+    EXPECT_EQ(pattern->column[pattern->diagonal[row]], row);
+  }
+}
+
+TEST(AssemblyPattern, EntriesColumnsAndColoursMatchTheMesh) {
+  check_pattern(square_random(5, 0.2, 1));
+  check_pattern(box(CellType::Triangle, 4));
+  check_pattern(box(CellType::Tetrahedron, 2));
+  check_pattern(box(CellType::Hexahedron, 3));
+}
+
+}  // namespace
+}  // namespace neomesh
