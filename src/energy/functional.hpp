@@ -5,9 +5,8 @@
 //
 // Fixed dofs (all coordinates of boundary vertices by default, or single coordinates) are
 // eliminated: the gradient is zero there, and the rows and columns of H(α) and L are those
-// of the identity, so that the Newton
-// defect is the free-dof norm of the gradient and every linear solve leaves fixed dofs
-// unchanged.
+// of the identity, so that the Newton defect is the free-dof norm of the gradient and every
+// linear solve leaves fixed dofs unchanged.
 #pragma once
 
 #include <cstdint>

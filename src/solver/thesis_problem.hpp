@@ -1,6 +1,6 @@
 // A thesis test case as a serial problem: a generated mesh, uniform desired volumes, fixed
-// (or sliding) boundary vertices and the thesis' parameters (CASES.md: λ = 1, μ = 10, α₀ = 0.3, η =
-// 0.6). Used by the solver tests and benchmarks.
+// (or sliding) boundary vertices and the thesis' parameters (CASES.md: λ = 1, μ = 10,
+// α₀ = 0.3, η = 0.6). Used by the solver tests and benchmarks.
 #pragma once
 
 #include <memory>
