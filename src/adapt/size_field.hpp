@@ -26,8 +26,10 @@ struct SizeFieldOptions {
   double power = 1.0;   // p
   // Largest over smallest desired volume (0: unbounded, the thesis). The smallest volumes
   // are raised to max/ratio, because no mesh of fixed connectivity can shrink a cell on the
-  // surface to the 1e-8-fold of its neighbours.
-  double max_ratio = 100.0;
+  // surface to the 1e-8-fold of its neighbours. 32 (edge lengths 1 : 3.2 in 3D) is what the
+  // meshes of docs/adaptivity.md reach with good shapes; 100 squeezed cells to scaled
+  // Jacobians of 0.1.
+  double max_ratio = 32.0;
   // Passes of averaging log v over neighbouring cells (0: none, the thesis): limits how fast
   // the desired volume may change from a cell to its neighbour.
   int smoothing_passes = 1;

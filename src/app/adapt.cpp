@@ -51,12 +51,14 @@ SizeField make_size_field(const AdaptOptions& o) {
   return SizeField::read_cell_values(o.sizes_file);
 }
 
-// The thesis' scheme (§6.1): the raw field, shape-dominated energy (μ = 10), full updates
-// when σ‖δ‖ < 1e-6 or every 8 iterations, 7 updates.
+// The thesis' scheme (§6.1): the raw field, shape-dominated energy (λ = 1, μ = 10), fixed
+// boundary vertices, full updates when σ‖δ‖ < 1e-6 or every 8 iterations, 7 updates.
 void use_thesis_scheme(AdaptOptions& o) {
   o.sizes.max_ratio = SizeFieldOptions::thesis().max_ratio;
   o.sizes.smoothing_passes = SizeFieldOptions::thesis().smoothing_passes;
+  o.method.energy.lambda = 1.0;
   o.method.energy.mu = 10.0;
+  o.method.boundary = "fixed";
   o.picard = {.min_updates = 7,
               .update_every = 8,
               .update_move = 0.0,
@@ -128,8 +130,11 @@ void adapt(AdaptOptions& o) {
 
 Subcommand add_adapt(CLI::App& app) {
   auto o = std::make_shared<AdaptOptions>();
-  // Adaptation wants volumes met, not only shapes: λ = μ (docs/adaptivity.md).
+  // Adaptation wants volumes met, not only shapes: λ = 4 μ, and boundary vertices that slide
+  // so that the cells at the boundary can grade too (docs/adaptivity.md).
+  o->method.energy.lambda = 4.0;
   o->method.energy.mu = 1.0;
+  o->method.boundary = "slide";
   CLI::App* cmd = app.add_subcommand(
       "adapt",
       "Move the vertices so that cells are small near a surface (circle, sphere, plane, box, "
