@@ -29,7 +29,7 @@ void expect_size(const std::vector<double>& v, const char* what, std::size_t low
 }
 
 std::string coordinates(std::span<const double> v) {
-  return fmt::format("{}", fmt::join(v, ", "));
+  return fmt::format("{:.4g}", fmt::join(v, ", "));
 }
 
 // A muparser expression in x, y, z. The parser keeps the addresses of the variables, so both
@@ -197,7 +197,9 @@ std::vector<double> SizeField::relative_volumes(const MeshView& view,
                           : v[c] == 0        ? "zero"
                                              : nullptr;
     if (problem)
-      fail("size field is {} at cell {} (centroid {})", problem, view.global_cell[c],
+      fail("the size field ({}) is {} at cell {} (centroid {}); desired sizes must be positive "
+           "numbers",
+           description_, problem, view.global_cell[c],
            coordinates(std::span(centroids).subspan(c * d, d)));
   }
   return v;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/subcommand.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "mesh/mesh.hpp"
@@ -30,6 +31,8 @@ void run_convert(const ConvertOptions& o) {
   check_writable_format(o.output);
   if (!o.force && same_file(o.input, o.output))
     fail("{}: output is the input file; choose another -o or pass --force", o.output);
+  check_writable(o.output);
+  say("reading {} ...\n", o.input);
   const Mesh mesh = Mesh::load(o.input);
   write_mesh(mesh, o.output);
   say("wrote {}: {} cells, {} vertices\n", o.output, mesh.global_num_cells(),
@@ -42,11 +45,12 @@ Subcommand add_convert(CLI::App& app) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* cmd = app.add_subcommand(
       "convert",
-      "Read a mesh (Gmsh .msh 2.2/4.1, FEAT3 .xml), check it (no inverted or degenerate cells) "
-      "and write it as .vtu (ParaView) or .msh (Gmsh 4.1, keeping physical groups).");
+      "Convert a mesh to .vtu (ParaView) or .msh. Reads Gmsh .msh 2.2/4.1 or FEAT3 .xml, checks\n"
+      "it (no inverted or degenerate cells) and writes VTU or Gmsh 4.1 (keeping physical groups).");
   cmd->add_option("input", options->input, "input mesh (.msh or .xml)")->required();
   cmd->add_option("-o,--output", options->output, "output mesh (.vtu or .msh)")->required();
-  cmd->add_flag("--force", options->force, "allow the output to overwrite the input");
+  cmd->add_flag("--force", options->force,
+                "allow the output to overwrite the input (default: off)");
   return {cmd, [options] { run_convert(*options); }};
 }
 

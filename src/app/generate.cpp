@@ -132,11 +132,14 @@ Subcommand add_generate(CLI::App& app) {
   cmd->add_option("case", options->name, "the mesh to generate")
       ->required()
       ->check(CLI::IsMember(names));
-  auto* level = cmd->add_option("--level", options->level, "size level (see above)");
-  auto* cells = cmd->add_option("--cells", options->cells, "cells per direction");
+  auto* level = cmd->add_option("--level", options->level,
+                                "size level, meaning per case above (give --level or --cells)");
+  auto* cells = cmd->add_option("--cells", options->cells,
+                                "cells per direction (instead of --level; not for refined cases)");
   level->excludes(cells);
   cmd->add_option("--rotate", options->rotate_degrees,
-                  "rotate counter-clockwise about the origin (2D) / the z axis (3D), degrees");
+                  "rotate counter-clockwise about the origin (2D) / the z axis (3D), degrees")
+      ->capture_default_str();
   cmd->add_option("--seed", options->seed, "random seed (square-random, triangle-equilateral)")
       ->capture_default_str();
   cmd->add_option("--amplitude", options->amplitude,

@@ -44,7 +44,8 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
       ->capture_default_str()
       ->group(method);
   cmd.add_flag("--no-practical", o.no_practical,
-               "iterate to the defect tolerance even after the mesh stopped changing")
+               "iterate to the defect tolerance even after the mesh stopped changing (default: "
+               "stop on the practical criterion too)")
       ->group(method);
   cmd.add_option("--energy-rtol", o.solver.energy_rtol,
                  "practical criterion: relative energy decrease per iteration below this ...")
@@ -62,11 +63,13 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
   const char* linear = "Linear solvers (PETSc prefixes -hess_ and -riesz_)";
   cmd.add_option("--linear-solver", o.linear_solver,
                  "amg (CG + hypre BoomerAMG), jacobi (the thesis' PCG) or direct (Cholesky, MUMPS)")
+      ->check(CLI::IsMember({"amg", "jacobi", "direct"}))
       ->capture_default_str()
       ->group(linear);
   cmd.add_option("--riesz", o.riesz,
                  "Laplacian of the Riesz representative: optimal (over the optimal cells, the "
                  "thesis') or current (stiffness of the current mesh)")
+      ->check(CLI::IsMember({"optimal", "current"}))
       ->capture_default_str()
       ->group(linear);
   cmd.add_option("--hess-rtol", o.solver.hessian_rtol,
@@ -83,7 +86,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
       ->group(energy);
   cmd.add_flag("--thesis", o.thesis,
                "the thesis' conventions: uniform desired volumes, no practical stopping "
-               "criterion (iterate to the defect tolerance)")
+               "criterion (iterate to the defect tolerance); default: off")
       ->group(method);
 }
 

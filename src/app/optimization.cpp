@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "geometry/quality.hpp"
@@ -19,6 +20,7 @@ void check_output_path(const std::filesystem::path& input, const std::filesystem
   if (!force && std::filesystem::equivalent(input, output, ignored))
     fail("output {} is the input file; choose another name or pass --force to overwrite it",
          output.string());
+  check_writable(output);  // fail now, not after a long run
 }
 
 struct OptimizationRun::Impl {
@@ -53,7 +55,9 @@ struct OptimizationRun::Impl {
   }
 
   static Mesh load(const std::filesystem::path& input) {
-    say("reading {} ...\n", input.string());
+    const int ranks = mpi_size(PETSC_COMM_WORLD);
+    say("reading {}{} ...\n", input.string(),
+        ranks > 1 ? fmt::format(" and distributing it over {} processes", ranks) : "");
     return Mesh::load(input);
   }
 
@@ -101,6 +105,52 @@ void OptimizationRun::set_desired_volumes(std::vector<double> volumes) {
   impl_->cell_size = local_cell_size(view(), dofs(), volumes);
 }
 
+namespace {
+
+// "KSP cg, PC hypre boomeramg, rtol 0.0001, at most 10000 iterations": what PETSc will run,
+// after the -hess_/-riesz_ options of the command line.
+std::string describe(const LinearSolver& solver) {
+  KSPType ksp_type = nullptr;
+  PC pc = nullptr;
+  PCType pc_type = nullptr;
+  NM_PETSC(KSPGetType(solver.ksp(), &ksp_type));
+  NM_PETSC(KSPGetPC(solver.ksp(), &pc));
+  NM_PETSC(PCGetType(pc, &pc_type));
+  std::string pc_name = pc_type ? pc_type : "none";
+  if (pc_name == PCHYPRE) {
+    const char* hypre = nullptr;
+    NM_PETSC(PCHYPREGetType(pc, &hypre));
+    pc_name += fmt::format(" {}", hypre ? hypre : "");
+  } else if (pc_name == PCCHOLESKY || pc_name == PCLU) {
+    MatSolverType package = nullptr;
+    NM_PETSC(PCFactorGetMatSolverType(pc, &package));
+    pc_name += fmt::format(" ({})", package ? package : "petsc");
+  }
+  double rtol = 0.0;
+  PetscInt max_it = 0;
+  NM_PETSC(KSPGetTolerances(solver.ksp(), &rtol, nullptr, nullptr, &max_it));
+  return fmt::format("KSP {}, PC {}, rtol {:g}, at most {} iterations", ksp_type, pc_name, rtol,
+                     max_it);
+}
+
+// --verbose: the linear solves of one iteration.
+void print_solver_details(const IterationRecord& rec) {
+  const std::string delta =
+      !rec.delta_solved
+          ? std::string("not solved (antigradient step)")
+          : fmt::format("{} Krylov iterations, residual {:.2e}{}", rec.krylov_delta,
+                        rec.residual_delta,
+                        rec.delta_failed      ? ", did not converge: alpha cut to 0.1 alpha"
+                        : rec.delta_truncated ? ", negative curvature: CG iterate used"
+                                              : "");
+  detail(
+      "  k={}: delta~ {}; s: {} Krylov iterations; step 0.5^{}; largest move {:.2e} cell "
+      "sizes\n",
+      rec.k, delta, rec.krylov_s, rec.armijo_steps, rec.max_move);
+}
+
+}  // namespace
+
 void OptimizationRun::print_problem() const {
   const Mesh& mesh = impl_->mesh;
   const int ranks = mpi_size(mesh.comm());
@@ -113,6 +163,19 @@ void OptimizationRun::print_problem() const {
       impl_->method.energy.lambda, impl_->method.energy.mu, impl_->method.solver.alpha0,
       impl_->method.solver.eta, impl_->method.solver.kmin, name(impl_->method.solver.linear_solver),
       name(impl_->method.boundary_mode));
+  if (verbosity() == Verbosity::Verbose) {
+    const QuasiNewtonOptions& o = impl_->method.solver;
+    detail(
+        "quasi-Newton system H(alpha) delta~ = -g (options -hess_*): {}, or residual <= {:g} "
+        "x defect\n",
+        describe(LinearSolver(mesh.comm(), o.linear_solver, "hess_", o.hessian_rtol)),
+        o.hessian_defect_factor);
+    detail("Riesz representative L s = g (options -riesz_*): {}\n",
+           describe(LinearSolver(mesh.comm(), o.linear_solver, "riesz_", o.riesz_rtol)));
+  }
+  // The first iteration assembles the matrices and builds the preconditioners: on a large
+  // mesh the longest wait before the first row of the table.
+  say("assembling the matrices and setting up the linear solvers ...\n");
 }
 
 std::function<void(const IterationRecord&)> OptimizationRun::table_printer(
@@ -121,11 +184,12 @@ std::function<void(const IterationRecord&)> OptimizationRun::table_printer(
   return [header_printed, progress_only](const IterationRecord& rec) {
     if (progress_only) {
       say("{}\n", progress_line(rec));
-      return;
+    } else {
+      if (!*header_printed) say("{}\n", iteration_table_header());
+      *header_printed = true;
+      say("{}\n", iteration_table_row(rec));
     }
-    if (!*header_printed) say("{}\n", iteration_table_header());
-    *header_printed = true;
-    say("{}\n", iteration_table_row(rec));
+    print_solver_details(rec);
   };
 }
 

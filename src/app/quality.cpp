@@ -41,7 +41,8 @@ Subcommand add_quality(CLI::App& app) {
       "corners and Gauss points, scaled Jacobian (1 = ideal, <= 0 = inverted), angles and edge "
       "ratio, and the number of inverted and degenerate cells.");
   cmd->add_option("mesh", options->input, "mesh file (.msh or .xml)")->required();
-  cmd->add_option("--json", options->json, "also write the summary as JSON to this file");
+  cmd->add_option("--json", options->json,
+                  "also write the summary as JSON to this file (default: none)");
   return {cmd, [options] { run_quality(*options); }};
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/subcommand.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "energy/functional.hpp"
@@ -81,6 +82,7 @@ std::vector<double> field_values(const Mesh& mesh, const RenderCommandOptions& o
 
 void run_render(const RenderCommandOptions& o) {
   picture_format(o.output);  // fail before the (possibly long) load
+  check_writable(o.output);
   check_readable_format(o.input);
   if (!o.range.empty() && o.range.size() != 2)
     fail("--range takes MIN,MAX (got {} numbers)", o.range.size());
@@ -102,9 +104,9 @@ Subcommand add_render(CLI::App& app) {
   auto options = std::make_shared<RenderCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "render",
-      "Draw a 2D mesh with every cell coloured by a quality metric, its energy or its volume "
-      "ratio Q, to a .png or .svg picture. Inverted cells are drawn in red and counted. For 3D "
-      "meshes, open a .vtu output in ParaView instead.");
+      "Draw a 2D mesh as a .png or .svg picture. Every cell is coloured by a quality metric,\n"
+      "its energy or its volume ratio Q, with a colour bar; inverted cells are drawn in red\n"
+      "and counted. For 3D meshes, open a .vtu output in ParaView instead.");
   cmd->add_option("mesh", options->input, "mesh file (.msh or .xml)")->required();
   cmd->add_option("-o,--output", options->output, "picture file (.png or .svg)")->required();
   std::vector<std::string> fields;
@@ -127,7 +129,8 @@ Subcommand add_render(CLI::App& app) {
                   "the end colours")
       ->delimiter(',')
       ->expected(2);
-  cmd->add_flag("--log", options->log_scale, "colour by the logarithm of the value");
+  cmd->add_flag("--log", options->log_scale,
+                "colour by the logarithm of the value (default: linear)");
   return {cmd, [options] { run_render(*options); }};
 }
 

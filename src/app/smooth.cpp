@@ -6,8 +6,10 @@
 #include "app/method_options.hpp"
 #include "app/optimization.hpp"
 #include "app/subcommand.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "report/canvas.hpp"
 #include "solver/desired_volumes.hpp"
 
 namespace neomesh::app {
@@ -24,6 +26,9 @@ void smooth(SmoothOptions& o) {
   finalize(o.method);
   const SizeMode sizes = parse_size_mode(o.method.thesis ? "uniform" : o.sizes);
   check_output_path(o.input, o.output, o.force);
+  // Every output is checked before the run, so that a typo does not cost a long run.
+  if (!o.report.empty()) check_writable(o.report);
+  if (!o.plot_history.empty()) picture_format(o.plot_history), check_writable(o.plot_history);
 
   OptimizationRun run(o.input, o.method);
   run.set_desired_volumes(desired_volumes(sizes, run.view(), run.dofs(), run.input_volumes()));
@@ -39,21 +44,27 @@ Subcommand add_smooth(CLI::App& app) {
   auto o = std::make_shared<SmoothOptions>();
   CLI::App* cmd = app.add_subcommand(
       "smooth",
-      "Improve the shape of every cell, keeping the mesh's connectivity and its boundary "
-      "vertices: minimizes the Neo-Hookean energy with the quasi-Newton method of the thesis.");
+      "Improve the shape of every cell. Moves the interior vertices (connectivity and boundary\n"
+      "stay) to minimize the Neo-Hookean energy with the quasi-Newton method of the thesis;\n"
+      "prints one row per iteration and the quality before and after.");
   cmd->add_option("input", o->input, "mesh to smooth (.msh Gmsh 2.2/4.1, .xml FEAT3)")->required();
   cmd->add_option("-o,--output", o->output, "smoothed mesh (.vtu with quality fields, or .msh)")
       ->required();
-  cmd->add_flag("--force", o->force, "allow the output to overwrite the input file");
+  cmd->add_flag("--force", o->force, "allow the output to overwrite the input file (default: off)");
   cmd->add_option("--sizes", o->sizes,
                   "desired cell volumes: smoothed (input volumes averaged over neighbours: keeps "
                   "the grading), input (each cell's own volume) or uniform (all equal, the thesis)")
+      ->check(CLI::IsMember({"smoothed", "input", "uniform"}))
       ->capture_default_str();
-  cmd->add_option("--report", o->report, "write parameters, history, timings and quality as JSON");
-  cmd->add_option("--plot-history", o->plot_history,
-                  "draw the Newton defect and F per iteration (.png or .svg)");
+  cmd->add_option("--report", o->report,
+                  "write parameters, history, timings and quality as JSON to this file (default: "
+                  "none)");
+  cmd->add_option(
+      "--plot-history", o->plot_history,
+      "draw the Newton defect and F per iteration to this .png or .svg (default: none)");
   cmd->add_flag("--no-table", o->no_table,
-                "one progress line per iteration instead of the iteration table");
+                "one progress line per iteration (with elapsed time) instead of the iteration "
+                "table (default: table)");
   add_method_options(*cmd, o->method);
   return {cmd, [o] { smooth(*o); }};
 }

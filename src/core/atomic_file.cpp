@@ -1,21 +1,88 @@
 #include "core/atomic_file.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cstring>
 
 #include "core/error.hpp"
 
 namespace neomesh {
 
-AtomicFile::AtomicFile(const std::filesystem::path& target, bool binary) : target_(target) {
+namespace {
+
+// The temporary files open right now, where a signal handler can reach them without
+// allocating: a slot is Free, being Filled, or holds a path that is Ready to unlink.
+enum SlotState : int { Free, Filling, Ready };
+constexpr int kSlots = 16;
+constexpr std::size_t kMaxPath = 4096;
+std::array<std::atomic<int>, kSlots> slot_state{};
+std::array<std::array<char, kMaxPath>, kSlots> slot_path{};
+
+int register_temporary(const std::filesystem::path& path) {
+  const std::string& text = path.native();
+  if (text.size() >= kMaxPath) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    int expected = Free;
+    if (slot_state[i].compare_exchange_strong(expected, Filling)) {
+      std::memcpy(slot_path[i].data(), text.c_str(), text.size() + 1);
+      slot_state[i].store(Ready);
+      return i;
+    }
+  }
+  return -1;  // more than kSlots files at once: not cleaned up on a signal
+}
+
+void unregister_temporary(int slot) {
+  if (slot >= 0) slot_state[slot].store(Free);
+}
+
+std::filesystem::path directory_of(const std::filesystem::path& target) {
+  return target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+}
+
+std::filesystem::path temporary_for(const std::filesystem::path& target) {
+  return directory_of(target) / fmt::format(".{}.tmp-{}", target.filename().string(), getpid());
+}
+
+void check_directory(const std::filesystem::path& target) {
   if (std::filesystem::is_directory(target))
     fail("cannot write {}: it is a directory", target.string());
-  const auto dir = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  const auto dir = directory_of(target);
   if (!std::filesystem::is_directory(dir))
     fail("cannot write {}: directory {} does not exist", target.string(), dir.string());
-  temporary_ = dir / fmt::format(".{}.tmp-{}", target.filename().string(), getpid());
+}
+
+}  // namespace
+
+void check_writable(const std::filesystem::path& target) {
+  check_directory(target);
+  const auto probe = temporary_for(target);
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  if (fd < 0)
+    fail("cannot write {}: directory {} is not writable", target.string(),
+         directory_of(target).string());
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+void remove_temporary_files() noexcept {
+  for (int i = 0; i < kSlots; ++i)
+    if (slot_state[i].load() == Ready) ::unlink(slot_path[i].data());
+}
+
+AtomicFile::AtomicFile(const std::filesystem::path& target, bool binary) : target_(target) {
+  check_directory(target);
+  temporary_ = temporary_for(target);
+  slot_ = register_temporary(temporary_);
   stream_.open(temporary_, binary ? std::ios::out | std::ios::binary : std::ios::out);
-  if (!stream_)
-    fail("cannot write {}: directory {} is not writable", target.string(), dir.string());
+  if (!stream_) {
+    unregister_temporary(slot_);
+    fail("cannot write {}: directory {} is not writable", target.string(),
+         directory_of(target).string());
+  }
 }
 
 AtomicFile::~AtomicFile() {
@@ -23,6 +90,7 @@ AtomicFile::~AtomicFile() {
   stream_.close();
   std::error_code ignored;
   std::filesystem::remove(temporary_, ignored);
+  unregister_temporary(slot_);
 }
 
 void AtomicFile::commit() {
@@ -33,6 +101,7 @@ void AtomicFile::commit() {
   std::filesystem::rename(temporary_, target_, error);
   if (error) fail("cannot write {}: {}", target_.string(), error.message());
   committed_ = true;
+  unregister_temporary(slot_);
 }
 
 }  // namespace neomesh

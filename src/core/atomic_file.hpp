@@ -8,6 +8,14 @@
 
 namespace neomesh {
 
+// Throws Error (the same messages as AtomicFile) unless `target` could be written: its
+// directory exists and a file can be created there. Lets a command fail before a long run.
+void check_writable(const std::filesystem::path& target);
+
+// Removes the temporary files of every AtomicFile not yet committed. Async-signal-safe:
+// for a SIGINT/SIGTERM handler.
+void remove_temporary_files() noexcept;
+
 class AtomicFile {
  public:
   // Opens the temporary file; throws Error naming `target` if its directory is not writable.
@@ -26,6 +34,7 @@ class AtomicFile {
   std::filesystem::path temporary_;
   std::ofstream stream_;
   bool committed_ = false;
+  int slot_ = -1;  // entry in the registry of remove_temporary_files()
 };
 
 }  // namespace neomesh

@@ -1,5 +1,7 @@
 #include "core/petsc.hpp"
 
+#include <filesystem>
+
 namespace neomesh {
 
 void check_petsc(PetscErrorCode code, const char* call, const char* file, int line) {
@@ -7,9 +9,14 @@ void check_petsc(PetscErrorCode code, const char* call, const char* file, int li
   const char* text = nullptr;
   char* specific = nullptr;
   PetscErrorMessage(code, &text, &specific);
-  throw Error(fmt::format("PETSc error {} in {} ({}:{}): {}{}{}", static_cast<int>(code), call,
-                          file, line, text ? text : "", specific ? ": " : "",
-                          specific ? specific : ""));
+  // PETSc's specific message first ("Unable to find requested KSP type foo"): it is the
+  // one a user can act on; the call and place are for bug reports.
+  const std::string where =
+      fmt::format("{} at {}:{}", call, std::filesystem::path(file).filename().string(), line);
+  if (specific && *specific)
+    throw Error(fmt::format("PETSc: {} ({}; in {})", specific, text ? text : "", where));
+  throw Error(
+      fmt::format("PETSc error {}: {} (in {})", static_cast<int>(code), text ? text : "", where));
 }
 
 VecReadView::VecReadView(Vec v) : vec_(v) {

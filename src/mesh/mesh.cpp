@@ -27,6 +27,7 @@ void check_input_file(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(status))
     fail("{}: is a directory, not a mesh file", path.string());
   if (!std::ifstream(path)) fail("{}: cannot be opened for reading", path.string());
+  if (std::filesystem::file_size(path, ec) == 0) fail("{}: the file is empty", path.string());
 }
 
 void broadcast_groups(MPI_Comm comm, std::vector<PhysicalGroup>& groups) {
