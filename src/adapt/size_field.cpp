@@ -76,7 +76,9 @@ SizeField::SizeField(std::string description, int dim, Distance distance)
 
 SizeField SizeField::sphere(std::vector<double> centre, double radius) {
   expect_size(centre, "centre of a circle/sphere", 2, 3);
-  if (!(radius > 0)) fail("the radius of the circle/sphere must be positive (got {})", radius);
+  if (!(radius > 0))
+    fail("{}: the radius must be positive (got {})", centre.size() == 2 ? "--circle" : "--sphere",
+         radius);
   const int dim = static_cast<int>(centre.size());
   return {fmt::format("distance to the {} around ({}) with radius {}",
                       dim == 2 ? "circle" : "sphere", coordinates(centre), radius),
@@ -91,7 +93,7 @@ SizeField SizeField::plane(std::vector<double> point, std::vector<double> normal
   expect_size(point, "point of a plane", 2, 3);
   expect_size(normal, "normal of a plane", point.size(), point.size());
   const double length = norm(normal);
-  if (!(length > 0)) fail("the normal of the plane must not be zero");
+  if (!(length > 0)) fail("--plane: the normal of the plane must not be zero");
   for (double& n : normal) n /= length;
   return {
       fmt::format("distance to the {} through ({}) with normal ({})",
@@ -197,10 +199,8 @@ std::vector<double> SizeField::relative_volumes(const MeshView& view,
                           : v[c] == 0        ? "zero"
                                              : nullptr;
     if (problem)
-      fail("the size field ({}) is {} at cell {} (centroid {}); desired sizes must be positive "
-           "numbers",
-           description_, problem, view.global_cell[c],
-           coordinates(std::span(centroids).subspan(c * d, d)));
+      fail("size field is {} at cell {} (centroid {}): {}; desired sizes must be positive", problem,
+           view.global_cell[c], coordinates(std::span(centroids).subspan(c * d, d)), description_);
   }
   return v;
 }
