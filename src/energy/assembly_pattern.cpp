@@ -52,6 +52,19 @@ std::vector<PetscInt> colour_cells(const VertexCells& around, PetscInt num_cells
 
 }  // namespace
 
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(const AssemblyPattern& p,
+                                                                      int dim) {
+  const std::size_t rows = p.row_start.size() - 1;
+  std::vector<PetscInt> row_start(rows + 1), column(p.num_entries() / dim);
+  for (std::size_t r = 0; r <= rows; ++r) row_start[r] = p.row_start[r] / dim;
+#pragma omp parallel for schedule(static)
+  for (std::size_t r = 0; r < rows; ++r)
+    for (PetscInt e = p.row_start[r] + static_cast<PetscInt>(r % dim); e < p.row_start[r + 1];
+         e += dim)
+      column[e / dim] = p.column[e];
+  return {std::move(row_start), std::move(column)};
+}
+
 std::optional<AssemblyPattern> make_assembly_pattern(const MeshView& view, const DofMap& dofs) {
   int ranks = 1;
   MPI_Comm_size(dofs.comm(), &ranks);

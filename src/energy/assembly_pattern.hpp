@@ -12,6 +12,7 @@
 #pragma once
 
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "mesh/dof_map.hpp"
@@ -34,6 +35,12 @@ struct AssemblyPattern {
 
   std::size_t num_entries() const { return static_cast<std::size_t>(row_start.back()); }
 };
+
+// The CSR (row starts, columns) of the same rows without the couplings between different
+// components: entry e of the coupled pattern with column ≡ row (mod dim) is entry e / dim here.
+// Needs `column`.
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(const AssemblyPattern& p,
+                                                                      int dim);
 
 // The pattern of a mesh held by one rank, or nothing when the DofMap spans several ranks or
 // does not number a vertex's dofs consecutively (then assembly goes through COO).

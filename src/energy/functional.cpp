@@ -78,11 +78,12 @@ struct Functional::Impl {
   std::size_t num_cell_entries = 0;
   std::vector<PetscInt> owned_fixed_dofs;
 
-  // On one rank: the AIJ pattern, built by the first create_matrix and shared by every matrix
-  // (MatDuplicate with MAT_SHARE_NONZERO_PATTERN), and assembly straight into its values.
+  // On one rank: the AIJ pattern, built by the first create_*matrix and shared by every matrix
+  // of its kind (MatDuplicate with MAT_SHARE_NONZERO_PATTERN), and assembly straight into its
+  // values. Laplacian matrices leave out the couplings between components (all zero).
   mutable std::optional<AssemblyPattern> pattern;
   mutable bool pattern_built = false;
-  mutable OwnedMat pattern_matrix;
+  mutable OwnedMat pattern_matrix[2];  // [coupled]
 
   // Work arrays reused between calls.
   mutable std::vector<double> local_x;
@@ -113,7 +114,8 @@ struct Functional::Impl {
 
   double local_energy() const;
   double local_energy_and_gradient(std::vector<double>& gradient) const;
-  std::vector<PetscInt> coo_indices(bool rows) const;
+  std::vector<PetscInt> coo_indices(bool rows, bool coupled) const;
+  OwnedMat create_matrix(bool coupled) const;
   // Fills coo_values with cell blocks computed by fill(kernel, x, volume, block) -> bool;
   // fails naming the first cell for which fill returned false.
   template <typename Fill>
@@ -185,8 +187,8 @@ double Functional::Impl::local_energy_and_gradient(std::vector<double>& gradient
 }
 
 // Global row (rows = true) or column indices of the COO entries; −1 (ignored by PETSc)
-// where the row or column is a fixed dof.
-std::vector<PetscInt> Functional::Impl::coo_indices(bool rows) const {
+// where the row or column is a fixed dof, or, unless `coupled`, they are different components.
+std::vector<PetscInt> Functional::Impl::coo_indices(bool rows, bool coupled) const {
   const std::vector<PetscInt>& global = dofs.global_dof();
   std::vector<PetscInt> index(num_cell_entries + owned_fixed_dofs.size());
   for (std::size_t b = 0; b < view.blocks.size(); ++b) {
@@ -202,7 +204,9 @@ std::vector<PetscInt> Functional::Impl::coo_indices(bool rows) const {
           const int other = rows ? col : row;
           const PetscInt dof = dofs.dim() * vertex[mine / dofs.dim()] + mine % dofs.dim();
           const PetscInt other_dof = dofs.dim() * vertex[other / dofs.dim()] + other % dofs.dim();
-          *out++ = (is_fixed_dof(dof) || is_fixed_dof(other_dof)) ? -1 : global[dof];
+          const bool dropped = is_fixed_dof(dof) || is_fixed_dof(other_dof) ||
+                               (!coupled && row % dofs.dim() != col % dofs.dim());
+          *out++ = dropped ? -1 : global[dof];
         }
       }
     }
@@ -243,10 +247,16 @@ void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M) const {
     NM_PETSC(MatSetValuesCOO(M, coo_values.data(), INSERT_VALUES));
     return;
   }
+  // The pattern of M: all couplings (create_matrix) or only within components (Laplacian,
+  // 1/d of the entries, at entry / d of the coupled ones).
   const int d = dofs.dim();
+  MatInfo info;
+  NM_PETSC(MatGetInfo(M, MAT_LOCAL, &info));
+  const bool coupled = static_cast<std::size_t>(info.nz_allocated) == pattern->num_entries();
+  const int shrink = coupled ? 1 : d;
   PetscScalar* values = nullptr;
   NM_PETSC(MatSeqAIJGetArrayWrite(M, &values));
-  const std::size_t entries = pattern->num_entries();
+  const std::size_t entries = pattern->num_entries() / shrink;
 #pragma omp parallel for schedule(static)
   for (std::size_t e = 0; e < entries; ++e) values[e] = 0.0;
   PetscInt first_bad = std::numeric_limits<PetscInt>::max();
@@ -273,11 +283,16 @@ void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M) const {
           const PetscInt* vertex = block.cell(c);
           const PetscInt* entry = pattern->block_entry[b].data() + c * n * n;
           for (int vi = 0; vi < n; ++vi) {
-            const PetscInt stride = pattern->row_stride[vertex[vi]];
+            const PetscInt stride = pattern->row_stride[vertex[vi]] / shrink;
             for (int vj = 0; vj < n; ++vj) {
-              PetscScalar* out = values + entry[vi * n + vj];
+              PetscScalar* out = values + entry[vi * n + vj] / shrink;
               for (int a = 0; a < d; ++a) {
                 if (is_fixed_dof(d * vertex[vi] + a)) continue;
+                if (!coupled) {
+                  if (!is_fixed_dof(d * vertex[vj] + a))
+                    out[a * stride] += cell_block(d * vi + a, d * vj + a);
+                  continue;
+                }
                 for (int bb = 0; bb < d; ++bb)
                   if (!is_fixed_dof(d * vertex[vj] + bb))
                     out[a * stride + bb] += cell_block(d * vi + a, d * vj + bb);
@@ -289,7 +304,8 @@ void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M) const {
     });
   }
   for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l)
-    if (is_fixed_dof(l)) values[pattern->diagonal[l]] = 1.0;
+    if (is_fixed_dof(l))
+      values[coupled ? pattern->diagonal[l] : (pattern->diagonal[l] - l % d) / d] = 1.0;
   NM_PETSC(MatSeqAIJRestoreArrayWrite(M, &values));
   if (first_bad != std::numeric_limits<PetscInt>::max()) fail_inverted(what, first_bad);
 }
@@ -379,31 +395,35 @@ double Functional::value_and_gradient(Vec x, Vec gradient) const {
   return sum_over_ranks(local, impl_->dofs.comm());
 }
 
-OwnedMat Functional::create_matrix() const {
-  Impl& r = *impl_;
-  const DofMap& dofs = r.dofs;
-  if (!r.pattern_built) {
-    r.pattern = make_assembly_pattern(r.view, dofs);
-    r.pattern_built = true;
+OwnedMat Functional::Impl::create_matrix(bool coupled) const {
+  if (!pattern_built) {
+    pattern = make_assembly_pattern(view, dofs);
+    pattern_built = true;
   }
   OwnedMat m;
-  if (r.pattern_matrix) {
-    NM_PETSC(MatDuplicate(r.pattern_matrix, MAT_SHARE_NONZERO_PATTERN, m.out()));
+  if (pattern_matrix[coupled]) {
+    NM_PETSC(MatDuplicate(pattern_matrix[coupled], MAT_SHARE_NONZERO_PATTERN, m.out()));
   } else {
     NM_PETSC(MatCreate(dofs.comm(), m.out()));
     NM_PETSC(MatSetSizes(m, dofs.num_owned_dofs(), dofs.num_owned_dofs(), dofs.num_global_dofs(),
                          dofs.num_global_dofs()));
     NM_PETSC(MatSetType(m, MATAIJ));
     NM_PETSC(MatSetBlockSize(m, dofs.dim()));
-    if (r.pattern) {
-      NM_PETSC(MatSeqAIJSetPreallocationCSR(m, r.pattern->row_start.data(),
-                                            r.pattern->column.data(), nullptr));
-      std::vector<PetscInt>().swap(r.pattern->column);  // the matrix has its copy
+    if (pattern) {
+      if (coupled) {
+        NM_PETSC(MatSeqAIJSetPreallocationCSR(m, pattern->row_start.data(), pattern->column.data(),
+                                              nullptr));
+      } else {
+        const auto [row_start, column] = uncoupled_csr(*pattern, dofs.dim());
+        NM_PETSC(MatSeqAIJSetPreallocationCSR(m, row_start.data(), column.data(), nullptr));
+      }
       NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(m.get())));
-      r.pattern_matrix = OwnedMat(m.get());
+      pattern_matrix[coupled] = OwnedMat(m.get());
+      // Every later matrix is a duplicate: the matrices hold the columns from now on.
+      if (pattern_matrix[0] && pattern_matrix[1]) std::vector<PetscInt>().swap(pattern->column);
     } else {
-      std::vector<PetscInt> rows = r.coo_indices(true);
-      std::vector<PetscInt> cols = r.coo_indices(false);
+      std::vector<PetscInt> rows = coo_indices(true, coupled);
+      std::vector<PetscInt> cols = coo_indices(false, coupled);
       NM_PETSC(MatSetPreallocationCOO(m, static_cast<PetscCount>(rows.size()), rows.data(),
                                       cols.data()));
     }
@@ -412,6 +432,14 @@ OwnedMat Functional::create_matrix() const {
   NM_PETSC(MatSetOption(m, MAT_SYMMETRIC, PETSC_TRUE));
   NM_PETSC(MatSetOption(m, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
   return m;
+}
+
+OwnedMat Functional::create_matrix() const {
+  return impl_->create_matrix(true);
+}
+
+OwnedMat Functional::create_laplacian_matrix() const {
+  return impl_->create_matrix(false);
 }
 
 void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {

@@ -73,8 +73,11 @@ class Functional {
   OwnedMat create_matrix() const;
   // H(α) at x into a matrix made by create_matrix (values only; the pattern is reused).
   void assemble_hessian(Vec x, double alpha, Mat H) const;
-  // The Riesz Laplacian into a matrix made by create_matrix. `x` is used only for
-  // RieszLaplacian::CurrentMesh.
+  // A matrix with the sparsity of L only: the vector Laplacian couples no two components, so
+  // it has 1/dim of the entries of create_matrix (cheaper AMG setup and V-cycles).
+  OwnedMat create_laplacian_matrix() const;
+  // The Riesz Laplacian into a matrix made by create_laplacian_matrix or create_matrix. `x` is used
+  // only for RieszLaplacian::CurrentMesh.
   void assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const;
 
   // Per-cell energy, min det G and volume ratio Q at x (MeshView order).

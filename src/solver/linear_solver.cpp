@@ -58,6 +58,10 @@ void LinearSolver::set_operator(Mat A, bool same_values) {
   NM_PETSC(KSPSetReusePreconditioner(ksp_, same_values ? PETSC_TRUE : PETSC_FALSE));
 }
 
+void LinearSolver::setup() {
+  NM_PETSC(KSPSetUp(ksp_));
+}
+
 LinearSolver::Outcome LinearSolver::solve(Vec b, Vec x, double atol) {
   NM_PETSC(KSPSetTolerances(ksp_, rtol_, atol, PETSC_DEFAULT, PETSC_DEFAULT));
   NM_PETSC(VecZeroEntries(x));

@@ -28,6 +28,8 @@ class LinearSolver {
   // Uses `A` for the next solves. With `same_values` the preconditioner (AMG hierarchy,
   // factorization) of the previous operator is kept.
   void set_operator(Mat A, bool same_values);
+  // Builds the preconditioner now (else the next solve does), for timing it on its own.
+  void setup();
 
   struct Outcome {
     bool converged = false;

@@ -1,5 +1,6 @@
 #include "solver/quasi_newton.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -74,6 +75,8 @@ struct QuasiNewton::Impl {
   double alpha = 0.0;
   int k = 0;
   int antigradient_left = 0;
+  int hessian_pc_iterations = 0;  // δ̃ iterations right after the H preconditioner was built
+  int last_delta_iterations = 0;
   std::optional<StopReason> stop;
   PhaseTimes times;
   double start_time = MPI_Wtime();
@@ -86,8 +89,9 @@ struct QuasiNewton::Impl {
         riesz_solver(f.dofs().comm(), o.linear_solver, "riesz_", o.riesz_rtol),
         previous_defect(o.initial_previous_defect),
         alpha(o.alpha0) {
+    Stopwatch watch(times.setup);
     hessian = functional.create_matrix();
-    laplacian = functional.create_matrix();
+    laplacian = functional.create_laplacian_matrix();
     for (OwnedVec* v : {&gradient, &s, &delta_tilde, &delta, &trial, &work, &rhs})
       *v = functional.dofs().create_global_vector();
   }
@@ -104,6 +108,7 @@ struct QuasiNewton::Impl {
     Stopwatch watch(times.riesz_setup);
     functional.assemble_laplacian(options.riesz, x, laplacian);
     riesz_solver.set_operator(laplacian, false);
+    riesz_solver.setup();
   }
 
   // (u, v)_L = uᵀ L v
@@ -119,15 +124,25 @@ struct QuasiNewton::Impl {
       Stopwatch watch(times.hessian_assembly);
       functional.assemble_hessian(x, alpha, hessian);
     }
+    const bool reuse = options.linear_solver == LinearSolverKind::Amg &&
+                       hessian_pc_iterations > 0 &&
+                       last_delta_iterations <= options.hessian_pc_reuse * hessian_pc_iterations;
+    {
+      Stopwatch watch(times.hessian_setup);
+      hessian_solver.set_operator(hessian, reuse);
+      if (!reuse) hessian_solver.setup();
+    }
     LinearSolver::Outcome out;
     {
       Stopwatch watch(times.hessian_solve);
-      hessian_solver.set_operator(hessian, false);
       NM_PETSC(VecAXPBY(rhs, -1.0, 0.0, gradient));
       out = hessian_solver.solve(rhs, delta_tilde, options.hessian_defect_factor * defect);
     }
     rec.delta_solved = true;
     rec.krylov_delta = out.iterations;
+    last_delta_iterations = out.iterations;
+    if (!reuse) hessian_pc_iterations = std::max(1, out.iterations);
+    if (!out.converged) hessian_pc_iterations = 0;  // rebuild next time
     rec.residual_delta = out.residual;
     // Negative curvature: H(α) is not positive definite here. Like Newton-CG methods, keep
     // CG's last iterate (it decreases the quadratic model) and let the angle test judge

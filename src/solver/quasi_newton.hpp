@@ -37,6 +37,10 @@ struct QuasiNewtonOptions {
   double hessian_rtol = 1e-4;           // loose δ̃ solve: 4 digits ...
   double hessian_defect_factor = 1e-3;  // ... or residual ≤ 1e-3 ‖g‖ (thesis §5.2)
   double riesz_rtol = 1e-8;
+  // With amg: keep the AMG hierarchy of an earlier H(α) while the δ̃ solve needs at most this
+  // many times the Krylov iterations it needed when the hierarchy was built (H(α) changes
+  // little between iterations, its setup costs more than a few V-cycles); 0: rebuild always.
+  double hessian_pc_reuse = 2.0;
   RieszLaplacian riesz = RieszLaplacian::OptimalCells;
   // Absolute round-off level of F (MATH.md §4): when the predicted decrease σ·(−gᵀδ) is
   // below it, the Armijo test is decided by noise, so the step is taken as it is. About
@@ -77,9 +81,11 @@ enum class StopReason {
 };
 std::string describe(StopReason reason);
 
+// Wall time per phase, seconds. setup: matrix patterns; *_setup: preconditioner (AMG
+// hierarchy or factorization) of H(α) and of L, the latter including L's assembly.
 struct PhaseTimes {
-  double gradient = 0, hessian_assembly = 0, hessian_solve = 0, riesz_setup = 0, riesz_solve = 0,
-         line_search = 0;
+  double setup = 0, gradient = 0, hessian_assembly = 0, hessian_setup = 0, hessian_solve = 0,
+         riesz_setup = 0, riesz_solve = 0, line_search = 0;
 };
 
 struct QuasiNewtonResult {
