@@ -76,6 +76,11 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "relative tolerance of the loose quasi-Newton solve")
       ->capture_default_str()
       ->group(linear);
+  cmd.add_option("--hess-pc-reuse", o.solver.hessian_pc_reuse,
+                 "amg: keep the AMG hierarchy of H(alpha) while the solve needs at most this "
+                 "many times the iterations it needed when built (0: rebuild every iteration)")
+      ->capture_default_str()
+      ->group(linear);
   cmd.add_option("--riesz-rtol", o.solver.riesz_rtol, "relative tolerance of the Riesz solve")
       ->capture_default_str()
       ->group(linear);
@@ -108,6 +113,8 @@ void finalize(MethodOptions& o) {
   if (!(o.solver.defect_rtol >= 0)) fail("--rtol must be 0 or more (got {})", o.solver.defect_rtol);
   if (!(o.solver.hessian_rtol > 0 && o.solver.hessian_rtol < 1))
     fail("--hess-rtol must be in (0, 1) (got {})", o.solver.hessian_rtol);
+  if (!(o.solver.hessian_pc_reuse >= 0))
+    fail("--hess-pc-reuse must be 0 or more (got {})", o.solver.hessian_pc_reuse);
   if (!(o.solver.riesz_rtol > 0 && o.solver.riesz_rtol < 1))
     fail("--riesz-rtol must be in (0, 1) (got {})", o.solver.riesz_rtol);
   o.solver.linear_solver = parse_linear_solver(o.linear_solver);

@@ -1,6 +1,7 @@
 #include "app/optimization.hpp"
 
 #include <mpi.h>
+#include <sys/resource.h>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -23,8 +24,29 @@ void check_output_path(const std::filesystem::path& input, const std::filesystem
   check_writable(output);  // fail now, not after a long run
 }
 
+namespace {
+
+struct PeakMemory {
+  double max_rank_mib = 0.0, sum_mib = 0.0;
+};
+
+// Peak resident set size of this process (getrusage), the largest and the sum over ranks.
+PeakMemory peak_memory(MPI_Comm comm) {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const double mine = static_cast<double>(usage.ru_maxrss) / 1024.0;  // KiB on Linux
+  PeakMemory m;
+  MPI_Allreduce(&mine, &m.max_rank_mib, 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(&mine, &m.sum_mib, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return m;
+}
+
+}  // namespace
+
 struct OptimizationRun::Impl {
   MethodOptions& method;
+  double start = MPI_Wtime();  // before the mesh is read
+  double read_seconds = 0.0, prepare_seconds = 0.0;
   Mesh mesh;
   OwnedVec x;
   std::vector<double> input_volumes;
@@ -32,10 +54,10 @@ struct OptimizationRun::Impl {
   QualitySummary quality_before;
   std::unique_ptr<Functional> functional;
   OwnedVec cell_size;
-  double start = MPI_Wtime();
 
   Impl(const std::filesystem::path& input, MethodOptions& m)
       : method(m), mesh(load(input)), x(mesh.coordinates()) {
+    read_seconds = MPI_Wtime() - start;
     const MeshView& view = mesh.view();
     const CellQuality quality = cell_quality(view, view.coords);
     quality_before = summarize(quality, mesh.comm());
@@ -52,6 +74,7 @@ struct OptimizationRun::Impl {
         view, mesh.dofs(), method.energy,
         FixedDofs{fixed_dofs(view, mesh.dofs(), method.boundary_mode)});
     method.solver.energy_roundoff = energy_roundoff(method.energy, view.dim, mesh_volume);
+    prepare_seconds = MPI_Wtime() - start - read_seconds;
   }
 
   static Mesh load(const std::filesystem::path& input) {
@@ -216,21 +239,33 @@ void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesys
   say("\nquality before:\n{}\nquality after:\n{}\n", format_table(r.quality_before),
       format_table(after));
 
+  const double write_start = MPI_Wtime();
   write_mesh(r.mesh, output, r.output_fields(quality));
+  const double write_seconds = MPI_Wtime() - write_start;
   always("wrote {} ({:.2f} s)\n", output.string(), MPI_Wtime() - r.start);
 
   if (!report.empty()) {
+    double free = 0.0;
+    NM_PETSC(VecSum(r.functional->free_mask(), &free));
+    const PeakMemory memory = peak_memory(r.mesh.comm());
     nlohmann::json json = {{"input", r.mesh.source()},
                            {"output", output.string()},
                            {"processes", mpi_size(r.mesh.comm())},
                            {"cells", r.mesh.global_num_cells()},
                            {"vertices", r.mesh.global_num_vertices()},
+                           {"free_dofs", static_cast<std::int64_t>(free)},
                            {"energy_options", to_json(r.method.energy)},
                            {"solver_options", to_json(r.method.solver)},
                            {"boundary", std::string(name(r.method.boundary_mode))},
                            {"result", to_json(result)},
                            {"quality_before", to_json(r.quality_before)},
                            {"quality_after", to_json(after)},
+                           {"times",
+                            {{"read", r.read_seconds},
+                             {"prepare", r.prepare_seconds},
+                             {"write", write_seconds}}},
+                           {"peak_rss_mib", memory.max_rank_mib},
+                           {"peak_rss_mib_all_ranks", memory.sum_mib},
                            {"seconds", MPI_Wtime() - r.start}};
     if (extra.is_object()) json.update(extra);
     write_json(json, report);

@@ -8,7 +8,9 @@ namespace neomesh {
 namespace {
 // JSON has no infinity; an infinite or NaN value (which a finished run never reports,
 // but a failed line search might) becomes null.
-nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nullptr; }
+nlohmann::json number(double x) {
+  return std::isfinite(x) ? nlohmann::json(x) : nullptr;
+}
 }  // namespace
 
 nlohmann::json to_json(const IterationRecord& r) {
@@ -32,9 +34,14 @@ nlohmann::json to_json(const IterationRecord& r) {
 }
 
 nlohmann::json to_json(const PhaseTimes& t) {
-  return {{"gradient", t.gradient},           {"hessian_assembly", t.hessian_assembly},
-          {"hessian_solve", t.hessian_solve}, {"riesz_setup", t.riesz_setup},
-          {"riesz_solve", t.riesz_solve},     {"line_search", t.line_search}};
+  return {{"setup", t.setup},
+          {"gradient", t.gradient},
+          {"hessian_assembly", t.hessian_assembly},
+          {"hessian_setup", t.hessian_setup},
+          {"hessian_solve", t.hessian_solve},
+          {"riesz_setup", t.riesz_setup},
+          {"riesz_solve", t.riesz_solve},
+          {"line_search", t.line_search}};
 }
 
 nlohmann::json to_json(const QuasiNewtonOptions& o) {
@@ -54,6 +61,7 @@ nlohmann::json to_json(const QuasiNewtonOptions& o) {
           {"hessian_rtol", o.hessian_rtol},
           {"hessian_defect_factor", o.hessian_defect_factor},
           {"riesz_rtol", o.riesz_rtol},
+          {"hessian_pc_reuse", o.hessian_pc_reuse},
           {"riesz_laplacian",
            o.riesz == RieszLaplacian::OptimalCells ? "optimal-cells" : "current-mesh"}};
 }
