@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "app/subcommand.hpp"
 #include "core/error.hpp"
@@ -30,6 +31,7 @@ struct GenerateOptions {
   double rotate_degrees = 0.0;
   unsigned seed = 1;
   double amplitude = 0.2;
+  double jitter = 0.0;
   std::string output;
 };
 
@@ -99,10 +101,15 @@ void run_generate(const GenerateOptions& o) {
   const int size = size_of(c, o);
   if (!(o.amplitude >= 0.0 && o.amplitude < 0.25))
     fail("generate: --amplitude must be in [0, 0.25) (got {})", o.amplitude);
+  const bool is_box = std::string_view(c.name).starts_with("box-");
+  if (o.jitter != 0.0 && !is_box) fail("generate {}: --jitter applies to the box cases", c.name);
+  if (!(o.jitter >= 0.0 && o.jitter < 0.25))
+    fail("generate: --jitter must be in [0, 0.25) (got {})", o.jitter);
   // The mesh is built on rank 0; Mesh::from_data distributes it.
   MeshData data;
   if (is_root_rank()) {
     data = c.make(size, o);
+    if (o.jitter > 0.0) jitter(data, 2.0 / size, o.jitter, o.seed);  // boxes are [-1,1]^d
     if (o.rotate_degrees != 0.0) rotate(data, o.rotate_degrees);
   }
   const CellType type = data.cell_type;
@@ -140,10 +147,15 @@ Subcommand add_generate(CLI::App& app) {
   cmd->add_option("--rotate", options->rotate_degrees,
                   "rotate counter-clockwise about the origin (2D) / the z axis (3D), degrees")
       ->capture_default_str();
-  cmd->add_option("--seed", options->seed, "random seed (square-random, triangle-equilateral)")
+  cmd->add_option("--seed", options->seed,
+                  "random seed (square-random, triangle-equilateral, --jitter)")
       ->capture_default_str();
   cmd->add_option("--amplitude", options->amplitude,
                   "square-random: largest displacement per coordinate, in cell widths, < 0.25")
+      ->capture_default_str();
+  cmd->add_option("--jitter", options->jitter,
+                  "box cases: displace interior vertices by up to this many cell widths per "
+                  "coordinate, at random, < 0.25 (tets and hexes may invert near 0.25)")
       ->capture_default_str();
   cmd->add_option("-o,--output", options->output, "output file (.msh or .vtu)")->required();
   return {cmd, [options] { run_generate(*options); }};

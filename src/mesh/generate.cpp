@@ -169,20 +169,11 @@ MeshData cube_midpoint(int cells_per_direction) {
 }
 
 MeshData square_random(int cells_per_direction, double amplitude, unsigned seed) {
-  // Corner Jacobians stay positive while every edge vector is off by less than h/2.
-  if (!(amplitude >= 0.0 && amplitude < 0.25))
-    fail("the random displacement amplitude must be in [0, 0.25) (got {})", amplitude);
   const int n = cells_per_direction;
   MeshData mesh = lattice_mesh(2, n, [n](const Index& ijk, double* x) {
     for (int d = 0; d < 2; ++d) x[d] = static_cast<double>(ijk[d]) / n;
   });
-  std::mt19937 random(seed);
-  const double h = 1.0 / n;
-  for (int j = 1; j < n; ++j)
-    for (int i = 1; i < n; ++i)
-      for (int d = 0; d < 2; ++d)
-        mesh.coords[2 * lattice_vertex(2, n, {i, j, 0}) + d] +=
-            amplitude * h * (2.0 * uniform01(random) - 1.0);
+  jitter(mesh, 1.0 / n, amplitude, seed);
   return mesh;
 }
 
@@ -193,6 +184,20 @@ MeshData box(CellType type, int cells_per_direction) {
   });
   if (is_simplex(type)) split_into_simplices(mesh);
   return mesh;
+}
+
+void jitter(MeshData& mesh, double h, double amplitude, unsigned seed) {
+  // Corner Jacobians of quads and triangles stay positive while every edge vector is off by
+  // less than h/2.
+  if (!(amplitude >= 0.0 && amplitude < 0.25))
+    fail("the random displacement amplitude must be in [0, 0.25) (got {})", amplitude);
+  const std::vector<std::uint8_t> on_boundary = boundary_vertices(mesh);
+  std::mt19937 random(seed);
+  for (std::int64_t v = 0; v < mesh.num_vertices(); ++v) {
+    if (on_boundary[v]) continue;
+    for (int d = 0; d < mesh.dim; ++d)
+      mesh.coords[mesh.dim * v + d] += amplitude * h * (2.0 * uniform01(random) - 1.0);
+  }
 }
 
 void rotate(MeshData& mesh, double degrees) {

@@ -60,6 +60,12 @@ MeshData triangle_curved(int refinements);
 // tets around its diagonal from (-,-,-) to (+,+,+), so neighbouring cubes' faces match).
 MeshData box(CellType type, int cells_per_direction);
 
+// Displaces every interior vertex (not on boundary_vertices()) by up to amplitude·h in each
+// coordinate, uniformly at random, in vertex order; deterministic for a seed on every
+// platform. For lattice meshes of spacing h, 0 ≤ amplitude < 1/4 keeps quads and triangles
+// valid; tets and hexes can invert near 1/4.
+void jitter(MeshData& mesh, double h, double amplitude, unsigned seed);
+
 // Rotates the mesh counter-clockwise about the origin (2D) or the z axis (3D).
 void rotate(MeshData& mesh, double degrees);
 

@@ -178,6 +178,32 @@ TEST(SquareRandom, IsDeterministicPerSeed) {
   EXPECT_THROW(square_random(8, 0.25, 1), Error);
 }
 
+TEST(Jitter, MovesInteriorVerticesOfEveryCellTypeWithinTheAmplitude) {
+  const int n = 6;
+  const double amplitude = 0.24, h = 2.0 / n;
+  for (CellType type :
+       {CellType::Triangle, CellType::Quadrilateral, CellType::Tetrahedron, CellType::Hexahedron}) {
+    const MeshData grid = box(type, n);
+    MeshData m = grid;
+    jitter(m, h, amplitude, 3);
+    const auto on_boundary = boundary_vertices(grid);
+    int moved = 0;
+    for (std::int64_t v = 0; v < m.num_vertices(); ++v)
+      for (int d = 0; d < m.dim; ++d) {
+        const double shift = std::abs(coord(m, v, d) - coord(grid, v, d));
+        EXPECT_LE(shift, on_boundary[v] ? 0.0 : amplitude * h) << name(type);
+        moved += shift > 0.0;
+      }
+    EXPECT_GT(moved, m.dim * std::pow(n - 1, m.dim) / 2) << name(type);
+    if (m.dim == 2) EXPECT_GT(min_corner_det(m), 0.0) << name(type);
+  }
+  // square_random is the unit-square lattice jittered in the same vertex order.
+  MeshData unit = box(CellType::Quadrilateral, 4);
+  for (double& x : unit.coords) x = (x + 1.0) / 2.0;
+  jitter(unit, 0.25, 0.2, 9);
+  EXPECT_EQ(unit.coords, square_random(4, 0.2, 9).coords);
+}
+
 TEST(Transition, OneQuadRefinedIntoFiveThenUniformly) {
   for (int r = 0; r <= 3; ++r) EXPECT_EQ(transition(r).num_cells(), 5 << (2 * r));
   const MeshData m = transition(2);
