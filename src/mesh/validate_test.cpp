@@ -42,7 +42,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(BadInput{"no_such_file.msh", "no such file"},
                       BadInput{"geo", "is a directory"},
                       BadInput{"geo/square_tri.geo", "unknown mesh format"},
-                      BadInput{"bad_empty.msh", "not a valid Gmsh mesh file"},
+                      BadInput{"bad_empty.msh", "the file is empty"},
                       BadInput{"bad_garbage.msh", "not a valid Gmsh mesh file"},
                       BadInput{"bad_truncated.msh", "not a valid Gmsh mesh file"},
                       BadInput{"bad_nan.msh", "vertex 5 (0-based) has a non-finite coordinate"},
