@@ -37,23 +37,56 @@ void add_facets(CellType type, const PetscInt* cell, std::vector<Facet>& facets)
   }
 }
 
-// Facets of exactly one local cell whose vertices all lie on the boundary. Across ranks a
-// facet between two ranks' cells also appears once; if all its vertices are on the boundary
-// it is taken as a boundary facet, which can only fix more coordinates, never fewer.
-std::vector<Facet> boundary_facets(const MeshView& view) {
+// Facets of exactly one cell whose vertices all lie on the boundary. A facet between two
+// ranks' cells appears once on each rank: the candidates of all ranks are compared by their
+// global vertex numbers, and only those that appear once in the whole mesh are kept.
+std::vector<Facet> boundary_facets(const MeshView& view, const DofMap& dofs) {
   std::vector<Facet> facets;
   for (const CellBlock& block : view.blocks)
     for (PetscInt c = 0; c < block.size(); ++c) add_facets(block.type, block.cell(c), facets);
   std::sort(facets.begin(), facets.end());
-  std::vector<Facet> boundary;
+  std::vector<Facet> candidates;
   for (std::size_t i = 0; i < facets.size();) {
     std::size_t j = i + 1;
     while (j < facets.size() && facets[j] == facets[i]) ++j;
     const bool on_boundary = std::all_of(facets[i].begin(), facets[i].end(), [&](PetscInt v) {
       return v == kNone || view.on_boundary[v];
     });
-    if (j == i + 1 && on_boundary) boundary.push_back(facets[i]);
+    if (j == i + 1 && on_boundary) candidates.push_back(facets[i]);
     i = j;
+  }
+
+  auto global_key = [&](const Facet& f) {
+    Facet key;
+    for (int i = 0; i < 4; ++i)
+      key[i] = f[i] == kNone ? kNone : dofs.global_dof()[f[i] * view.dim] / view.dim;
+    std::sort(key.begin(), key.end());
+    return key;
+  };
+  std::vector<PetscInt> mine;
+  for (const Facet& f : candidates) {
+    const Facet key = global_key(f);
+    mine.insert(mine.end(), key.begin(), key.end());
+  }
+  int ranks = 1;
+  MPI_Comm_size(dofs.comm(), &ranks);
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(ranks), offsets(ranks, 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, dofs.comm());
+  for (int r = 1; r < ranks; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<PetscInt> all(static_cast<std::size_t>(offsets.back() + counts.back()));
+  MPI_Allgatherv(mine.data(), count, MPIU_INT, all.data(), counts.data(), offsets.data(), MPIU_INT,
+                 dofs.comm());
+  std::vector<Facet> everywhere(all.size() / 4);
+  for (std::size_t i = 0; i < everywhere.size(); ++i)
+    std::copy_n(all.begin() + 4 * i, 4, everywhere[i].begin());
+  std::sort(everywhere.begin(), everywhere.end());
+
+  std::vector<Facet> boundary;
+  for (const Facet& f : candidates) {
+    const auto [first, last] =
+        std::equal_range(everywhere.begin(), everywhere.end(), global_key(f));
+    if (last - first == 1) boundary.push_back(f);
   }
   return boundary;
 }
@@ -94,7 +127,7 @@ std::vector<std::uint8_t> fixed_dofs(const MeshView& view, const DofMap& dofs, B
     for (PetscInt v = 0; v < view.num_vertices; ++v)
       if (view.on_boundary[v]) std::fill_n(fixed.begin() + v * d, d, 1.0);
   } else {
-    for (const Facet& facet : boundary_facets(view)) {
+    for (const Facet& facet : boundary_facets(view, dofs)) {
       const int axis = normal_axis(view, facet);
       for (PetscInt v : facet) {
         if (v == kNone) break;
