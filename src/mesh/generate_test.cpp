@@ -195,7 +195,9 @@ TEST(Jitter, MovesInteriorVerticesOfEveryCellTypeWithinTheAmplitude) {
         moved += shift > 0.0;
       }
     EXPECT_GT(moved, m.dim * std::pow(n - 1, m.dim) / 2) << name(type);
-    if (m.dim == 2) EXPECT_GT(min_corner_det(m), 0.0) << name(type);
+    if (m.dim == 2) {
+      EXPECT_GT(min_corner_det(m), 0.0) << name(type);
+    }
   }
   // square_random is the unit-square lattice jittered in the same vertex order.
   MeshData unit = box(CellType::Quadrilateral, 4);
