@@ -1,7 +1,9 @@
 #include "app/optimization.hpp"
 
 #include <mpi.h>
+#include <omp.h>
 #include <sys/resource.h>
+#include <cstdlib>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -41,6 +43,18 @@ PeakMemory peak_memory(MPI_Comm comm) {
   return m;
 }
 
+// Unless OMP_NUM_THREADS says otherwise, the ranks on a node share its cores: P ranks times
+// T threads must not oversubscribe them (each rank would start one thread per core).
+void share_cores(MPI_Comm comm) {
+  if (std::getenv("OMP_NUM_THREADS")) return;
+  MPI_Comm node = MPI_COMM_NULL;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int ranks = 1;
+  MPI_Comm_size(node, &ranks);
+  MPI_Comm_free(&node);
+  omp_set_num_threads(std::max(1, omp_get_num_procs() / ranks));
+}
+
 }  // namespace
 
 struct OptimizationRun::Impl {
@@ -58,6 +72,7 @@ struct OptimizationRun::Impl {
   Impl(const std::filesystem::path& input, MethodOptions& m)
       : method(m), mesh(load(input)), x(mesh.coordinates()) {
     read_seconds = MPI_Wtime() - start;
+    share_cores(mesh.comm());
     const MeshView& view = mesh.view();
     const CellQuality quality = cell_quality(view, view.coords);
     quality_before = summarize(quality, mesh.comm());
@@ -248,25 +263,24 @@ void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesys
     double free = 0.0;
     NM_PETSC(VecSum(r.functional->free_mask(), &free));
     const PeakMemory memory = peak_memory(r.mesh.comm());
-    nlohmann::json json = {{"input", r.mesh.source()},
-                           {"output", output.string()},
-                           {"processes", mpi_size(r.mesh.comm())},
-                           {"cells", r.mesh.global_num_cells()},
-                           {"vertices", r.mesh.global_num_vertices()},
-                           {"free_dofs", static_cast<std::int64_t>(free)},
-                           {"energy_options", to_json(r.method.energy)},
-                           {"solver_options", to_json(r.method.solver)},
-                           {"boundary", std::string(name(r.method.boundary_mode))},
-                           {"result", to_json(result)},
-                           {"quality_before", to_json(r.quality_before)},
-                           {"quality_after", to_json(after)},
-                           {"times",
-                            {{"read", r.read_seconds},
-                             {"prepare", r.prepare_seconds},
-                             {"write", write_seconds}}},
-                           {"peak_rss_mib", memory.max_rank_mib},
-                           {"peak_rss_mib_all_ranks", memory.sum_mib},
-                           {"seconds", MPI_Wtime() - r.start}};
+    nlohmann::json json = {
+        {"input", r.mesh.source()},
+        {"output", output.string()},
+        {"processes", mpi_size(r.mesh.comm())},
+        {"cells", r.mesh.global_num_cells()},
+        {"vertices", r.mesh.global_num_vertices()},
+        {"free_dofs", static_cast<std::int64_t>(free)},
+        {"energy_options", to_json(r.method.energy)},
+        {"solver_options", to_json(r.method.solver)},
+        {"boundary", std::string(name(r.method.boundary_mode))},
+        {"result", to_json(result)},
+        {"quality_before", to_json(r.quality_before)},
+        {"quality_after", to_json(after)},
+        {"times",
+         {{"read", r.read_seconds}, {"prepare", r.prepare_seconds}, {"write", write_seconds}}},
+        {"peak_rss_mib", memory.max_rank_mib},
+        {"peak_rss_mib_all_ranks", memory.sum_mib},
+        {"seconds", MPI_Wtime() - r.start}};
     if (extra.is_object()) json.update(extra);
     write_json(json, report);
   }
