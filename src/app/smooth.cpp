@@ -11,6 +11,7 @@
 #include "core/log.hpp"
 #include "report/canvas.hpp"
 #include "solver/desired_volumes.hpp"
+#include "solver/quality_guard.hpp"
 
 namespace neomesh::app {
 
@@ -18,9 +19,27 @@ namespace {
 
 struct SmoothOptions {
   std::string input, output, report, plot_history, sizes = "smoothed";
-  bool force = false, no_table = false;
+  bool force = false, no_table = false, no_guard = false;
   MethodOptions method;
 };
+
+// The quality guard (solver/quality_guard.hpp): no cell of the output worse than the input's
+// worst. Returns its record for the JSON report; F in `result` is updated if it moved vertices.
+nlohmann::json apply_quality_guard(OptimizationRun& run, Vec input, QuasiNewtonResult& result) {
+  const QualityGuardResult guard = guard_worst_quality(run.view(), run.dofs(), input, run.x());
+  if (guard.vertices_moved > 0) {
+    result.final_energy = run.functional().value(run.x());
+    say("quality guard: {} vertices pulled back toward the input so that no cell is worse than "
+        "the input's worst (min scaled Jacobian {:.4f} -> {:.4f}; input {:.4f})\n",
+        guard.vertices_moved, guard.min_before, guard.min_after, guard.input_min);
+  }
+  return {{"quality_guard",
+           {{"input_min_scaled_jacobian", guard.input_min},
+            {"min_scaled_jacobian_before", guard.min_before},
+            {"min_scaled_jacobian_after", guard.min_after},
+            {"vertices_moved", guard.vertices_moved},
+            {"rounds", guard.rounds}}}};
+}
 
 void smooth(SmoothOptions& o) {
   finalize(o.method);
@@ -33,9 +52,14 @@ void smooth(SmoothOptions& o) {
   OptimizationRun run(o.input, o.method);
   run.set_desired_volumes(desired_volumes(sizes, run.view(), run.dofs(), run.input_volumes()));
   run.print_problem();
-  const QuasiNewtonResult result = minimize(run.functional(), run.x(), o.method.solver,
-                                            run.cell_size(), run.table_printer(o.no_table));
-  run.finish(result, o.output, o.report, o.plot_history);
+  OwnedVec input;
+  NM_PETSC(VecDuplicate(run.x(), input.out()));
+  NM_PETSC(VecCopy(run.x(), input));
+  QuasiNewtonResult result = minimize(run.functional(), run.x(), o.method.solver, run.cell_size(),
+                                      run.table_printer(o.no_table));
+  const bool guard = !(o.no_guard || o.method.thesis);
+  run.finish(result, o.output, o.report, o.plot_history,
+             guard ? apply_quality_guard(run, input, result) : nlohmann::json{});
 }
 
 }  // namespace
@@ -51,6 +75,10 @@ Subcommand add_smooth(CLI::App& app) {
   cmd->add_option("-o,--output", o->output, "smoothed mesh (.vtu with quality fields, or .msh)")
       ->required();
   cmd->add_flag("--force", o->force, "allow the output to overwrite the input file (default: off)");
+  cmd->add_flag("--no-guard", o->no_guard,
+                "keep the energy's optimum even where a cell ends up worse than the input's worst "
+                "cell (default: off, i.e. such cells' vertices are pulled back; --thesis implies "
+                "it)");
   cmd->add_option("--sizes", o->sizes,
                   "desired cell volumes: smoothed (input volumes averaged over neighbours: keeps "
                   "the grading), input (each cell's own volume) or uniform (all equal, the thesis)")

@@ -1,0 +1,72 @@
+#include "solver/quality_guard.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "geometry/quality.hpp"
+
+namespace neomesh {
+
+namespace {
+
+// After this many halvings (displacement / 2^20) the marked vertices are reset to their
+// input positions, which restores the input's cells exactly.
+constexpr int kHalvings = 20;
+
+double global_min(const std::vector<double>& values, MPI_Comm comm) {
+  double local = std::numeric_limits<double>::infinity(), result = 0.0;
+  for (double v : values) local = std::min(local, v);
+  MPI_Allreduce(&local, &result, 1, MPI_DOUBLE, MPI_MIN, comm);
+  return result;
+}
+
+std::vector<double> scaled_jacobians(const MeshView& view, const DofMap& dofs, Vec x) {
+  std::vector<double> local(dofs.num_local_dofs());
+  dofs.global_to_local(x, local);
+  return cell_quality(view, local).scaled_jacobian;
+}
+
+}  // namespace
+
+QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs, Vec input, Vec x) {
+  QualityGuardResult result;
+  result.input_min = global_min(scaled_jacobians(view, dofs, input), dofs.comm());
+  OwnedVec marked = dofs.create_global_vector(), ever_marked = dofs.create_global_vector();
+  std::vector<double> local_marks(dofs.num_local_dofs());
+  const int d = view.dim;
+
+  for (int round = 0;; ++round) {
+    const std::vector<double> sj = scaled_jacobians(view, dofs, x);
+    if (round == 0) result.min_before = global_min(sj, dofs.comm());
+    result.min_after = global_min(sj, dofs.comm());
+    if (result.min_after >= result.input_min || round > kHalvings) break;
+    result.rounds = round + 1;
+
+    // Mark every coordinate of every vertex of a cell below the threshold (on any rank).
+    std::fill(local_marks.begin(), local_marks.end(), 0.0);
+    for (const CellBlock& block : view.blocks)
+      for (PetscInt c = 0; c < block.size(); ++c) {
+        if (!(sj[block.first_cell + c] < result.input_min)) continue;
+        for (int i = 0; i < num_vertices(block.type); ++i)
+          for (int j = 0; j < d; ++j) local_marks[block.cell(c)[i] * d + j] = 1.0;
+      }
+    NM_PETSC(VecZeroEntries(marked));
+    dofs.add_local_to_global(local_marks, marked);
+
+    // x ← input + ½ (x − input) on marked coordinates; input itself after the last round.
+    const double keep = round == kHalvings ? 0.0 : 0.5;
+    VecReadView x0(input), m(marked);
+    VecWriteView xv(x), ever(ever_marked);
+    for (PetscInt i = 0; i < xv.size(); ++i) {
+      if (m[i] == 0.0 || xv[i] == x0[i]) continue;
+      xv[i] = x0[i] + keep * (xv[i] - x0[i]);
+      ever[i] = 1.0;
+    }
+  }
+  double moved_dofs = 0.0;
+  NM_PETSC(VecSum(ever_marked, &moved_dofs));
+  result.vertices_moved = static_cast<PetscInt>(moved_dofs) / d;
+  return result;
+}
+
+}  // namespace neomesh
