@@ -11,8 +11,10 @@
 #include "app/method_options.hpp"
 #include "app/optimization.hpp"
 #include "app/subcommand.hpp"
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "report/canvas.hpp"
 
 namespace neomesh::app {
 
@@ -25,6 +27,7 @@ struct AdaptOptions {
   SizeFieldOptions sizes;
   PicardOptions picard;
   MethodOptions method;
+  PictureOptions pictures;
 };
 
 SizeField make_size_field(const AdaptOptions& o) {
@@ -87,18 +90,27 @@ void adapt(AdaptOptions& o) {
   check(o);
   const SizeField field = make_size_field(o);
   check_output_path(o.input, o.output, o.force);
+  // Every output is checked before the run, so that a typo does not cost a long run.
+  if (!o.report.empty()) check_writable(o.report);
+  if (!o.plot_history.empty()) picture_format(o.plot_history), check_writable(o.plot_history);
+  check_picture_options(o.pictures);
 
   OptimizationRun run(o.input, o.method);
   say("size field: {}\n", field.description());
   run.print_problem();
+  const auto target_volumes =
+      size_field_volumes(field, o.sizes, run.view(), run.dofs(), run.mesh_volume());
+  if (!o.pictures.before.empty()) {
+    run.set_desired_volumes(target_volumes(run.x()));
+    run.draw(o.pictures.before, o.pictures.field, "input: " + o.input);
+  }
   const auto table = run.table_printer(o.no_table);
   PicardObserver observe{.iteration = table, .update = [](int k, int update) {
                            say("  -- desired volumes updated after iteration {} (update {})\n", k,
                                update);
                          }};
   const PicardResult result = picard(
-      run.functional(), run.view(), run.x(),
-      size_field_volumes(field, o.sizes, run.view(), run.dofs(), run.mesh_volume()),
+      run.functional(), run.view(), run.x(), target_volumes,
       [&run](const std::vector<double>& v) { run.set_desired_volumes(v); }, o.picard,
       o.method.solver, observe);
 
@@ -124,6 +136,8 @@ void adapt(AdaptOptions& o) {
                 {"relaxation", o.picard.relaxation},
                 {"update_iterations", result.update_iterations}}},
               {"volume_ratio", to_json(q)}});
+  if (!o.pictures.after.empty())
+    run.draw(o.pictures.after, o.pictures.field, "adapted: " + o.output);
 }
 
 }  // namespace
@@ -212,6 +226,7 @@ Subcommand add_adapt(CLI::App& app) {
                   "draw the Newton defect and F per iteration (.png or .svg)");
   cmd->add_flag("--no-table", o->no_table,
                 "one progress line per iteration instead of the iteration table");
+  add_picture_options(*cmd, o->pictures, "Q");
   add_method_options(*cmd, o->method);
   return {cmd, [o] { adapt(*o); }};
 }

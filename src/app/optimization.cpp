@@ -10,8 +10,10 @@
 #include "core/log.hpp"
 #include "geometry/quality.hpp"
 #include "mesh/mesh_io.hpp"
+#include "report/canvas.hpp"
 #include "report/history_plot.hpp"
 #include "report/iteration_table.hpp"
+#include "report/render.hpp"
 #include "report/run_report.hpp"
 
 namespace neomesh::app {
@@ -97,6 +99,11 @@ struct OptimizationRun::Impl {
     say("reading {}{} ...\n", input.string(),
         ranks > 1 ? fmt::format(" and distributing it over {} processes", ranks) : "");
     return Mesh::load(input);
+  }
+
+  // At the current coordinates (view.coords and x agree before the run and after finish()).
+  MeshFields output_fields() const {
+    return output_fields(cell_quality(mesh.view(), mesh.view().coords));
   }
 
   MeshFields output_fields(const CellQuality& quality) const {
@@ -229,6 +236,44 @@ std::function<void(const IterationRecord&)> OptimizationRun::table_printer(
     }
     print_solver_details(rec);
   };
+}
+
+namespace {
+const std::vector<std::string> kPictureFields = {"Q",         "energy",         "scaled_jacobian",
+                                                 "min_angle", "max_angle",      "edge_ratio",
+                                                 "volume",    "desired_volume", "det_G_min"};
+}
+
+void add_picture_options(CLI::App& cmd, PictureOptions& o, const std::string& field) {
+  o.field = field;
+  cmd.add_option(
+      "--picture-before", o.before,
+      "2D: draw the input mesh coloured by --picture-field (.png or .svg; default: none)");
+  cmd.add_option("--picture", o.after,
+                 "2D: draw the result coloured by --picture-field (.png or .svg; default: none)");
+  cmd.add_option("--picture-field", o.field, "cell field the pictures are coloured by")
+      ->check(CLI::IsMember(kPictureFields))
+      ->capture_default_str();
+}
+
+void check_picture_options(const PictureOptions& o) {
+  for (const std::string& path : {o.before, o.after})
+    if (!path.empty()) picture_format(path), check_writable(path);
+}
+
+void OptimizationRun::draw(const std::filesystem::path& path, const std::string& field,
+                           const std::string& title) const {
+  const MeshFields fields = impl_->output_fields();
+  for (const Field& f : fields.cell)
+    if (f.name == field) {
+      RenderOptions options;
+      options.title = title;
+      options.field_name = field;
+      render_mesh(impl_->mesh, f.values, path, options);
+      always("wrote {}\n", path.string());
+      return;
+    }
+  fail("--picture-field: unknown field '{}'", field);
 }
 
 void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesystem::path& output,

@@ -24,6 +24,17 @@ namespace neomesh::app {
 void check_output_path(const std::filesystem::path& input, const std::filesystem::path& output,
                        bool force);
 
+// Pictures of a 2D run (--picture-before / --picture), coloured by one of the output's cell
+// fields. Q and the energy need the run's desired volumes, which a mesh file does not keep,
+// so the run draws them itself.
+struct PictureOptions {
+  std::string before, after;  // .png or .svg; empty: none
+  std::string field;
+};
+void add_picture_options(CLI::App& cmd, PictureOptions& options, const std::string& field);
+// Throws Error for an unknown field or an unwritable/unknown-format path, before the run.
+void check_picture_options(const PictureOptions& options);
+
 class OptimizationRun {
  public:
   OptimizationRun(const std::filesystem::path& input, MethodOptions& method);
@@ -42,6 +53,9 @@ class OptimizationRun {
   Vec cell_size() const;  // local cell size per dof, for the practical criterion
 
   void print_problem() const;
+  // Draws the mesh at its current coordinates coloured by `field` (an output cell field).
+  void draw(const std::filesystem::path& path, const std::string& field,
+            const std::string& title) const;
   // Observer for minimize(): the iteration table (or progress lines with `progress_only`).
   std::function<void(const IterationRecord&)> table_printer(bool progress_only) const;
 

@@ -21,6 +21,7 @@ struct SmoothOptions {
   std::string input, output, report, plot_history, sizes = "smoothed";
   bool force = false, no_table = false, no_guard = false;
   MethodOptions method;
+  PictureOptions pictures;
 };
 
 // The quality guard (solver/quality_guard.hpp): no cell of the output worse than the input's
@@ -48,10 +49,13 @@ void smooth(SmoothOptions& o) {
   // Every output is checked before the run, so that a typo does not cost a long run.
   if (!o.report.empty()) check_writable(o.report);
   if (!o.plot_history.empty()) picture_format(o.plot_history), check_writable(o.plot_history);
+  check_picture_options(o.pictures);
 
   OptimizationRun run(o.input, o.method);
   run.set_desired_volumes(desired_volumes(sizes, run.view(), run.dofs(), run.input_volumes()));
   run.print_problem();
+  if (!o.pictures.before.empty())
+    run.draw(o.pictures.before, o.pictures.field, "input: " + o.input);
   OwnedVec input;
   NM_PETSC(VecDuplicate(run.x(), input.out()));
   NM_PETSC(VecCopy(run.x(), input));
@@ -60,6 +64,8 @@ void smooth(SmoothOptions& o) {
   const bool guard = !(o.no_guard || o.method.thesis);
   run.finish(result, o.output, o.report, o.plot_history,
              guard ? apply_quality_guard(run, input, result) : nlohmann::json{});
+  if (!o.pictures.after.empty())
+    run.draw(o.pictures.after, o.pictures.field, "smoothed: " + o.output);
 }
 
 }  // namespace
@@ -93,6 +99,7 @@ Subcommand add_smooth(CLI::App& app) {
   cmd->add_flag("--no-table", o->no_table,
                 "one progress line per iteration (with elapsed time) instead of the iteration "
                 "table (default: table)");
+  add_picture_options(*cmd, o->pictures, "scaled_jacobian");
   add_method_options(*cmd, o->method);
   return {cmd, [o] { smooth(*o); }};
 }
