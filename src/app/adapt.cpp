@@ -11,23 +11,21 @@
 #include "app/method_options.hpp"
 #include "app/optimization.hpp"
 #include "app/subcommand.hpp"
-#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "report/canvas.hpp"
 
 namespace neomesh::app {
 
 namespace {
 
 struct AdaptOptions {
-  std::string input, output, report, plot_history, levelset, sizes_file;
+  std::string input, output, levelset, sizes_file;
   std::vector<double> circle, sphere, plane, box;
-  bool force = false, no_table = false;
+  bool force = false;
   SizeFieldOptions sizes;
   PicardOptions picard;
   MethodOptions method;
-  PictureOptions pictures;
+  RunOutputs outputs;
 };
 
 SizeField make_size_field(const AdaptOptions& o) {
@@ -91,20 +89,18 @@ void adapt(AdaptOptions& o) {
   const SizeField field = make_size_field(o);
   check_output_path(o.input, o.output, o.force);
   // Every output is checked before the run, so that a typo does not cost a long run.
-  if (!o.report.empty()) check_writable(o.report);
-  if (!o.plot_history.empty()) picture_format(o.plot_history), check_writable(o.plot_history);
-  check_picture_options(o.pictures);
+  check_run_outputs(o.outputs);
 
   OptimizationRun run(o.input, o.method);
   say("size field: {}\n", field.description());
   run.print_problem();
   const auto target_volumes =
       size_field_volumes(field, o.sizes, run.view(), run.dofs(), run.mesh_volume());
-  if (!o.pictures.before.empty()) {
+  if (!o.outputs.picture_before.empty()) {
     run.set_desired_volumes(target_volumes(run.x()));
-    run.draw(o.pictures.before, o.pictures.field, "input: " + o.input);
+    run.draw(o.outputs.picture_before, o.outputs.picture_field, "input: " + o.input);
   }
-  const auto table = run.table_printer(o.no_table);
+  const auto table = run.table_printer(o.outputs.progress_lines);
   PicardObserver observe{.iteration = table, .update = [](int k, int update) {
                            say("  -- desired volumes updated after iteration {} (update {})\n", k,
                                update);
@@ -121,7 +117,7 @@ void adapt(AdaptOptions& o) {
       "volume in [0.5, 2] for {:.1f}% of the cells, min {:.3g}, median {:.3g}, max {:.3g}\n",
       result.update_iterations.size(), fmt::join(result.update_iterations, ", "), 100 * q.within,
       q.min, q.median, q.max);
-  run.finish(result.run, o.output, o.report, o.plot_history,
+  run.finish(result.run, o.output, o.outputs,
              {{"size_field", field.description()},
               {"size_options",
                {{"floor", o.sizes.floor},
@@ -136,8 +132,6 @@ void adapt(AdaptOptions& o) {
                 {"relaxation", o.picard.relaxation},
                 {"update_iterations", result.update_iterations}}},
               {"volume_ratio", to_json(q)}});
-  if (!o.pictures.after.empty())
-    run.draw(o.pictures.after, o.pictures.field, "adapted: " + o.output);
 }
 
 }  // namespace
@@ -221,12 +215,7 @@ Subcommand add_adapt(CLI::App& app) {
       ->capture_default_str()
       ->group(picard);
 
-  cmd->add_option("--report", o->report, "write parameters, history, timings and quality as JSON");
-  cmd->add_option("--plot-history", o->plot_history,
-                  "draw the Newton defect and F per iteration (.png or .svg)");
-  cmd->add_flag("--no-table", o->no_table,
-                "one progress line per iteration instead of the iteration table");
-  add_picture_options(*cmd, o->pictures, "Q");
+  add_run_output_options(*cmd, o->outputs, "Q");
   add_method_options(*cmd, o->method);
   return {cmd, [o] { adapt(*o); }};
 }

@@ -244,21 +244,30 @@ const std::vector<std::string> kPictureFields = {"Q",         "energy",         
                                                  "volume",    "desired_volume", "det_G_min"};
 }
 
-void add_picture_options(CLI::App& cmd, PictureOptions& o, const std::string& field) {
-  o.field = field;
+void add_run_output_options(CLI::App& cmd, RunOutputs& o, const std::string& picture_field) {
+  o.picture_field = picture_field;
+  cmd.add_option("--report", o.report,
+                 "write parameters, history, timings and quality as JSON to this file (default: "
+                 "none)");
+  cmd.add_option("--plot-history", o.history_plot,
+                 "draw the Newton defect and F per iteration to this .png or .svg (default: none)");
+  cmd.add_flag("--no-table", o.progress_lines,
+               "one progress line per iteration (with elapsed time) instead of the iteration "
+               "table (default: table)");
   cmd.add_option(
-      "--picture-before", o.before,
+      "--picture-before", o.picture_before,
       "2D: draw the input mesh coloured by --picture-field (.png or .svg; default: none)");
-  cmd.add_option("--picture", o.after,
+  cmd.add_option("--picture", o.picture_after,
                  "2D: draw the result coloured by --picture-field (.png or .svg; default: none)");
-  cmd.add_option("--picture-field", o.field, "cell field the pictures are coloured by")
+  cmd.add_option("--picture-field", o.picture_field, "cell field the pictures are coloured by")
       ->check(CLI::IsMember(kPictureFields))
       ->capture_default_str();
 }
 
-void check_picture_options(const PictureOptions& o) {
-  for (const std::string& path : {o.before, o.after})
-    if (!path.empty()) picture_format(path), check_writable(path);
+void check_run_outputs(const RunOutputs& o) {
+  if (!o.report.empty()) check_writable(o.report);
+  for (const std::string& picture : {o.history_plot, o.picture_before, o.picture_after})
+    if (!picture.empty()) picture_format(picture), check_writable(picture);
 }
 
 void OptimizationRun::draw(const std::filesystem::path& path, const std::string& field,
@@ -277,9 +286,7 @@ void OptimizationRun::draw(const std::filesystem::path& path, const std::string&
 }
 
 void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesystem::path& output,
-                             const std::filesystem::path& report,
-                             const std::filesystem::path& history_plot,
-                             const nlohmann::json& extra) {
+                             const RunOutputs& outputs, const nlohmann::json& extra) {
   Impl& r = *impl_;
   r.mesh.set_coordinates(r.x);
   const MeshView& view = r.mesh.view();
@@ -304,7 +311,7 @@ void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesys
   const double write_seconds = MPI_Wtime() - write_start;
   always("wrote {} ({:.2f} s)\n", output.string(), MPI_Wtime() - r.start);
 
-  if (!report.empty()) {
+  if (!outputs.report.empty()) {
     double free = 0.0;
     NM_PETSC(VecSum(r.functional->free_mask(), &free));
     const PeakMemory memory = peak_memory(r.mesh.comm());
@@ -327,11 +334,13 @@ void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesys
         {"peak_rss_mib_all_ranks", memory.sum_mib},
         {"seconds", MPI_Wtime() - r.start}};
     if (extra.is_object()) json.update(extra);
-    write_json(json, report);
+    write_json(json, outputs.report);
   }
-  if (!history_plot.empty() && is_root_rank())
-    plot_history(result.history, result.initial_energy, result.initial_defect, history_plot,
+  if (!outputs.history_plot.empty() && is_root_rank())
+    plot_history(result.history, result.initial_energy, result.initial_defect, outputs.history_plot,
                  {.width = 1000, .height = 700, .title = "", .final_defect = result.final_defect});
+  if (!outputs.picture_after.empty())
+    draw(outputs.picture_after, outputs.picture_field, "result: " + output.string());
 }
 
 }  // namespace neomesh::app

@@ -24,16 +24,19 @@ namespace neomesh::app {
 void check_output_path(const std::filesystem::path& input, const std::filesystem::path& output,
                        bool force);
 
-// Pictures of a 2D run (--picture-before / --picture), coloured by one of the output's cell
-// fields. Q and the energy need the run's desired volumes, which a mesh file does not keep,
-// so the run draws them itself.
-struct PictureOptions {
-  std::string before, after;  // .png or .svg; empty: none
-  std::string field;
+// What a run writes besides the mesh, shared by smooth and adapt: the JSON report, the
+// history plot, the iteration table or progress lines, and pictures of a 2D run coloured by
+// one of the output's cell fields (Q and the energy need the run's desired volumes, which a
+// mesh file does not keep, so the run draws them itself).
+struct RunOutputs {
+  std::string report, history_plot;           // empty: none
+  std::string picture_before, picture_after;  // .png or .svg; empty: none
+  std::string picture_field;
+  bool progress_lines = false;  // instead of the iteration table
 };
-void add_picture_options(CLI::App& cmd, PictureOptions& options, const std::string& field);
-// Throws Error for an unknown field or an unwritable/unknown-format path, before the run.
-void check_picture_options(const PictureOptions& options);
+void add_run_output_options(CLI::App& cmd, RunOutputs& outputs, const std::string& picture_field);
+// Throws Error for an unwritable or unknown-format path, before the run costs any time.
+void check_run_outputs(const RunOutputs& outputs);
 
 class OptimizationRun {
  public:
@@ -60,10 +63,9 @@ class OptimizationRun {
   std::function<void(const IterationRecord&)> table_printer(bool progress_only) const;
 
   // Moves the mesh to x(), checks it has no inverted cell, writes `output` with per-cell
-  // fields, and the optional JSON report (with `extra` merged in) and history plot.
+  // fields, and the optional JSON report (with `extra` merged in), history plot and picture.
   void finish(const QuasiNewtonResult& result, const std::filesystem::path& output,
-              const std::filesystem::path& report, const std::filesystem::path& history_plot,
-              const nlohmann::json& extra = {});
+              const RunOutputs& outputs, const nlohmann::json& extra = {});
 
  private:
   struct Impl;

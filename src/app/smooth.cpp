@@ -6,10 +6,8 @@
 #include "app/method_options.hpp"
 #include "app/optimization.hpp"
 #include "app/subcommand.hpp"
-#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "report/canvas.hpp"
 #include "solver/desired_volumes.hpp"
 #include "solver/quality_guard.hpp"
 
@@ -18,10 +16,10 @@ namespace neomesh::app {
 namespace {
 
 struct SmoothOptions {
-  std::string input, output, report, plot_history, sizes = "smoothed";
-  bool force = false, no_table = false, no_guard = false;
+  std::string input, output, sizes = "smoothed";
+  bool force = false, no_guard = false;
   MethodOptions method;
-  PictureOptions pictures;
+  RunOutputs outputs;
 };
 
 // The quality guard (solver/quality_guard.hpp): no cell of the output worse than the input's
@@ -47,25 +45,21 @@ void smooth(SmoothOptions& o) {
   const SizeMode sizes = parse_size_mode(o.method.thesis ? "uniform" : o.sizes);
   check_output_path(o.input, o.output, o.force);
   // Every output is checked before the run, so that a typo does not cost a long run.
-  if (!o.report.empty()) check_writable(o.report);
-  if (!o.plot_history.empty()) picture_format(o.plot_history), check_writable(o.plot_history);
-  check_picture_options(o.pictures);
+  check_run_outputs(o.outputs);
 
   OptimizationRun run(o.input, o.method);
   run.set_desired_volumes(desired_volumes(sizes, run.view(), run.dofs(), run.input_volumes()));
   run.print_problem();
-  if (!o.pictures.before.empty())
-    run.draw(o.pictures.before, o.pictures.field, "input: " + o.input);
+  if (!o.outputs.picture_before.empty())
+    run.draw(o.outputs.picture_before, o.outputs.picture_field, "input: " + o.input);
   OwnedVec input;
   NM_PETSC(VecDuplicate(run.x(), input.out()));
   NM_PETSC(VecCopy(run.x(), input));
   QuasiNewtonResult result = minimize(run.functional(), run.x(), o.method.solver, run.cell_size(),
-                                      run.table_printer(o.no_table));
+                                      run.table_printer(o.outputs.progress_lines));
   const bool guard = !(o.no_guard || o.method.thesis);
-  run.finish(result, o.output, o.report, o.plot_history,
+  run.finish(result, o.output, o.outputs,
              guard ? apply_quality_guard(run, input, result) : nlohmann::json{});
-  if (!o.pictures.after.empty())
-    run.draw(o.pictures.after, o.pictures.field, "smoothed: " + o.output);
 }
 
 }  // namespace
@@ -90,16 +84,7 @@ Subcommand add_smooth(CLI::App& app) {
                   "the grading), input (each cell's own volume) or uniform (all equal, the thesis)")
       ->check(CLI::IsMember({"smoothed", "input", "uniform"}))
       ->capture_default_str();
-  cmd->add_option("--report", o->report,
-                  "write parameters, history, timings and quality as JSON to this file (default: "
-                  "none)");
-  cmd->add_option(
-      "--plot-history", o->plot_history,
-      "draw the Newton defect and F per iteration to this .png or .svg (default: none)");
-  cmd->add_flag("--no-table", o->no_table,
-                "one progress line per iteration (with elapsed time) instead of the iteration "
-                "table (default: table)");
-  add_picture_options(*cmd, o->pictures, "scaled_jacobian");
+  add_run_output_options(*cmd, o->outputs, "scaled_jacobian");
   add_method_options(*cmd, o->method);
   return {cmd, [o] { smooth(*o); }};
 }
