@@ -160,10 +160,14 @@ TEST(SquareRandom, ConvergesToTheUniformGrid) {
 
 // The cases whose meshes the thesis does not specify fully (generate.hpp documents the
 // meshes built here): each converges to defect < 1e-10 without stalling, with k_min = 2.
+// Where the mesh turned out to be the thesis' (transition and circle at level 4: 1280
+// cells), the final F matches its tables to the printed digits; the curved triangle mesh
+// is FEAT3's unit-axe-tria as best we could rebuild it and ends at F 2.8331, not 2.9987.
 struct QualitativeCase {
   const char* name;
   MeshData (*mesh)();
   size_t max_iterations;
+  const char* thesis_energy = nullptr;  // final F as printed in the thesis, if comparable
 };
 
 class ThesisQualitativeCase : public ::testing::TestWithParam<QualitativeCase> {};
@@ -178,14 +182,17 @@ TEST_P(ThesisQualitativeCase, ConvergesWithoutStalling) {
   EXPECT_LT(r.final_defect, 1e-10);
   EXPECT_LE(r.history.size(), GetParam().max_iterations);
   EXPECT_LT(r.final_energy, r.initial_energy);
+  if (GetParam().thesis_energy) {
+    EXPECT_EQ(fmt::format("{:.4f}", r.final_energy), GetParam().thesis_energy);
+  }
   RecordProperty("final_energy", fmt::format("{:.6f}", r.final_energy));
   RecordProperty("iterations", static_cast<int>(r.history.size()));
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Chapter5, ThesisQualitativeCase,
-    ::testing::Values(QualitativeCase{"transition", [] { return transition(3); }, 30},
-                      QualitativeCase{"circle_quad", [] { return circle_quad(3); }, 30},
+    ::testing::Values(QualitativeCase{"transition", [] { return transition(4); }, 12, "3.0730"},
+                      QualitativeCase{"circle_quad", [] { return circle_quad(4); }, 12, "6.9492"},
                       QualitativeCase{"triangle_equilateral",
                                       [] { return triangle_equilateral(4, 1); }, 30},
                       QualitativeCase{"triangle_curved", [] { return triangle_curved(3); }, 40}),
