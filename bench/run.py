@@ -92,11 +92,12 @@ def run_case(case, neomesh, launcher, workdir, extra):
         run([neomesh, "generate", *case.generate, "-o", mesh + ".tmp.msh"],
             os.path.join(workdir, f"{case.name}.generate.log"))
         os.replace(mesh + ".tmp.msh", mesh)
-    report = os.path.join(workdir, f"{case.name}.json")
-    out = os.path.join(workdir, f"{case.name}.out.msh")
+    name = f"{case.name}-np{launcher[-1]}" if launcher else case.name  # launcher ends with P
+    report = os.path.join(workdir, f"{name}.json")
+    out = os.path.join(workdir, f"{name}.out.msh")
     start = time.monotonic()
     run([*launcher, neomesh, case.command, mesh, "-o", out, "--force", "--no-table", "--report",
-         report, *case.args, *extra], os.path.join(workdir, f"{case.name}.log"))
+         report, *case.args, *extra], os.path.join(workdir, f"{name}.log"))
     wall = time.monotonic() - start
     with open(report) as f:
         return json.load(f), wall
