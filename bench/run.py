@@ -22,8 +22,9 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 # Interior vertices of the jittered meshes move by up to this many cell widths per
-# coordinate: ±h/4 as in the Mesquite comparison (the generators need < 1/4).
-JITTER = 0.24
+# coordinate: about ±h/4 in 2D as in the Mesquite comparison (the generators need < 1/4);
+# less in 3D, where 0.24 inverts some tetrahedra (box-tet --cells 26).
+JITTER = {2: 0.24, 3: 0.12}
 
 
 class Case:
@@ -49,13 +50,14 @@ def cases():
                         args=["--sizes", "uniform"],
                         sizes=("quick", "full") if n <= 16 else ("full",)))
     # Jittered meshes: Mesquite's sizes (300² quads, 2·300² triangles), then ~100k and ~1M.
-    jittered = [("quad", "square-random", [100, 300, 316, 1000]),
-                ("tri", "box-tri", [70, 300, 224, 708]),
-                ("tet", "box-tet", [12, 26, 55]),
-                ("hex", "box-hex", [16, 47, 100])]
-    for kind, generator, sizes in jittered:
+    jittered = [("quad", "square-random", 2, [100, 300, 316, 1000]),
+                ("tri", "box-tri", 2, [70, 300, 224, 708]),
+                ("tet", "box-tet", 3, [12, 26, 55]),
+                ("hex", "box-hex", 3, [16, 47, 100])]
+    for kind, generator, dim, sizes in jittered:
         for i, n in enumerate(sizes):
-            noise = ["--amplitude" if generator == "square-random" else "--jitter", str(JITTER)]
+            noise = ["--amplitude" if generator == "square-random" else "--jitter",
+                     str(JITTER[dim])]
             out.append(Case(f"jitter-{kind}-{n}", [generator, "--cells", str(n), *noise],
                             args=["--sizes", "uniform"],
                             sizes=("quick", "full") if i == 0 else ("full",)))
