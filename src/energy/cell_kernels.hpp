@@ -83,8 +83,30 @@ class CellKernel {
 
   CellKernel(const NeoHooke<dim>& law, int gauss_points) : law_(law), rule_(gauss_points) {}
 
-  // ∫_{optimal cell} W(G) dx = Σ_q v ŵ_q W(G_q); +∞ if det G ≤ 0 at some point.
+  // Whether the Q1 map is orientation-preserving at every corner (simplices: always true
+  // here; their single det G is checked at the quadrature point). Gauss points alone miss a
+  // non-convex quad: with vertex 3 of the unit square at (0.45, 0.45), det J > 0 at all 3×3
+  // Gauss points but < 0 at that corner. In 2D det J is bilinear, so positive corners mean
+  // positive everywhere; in 3D they are necessary, and the Gauss points add to them.
+  static bool corners_admissible(const Coordinates& x) {
+    if constexpr (CellTraits<Type>::simplex) {
+      return true;
+    } else {
+      for (int i = 0; i < vertices; ++i) {
+        Matrix<dim> edges;  // ∂x/∂ξ_j at corner i, up to the factor 1/2
+        for (int j = 0; j < dim; ++j) {
+          const int neighbour = i ^ (1 << j);
+          edges.col(j) = ((i >> j) & 1) ? x.col(i) - x.col(neighbour) : x.col(neighbour) - x.col(i);
+        }
+        if (!(edges.determinant() > 0.0)) return false;
+      }
+      return true;
+    }
+  }
+
+  // ∫_{optimal cell} W(G) dx = Σ_q v ŵ_q W(G_q); +∞ if det G ≤ 0 at some point or corner.
   double energy(const Coordinates& x, double volume) const {
+    if (!corners_admissible(x)) return std::numeric_limits<double>::infinity();
     const double scale = inverse_edge(volume);
     double sum = 0.0;
     for (int q = 0; q < rule_.size; ++q) {
@@ -98,6 +120,7 @@ class CellKernel {
   // The cell energy and its gradient: ∂/∂X_ai = Σ_q v ŵ_q (P(G_q) D_q)_ai, i.e.
   // F′[φ] = ∫ P(G) : ∇φ̂ for φ = e_a φ_i. Returns +∞ (gradient unspecified) if inverted.
   double energy_and_gradient(const Coordinates& x, double volume, Gradient& gradient) const {
+    if (!corners_admissible(x)) return std::numeric_limits<double>::infinity();
     const double scale = inverse_edge(volume);
     double sum = 0.0;
     gradient.setZero();

@@ -175,6 +175,19 @@ TYPED_TEST(CellKernelTest, InvertedCellIsInfiniteAndRejected) {
   EXPECT_LT(kernel.measure(x, 1.0).min_det, 0.0);
 }
 
+// A dart: vertex 3 of the unit square pulled in to (0.45, 0.45). det J is positive at all
+// 3×3 Gauss points but negative at that corner, so the line search must not accept it.
+TEST(QuadKernel, NonConvexQuadWithPositiveGaussPointsIsInfinite) {
+  using Kernel = CellKernel<CellType::Quadrilateral>;
+  const Kernel kernel = thesis_kernel<CellType::Quadrilateral>();
+  Coordinates<CellType::Quadrilateral> x;
+  x << 0.0, 1.0, 0.0, 0.45, 0.0, 0.0, 1.0, 0.45;
+  ASSERT_GT(kernel.measure(x, 1.0).min_det, 0.0) << "the Gauss points alone look fine";
+  EXPECT_TRUE(std::isinf(kernel.energy(x, 1.0)));
+  typename Kernel::Gradient g;
+  EXPECT_TRUE(std::isinf(kernel.energy_and_gradient(x, 1.0, g)));
+}
+
 // Renumbering the vertices by a symmetry of the optimal cell that keeps the orientation
 // (even permutations of a simplex; rotations of the square/cube in tensor order) leaves
 // the cell energy unchanged.
