@@ -21,10 +21,14 @@ constexpr int dimension(CellType t) {
 
 constexpr int num_vertices(CellType t) {
   switch (t) {
-    case CellType::Triangle: return 3;
-    case CellType::Quadrilateral: return 4;
-    case CellType::Tetrahedron: return 4;
-    case CellType::Hexahedron: return 8;
+    case CellType::Triangle:
+      return 3;
+    case CellType::Quadrilateral:
+      return 4;
+    case CellType::Tetrahedron:
+      return 4;
+    case CellType::Hexahedron:
+      return 8;
   }
   return 0;
 }
@@ -35,10 +39,14 @@ constexpr bool is_simplex(CellType t) {
 
 constexpr std::string_view name(CellType t) {
   switch (t) {
-    case CellType::Triangle: return "triangle";
-    case CellType::Quadrilateral: return "quadrilateral";
-    case CellType::Tetrahedron: return "tetrahedron";
-    case CellType::Hexahedron: return "hexahedron";
+    case CellType::Triangle:
+      return "triangle";
+    case CellType::Quadrilateral:
+      return "quadrilateral";
+    case CellType::Tetrahedron:
+      return "tetrahedron";
+    case CellType::Hexahedron:
+      return "hexahedron";
   }
   return "?";
 }

@@ -22,8 +22,8 @@ struct VertexSet {
 struct MeshData {
   int dim = 2;
   CellType cell_type = CellType::Quadrilateral;
-  std::vector<double> coords;        // vertex-major, `dim` values per vertex
-  std::vector<std::int64_t> cells;   // num_vertices(cell_type) per cell, canonical order
+  std::vector<double> coords;       // vertex-major, `dim` values per vertex
+  std::vector<std::int64_t> cells;  // num_vertices(cell_type) per cell, canonical order
   std::vector<VertexSet> boundary_parts;
 
   std::int64_t num_vertices() const { return static_cast<std::int64_t>(coords.size()) / dim; }

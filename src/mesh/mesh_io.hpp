@@ -24,8 +24,7 @@ struct MeshFields {
   std::vector<Field> vertex;
 };
 
-void write_mesh(const Mesh& mesh, const std::filesystem::path& path,
-                const MeshFields& fields = {});
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const MeshFields& fields = {});
 
 // Throws Error unless `path` has an extension neomesh can read (.msh, .xml) / write.
 void check_readable_format(const std::filesystem::path& path);

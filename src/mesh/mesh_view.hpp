@@ -35,18 +35,18 @@ struct BoundaryPartInfo {
 
 struct MeshView {
   int dim = 2;
-  PetscInt num_vertices = 0;            // local: owned + ghost
-  PetscInt num_cells = 0;               // cells of this rank (sum over blocks)
-  std::vector<double> coords;           // num_vertices × dim, coordinates when the view was made
+  PetscInt num_vertices = 0;   // local: owned + ghost
+  PetscInt num_cells = 0;      // cells of this rank (sum over blocks)
+  std::vector<double> coords;  // num_vertices × dim, coordinates when the view was made
   std::vector<CellBlock> blocks;
-  std::vector<std::uint8_t> owned;      // per local vertex: 1 if this rank owns it
+  std::vector<std::uint8_t> owned;        // per local vertex: 1 if this rank owns it
   std::vector<std::uint8_t> on_boundary;  // per local vertex: 1 on the domain's boundary
   // Per local vertex: index into `parts` of a boundary part containing it, or -1. A vertex
   // where parts meet (a corner) has `part_count` > 1.
   std::vector<int> boundary_part;
   std::vector<std::uint8_t> part_count;
   std::vector<BoundaryPartInfo> parts;
-  std::vector<PetscInt> global_cell;    // per local cell: cell number in the input file (0-based)
+  std::vector<PetscInt> global_cell;  // per local cell: cell number in the input file (0-based)
 };
 
 }  // namespace neomesh
