@@ -23,6 +23,22 @@ std::string_view name(LinearSolverKind kind) {
   return "?";
 }
 
+namespace {
+
+// BoomerAMG's smoother is set only through the options database. Chebyshev halves the time
+// of the δ̃ solve against PETSc's default hybrid SOR/Jacobi at the same CG iterations
+// (square-midpoint 512², thesis settings: whole run 18.9 s → 14.1 s, 8 Newton iterations
+// either way; cube-midpoint 32³: 16.6 s → 13.6 s, 7 → 8 iterations). A user's own
+// -<prefix>pc_hypre_boomeramg_relax_type_all still wins.
+void use_chebyshev_smoother(const std::string& prefix) {
+  const std::string option = "-" + prefix + "pc_hypre_boomeramg_relax_type_all";
+  PetscBool given = PETSC_FALSE;
+  NM_PETSC(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &given));
+  if (!given) NM_PETSC(PetscOptionsSetValue(nullptr, option.c_str(), "Chebyshev"));
+}
+
+}  // namespace
+
 LinearSolver::LinearSolver(MPI_Comm comm, LinearSolverKind kind, const std::string& prefix,
                            double rtol)
     : rtol_(rtol) {
@@ -35,6 +51,7 @@ LinearSolver::LinearSolver(MPI_Comm comm, LinearSolverKind kind, const std::stri
       NM_PETSC(KSPSetType(ksp_, KSPCG));
       NM_PETSC(PCSetType(pc, PCHYPRE));
       NM_PETSC(PCHYPRESetType(pc, "boomeramg"));
+      use_chebyshev_smoother(prefix);
       break;
     case LinearSolverKind::Jacobi:
       NM_PETSC(KSPSetType(ksp_, KSPCG));
