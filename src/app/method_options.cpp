@@ -81,8 +81,10 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "many times the iterations it needed when built (0: rebuild every iteration)")
       ->capture_default_str()
       ->group(linear);
-  cmd.add_option("--riesz-rtol", o.solver.riesz_rtol, "relative tolerance of the Riesz solve")
-      ->capture_default_str()
+  cmd.add_option("--riesz-rtol", o.riesz_rtol,
+                 fmt::format("relative tolerance of the Riesz solve (default: {:g}, with --thesis "
+                             "{:g})",
+                             QuasiNewtonOptions{}.riesz_rtol, QuasiNewtonOptions::kThesisRieszRtol))
       ->group(linear);
   cmd.add_option("--boundary", o.boundary,
                  "fixed (boundary vertices stay put, the thesis) or slide (they move within "
@@ -91,7 +93,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
       ->group(energy);
   cmd.add_flag("--thesis", o.thesis,
                "the thesis' conventions: uniform desired volumes, no practical stopping "
-               "criterion (iterate to the defect tolerance); default: off")
+               "criterion (iterate to the defect tolerance), Riesz solve to 1e-8; default: off")
       ->group(method);
 }
 
@@ -115,6 +117,10 @@ void finalize(MethodOptions& o) {
     fail("--hess-rtol must be in (0, 1) (got {})", o.solver.hessian_rtol);
   if (!(o.solver.hessian_pc_reuse >= 0))
     fail("--hess-pc-reuse must be 0 or more (got {})", o.solver.hessian_pc_reuse);
+  if (o.riesz_rtol)
+    o.solver.riesz_rtol = *o.riesz_rtol;
+  else if (o.thesis)
+    o.solver.riesz_rtol = QuasiNewtonOptions::kThesisRieszRtol;
   if (!(o.solver.riesz_rtol > 0 && o.solver.riesz_rtol < 1))
     fail("--riesz-rtol must be in (0, 1) (got {})", o.solver.riesz_rtol);
   o.solver.linear_solver = parse_linear_solver(o.linear_solver);

@@ -3,6 +3,7 @@
 // tolerances) and the linear solvers.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -18,6 +19,8 @@ struct MethodOptions {
   QuasiNewtonOptions solver;
   std::string linear_solver = "amg";
   std::string riesz = "optimal";
+  std::optional<double>
+      riesz_rtol;                  // unset: QuasiNewtonOptions' default, the thesis' with --thesis
   std::string boundary = "fixed";  // resolved into boundary_mode by finalize()
   BoundaryMode boundary_mode = BoundaryMode::Fixed;
   bool no_practical = false;

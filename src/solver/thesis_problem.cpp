@@ -25,6 +25,7 @@ QuasiNewtonOptions ThesisProblem::thesis_options() const {
   QuasiNewtonOptions o;
   o.linear_solver = LinearSolverKind::Direct;
   o.kmin = 0;
+  o.riesz_rtol = QuasiNewtonOptions::kThesisRieszRtol;
   o.practical = false;
   o.defect_atol = 1e-10;
   o.defect_rtol = 0.0;
