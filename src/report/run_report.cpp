@@ -29,6 +29,7 @@ nlohmann::json to_json(const IterationRecord& r) {
           {"krylov_s", r.krylov_s},
           {"used_s", r.used_s},
           {"roundoff_step", r.roundoff_step},
+          {"hessian_pc_built", r.hessian_pc_built},
           {"max_move", number(r.max_move)},
           {"seconds", r.seconds}};
 }

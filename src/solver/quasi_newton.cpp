@@ -132,6 +132,7 @@ struct QuasiNewton::Impl {
       hessian_solver.set_operator(hessian, reuse);
       if (!reuse) hessian_solver.setup();
     }
+    rec.hessian_pc_built = !reuse;
     LinearSolver::Outcome out;
     {
       Stopwatch watch(times.hessian_solve);

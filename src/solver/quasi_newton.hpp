@@ -43,8 +43,9 @@ struct QuasiNewtonOptions {
   static constexpr double kThesisRieszRtol = 1e-8;
   // With amg: keep the AMG hierarchy of an earlier H(α) while the δ̃ solve needs at most this
   // many times the Krylov iterations it needed when the hierarchy was built (H(α) changes
-  // little between iterations, its setup costs more than a few V-cycles); 0: rebuild always.
-  double hessian_pc_reuse = 2.0;
+  // little between iterations, its setup costs about ten V-cycles); 0: rebuild always. 2 kept
+  // a hierarchy that needed 9-11 iterations where a fresh one needs 4 (square 1024²).
+  double hessian_pc_reuse = 1.5;
   RieszLaplacian riesz = RieszLaplacian::OptimalCells;
   // Absolute round-off level of F (MATH.md §4): when the predicted decrease σ·(−gᵀδ) is
   // below it, the Armijo test is decided by noise, so the step is taken as it is. About
@@ -67,13 +68,14 @@ struct IterationRecord {
   int krylov_delta = 0;         // Krylov iterations for δ̃ (0: not solved)
   double residual_delta = 0.0;
   bool delta_solved = false;
-  bool delta_failed = false;     // the δ̃ solve did not converge (α is then cut to 0.1 α)
-  bool delta_truncated = false;  // CG stopped at negative curvature; its iterate was used
-  int krylov_s = 0;              // Krylov iterations for s
-  bool used_s = false;           // the step went along −s
-  bool roundoff_step = false;    // Armijo skipped: predicted decrease below round-off
-  double max_move = 0.0;         // largest vertex move / local cell size
-  double seconds = 0.0;          // wall time since start
+  bool delta_failed = false;      // the δ̃ solve did not converge (α is then cut to 0.1 α)
+  bool delta_truncated = false;   // CG stopped at negative curvature; its iterate was used
+  bool hessian_pc_built = false;  // amg: the H(α) hierarchy was built for this solve
+  int krylov_s = 0;               // Krylov iterations for s
+  bool used_s = false;            // the step went along −s
+  bool roundoff_step = false;     // Armijo skipped: predicted decrease below round-off
+  double max_move = 0.0;          // largest vertex move / local cell size
+  double seconds = 0.0;           // wall time since start
 };
 
 enum class StopReason {
