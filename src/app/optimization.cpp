@@ -213,10 +213,11 @@ void OptimizationRun::print_problem() const {
     detail(
         "quasi-Newton system H(alpha) delta~ = -g (options -hess_*): {}, or residual <= {:g} "
         "x defect\n",
-        describe(LinearSolver(mesh.comm(), o.linear_solver, "hess_", o.hessian_rtol)),
+        describe(LinearSolver(mesh.comm(), o.linear_solver, "hess_", mesh.dim(), o.hessian_rtol)),
         o.hessian_defect_factor);
-    detail("Riesz representative L s = g (options -riesz_*): {}\n",
-           describe(LinearSolver(mesh.comm(), o.linear_solver, "riesz_", o.riesz_rtol)));
+    detail(
+        "Riesz representative L s = g (options -riesz_*): {}\n",
+        describe(LinearSolver(mesh.comm(), o.linear_solver, "riesz_", mesh.dim(), o.riesz_rtol)));
   }
   // The first iteration assembles the matrices and builds the preconditioners: on a large
   // mesh the longest wait before the first row of the table.

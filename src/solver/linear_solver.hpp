@@ -22,8 +22,10 @@ std::string_view name(LinearSolverKind kind);
 
 class LinearSolver {
  public:
-  // `rtol`: relative reduction of the (unpreconditioned) residual at which to stop.
-  LinearSolver(MPI_Comm comm, LinearSolverKind kind, const std::string& prefix, double rtol);
+  // `dim`: the mesh's dimension (AMG defaults differ in 3D); `rtol`: relative reduction of
+  // the (unpreconditioned) residual at which to stop.
+  LinearSolver(MPI_Comm comm, LinearSolverKind kind, const std::string& prefix, int dim,
+               double rtol);
 
   // Uses `A` for the next solves. With `same_values` the preconditioner (AMG hierarchy,
   // factorization) of the previous operator is kept.

@@ -85,8 +85,8 @@ struct QuasiNewton::Impl {
       : functional(f),
         options(o),
         cell_size(size),
-        hessian_solver(f.dofs().comm(), o.linear_solver, "hess_", o.hessian_rtol),
-        riesz_solver(f.dofs().comm(), o.linear_solver, "riesz_", o.riesz_rtol),
+        hessian_solver(f.dofs().comm(), o.linear_solver, "hess_", f.dofs().dim(), o.hessian_rtol),
+        riesz_solver(f.dofs().comm(), o.linear_solver, "riesz_", f.dofs().dim(), o.riesz_rtol),
         previous_defect(o.initial_previous_defect),
         alpha(o.alpha0) {
     Stopwatch watch(times.setup);
