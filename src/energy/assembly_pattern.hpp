@@ -1,49 +1,63 @@
-// The sparsity of H(α) and L on a single rank, built once per mesh, and where each cell's
-// (dof × dof) block lands in the matrix's value array: assembly then adds cell blocks straight
-// into the AIJ values (no COO sort of (dim·vertices)² entries per cell, no second copy of them).
+// The sparsity of H(α) and L, built once per mesh, and where each cell's (dof × dof) block
+// lands in the matrix's value arrays: assembly adds cell blocks straight into the AIJ values
+// (no COO sort of (dim·vertices)² entries per cell, no second copy of them).
 //
-// Rows are dofs in the DofMap's global order; each vertex's `dim` rows share the sorted list of
-// its neighbour vertices (block size dim), so entry (row dim·v + a, column dim·w + b) sits at
-// vertex_entry(v, w) + a · row_stride[v] + b.
+// Each rank builds the rows of the vertices it owns, in the DofMap's global order. PETSc's
+// MPIAIJ keeps them in two parts: A, the columns of this rank's vertices, and B, all other
+// columns (B is empty on one rank). A cell's block in the row of a ghost vertex (owned by
+// another rank) goes into a ghost buffer G laid out like rows of its own; once per assembly
+// a PetscSF built here adds G into the owners' A and B. So no entry is sorted or searched
+// after setup, on one rank or many.
+//
+// A, B and G are vertex-blocked: the dim rows of a vertex share its sorted list of neighbour
+// vertices (in that part), so entry (row dim·v + a, column dim·w + b) sits at
+// vertex_entry(v, w) + a · stride(v) + b.
 //
 // Cells are coloured so that no two cells of a colour share a vertex: threads add the cells of
 // one colour without races, and every entry receives its contributions in the same order for
 // any number of threads.
 #pragma once
 
-#include <optional>
 #include <utility>
 #include <vector>
 
+#include "core/petsc.hpp"
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
 
 namespace neomesh {
 
 struct AssemblyPattern {
-  std::vector<PetscInt> row_start;   // CSR: global rows + 1
-  std::vector<PetscInt> column;      // global column per entry, sorted within each row; freed
-                                     // once a matrix holds it
-  std::vector<PetscInt> row_stride;  // per local vertex: entries per row (dim · neighbours)
-  std::vector<PetscInt> diagonal;    // per local dof: its diagonal entry
+  // CSR of the owned rows with global columns, sorted within each row (what
+  // MatXAIJSetPreallocationCSR takes); `column` is freed once a matrix holds it.
+  std::vector<PetscInt> row_start, column;
+  std::size_t diagonal_entries = 0;      // in A
+  std::size_t off_diagonal_entries = 0;  // in B
+  std::size_t ghost_entries = 0;         // in G
+  PetscInt global_entries = 0;           // of the whole matrix, over all ranks
+  // Per local vertex: entries per row in A (owned vertex) or G (ghost), and in B (0 for ghosts).
+  std::vector<PetscInt> row_stride, off_row_stride;
+  std::vector<PetscInt> diagonal;  // per local dof: its diagonal entry in A, or −1 (ghost)
   // Per block, per cell, per (i, j) in i · vertices + j: the entry of (dof 0 of vertex i, dof 0
-  // of vertex j).
+  // of vertex j) in A or G (as vertex i is owned or a ghost), or e < 0 for entry ~e of B.
   std::vector<std::vector<PetscInt>> block_entry;
   // Per block: its cells (block-local indices) ordered by colour; colour k is
   // colour_order[colour_start[k] .. colour_start[k+1]).
   std::vector<std::vector<PetscInt>> colour_order, colour_start;
-
-  std::size_t num_entries() const { return static_cast<std::size_t>(row_start.back()); }
+  // From G (leaves) into the owners' A and B values (roots), per [coupled]: the coupled SFs
+  // move every entry, the uncoupled ones only entries within a component, at entry / dim
+  // (see uncoupled_csr). Null on one rank.
+  OwnedSF ghost_to_diagonal[2], ghost_to_off_diagonal[2];
 };
 
 // The CSR (row starts, columns) of the same rows without the couplings between different
-// components: entry e of the coupled pattern with column ≡ row (mod dim) is entry e / dim here.
-// Needs `column`.
+// components: entry e of the coupled pattern with column ≡ row (mod dim) is entry e / dim here
+// (and likewise in A, B and G). Needs `column`.
 std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(const AssemblyPattern& p,
                                                                       int dim);
 
-// The pattern of a mesh held by one rank, or nothing when the DofMap spans several ranks or
-// does not number a vertex's dofs consecutively (then assembly goes through COO).
-std::optional<AssemblyPattern> make_assembly_pattern(const MeshView& view, const DofMap& dofs);
+// Collective. Throws Error if the DofMap does not number each rank's vertices consecutively
+// from its first owned dof, with a vertex's dofs next to each other (as Mesh does).
+AssemblyPattern make_assembly_pattern(const MeshView& view, const DofMap& dofs);
 
 }  // namespace neomesh

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <limits>
 #include <optional>
+#include <string>
 #include <tuple>
 #include <type_traits>
 
 #include "energy/assembly_pattern.hpp"
 #include "energy/cell_kernels.hpp"
+#include "mesh/collective_error.hpp"
 
 namespace neomesh {
 
@@ -62,6 +64,53 @@ double sum_over_ranks(double local, MPI_Comm comm) {
   return global;
 }
 
+// A and B of an AIJ matrix made by create_matrix (assembly_pattern.hpp); B is null on one
+// rank.
+std::pair<Mat, Mat> aij_parts(Mat m) {
+  PetscBool distributed = PETSC_FALSE;
+  NM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(m), MATMPIAIJ, &distributed));
+  if (!distributed) return {m, nullptr};
+  Mat a = nullptr, b = nullptr;
+  NM_PETSC(MatMPIAIJGetSeqAIJ(m, &a, &b, nullptr));
+  return {a, b};
+}
+
+std::size_t stored_entries(Mat part) {
+  if (!part) return 0;
+  MatInfo info;
+  NM_PETSC(MatGetInfo(part, MAT_LOCAL, &info));
+  return static_cast<std::size_t>(info.nz_used);
+}
+
+// The value arrays of A and B, given back to PETSc on scope exit.
+class AijValues {
+ public:
+  explicit AijValues(Mat m) {
+    std::tie(diagonal_part_, off_diagonal_part_) = aij_parts(m);
+    NM_PETSC(MatSeqAIJGetArrayWrite(diagonal_part_, &diagonal));
+    if (off_diagonal_part_) NM_PETSC(MatSeqAIJGetArrayWrite(off_diagonal_part_, &off_diagonal));
+  }
+  ~AijValues() {
+    MatSeqAIJRestoreArrayWrite(diagonal_part_, &diagonal);
+    if (off_diagonal_part_) MatSeqAIJRestoreArrayWrite(off_diagonal_part_, &off_diagonal);
+  }
+  // Collective, after the arrays are given back: restoring them marks A and B as changed, but
+  // solvers look at the state of the MPIAIJ matrix itself.
+  static void mark_changed(Mat m) {
+    if (aij_parts(m).second == nullptr) return;
+    NM_PETSC(MatAssemblyBegin(m, MAT_FINAL_ASSEMBLY));
+    NM_PETSC(MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY));
+  }
+  AijValues(const AijValues&) = delete;
+  AijValues& operator=(const AijValues&) = delete;
+
+  PetscScalar* diagonal = nullptr;
+  PetscScalar* off_diagonal = nullptr;
+
+ private:
+  Mat diagonal_part_ = nullptr, off_diagonal_part_ = nullptr;
+};
+
 }  // namespace
 
 struct Functional::Impl {
@@ -72,24 +121,18 @@ struct Functional::Impl {
   std::vector<double> volumes;      // desired volume per local cell
   OwnedVec free_mask;
 
-  // The COO layout of H(α) and L: per block, its cells' (dofs × dofs) blocks, column-major,
-  // one after the other from coo_offset[block]; then a 1 on the diagonal of each owned fixed dof.
-  std::vector<std::size_t> coo_offset;
-  std::size_t num_cell_entries = 0;
-  std::vector<PetscInt> owned_fixed_dofs;
-
-  // On one rank: the AIJ pattern, built by the first create_*matrix and shared by every matrix
-  // of its kind (MatDuplicate with MAT_SHARE_NONZERO_PATTERN), and assembly straight into its
-  // values. Laplacian matrices leave out the couplings between components (all zero).
+  // The AIJ pattern (assembly_pattern.hpp), built by the first create_*matrix and shared by
+  // every matrix of its kind (MatDuplicate with MAT_SHARE_NONZERO_PATTERN); assembly adds
+  // straight into its values. Laplacian matrices leave out the couplings between components
+  // (all zero).
   mutable std::optional<AssemblyPattern> pattern;
-  mutable bool pattern_built = false;
   mutable OwnedMat pattern_matrix[2];  // [coupled]
 
   // Work arrays reused between calls.
   mutable std::vector<double> local_x;
   mutable std::vector<double> thread_gradients;  // one local gradient per OpenMP thread
   mutable std::vector<double> local_gradient;
-  mutable std::vector<PetscScalar> coo_values;
+  mutable std::vector<PetscScalar> ghost_values;  // G of assembly_pattern.hpp
 
   Impl(const MeshView& v, const DofMap& d, const EnergyOptions& o, std::vector<std::uint8_t> f)
       : view(v), dofs(d), kernels(make_kernels(o)), fixed(std::move(f)) {}
@@ -114,20 +157,34 @@ struct Functional::Impl {
 
   double local_energy() const;
   double local_energy_and_gradient(std::vector<double>& gradient) const;
-  std::vector<PetscInt> coo_indices(bool rows, bool coupled) const;
   OwnedMat create_matrix(bool coupled) const;
-  // Fills coo_values with cell blocks computed by fill(kernel, x, volume, block) -> bool;
-  // fails naming the first cell for which fill returned false.
-  template <typename Fill>
-  void fill_coo_values(Fill&& fill, const char* what) const;
-  // Assembles the cell blocks computed by fill into M (values only), through the pattern
-  // when there is one, else through COO.
+  // Assembly writes into A and B where assembly_pattern.hpp says PETSc keeps each entry;
+  // a different number of entries in A or B means a PETSc that stores them differently.
+  void check_layout(Mat m, bool coupled) const {
+    const auto [a, b] = aij_parts(m);
+    const std::size_t shrink = coupled ? 1 : dofs.dim();
+    if (stored_entries(a) != pattern->diagonal_entries / shrink ||
+        stored_entries(b) != pattern->off_diagonal_entries / shrink)
+      fail("internal error: PETSc stores {} in {} + {} entries, not {} + {}", coupled ? "H" : "L",
+           stored_entries(a), stored_entries(b), pattern->diagonal_entries / shrink,
+           pattern->off_diagonal_entries / shrink);
+  }
+  // True for a matrix made by create_matrix, false for one made by create_laplacian_matrix.
+  // Collective.
+  bool is_coupled(Mat M) const {
+    MatInfo info;
+    NM_PETSC(MatGetInfo(M, MAT_GLOBAL_SUM, &info));
+    return static_cast<PetscInt>(info.nz_allocated) == pattern->global_entries;
+  }
+  // Assembles the cell blocks computed by fill(kernel, x, volume, block) -> bool into M
+  // (values only); fails on every rank, naming the first cell for which fill returned false.
   template <typename Fill>
   void assemble(Fill&& fill, const char* what, Mat M) const;
-  [[noreturn]] void fail_inverted(const char* what, PetscInt cell) const {
-    fail("{}: local cell {} (input cell {}) is inverted or degenerate (det G <= 0)", what, cell,
-         view.global_cell.empty() ? cell : view.global_cell[cell]);
-  }
+  // Adds the blocks of the cells of block b into A, B and G; returns the first cell for which
+  // fill returned false (or the largest PetscInt).
+  template <CellType Type, bool Coupled, typename Fill>
+  PetscInt add_cell_blocks(Fill& fill, std::size_t b, const AijValues& values,
+                           PetscScalar* ghost) const;
 };
 
 double Functional::Impl::local_energy() const {
@@ -186,128 +243,100 @@ double Functional::Impl::local_energy_and_gradient(std::vector<double>& gradient
   return sum;
 }
 
-// Global row (rows = true) or column indices of the COO entries; −1 (ignored by PETSc)
-// where the row or column is a fixed dof, or, unless `coupled`, they are different components.
-std::vector<PetscInt> Functional::Impl::coo_indices(bool rows, bool coupled) const {
-  const std::vector<PetscInt>& global = dofs.global_dof();
-  std::vector<PetscInt> index(num_cell_entries + owned_fixed_dofs.size());
-  for (std::size_t b = 0; b < view.blocks.size(); ++b) {
-    const CellBlock& block = view.blocks[b];
-    const int nv = num_vertices(block.type);
-    const int n = dofs.dim() * nv;
-    PetscInt* out = index.data() + coo_offset[b];
-    for (PetscInt c = 0; c < block.size(); ++c) {
+template <CellType Type, bool Coupled, typename Fill>
+PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b, const AijValues& values,
+                                           PetscScalar* ghost) const {
+  using Block = typename CellKernel<Type>::Block;
+  constexpr int n = CellKernel<Type>::vertices;
+  constexpr int d = CellKernel<Type>::dim;
+  // Laplacian matrices hold 1/d of the entries, at entry / d of the coupled ones.
+  constexpr int shrink = Coupled ? 1 : d;
+  const AssemblyPattern& p = *pattern;
+  const CellBlock& block = view.blocks[b];
+  const CellKernel<Type>& k = kernel<Type>();
+  const double* desired = volumes.data() + block.first_cell;
+  const std::vector<PetscInt>& order = p.colour_order[b];
+  const std::vector<PetscInt>& start = p.colour_start[b];
+  PetscInt first_bad = std::numeric_limits<PetscInt>::max();
+  for (std::size_t colour = 0; colour + 1 < start.size(); ++colour) {
+    // Cells of one colour share no vertex: their blocks go to disjoint entries.
+#pragma omp parallel for schedule(static) reduction(min : first_bad)
+    for (PetscInt i = start[colour]; i < start[colour + 1]; ++i) {
+      const PetscInt c = order[i];
+      Block cell_block;
+      if (!fill(k, cell_coordinates<Type>(block, c, local_x.data()), desired[c],
+                Eigen::Map<Block>(cell_block.data()))) {
+        first_bad = std::min(first_bad, block.first_cell + c);
+        continue;
+      }
       const PetscInt* vertex = block.cell(c);
-      for (int col = 0; col < n; ++col) {
-        for (int row = 0; row < n; ++row) {
-          const int mine = rows ? row : col;
-          const int other = rows ? col : row;
-          const PetscInt dof = dofs.dim() * vertex[mine / dofs.dim()] + mine % dofs.dim();
-          const PetscInt other_dof = dofs.dim() * vertex[other / dofs.dim()] + other % dofs.dim();
-          const bool dropped = is_fixed_dof(dof) || is_fixed_dof(other_dof) ||
-                               (!coupled && row % dofs.dim() != col % dofs.dim());
-          *out++ = dropped ? -1 : global[dof];
-        }
-      }
-    }
-  }
-  std::copy(owned_fixed_dofs.begin(), owned_fixed_dofs.end(),
-            index.begin() + static_cast<std::ptrdiff_t>(num_cell_entries));
-  return index;
-}
-
-template <typename Fill>
-void Functional::Impl::fill_coo_values(Fill&& fill, const char* what) const {
-  coo_values.resize(num_cell_entries + owned_fixed_dofs.size());
-  std::fill(coo_values.begin() + static_cast<std::ptrdiff_t>(num_cell_entries), coo_values.end(),
-            1.0);
-  PetscInt first_bad = std::numeric_limits<PetscInt>::max();
-  for (std::size_t b = 0; b < view.blocks.size(); ++b) {
-    const CellBlock& block = view.blocks[b];
-    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
-      using Block = typename CellKernel<Type>::Block;
-      const CellKernel<Type>& k = kernel<Type>();
-      const double* desired = volumes.data() + block.first_cell;
-      PetscScalar* values = coo_values.data() + coo_offset[b];
-#pragma omp parallel for schedule(static) reduction(min : first_bad)
-      for (PetscInt c = 0; c < block.size(); ++c) {
-        Eigen::Map<Block> cell_block(values + c * Block::SizeAtCompileTime);
-        if (!fill(k, cell_coordinates<Type>(block, c, local_x.data()), desired[c], cell_block))
-          first_bad = std::min(first_bad, block.first_cell + c);
-      }
-    });
-  }
-  if (first_bad != std::numeric_limits<PetscInt>::max()) fail_inverted(what, first_bad);
-}
-
-template <typename Fill>
-void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M) const {
-  if (!pattern) {
-    fill_coo_values(fill, what);
-    NM_PETSC(MatSetValuesCOO(M, coo_values.data(), INSERT_VALUES));
-    return;
-  }
-  // The pattern of M: all couplings (create_matrix) or only within components (Laplacian,
-  // 1/d of the entries, at entry / d of the coupled ones).
-  const int d = dofs.dim();
-  MatInfo info;
-  NM_PETSC(MatGetInfo(M, MAT_LOCAL, &info));
-  const bool coupled = static_cast<std::size_t>(info.nz_allocated) == pattern->num_entries();
-  const int shrink = coupled ? 1 : d;
-  PetscScalar* values = nullptr;
-  NM_PETSC(MatSeqAIJGetArrayWrite(M, &values));
-  const std::size_t entries = pattern->num_entries() / shrink;
-#pragma omp parallel for schedule(static)
-  for (std::size_t e = 0; e < entries; ++e) values[e] = 0.0;
-  PetscInt first_bad = std::numeric_limits<PetscInt>::max();
-  for (std::size_t b = 0; b < view.blocks.size(); ++b) {
-    const CellBlock& block = view.blocks[b];
-    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
-      using Block = typename CellKernel<Type>::Block;
-      constexpr int n = CellKernel<Type>::vertices;
-      const CellKernel<Type>& k = kernel<Type>();
-      const double* desired = volumes.data() + block.first_cell;
-      const std::vector<PetscInt>& order = pattern->colour_order[b];
-      const std::vector<PetscInt>& start = pattern->colour_start[b];
-      for (std::size_t colour = 0; colour + 1 < start.size(); ++colour) {
-        // Cells of one colour share no vertex: their blocks go to disjoint entries.
-#pragma omp parallel for schedule(static) reduction(min : first_bad)
-        for (PetscInt i = start[colour]; i < start[colour + 1]; ++i) {
-          const PetscInt c = order[i];
-          Block cell_block;
-          if (!fill(k, cell_coordinates<Type>(block, c, local_x.data()), desired[c],
-                    Eigen::Map<Block>(cell_block.data()))) {
-            first_bad = std::min(first_bad, block.first_cell + c);
-            continue;
-          }
-          const PetscInt* vertex = block.cell(c);
-          const PetscInt* entry = pattern->block_entry[b].data() + c * n * n;
-          for (int vi = 0; vi < n; ++vi) {
-            const PetscInt stride = pattern->row_stride[vertex[vi]] / shrink;
-            for (int vj = 0; vj < n; ++vj) {
-              PetscScalar* out = values + entry[vi * n + vj] / shrink;
-              for (int a = 0; a < d; ++a) {
-                if (is_fixed_dof(d * vertex[vi] + a)) continue;
-                if (!coupled) {
-                  if (!is_fixed_dof(d * vertex[vj] + a))
-                    out[a * stride] += cell_block(d * vi + a, d * vj + a);
-                  continue;
-                }
-                for (int bb = 0; bb < d; ++bb)
-                  if (!is_fixed_dof(d * vertex[vj] + bb))
-                    out[a * stride + bb] += cell_block(d * vi + a, d * vj + bb);
-              }
+      const PetscInt* entry = p.block_entry[b].data() + c * n * n;
+      for (int vi = 0; vi < n; ++vi) {
+        const PetscInt v = vertex[vi];
+        // The row of a ghost vertex goes to G, and from there to its owner.
+        PetscScalar* const row = view.owned[v] ? values.diagonal : ghost;
+        const PetscInt row_stride = p.row_stride[v] / shrink;
+        const PetscInt off_row_stride = p.off_row_stride[v] / shrink;
+        for (int vj = 0; vj < n; ++vj) {
+          const PetscInt w = vertex[vj];
+          const PetscInt e = entry[vi * n + vj];
+          PetscScalar* const out = e >= 0 ? row + e / shrink : values.off_diagonal + ~e / shrink;
+          const PetscInt stride = e >= 0 ? row_stride : off_row_stride;
+          for (int a = 0; a < d; ++a) {
+            if (is_fixed_dof(d * v + a)) continue;
+            if constexpr (!Coupled) {
+              if (!is_fixed_dof(d * w + a)) out[a * stride] += cell_block(d * vi + a, d * vj + a);
+            } else {
+              for (int bb = 0; bb < d; ++bb)
+                if (!is_fixed_dof(d * w + bb))
+                  out[a * stride + bb] += cell_block(d * vi + a, d * vj + bb);
             }
           }
         }
       }
-    });
+    }
   }
-  for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l)
-    if (is_fixed_dof(l))
-      values[coupled ? pattern->diagonal[l] : (pattern->diagonal[l] - l % d) / d] = 1.0;
-  NM_PETSC(MatSeqAIJRestoreArrayWrite(M, &values));
-  if (first_bad != std::numeric_limits<PetscInt>::max()) fail_inverted(what, first_bad);
+  return first_bad;
+}
+
+template <typename Fill>
+void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M) const {
+  const AssemblyPattern& p = *pattern;
+  const int d = dofs.dim();
+  // The pattern of M: all couplings (create_matrix) or only within components (Laplacian).
+  const bool coupled = is_coupled(M);
+  const int shrink = coupled ? 1 : d;
+  PetscInt first_bad = std::numeric_limits<PetscInt>::max();
+  {
+    AijValues values(M);
+    std::fill_n(values.diagonal, p.diagonal_entries / shrink, 0.0);
+    std::fill_n(values.off_diagonal, p.off_diagonal_entries / shrink, 0.0);
+    ghost_values.assign(p.ghost_entries / shrink, 0.0);
+    PetscScalar* const ghost = ghost_values.data();
+    for (std::size_t b = 0; b < view.blocks.size(); ++b) {
+      dispatch(view.blocks[b].type, [&]<CellType Type>(CellTag<Type>) {
+        first_bad =
+            std::min(first_bad, coupled ? add_cell_blocks<Type, true>(fill, b, values, ghost)
+                                        : add_cell_blocks<Type, false>(fill, b, values, ghost));
+      });
+    }
+    if (p.ghost_to_diagonal[coupled]) {
+      PetscSF to_a = p.ghost_to_diagonal[coupled], to_b = p.ghost_to_off_diagonal[coupled];
+      NM_PETSC(PetscSFReduceBegin(to_a, MPIU_SCALAR, ghost, values.diagonal, MPI_SUM));
+      NM_PETSC(PetscSFReduceBegin(to_b, MPIU_SCALAR, ghost, values.off_diagonal, MPI_SUM));
+      NM_PETSC(PetscSFReduceEnd(to_a, MPIU_SCALAR, ghost, values.diagonal, MPI_SUM));
+      NM_PETSC(PetscSFReduceEnd(to_b, MPIU_SCALAR, ghost, values.off_diagonal, MPI_SUM));
+    }
+    for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l)
+      if (is_fixed_dof(l) && p.diagonal[l] >= 0)
+        values.diagonal[coupled ? p.diagonal[l] : (p.diagonal[l] - l % d) / d] = 1.0;
+  }
+  AijValues::mark_changed(M);
+  std::string error;
+  if (first_bad != std::numeric_limits<PetscInt>::max())
+    error = fmt::format("{}: input cell {} is inverted or degenerate (det G <= 0)", what,
+                        view.global_cell.empty() ? first_bad : view.global_cell[first_bad]);
+  throw_if_any(dofs.comm(), error);
 }
 
 namespace {
@@ -342,28 +371,19 @@ Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOpt
   if (!(options.lambda > 0.0 && options.mu > 0.0))
     fail("energy parameters must be positive (lambda = {}, mu = {})", options.lambda, options.mu);
 
-  std::size_t offset = 0;
-  for (const CellBlock& block : view.blocks) {
+  for (const CellBlock& block : view.blocks)
     if (dimension(block.type) != view.dim)
       fail("Functional: {} cells in a {}D mesh", name(block.type), view.dim);
-    impl_->coo_offset.push_back(offset);
-    const std::size_t n = static_cast<std::size_t>(view.dim * num_vertices(block.type));
-    offset += n * n * static_cast<std::size_t>(block.size());
-  }
-  impl_->num_cell_entries = offset;
   impl_->local_x.resize(static_cast<std::size_t>(dofs.num_local_dofs()));
 
-  // free_mask and the owned fixed dofs: every local dof of an owned vertex is owned.
+  // free_mask: every local dof of an owned vertex is owned.
   impl_->free_mask = dofs.create_global_vector();
   PetscInt first = 0;
   NM_PETSC(VecGetOwnershipRange(impl_->free_mask, &first, nullptr));
   VecWriteView mask(impl_->free_mask);
   for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l) {
     if (!view.owned[l / view.dim]) continue;
-    const PetscInt g = dofs.global_dof()[l];
-    const bool is_fixed = impl_->is_fixed_dof(l);
-    mask[g - first] = is_fixed ? 0.0 : 1.0;
-    if (is_fixed) impl_->owned_fixed_dofs.push_back(g);
+    mask[dofs.global_dof()[l] - first] = impl_->is_fixed_dof(l) ? 0.0 : 1.0;
   }
 }
 
@@ -396,10 +416,7 @@ double Functional::value_and_gradient(Vec x, Vec gradient) const {
 }
 
 OwnedMat Functional::Impl::create_matrix(bool coupled) const {
-  if (!pattern_built) {
-    pattern = make_assembly_pattern(view, dofs);
-    pattern_built = true;
-  }
+  if (!pattern) pattern = make_assembly_pattern(view, dofs);
   OwnedMat m;
   if (pattern_matrix[coupled]) {
     NM_PETSC(MatDuplicate(pattern_matrix[coupled], MAT_SHARE_NONZERO_PATTERN, m.out()));
@@ -409,28 +426,25 @@ OwnedMat Functional::Impl::create_matrix(bool coupled) const {
                          dofs.num_global_dofs()));
     NM_PETSC(MatSetType(m, MATAIJ));
     NM_PETSC(MatSetBlockSize(m, dofs.dim()));
-    if (pattern) {
-      if (coupled) {
-        NM_PETSC(MatSeqAIJSetPreallocationCSR(m, pattern->row_start.data(), pattern->column.data(),
-                                              nullptr));
-      } else {
-        const auto [row_start, column] = uncoupled_csr(*pattern, dofs.dim());
-        NM_PETSC(MatSeqAIJSetPreallocationCSR(m, row_start.data(), column.data(), nullptr));
-      }
-      NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(m.get())));
-      pattern_matrix[coupled] = OwnedMat(m.get());
-      // Every later matrix is a duplicate: the matrices hold the columns from now on.
-      if (pattern_matrix[0] && pattern_matrix[1]) std::vector<PetscInt>().swap(pattern->column);
-    } else {
-      std::vector<PetscInt> rows = coo_indices(true, coupled);
-      std::vector<PetscInt> cols = coo_indices(false, coupled);
-      NM_PETSC(MatSetPreallocationCOO(m, static_cast<PetscCount>(rows.size()), rows.data(),
-                                      cols.data()));
-    }
+    std::vector<PetscInt> uncoupled_row_start, uncoupled_column;
+    if (!coupled)
+      std::tie(uncoupled_row_start, uncoupled_column) = uncoupled_csr(*pattern, dofs.dim());
+    const PetscInt* row_start = coupled ? pattern->row_start.data() : uncoupled_row_start.data();
+    const PetscInt* column = coupled ? pattern->column.data() : uncoupled_column.data();
+    // Only the call for the matrix's type (SeqAIJ on one rank, else MPIAIJ) does anything.
+    NM_PETSC(MatSeqAIJSetPreallocationCSR(m, row_start, column, nullptr));
+    NM_PETSC(MatMPIAIJSetPreallocationCSR(m, row_start, column, nullptr));
+    check_layout(m, coupled);
+    NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(m.get())));
+    pattern_matrix[coupled] = OwnedMat(m.get());
+    // Every later matrix is a duplicate: the matrices hold the columns from now on.
+    if (pattern_matrix[0] && pattern_matrix[1]) std::vector<PetscInt>().swap(pattern->column);
   }
   // H(α) and L are symmetric by construction (cell_kernels.hpp), exactly in floating point.
   NM_PETSC(MatSetOption(m, MAT_SYMMETRIC, PETSC_TRUE));
   NM_PETSC(MatSetOption(m, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+  // Rows of ghost vertices reach their owners through the pattern's PetscSFs.
+  NM_PETSC(MatSetOption(m, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
   return m;
 }
 

@@ -1,16 +1,27 @@
-// Under `mpiexec -n 2`: the functional of a distributed mesh is that of the serial mesh.
-// Dof numbers differ between the two layouts, so only numbering-independent quantities are
-// compared: F, the gradient's norm, and the norms of H(α) and L.
+// Under `mpiexec -n 2`: the functional of a distributed mesh is that of the serial mesh: F,
+// the gradient's norm, and H(α) and L entry by entry (dofs matched by vertex coordinates,
+// since the two layouts number them differently).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <functional>
+#include <map>
 
 #include "energy/functional.hpp"
+#include "mesh/collective_error.hpp"
 #include "mesh/generate.hpp"
 #include "mesh/mesh.hpp"
 
 namespace neomesh {
 namespace {
+
+// The mesh given on rank 0, distributed over `comm`.
+Mesh distribute(const MeshData& data, MPI_Comm comm) {
+  MeshData empty;  // what ranks other than 0 pass
+  empty.dim = data.dim;
+  return Mesh::from_data(mpi_rank(comm) == 0 ? data : empty, "test", comm);
+}
 
 struct Numbers {
   double value, gradient_norm, hessian_norm, laplacian_norm;
@@ -19,9 +30,7 @@ struct Numbers {
 // F, ‖F′‖ (free dofs), ‖H(0.5)‖_F and ‖L‖_F with boundary vertices fixed and equal
 // desired volumes, on `comm`.
 Numbers evaluate(const MeshData& data, MPI_Comm comm) {
-  MeshData empty;  // what ranks other than 0 pass
-  empty.dim = data.dim;
-  Mesh mesh = Mesh::from_data(mpi_rank(comm) == 0 ? data : empty, "test", comm);
+  Mesh mesh = distribute(data, comm);
   const MeshView& view = mesh.view();
   Functional functional(view, mesh.dofs(), EnergyOptions{}, view.on_boundary);
   OwnedVec x = mesh.coordinates();
@@ -38,6 +47,95 @@ Numbers evaluate(const MeshData& data, MPI_Comm comm) {
   functional.assemble_laplacian(RieszLaplacian::OptimalCells, x, matrix);
   NM_PETSC(MatNorm(matrix, NORM_FROBENIUS, &n.laplacian_norm));
   return n;
+}
+
+// A mesh on `comm` with the functional of `evaluate` and its matrices H(0.5), L on the
+// optimal cells and L on the current mesh.
+struct Assembled {
+  Mesh mesh;
+  std::unique_ptr<Functional> functional;
+  OwnedMat hessian, optimal_laplacian, current_laplacian;
+
+  Assembled(const MeshData& data, MPI_Comm comm) : mesh(distribute(data, comm)) {
+    const MeshView& view = mesh.view();
+    functional = std::make_unique<Functional>(view, mesh.dofs(), EnergyOptions{}, view.on_boundary);
+    OwnedVec x = mesh.coordinates();
+    const double volume = mesh_volume(view, mesh.dofs(), x) / mesh.global_num_cells();
+    functional->set_desired_volumes(std::vector<double>(view.num_cells, volume));
+    hessian = functional->create_matrix();
+    functional->assemble_hessian(x, 0.5, hessian);
+    optimal_laplacian = functional->create_laplacian_matrix();
+    functional->assemble_laplacian(RieszLaplacian::OptimalCells, x, optimal_laplacian);
+    current_laplacian = functional->create_laplacian_matrix();
+    functional->assemble_laplacian(RieszLaplacian::CurrentMesh, x, current_laplacian);
+  }
+
+  // The coordinates of every vertex (by global vertex number), on every rank.
+  std::vector<std::array<double, 3>> all_coordinates() const {
+    OwnedVec x = mesh.coordinates(), all;
+    OwnedScatter to_all;
+    NM_PETSC(VecScatterCreateToAll(x, to_all.out(), all.out()));
+    NM_PETSC(VecScatterBegin(to_all, x, all, INSERT_VALUES, SCATTER_FORWARD));
+    NM_PETSC(VecScatterEnd(to_all, x, all, INSERT_VALUES, SCATTER_FORWARD));
+    VecReadView values(all);
+    const int d = mesh.dim();
+    std::vector<std::array<double, 3>> coords(values.size() / d, {0.0, 0.0, 0.0});
+    for (PetscInt i = 0; i < values.size(); ++i) coords[i / d][i % d] = values[i];
+    return coords;
+  }
+};
+
+// The serial dof of each distributed dof: the same component of the vertex at the same place.
+std::vector<PetscInt> serial_dofs(const Assembled& distributed, const Assembled& serial) {
+  std::map<std::array<double, 3>, PetscInt> serial_vertex;
+  const auto serial_coords = serial.all_coordinates();
+  for (std::size_t v = 0; v < serial_coords.size(); ++v) serial_vertex[serial_coords[v]] = v;
+  const int d = serial.mesh.dim();
+  std::vector<PetscInt> dof;
+  for (const auto& x : distributed.all_coordinates())
+    for (int a = 0; a < d; ++a) dof.push_back(d * serial_vertex.at(x) + a);
+  return dof;
+}
+
+// The first entry of this rank's rows of `distributed` that is not in the serial matrix or
+// differs from it by more than round-off of its row's largest entry; "" if there is none.
+std::string first_difference(Mat distributed, Mat serial, const std::vector<PetscInt>& serial_dof) {
+  PetscInt first = 0, end = 0;
+  NM_PETSC(MatGetOwnershipRange(distributed, &first, &end));
+  std::string difference;
+  for (PetscInt row = first; row < end && difference.empty(); ++row) {
+    std::map<PetscInt, double> expected;
+    PetscInt n = 0;
+    const PetscInt* cols = nullptr;
+    const PetscScalar* vals = nullptr;
+    NM_PETSC(MatGetRow(serial, serial_dof[row], &n, &cols, &vals));
+    double largest = 0.0;
+    for (PetscInt k = 0; k < n; ++k) {
+      expected[cols[k]] = vals[k];
+      largest = std::max(largest, std::abs(vals[k]));
+    }
+    NM_PETSC(MatRestoreRow(serial, serial_dof[row], &n, &cols, &vals));
+    NM_PETSC(MatGetRow(distributed, row, &n, &cols, &vals));
+    if (static_cast<std::size_t>(n) != expected.size())
+      difference = fmt::format("row {}: {} entries, serial {}", row, n, expected.size());
+    for (PetscInt k = 0; k < n && difference.empty(); ++k) {
+      const auto it = expected.find(serial_dof[cols[k]]);
+      if (it == expected.end() || std::abs(vals[k] - it->second) > 1e-13 * largest)
+        difference = fmt::format("row {}, column {}: {}, serial {}", row, cols[k], vals[k],
+                                 it == expected.end() ? "no entry" : fmt::format("{}", it->second));
+    }
+    NM_PETSC(MatRestoreRow(distributed, row, &n, &cols, &vals));
+  }
+  return difference;
+}
+
+// Fails (reported by rank 0) if any rank found a difference.
+void expect_no_difference_on_any_rank(const std::string& what, const std::string& difference) {
+  try {
+    throw_if_any(PETSC_COMM_WORLD, difference.empty() ? "" : what + ", " + difference);
+  } catch (const Error& e) {
+    ADD_FAILURE() << e.what();
+  }
 }
 
 // [-1,1]³ in tets, bent by x ↦ x + 0.1 Π_j (1 − x_j²) (boundary kept): not a critical point.
@@ -70,6 +168,25 @@ TEST_P(DistributedFunctional, EqualsSerial) {
   EXPECT_NEAR(distributed.laplacian_norm, serial.laplacian_norm, 1e-12 * serial.laplacian_norm);
 }
 
+TEST_P(DistributedFunctional, MatricesEqualSerialEntryByEntry) {
+  ASSERT_EQ(mpi_size(), 2);
+  const MeshData data = GetParam().make();
+  const Assembled serial(data, PETSC_COMM_SELF);
+  const Assembled distributed(data, PETSC_COMM_WORLD);
+  // Both ranks hold cells, and some rows receive entries from the other rank.
+  ASSERT_GT(distributed.mesh.view().num_cells, 0);
+  ASSERT_LT(distributed.mesh.view().num_cells, data.num_cells());
+  const std::vector<PetscInt> serial_dof = serial_dofs(distributed, serial);
+  expect_no_difference_on_any_rank(
+      "H(0.5)", first_difference(distributed.hessian, serial.hessian, serial_dof));
+  expect_no_difference_on_any_rank(
+      "L (optimal cells)",
+      first_difference(distributed.optimal_laplacian, serial.optimal_laplacian, serial_dof));
+  expect_no_difference_on_any_rank(
+      "L (current mesh)",
+      first_difference(distributed.current_laplacian, serial.current_laplacian, serial_dof));
+}
+
 INSTANTIATE_TEST_SUITE_P(
     ThesisMeshes, DistributedFunctional,
     ::testing::Values(Case{"square_midpoint", [] { return square_midpoint(16); }},
@@ -77,6 +194,38 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"tetrahedra", bent_tetrahedra},
                       Case{"triangles", [] { return triangle_equilateral(3, 1); }}),
     [](const auto& info) { return std::string(info.param.name); });
+
+// An inverted cell on rank 0 only: assembly fails on both ranks (instead of rank 1 waiting
+// forever for rank 0), naming the cell.
+TEST(DistributedFunctionalErrors, InvertedCellFailsOnEveryRank) {
+  ASSERT_EQ(mpi_size(), 2);
+  const Mesh mesh = distribute(box(CellType::Quadrilateral, 8), PETSC_COMM_WORLD);
+  const MeshView& view = mesh.view();
+  Functional functional(view, mesh.dofs(), EnergyOptions{}, view.on_boundary);
+  functional.set_desired_volumes(std::vector<double>(view.num_cells, 1.0 / 16));
+  OwnedVec x = mesh.coordinates();
+  if (mpi_rank() == 0) {
+    // An owned vertex whose 4 cells are all on rank 0 moves past the opposite corner of one
+    // of them (2 h along the diagonal).
+    std::vector<int> cells(view.num_vertices, 0);
+    for (PetscInt v : view.blocks[0].vertices) ++cells[v];
+    const auto v = std::find(cells.begin(), cells.end(), 4) - cells.begin();
+    ASSERT_LT(v, view.num_vertices);
+    ASSERT_TRUE(view.owned[v]);
+    PetscInt first = 0;
+    NM_PETSC(VecGetOwnershipRange(x, &first, nullptr));
+    VecWriteView coords(x);
+    for (int a = 0; a < 2; ++a) coords[mesh.dofs().global_dof()[2 * v + a] - first] += 0.5;
+  }
+  OwnedMat hessian = functional.create_matrix();
+  try {
+    functional.assemble_hessian(x, 0.5, hessian);
+    ADD_FAILURE() << "no error on rank " << mpi_rank();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is inverted or degenerate"), std::string::npos)
+        << e.what();
+  }
+}
 
 }  // namespace
 }  // namespace neomesh
