@@ -76,6 +76,13 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "relative tolerance of the loose quasi-Newton solve")
       ->capture_default_str()
       ->group(linear);
+  cmd.add_option("--hess-pc", o.hess_pc,
+                 "amg: precondition the quasi-Newton solve with an AMG hierarchy of H(alpha) "
+                 "(hessian) or with the Riesz solve's hierarchy of the Laplacian (laplacian: "
+                 "more CG iterations, cheaper ones, no H hierarchy built or stored)")
+      ->check(CLI::IsMember({"hessian", "laplacian"}))
+      ->capture_default_str()
+      ->group(linear);
   cmd.add_option("--hess-pc-reuse", o.solver.hessian_pc_reuse,
                  "amg: keep the AMG hierarchy of H(alpha) while the solve needs at most this "
                  "many times the iterations it needed when built (0: rebuild every iteration)")
@@ -130,6 +137,12 @@ void finalize(MethodOptions& o) {
     o.solver.riesz = RieszLaplacian::CurrentMesh;
   else
     fail("unknown --riesz '{}' (use optimal or current)", o.riesz);
+  if (o.hess_pc == "hessian")
+    o.solver.hessian_pc = HessianPreconditioner::Hessian;
+  else if (o.hess_pc == "laplacian")
+    o.solver.hessian_pc = HessianPreconditioner::Laplacian;
+  else
+    fail("unknown --hess-pc '{}' (use hessian or laplacian)", o.hess_pc);
   o.solver.practical = !(o.no_practical || o.thesis);
   o.boundary_mode = parse_boundary_mode(o.boundary);
 }

@@ -46,25 +46,27 @@ nlohmann::json to_json(const PhaseTimes& t) {
 }
 
 nlohmann::json to_json(const QuasiNewtonOptions& o) {
-  return {{"alpha0", o.alpha0},
-          {"eta", o.eta},
-          {"kmin", o.kmin},
-          {"max_iterations", o.max_iterations},
-          {"defect_atol", o.defect_atol},
-          {"defect_rtol", o.defect_rtol},
-          {"practical", o.practical},
-          {"energy_rtol", o.energy_rtol},
-          {"move_rtol", o.move_rtol},
-          {"armijo_beta", o.armijo_beta},
-          {"max_halvings", o.max_halvings},
-          {"initial_previous_defect", o.initial_previous_defect},
-          {"linear_solver", std::string(name(o.linear_solver))},
-          {"hessian_rtol", o.hessian_rtol},
-          {"hessian_defect_factor", o.hessian_defect_factor},
-          {"riesz_rtol", o.riesz_rtol},
-          {"hessian_pc_reuse", o.hessian_pc_reuse},
-          {"riesz_laplacian",
-           o.riesz == RieszLaplacian::OptimalCells ? "optimal-cells" : "current-mesh"}};
+  return {
+      {"alpha0", o.alpha0},
+      {"eta", o.eta},
+      {"kmin", o.kmin},
+      {"max_iterations", o.max_iterations},
+      {"defect_atol", o.defect_atol},
+      {"defect_rtol", o.defect_rtol},
+      {"practical", o.practical},
+      {"energy_rtol", o.energy_rtol},
+      {"move_rtol", o.move_rtol},
+      {"armijo_beta", o.armijo_beta},
+      {"max_halvings", o.max_halvings},
+      {"initial_previous_defect", o.initial_previous_defect},
+      {"linear_solver", std::string(name(o.linear_solver))},
+      {"hessian_rtol", o.hessian_rtol},
+      {"hessian_defect_factor", o.hessian_defect_factor},
+      {"riesz_rtol", o.riesz_rtol},
+      {"hessian_pc_reuse", o.hessian_pc_reuse},
+      {"hessian_pc", o.hessian_pc == HessianPreconditioner::Laplacian ? "laplacian" : "hessian"},
+      {"riesz_laplacian",
+       o.riesz == RieszLaplacian::OptimalCells ? "optimal-cells" : "current-mesh"}};
 }
 
 nlohmann::json to_json(const EnergyOptions& o) {

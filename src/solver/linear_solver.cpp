@@ -93,6 +93,28 @@ void LinearSolver::setup() {
   NM_PETSC(KSPSetUp(ksp_));
 }
 
+namespace {
+
+PetscErrorCode apply_other(PC shell, Vec x, Vec y) {
+  PetscFunctionBeginUser;
+  void* other = nullptr;
+  PetscCall(PCShellGetContext(shell, &other));
+  PetscCall(PCApply(static_cast<PC>(other), x, y));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+void LinearSolver::precondition_with(const LinearSolver& other) {
+  PC pc = nullptr, other_pc = nullptr;
+  NM_PETSC(KSPGetPC(ksp_, &pc));
+  NM_PETSC(KSPGetPC(other.ksp_, &other_pc));
+  NM_PETSC(PCSetType(pc, PCSHELL));
+  NM_PETSC(PCShellSetContext(pc, other_pc));
+  NM_PETSC(PCShellSetApply(pc, apply_other));
+  NM_PETSC(PCShellSetName(pc, "the Riesz solve's preconditioner"));
+}
+
 LinearSolver::Outcome LinearSolver::solve(Vec b, Vec x, double atol) {
   NM_PETSC(KSPSetTolerances(ksp_, rtol_, atol, PETSC_DEFAULT, PETSC_DEFAULT));
   NM_PETSC(VecZeroEntries(x));

@@ -32,6 +32,10 @@ class LinearSolver {
   void set_operator(Mat A, bool same_values);
   // Builds the preconditioner now (else the next solve does), for timing it on its own.
   void setup();
+  // From now on, precondition with `other`'s preconditioner as it is at each solve (built for
+  // `other`'s operator); this solver's own PC options no longer apply. `other` must outlive
+  // this solver.
+  void precondition_with(const LinearSolver& other);
 
   struct Outcome {
     bool converged = false;

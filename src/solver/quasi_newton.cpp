@@ -90,6 +90,7 @@ struct QuasiNewton::Impl {
         previous_defect(o.initial_previous_defect),
         alpha(o.alpha0) {
     Stopwatch watch(times.setup);
+    if (laplacian_preconditions_hessian()) hessian_solver.precondition_with(riesz_solver);
     hessian = functional.create_matrix();
     laplacian = functional.create_laplacian_matrix();
     for (OwnedVec* v : {&gradient, &s, &delta_tilde, &delta, &trial, &work, &rhs})
@@ -111,6 +112,11 @@ struct QuasiNewton::Impl {
     riesz_solver.setup();
   }
 
+  bool laplacian_preconditions_hessian() const {
+    return options.linear_solver == LinearSolverKind::Amg &&
+           options.hessian_pc == HessianPreconditioner::Laplacian;
+  }
+
   // (u, v)_L = uᵀ L v
   double inner_L(Vec u, Vec v) {
     NM_PETSC(MatMult(laplacian, v, work));
@@ -130,9 +136,9 @@ struct QuasiNewton::Impl {
     {
       Stopwatch watch(times.hessian_setup);
       hessian_solver.set_operator(hessian, reuse);
-      if (!reuse) hessian_solver.setup();
+      if (!reuse && !laplacian_preconditions_hessian()) hessian_solver.setup();
     }
-    rec.hessian_pc_built = !reuse;
+    rec.hessian_pc_built = !reuse && !laplacian_preconditions_hessian();
     LinearSolver::Outcome out;
     {
       Stopwatch watch(times.hessian_solve);

@@ -17,6 +17,13 @@
 
 namespace neomesh {
 
+// What preconditions the δ̃ solve with --linear-solver amg: an AMG hierarchy of H(α) itself,
+// rebuilt when it has gone stale, or the Riesz solve's hierarchy of L = B3/μ, which is built
+// anyway and changes only with the desired volumes. H(α) = B1 + α B2 + μ L is spectrally
+// close to μ L, so CG needs more iterations with it, but each V-cycle is cheaper (L is
+// block-diagonal) and no hierarchy of H is built or stored.
+enum class HessianPreconditioner { Hessian, Laplacian };
+
 struct QuasiNewtonOptions {
   double alpha0 = 0.3;  // initial α of H(α) = B1 + α B2 + B3
   double eta = 0.6;     // angle test: accept δ̃ if η_k ≥ η
@@ -46,6 +53,7 @@ struct QuasiNewtonOptions {
   // little between iterations, its setup costs about ten V-cycles); 0: rebuild always. 2 kept
   // a hierarchy that needed 9-11 iterations where a fresh one needs 4 (square 1024²).
   double hessian_pc_reuse = 1.5;
+  HessianPreconditioner hessian_pc = HessianPreconditioner::Hessian;
   RieszLaplacian riesz = RieszLaplacian::OptimalCells;
   // Absolute round-off level of F (MATH.md §4): when the predicted decrease σ·(−gᵀδ) is
   // below it, the Armijo test is decided by noise, so the step is taken as it is. About

@@ -130,6 +130,32 @@ TEST(SquareMidpoint, DoesNotStallOnRoundOffAt64x64) {
   EXPECT_LT(r.history.size(), 20u);
 }
 
+// --hess-pc laplacian: CG on H(α) preconditioned by the Riesz solve's AMG hierarchy of L.
+// Same grid, iterations within one of the H(α) hierarchy's, and no hierarchy of H built.
+TEST(SquareMidpoint, LaplacianPreconditionerReachesTheGrid) {
+  std::vector<std::size_t> iterations;
+  for (auto pc : {HessianPreconditioner::Hessian, HessianPreconditioner::Laplacian}) {
+    ThesisProblem p(square_midpoint(64));
+    QuasiNewtonOptions o = p.thesis_options();
+    o.linear_solver = LinearSolverKind::Amg;
+    o.hessian_pc = pc;
+    const QuasiNewtonResult r = p.minimize(o);
+    EXPECT_LT(r.final_defect, 1e-10);
+    EXPECT_LT(distance_to_uniform_grid(p, 64), 1e-8);
+    for (const IterationRecord& rec : r.history) {
+      SCOPED_TRACE(fmt::format("k {}", rec.k));
+      if (pc == HessianPreconditioner::Laplacian) {
+        EXPECT_FALSE(rec.hessian_pc_built);
+      }
+      if (rec.delta_solved && !rec.delta_truncated) {
+        EXPECT_LE(rec.residual_delta, 1e-3 * rec.defect * (1 + 1e-12));
+      }
+    }
+    iterations.push_back(r.history.size());
+  }
+  EXPECT_LE(iterations[1], iterations[0] + 1);
+}
+
 TEST(CubeMidpoint, ReproducesThesisTable518) {
   ThesisProblem p(cube_midpoint(16));
   const QuasiNewtonResult r = p.minimize(p.thesis_options());
