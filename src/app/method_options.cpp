@@ -77,15 +77,16 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
       ->capture_default_str()
       ->group(linear);
   cmd.add_option("--hess-pc", o.hess_pc,
-                 "amg: precondition the quasi-Newton solve with an AMG hierarchy of H(alpha) "
-                 "(hessian) or with the Riesz solve's hierarchy of the Laplacian (laplacian: "
-                 "more CG iterations, cheaper ones, no H hierarchy built or stored)")
+                 "amg: precondition the quasi-Newton solve with the Riesz solve's AMG hierarchy "
+                 "of the Laplacian (laplacian: more CG iterations, cheaper ones, no hierarchy "
+                 "of H(alpha) built or stored) or with a hierarchy of H(alpha) (hessian)")
       ->check(CLI::IsMember({"hessian", "laplacian"}))
       ->capture_default_str()
       ->group(linear);
-  cmd.add_option("--hess-pc-reuse", o.solver.hessian_pc_reuse,
-                 "amg: keep the AMG hierarchy of H(alpha) while the solve needs at most this "
-                 "many times the iterations it needed when built (0: rebuild every iteration)")
+  cmd.add_option(
+         "--hess-pc-reuse", o.solver.hessian_pc_reuse,
+         "--hess-pc hessian: keep the AMG hierarchy of H(alpha) while the solve needs at most this "
+         "many times the iterations it needed when built (0: rebuild every iteration)")
       ->capture_default_str()
       ->group(linear);
   cmd.add_option("--riesz-rtol", o.riesz_rtol,

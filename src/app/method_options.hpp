@@ -19,7 +19,7 @@ struct MethodOptions {
   QuasiNewtonOptions solver;
   std::string linear_solver = "amg";
   std::string riesz = "optimal";
-  std::string hess_pc = "hessian";
+  std::string hess_pc = "laplacian";
   std::optional<double>
       riesz_rtol;                  // unset: QuasiNewtonOptions' default, the thesis' with --thesis
   std::string boundary = "fixed";  // resolved into boundary_mode by finalize()
