@@ -38,6 +38,26 @@ constexpr const VertexOrder& gmsh_from_canonical(CellType t) {
   return kGmshFromCanonical[static_cast<int>(t)];
 }
 
+// The facets of a cell as DMPlexInterpolate makes them (DMPlexGetRawFaces_Internal): positions
+// in the DMPlex cone. A facet keeps the vertex order of the first cell that has it, and its
+// closure lists its vertices in that order.
+struct FacetShape {
+  int count;  // facets per cell
+  int size;   // vertices per facet
+  std::array<std::array<int, 4>, 6> vertices;
+};
+constexpr FacetShape kPlexFacets[4] = {
+    {3, 2, {{{0, 1}, {1, 2}, {2, 0}}}},                      // triangle
+    {4, 2, {{{0, 1}, {1, 2}, {2, 3}, {3, 0}}}},              // quadrilateral
+    {4, 3, {{{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {2, 1, 3}}}},  // tetrahedron
+    {6,
+     4,  // hexahedron
+     {{{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 3, 5, 4}, {2, 1, 7, 6}, {3, 2, 6, 5}, {0, 4, 7, 1}}}}};
+
+constexpr const FacetShape& plex_facets(CellType t) {
+  return kPlexFacets[static_cast<int>(t)];
+}
+
 constexpr DMPolytopeType plex_polytope(CellType t) {
   switch (t) {
     case CellType::Triangle:

@@ -42,7 +42,7 @@ struct InputMesh {
   std::vector<PetscInt> cell_vertices;  // canonical order
   std::vector<int> cell_tags;           // per cell: Gmsh physical tag, or 0 for none
   TaggedEntities facets;                // boundary facets in physical groups
-  std::vector<VertexSet> vertex_sets;   // named vertex sets (turned into facets when built)
+  std::vector<VertexSet> vertex_sets;   // named vertex sets (turned into facets, input_topology)
   TaggedEntities points;                // single vertices in physical groups
   std::vector<PhysicalGroup> groups;    // every group above, sorted by (dim, tag)
 

@@ -8,6 +8,7 @@
 #include "mesh/collective_error.hpp"
 #include "mesh/feat_reader.hpp"
 #include "mesh/gmsh_reader.hpp"
+#include "mesh/input_topology.hpp"
 #include "mesh/mesh_impl.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/plex_builder.hpp"
@@ -48,15 +49,13 @@ void broadcast_groups(MPI_Comm comm, std::vector<PhysicalGroup>& groups) {
   }
 }
 
-// Distributes the cells over the ranks (no overlap). Returns, per local point, its point
-// number in the undistributed DM.
-std::vector<PetscInt> distribute(Impl& m) {
+// Distributes the cells over the ranks (no overlap) as set_partition splits `graph`. Returns,
+// per local point, its point number in the undistributed DM.
+std::vector<PetscInt> distribute(Impl& m, CellGraph& graph) {
   PetscInt pStart, pEnd;
   OwnedSF migration;
   if (mpi_size(m.comm) > 1) {
-    PetscPartitioner partitioner;
-    NM_PETSC(DMPlexGetPartitioner(m.dm, &partitioner));
-    NM_PETSC(PetscPartitionerSetFromOptions(partitioner));
+    set_partition(m.dm, graph);
     OwnedDM distributed;
     NM_PETSC(DMPlexDistribute(m.dm, 0, migration.out(), distributed.out()));
     if (distributed) m.dm = std::move(distributed);
@@ -75,36 +74,27 @@ std::vector<PetscInt> distribute(Impl& m) {
   return original;
 }
 
-// Makes a per-point flag the same on every rank that has the point: the maximum over them.
-void share_max(DM dm, std::vector<PetscInt>& flag) {
-  PetscSF sf;
-  NM_PETSC(DMGetPointSF(dm, &sf));
-  std::vector<PetscInt> leaves = flag;
-  NM_PETSC(PetscSFReduceBegin(sf, MPIU_INT, leaves.data(), flag.data(), MPI_MAX));
-  NM_PETSC(PetscSFReduceEnd(sf, MPIU_INT, leaves.data(), flag.data(), MPI_MAX));
-  NM_PETSC(PetscSFBcastBegin(sf, MPIU_INT, flag.data(), flag.data(), MPI_REPLACE));
-  NM_PETSC(PetscSFBcastEnd(sf, MPIU_INT, flag.data(), flag.data(), MPI_REPLACE));
-}
-
-void build_cells(Impl& m, const std::vector<PetscInt>& original, MeshView& view) {
-  PetscInt cStart, cEnd, vStart, vEnd;
+void build_cells(const Impl& m, const std::vector<PetscInt>& original, MeshView& view) {
+  PetscInt cStart, cEnd, vStart;
   NM_PETSC(DMPlexGetHeightStratum(m.dm, 0, &cStart, &cEnd));
-  NM_PETSC(DMPlexGetDepthStratum(m.dm, 0, &vStart, &vEnd));
+  NM_PETSC(DMPlexGetDepthStratum(m.dm, 0, &vStart, nullptr));
+  // A cell's type follows from its number of vertices (faster than the "celltype" label).
   std::vector<CellType> type(cEnd - cStart);
   for (PetscInt c = cStart; c < cEnd; ++c) {
-    DMPolytopeType polytope;
-    NM_PETSC(DMPlexGetCellType(m.dm, c, &polytope));
-    if (!cell_type_of(polytope, type[c - cStart])) fail("{}: unsupported cell type", m.source);
+    PetscInt n;
+    NM_PETSC(DMPlexGetConeSize(m.dm, c, &n));
+    type[c - cStart] = m.dim == 2 ? (n == 3 ? CellType::Triangle : CellType::Quadrilateral)
+                                  : (n == 4 ? CellType::Tetrahedron : CellType::Hexahedron);
   }
   for (CellType t :
        {CellType::Triangle, CellType::Quadrilateral, CellType::Tetrahedron, CellType::Hexahedron}) {
     CellBlock block{t, view.num_cells, {}};
     for (PetscInt c = cStart; c < cEnd; ++c) {
       if (type[c - cStart] != t) continue;
-      const auto plex = closure_vertices(m.dm, c, vStart, vEnd);
+      const PetscInt* cone;  // the cell's vertices
+      NM_PETSC(DMPlexGetCone(m.dm, c, &cone));
       for (int i = 0; i < num_vertices(t); ++i)
-        block.vertices.push_back(plex[canonical_from_plex(t)[i]]);
-      m.view_cell_point.push_back(c);
+        block.vertices.push_back(cone[canonical_from_plex(t)[i]] - vStart);
       view.global_cell.push_back(original[c]);  // cells come first in the original chart
     }
     view.num_cells += block.size();
@@ -112,37 +102,29 @@ void build_cells(Impl& m, const std::vector<PetscInt>& original, MeshView& view)
   }
 }
 
-void build_boundary(Impl& m, MeshView& view) {
-  PetscInt pStart, pEnd, vStart, vEnd;
-  NM_PETSC(DMPlexGetChart(m.dm, &pStart, &pEnd));
-  NM_PETSC(DMPlexGetDepthStratum(m.dm, 0, &vStart, &vEnd));
-  const PetscInt nv = vEnd - vStart;
-  view.on_boundary.assign(nv, 0);
-  for (PetscInt p : stratum(m.dm, kBoundaryLabel, 1))
-    if (p >= vStart && p < vEnd) view.on_boundary[p - vStart] = 1;
-
-  view.boundary_part.assign(nv, -1);
-  view.part_count.assign(nv, 0);
-  const bool parallel = mpi_size(m.comm) > 1;
-  for (const PhysicalGroup& g : m.groups) {
-    if (g.dim != m.dim - 1 && g.dim != 0) continue;
-    const int part = static_cast<int>(view.parts.size());
-    view.parts.push_back({g.name, g.tag});
-    // A vertex's facets of this part may all be on another rank: share membership.
-    std::vector<PetscInt> member(pEnd - pStart, 0);
-    const char* label = g.dim == 0 ? "Vertex Sets" : "Face Sets";
-    for (PetscInt p : stratum(m.dm, label, g.tag))
-      for (PetscInt v : closure_vertices(m.dm, p, vStart, vEnd)) member[vStart + v - pStart] = 1;
-    if (parallel) share_max(m.dm, member);
-    for (PetscInt v = 0; v < nv; ++v) {
-      if (!member[vStart + v - pStart]) continue;
-      if (view.boundary_part[v] < 0) view.boundary_part[v] = part;
-      ++view.part_count[v];
-    }
-  }
+// Rank 0 knows the boundary by input vertex; each rank fetches its local vertices' share.
+void build_boundary(const Impl& m, const InputTopology& root, MeshView& view) {
+  const PetscInt nv = view.num_vertices;
+  std::vector<PetscSFNode> remote(nv);
+  for (PetscInt v = 0; v < nv; ++v) remote[v] = {0, m.input_vertex[v]};
+  OwnedSF sf;
+  NM_PETSC(PetscSFCreate(m.comm, sf.out()));
+  NM_PETSC(PetscSFSetGraph(sf, static_cast<PetscInt>(root.on_boundary.size()), nv, nullptr,
+                           PETSC_COPY_VALUES, remote.data(), PETSC_COPY_VALUES));
+  auto fetch = [&](const auto& from, auto& to, MPI_Datatype type) {
+    to.resize(nv);
+    NM_PETSC(PetscSFBcastBegin(sf, type, from.data(), to.data(), MPI_REPLACE));
+    NM_PETSC(PetscSFBcastEnd(sf, type, from.data(), to.data(), MPI_REPLACE));
+  };
+  fetch(root.on_boundary, view.on_boundary, MPI_UNSIGNED_CHAR);
+  fetch(root.boundary_part, view.boundary_part, MPI_INT);
+  fetch(root.part_count, view.part_count, MPI_UNSIGNED_CHAR);
+  for (const PhysicalGroup& g : m.groups)
+    if (g.dim == m.dim - 1 || g.dim == 0) view.parts.push_back({g.name, g.tag});
 }
 
-void build_view(Impl& m, const std::vector<PetscInt>& original, PetscInt root_vStart) {
+void build_view(Impl& m, const std::vector<PetscInt>& original, PetscInt root_vStart,
+                const InputTopology& root) {
   auto view = std::make_unique<MeshView>();
   view->dim = m.dim;
   PetscInt pStart, pEnd, vStart, vEnd;
@@ -165,7 +147,7 @@ void build_view(Impl& m, const std::vector<PetscInt>& original, PetscInt root_vS
     m.input_vertex[v - vStart] = original[v - pStart] - root_vStart;
   }
   build_cells(m, original, *view);
-  build_boundary(m, *view);
+  build_boundary(m, root, *view);
   m.view = std::move(view);
 }
 
@@ -212,21 +194,31 @@ Mesh create(MPI_Comm comm, InputMesh& input, const std::string& source) {
   auto m = std::make_unique<Impl>();
   m->comm = comm;
   m->source = source;
+  InputTopology root;
+  CellGraph graph;
+  on_root(comm, [&] {
+    const FacetTable table(input);
+    root = input_topology(input, table, source);
+    if (mpi_size(comm) > 1) graph = table.cell_graph();
+  });
   m->dm = build_plex(comm, input);
   PetscInt dim, vStart, vEnd, cStart, cEnd;
   NM_PETSC(DMGetDimension(m->dm, &dim));
   m->dim = static_cast<int>(dim);
   NM_PETSC(DMPlexGetDepthStratum(m->dm, 0, &vStart, &vEnd));
   NM_PETSC(DMPlexGetHeightStratum(m->dm, 0, &cStart, &cEnd));
-  PetscInt root[3] = {cEnd - cStart, vEnd - vStart, vStart};
-  MPI_Bcast(root, 3, MPIU_INT, 0, comm);
-  m->global_num_cells = root[0];
-  m->global_num_vertices = root[1];
+  PetscInt counts[3] = {cEnd - cStart, vEnd - vStart, vStart};
+  MPI_Bcast(counts, 3, MPIU_INT, 0, comm);
+  m->global_num_cells = counts[0];
+  m->global_num_vertices = counts[1];
   m->groups = input.groups;
   broadcast_groups(comm, m->groups);
+  m->cell_tags = std::move(input.cell_tags);
+  m->facets = std::move(root.facets);
+  m->points = std::move(root.points);
 
-  const auto original = distribute(*m);
-  build_view(*m, original, root[2]);
+  const auto original = distribute(*m, graph);
+  build_view(*m, original, counts[2], root);
   build_dofs(*m);
   return MeshAccess::create(std::move(m));
 }

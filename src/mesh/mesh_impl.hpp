@@ -13,14 +13,17 @@ namespace neomesh {
 
 struct Mesh::Impl {
   MPI_Comm comm = MPI_COMM_NULL;
-  OwnedDM dm;  // distributed, interpolated, labelled as in plex_builder.hpp
+  OwnedDM dm;  // distributed cells and vertices (plex_builder.hpp)
   int dim = 2;
   std::string source;
   PetscInt global_num_cells = 0;
   PetscInt global_num_vertices = 0;
-  std::vector<PhysicalGroup> groups;      // the same on every rank, sorted by (dim, tag)
-  std::vector<PetscInt> view_cell_point;  // per MeshView cell: its DMPlex point
-  std::vector<PetscInt> input_vertex;     // per local vertex: its number in the input (0-based)
+  std::vector<PhysicalGroup> groups;   // the same on every rank, sorted by (dim, tag)
+  std::vector<PetscInt> input_vertex;  // per local vertex: its number in the input (0-based)
+  // Rank 0 only, for the writers: per input cell its physical tag (0 for none), and the facets
+  // and points of physical groups in input numbering (input_topology.hpp).
+  std::vector<int> cell_tags;
+  TaggedEntities facets, points;
   std::unique_ptr<MeshView> view;
   std::unique_ptr<DofMap> dofs;
 };

@@ -28,21 +28,4 @@ std::vector<std::uint8_t> ghost_points(DM dm) {
   return ghost;
 }
 
-std::vector<PetscInt> stratum(DM dm, const char* label_name, PetscInt value) {
-  DMLabel label = nullptr;
-  NM_PETSC(DMGetLabel(dm, label_name, &label));
-  std::vector<PetscInt> points;
-  if (!label) return points;
-  OwnedIS is;
-  NM_PETSC(DMLabelGetStratumIS(label, value, is.out()));
-  if (!is) return points;
-  PetscInt n;
-  const PetscInt* p;
-  NM_PETSC(ISGetLocalSize(is, &n));
-  NM_PETSC(ISGetIndices(is, &p));
-  points.assign(p, p + n);
-  NM_PETSC(ISRestoreIndices(is, &p));
-  return points;
-}
-
 }  // namespace neomesh

@@ -1,4 +1,4 @@
-// Small queries on a DMPlex shared by the mesh layer's readers, view and writers.
+// Small queries on a DMPlex shared by the mesh layer's reader and view.
 #pragma once
 
 #include <cstdint>
@@ -14,8 +14,5 @@ std::vector<PetscInt> closure_vertices(DM dm, PetscInt point, PetscInt vStart, P
 // Per local point (relative to the chart start): 1 if another rank owns it (a leaf of the
 // point SF).
 std::vector<std::uint8_t> ghost_points(DM dm);
-
-// The points where label `label_name` has `value` (none if the label does not exist).
-std::vector<PetscInt> stratum(DM dm, const char* label_name, PetscInt value);
 
 }  // namespace neomesh
