@@ -72,24 +72,4 @@ constexpr DMPolytopeType plex_polytope(CellType t) {
   return DM_POLYTOPE_UNKNOWN;
 }
 
-// The neomesh cell type of a DMPlex cell, or false for any other polytope.
-constexpr bool cell_type_of(DMPolytopeType p, CellType& t) {
-  switch (p) {
-    case DM_POLYTOPE_TRIANGLE:
-      t = CellType::Triangle;
-      return true;
-    case DM_POLYTOPE_QUADRILATERAL:
-      t = CellType::Quadrilateral;
-      return true;
-    case DM_POLYTOPE_TETRAHEDRON:
-      t = CellType::Tetrahedron;
-      return true;
-    case DM_POLYTOPE_HEXAHEDRON:
-      t = CellType::Hexahedron;
-      return true;
-    default:
-      return false;
-  }
-}
-
 }  // namespace neomesh

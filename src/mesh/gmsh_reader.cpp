@@ -1,179 +1,505 @@
 #include "mesh/gmsh_reader.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
+#include <optional>
 #include <set>
-#include <sstream>
 
-#include "core/petsc.hpp"
+#include "core/error.hpp"
 #include "mesh/cell_order.hpp"
-#include "mesh/plex_util.hpp"
 
 namespace neomesh {
 
 namespace {
 
-using GroupKey = std::pair<int, int>;  // (dim, tag)
+// Element polytopes in the order PETSc's reader sorted elements by (stably): cells are
+// numbered in this order, so their numbers stay those of earlier versions.
+enum Polytope { kTet, kHex, kPrism, kPyramid, kTriangle, kQuad, kLine, kPoint, kNumPolytopes };
 
-// The $PhysicalNames block, which PETSc reads but does not keep. It precedes $Nodes and is
-// ASCII even in binary files.
-std::map<GroupKey, std::string> read_physical_names(const std::filesystem::path& path) {
-  std::map<GroupKey, std::string> names;
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.starts_with("$Nodes") || line.starts_with("$Entities")) break;
-    if (!line.starts_with("$PhysicalNames")) continue;
-    int count = 0;
-    in >> count;
-    std::getline(in, line);
-    for (int i = 0; i < count && std::getline(in, line); ++i) {
-      std::istringstream fields(line);
-      int dim = 0, tag = 0;
-      fields >> dim >> tag;
+constexpr int kPolytopeDim[kNumPolytopes] = {3, 3, 3, 3, 2, 2, 1, 0};
+constexpr int kPolytopeCorners[kNumPolytopes] = {4, 8, 6, 5, 3, 4, 2, 1};
+
+struct ElementType {
+  Polytope polytope;
+  int order;
+  int nodes;
+};
+
+// The Gmsh element types neomesh can read or name in an error (gmsh.info, "MSH file format").
+struct KnownType {
+  int gmsh;
+  ElementType type;
+};
+constexpr KnownType kKnownTypes[] = {
+    {15, {kPoint, 1, 1}},   {1, {kLine, 1, 2}},       {8, {kLine, 2, 3}},  {2, {kTriangle, 1, 3}},
+    {9, {kTriangle, 2, 6}}, {21, {kTriangle, 3, 10}}, {3, {kQuad, 1, 4}},  {10, {kQuad, 2, 9}},
+    {16, {kQuad, 2, 8}},    {4, {kTet, 1, 4}},        {11, {kTet, 2, 10}}, {5, {kHex, 1, 8}},
+    {12, {kHex, 2, 27}},    {17, {kHex, 2, 20}},      {6, {kPrism, 1, 6}}, {13, {kPrism, 2, 18}},
+    {7, {kPyramid, 1, 5}},  {14, {kPyramid, 2, 14}}};
+
+bool element_type(long long gmsh_type, ElementType& t) {
+  for (const KnownType& k : kKnownTypes)
+    if (k.gmsh == gmsh_type) {
+      t = k.type;
+      return true;
+    }
+  return false;
+}
+
+constexpr int kNoTag = std::numeric_limits<int>::min();
+
+// The elements of one polytope in file order: corner nodes (indices into $Nodes) and the
+// physical tag (the first one; kNoTag for none).
+struct Elements {
+  std::vector<PetscInt> corners;
+  std::vector<int> tags;
+  int order = 1;
+};
+
+struct Contents {
+  int version = 0;                                   // 22 or 41
+  std::map<std::pair<int, int>, std::string> names;  // $PhysicalNames by (dim, tag)
+  std::map<std::pair<int, int>, int> entity_tag;     // 4.1: (dim, entity) → physical tag
+  std::vector<double> xyz;                           // per node (file order)
+  std::vector<long long> node_tags;                  // per node
+  std::array<Elements, kNumPolytopes> elements;
+};
+
+// The whole file in memory, read section by section. ASCII numbers are parsed by hand (the
+// reader's hot loop); binary blocks are copied.
+class GmshParser {
+ public:
+  explicit GmshParser(const std::filesystem::path& path) : file_(path.string()) {
+    std::ifstream in(path, std::ios::binary);
+    in.seekg(0, std::ios::end);
+    text_.resize(static_cast<std::size_t>(in.tellg()));
+    in.seekg(0);
+    in.read(text_.data(), static_cast<std::streamsize>(text_.size()));
+    if (!in) fail("{}: cannot be read", file_);
+    pos_ = text_.data();
+    end_ = pos_ + text_.size();
+  }
+
+  Contents parse() {
+    if (word() != "$MeshFormat") invalid("it does not start with $MeshFormat");
+    read_format();
+    for (std::string_view section = word(); !section.empty(); section = word()) {
+      section_ = section;
+      // Binary sections of 4.1 start right after the newline that ends their name.
+      if (binary_ && c_.version == 41 && section != "$PhysicalNames") ++pos_;
+      if (section == "$PhysicalNames")
+        read_names();
+      else if (section == "$Entities" && c_.version == 41)
+        read_entities();
+      else if (section == "$Nodes")
+        read_nodes();
+      else if (section == "$Elements")
+        read_elements();
+      else
+        skip_section(section);
+    }
+    if (!have_nodes_) invalid("it has no $Nodes section");
+    return std::move(c_);
+  }
+
+ private:
+  template <typename... Args>
+  [[noreturn]] void invalid(fmt::format_string<Args...> format, Args&&... args) {
+    fail("{}: not a valid Gmsh mesh file ({})", file_,
+         fmt::format(format, std::forward<Args>(args)...));
+  }
+  [[noreturn]] void truncated() { invalid("the file ends inside {}", shown(section_)); }
+
+  // A word of the file for a message: short, printable.
+  static std::string shown(std::string_view word) {
+    std::string out(word.substr(0, 24));
+    for (char& c : out)
+      if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+    return word.size() > 24 ? out + "..." : out;
+  }
+
+  void skip_space() {
+    while (pos_ < end_ && (*pos_ == ' ' || *pos_ == '\n' || *pos_ == '\r' || *pos_ == '\t')) ++pos_;
+  }
+
+  // The next whitespace-separated word; empty at the end of the file.
+  std::string_view word() {
+    skip_space();
+    const char* first = pos_;
+    while (pos_ < end_ && !std::isspace(static_cast<unsigned char>(*pos_))) ++pos_;
+    return {first, static_cast<std::size_t>(pos_ - first)};
+  }
+
+  long long integer() {
+    skip_space();
+    if (pos_ == end_) truncated();
+    const char* first = pos_;
+    const bool negative = *pos_ == '-';
+    if (negative || *pos_ == '+') ++pos_;
+    long long value = 0;
+    const char* digits = pos_;
+    while (pos_ < end_ && *pos_ >= '0' && *pos_ <= '9') value = 10 * value + (*pos_++ - '0');
+    if (pos_ == digits || (pos_ < end_ && !std::isspace(static_cast<unsigned char>(*pos_))))
+      not_a_number(first, "an integer");
+    return negative ? -value : value;
+  }
+
+  double real() {
+    skip_space();
+    if (pos_ == end_) truncated();
+    double value = 0;
+    const auto [next, ec] = std::from_chars(pos_, end_, value);
+    if (ec == std::errc::result_out_of_range)  // subnormal or huge: strtod rounds it
+      value = std::strtod(std::string(pos_, next).c_str(), nullptr);
+    else if (ec != std::errc() || (next < end_ && !std::isspace(static_cast<unsigned char>(*next))))
+      not_a_number(pos_, "a number");
+    pos_ = next;
+    return value;
+  }
+
+  [[noreturn]] void not_a_number(const char* at, const char* what) {
+    pos_ = at;
+    invalid("expected {} in {}, found '{}'", what, shown(section_), shown(word()));
+  }
+
+  // `n` values of type T from a binary block.
+  template <typename T>
+  void binary(T* out, std::size_t n) {
+    const std::size_t bytes = n * sizeof(T);
+    if (static_cast<std::size_t>(end_ - pos_) < bytes) truncated();
+    std::memcpy(out, pos_, bytes);
+    pos_ += bytes;
+  }
+  template <typename T>
+  T binary() {
+    T value;
+    binary(&value, 1);
+    return value;
+  }
+  // A size_t of the file (4.1 binary: data-size bytes).
+  long long size() {
+    if (!binary_) return integer();
+    return size_bytes_ == 8 ? static_cast<long long>(binary<std::uint64_t>())
+                            : static_cast<long long>(binary<std::uint32_t>());
+  }
+  int small_int() { return binary_ ? binary<int>() : static_cast<int>(integer()); }
+  // A number of items to allocate for: at most one per byte left.
+  long long count(long long n) {
+    if (n < 0 || n > end_ - pos_) invalid("{} announces {} items", shown(section_), n);
+    return n;
+  }
+  double real_value() { return binary_ ? binary<double>() : real(); }
+
+  void expect_end(std::string_view section) {
+    const std::string end = "$End" + std::string(section.substr(1));
+    const std::string_view found = word();
+    if (found.empty()) truncated();
+    if (found != end) invalid("expected {}, found '{}'", end, shown(found));
+  }
+
+  void skip_section(std::string_view section) {
+    if (!section.starts_with('$'))
+      invalid("expected a section such as $Nodes, found '{}'", shown(section));
+    const std::string end = "$End" + std::string(section.substr(1));
+    const char* at = std::search(pos_, end_, end.begin(), end.end());
+    if (at == end_) truncated();
+    pos_ = at + end.size();
+  }
+
+  void read_format() {
+    section_ = "$MeshFormat";
+    const std::string_view version = word();
+    const long long file_type = integer();
+    size_bytes_ = static_cast<int>(integer());
+    if (version == "2.2")
+      c_.version = 22;
+    else if (version == "4.1")
+      c_.version = 41;
+    else
+      fail("{}: is a Gmsh {} file; neomesh reads Gmsh formats 2.2 and 4.1", file_, shown(version));
+    binary_ = file_type == 1;
+    if (binary_) {
+      if (size_bytes_ != 4 && size_bytes_ != 8) invalid("data size {}", size_bytes_);
+      ++pos_;  // the newline before the binary one
+      if (binary<int>() != 1) invalid("binary data of another byte order");
+    }
+    expect_end("$MeshFormat");
+  }
+
+  // Names between the first and the last quote of each line.
+  void read_names() {
+    const long long n = integer();
+    for (long long i = 0; i < n; ++i) {
+      const int dim = static_cast<int>(integer()), tag = static_cast<int>(integer());
+      const char* eol = std::find(pos_, end_, '\n');
+      const std::string_view line(pos_, static_cast<std::size_t>(eol - pos_));
       const auto open = line.find('"'), close = line.rfind('"');
-      if (open != std::string::npos && close > open)
-        names[{dim, tag}] = line.substr(open + 1, close - open - 1);
+      if (open != std::string_view::npos && close > open)
+        c_.names[{dim, tag}] = std::string(line.substr(open + 1, close - open - 1));
+      pos_ = eol;
     }
-    break;
+    expect_end("$PhysicalNames");
   }
-  return names;
+
+  void read_entities() {
+    long long counts[4];
+    for (auto& n : counts) n = size();
+    for (int dim = 0; dim < 4; ++dim)
+      for (long long e = 0; e < counts[dim]; ++e) {
+        const int tag = small_int();
+        for (int i = 0; i < (dim == 0 ? 3 : 6); ++i) real_value();
+        const long long physicals = size();
+        for (long long i = 0; i < physicals; ++i) {
+          const int physical = small_int();
+          if (i == 0) c_.entity_tag[{dim, tag}] = physical;
+        }
+        if (dim == 0) continue;
+        for (long long i = 0, n = size(); i < n; ++i) small_int();  // bounding entities
+      }
+    expect_end("$Entities");
+  }
+
+  void read_nodes() {
+    if (c_.version == 22) {
+      const long long n = count(integer());  // ASCII in binary files too
+      c_.node_tags.resize(n);
+      c_.xyz.resize(3 * n);
+      if (binary_) ++pos_;
+      for (long long i = 0; i < n; ++i) {
+        c_.node_tags[i] = small_int();
+        for (int d = 0; d < 3; ++d) c_.xyz[3 * i + d] = real_value();
+      }
+    } else {
+      const long long blocks = size(), total = count(size());
+      size();  // smallest and largest node tag
+      size();
+      c_.node_tags.reserve(total);
+      c_.xyz.reserve(3 * total);
+      for (long long b = 0; b < blocks; ++b) {
+        small_int();  // entity dimension and tag
+        small_int();
+        if (small_int() != 0) invalid("parametric nodes are not supported");
+        const long long n = size();
+        for (long long i = 0; i < n; ++i) c_.node_tags.push_back(size());
+        for (long long i = 0; i < 3 * n; ++i) c_.xyz.push_back(real_value());
+      }
+      if (static_cast<long long>(c_.node_tags.size()) != total)
+        invalid("$Nodes announces {} nodes and lists {}", total, c_.node_tags.size());
+    }
+    expect_end("$Nodes");
+    index_nodes();
+    have_nodes_ = true;
+  }
+
+  // Node tags may be sparse: index them through a table over their range.
+  void index_nodes() {
+    if (c_.node_tags.empty()) return;
+    const auto [lo, hi] = std::minmax_element(c_.node_tags.begin(), c_.node_tags.end());
+    first_tag_ = *lo;
+    if (*hi - *lo > 64 * static_cast<long long>(c_.node_tags.size()) + (1 << 20))
+      invalid("node tags range from {} to {} for {} nodes", *lo, *hi, c_.node_tags.size());
+    node_index_.assign(*hi - *lo + 1, -1);
+    for (std::size_t n = 0; n < c_.node_tags.size(); ++n) {
+      PetscInt& index = node_index_[c_.node_tags[n] - first_tag_];
+      if (index >= 0) invalid("node tag {} appears twice", c_.node_tags[n]);
+      index = static_cast<PetscInt>(n);
+    }
+  }
+
+  PetscInt node(long long tag) {
+    const long long i = tag - first_tag_;
+    if (i < 0 || i >= static_cast<long long>(node_index_.size()) || node_index_[i] < 0)
+      invalid("an element refers to node {}, which $Nodes does not list", tag);
+    return node_index_[i];
+  }
+
+  ElementType type_of(long long gmsh_type) {
+    ElementType t;
+    if (!element_type(gmsh_type, t)) invalid("element type {} is not supported", gmsh_type);
+    return t;
+  }
+
+  // One element's nodes (after its number and tags): keeps the corners.
+  void add_element(const ElementType& t, int tag, const long long* nodes) {
+    Elements& e = c_.elements[t.polytope];
+    for (int i = 0; i < kPolytopeCorners[t.polytope]; ++i) e.corners.push_back(node(nodes[i]));
+    e.tags.push_back(tag);
+    e.order = std::max(e.order, t.order);
+  }
+
+  void read_elements() {
+    if (!have_nodes_) invalid("$Elements comes before $Nodes");
+    long long nodes[32];
+    if (c_.version == 22) {
+      const long long total = integer();
+      if (binary_) ++pos_;
+      for (long long e = 0; e < total;) {
+        // ASCII: number, type, tags, nodes per line; binary: blocks of elements of one type.
+        if (!binary_) integer();
+        const ElementType t = type_of(small_int());
+        const int block_size = binary_ ? binary<int>() : 1;
+        const int num_tags = small_int();
+        for (int k = 0; k < block_size; ++k, ++e) {
+          if (binary_) binary<int>();  // the element number
+          int tag = kNoTag;
+          for (int i = 0; i < num_tags; ++i) {
+            const int value = small_int();
+            if (i == 0) tag = value;
+          }
+          for (int i = 0; i < t.nodes; ++i) nodes[i] = small_int();
+          add_element(t, tag, nodes);
+        }
+      }
+    } else {
+      const long long blocks = size();
+      size();  // number of elements, smallest and largest element tag
+      size();
+      size();
+      for (long long b = 0; b < blocks; ++b) {
+        const int dim = small_int(), entity = small_int();
+        const ElementType t = type_of(small_int());
+        const auto it = c_.entity_tag.find({dim, entity});
+        const int tag = it == c_.entity_tag.end() ? kNoTag : it->second;
+        for (long long k = 0, n = size(); k < n; ++k) {
+          size();  // the element tag
+          for (int i = 0; i < t.nodes; ++i) nodes[i] = size();
+          add_element(t, tag, nodes);
+        }
+      }
+    }
+    expect_end("$Elements");
+  }
+
+  std::string file_;
+  std::string text_;
+  const char* pos_ = nullptr;
+  const char* end_ = nullptr;
+  std::string_view section_ = "$MeshFormat";
+  bool binary_ = false;
+  bool have_nodes_ = false;
+  int size_bytes_ = 8;
+  long long first_tag_ = 0;
+  std::vector<PetscInt> node_index_;
+  Contents c_;
+};
+
+constexpr const char* kPolytopeName[kNumPolytopes] = {
+    "tetrahedron", "hexahedron",    "triangular_prism", "pyramid",
+    "triangle",    "quadrilateral", "segment",          "point"};
+
+// neomesh's cell type of each polytope (none for prisms, pyramids, lines and points).
+constexpr std::optional<CellType> kCellType[kNumPolytopes] = {
+    CellType::Tetrahedron, CellType::Hexahedron,    std::nullopt, std::nullopt,
+    CellType::Triangle,    CellType::Quadrilateral, std::nullopt, std::nullopt};
+
+// Vertices are the nodes some element has as a corner, numbered in the order of $Nodes.
+std::vector<PetscInt> number_vertices(const Contents& c, InputMesh& mesh) {
+  std::vector<PetscInt> vertex(c.node_tags.size(), -1);
+  for (const Elements& e : c.elements)
+    for (PetscInt n : e.corners) vertex[n] = 0;
+  mesh.coords.reserve(vertex.size() * mesh.dim);
+  PetscInt count = 0;
+  for (std::size_t n = 0; n < vertex.size(); ++n) {
+    if (vertex[n] < 0) continue;
+    vertex[n] = count++;
+    mesh.coords.insert(mesh.coords.end(), c.xyz.begin() + 3 * n, c.xyz.begin() + 3 * n + mesh.dim);
+  }
+  return vertex;
 }
 
-// PETSc's message for a failed read, as one line without PETSc's decorations.
-std::string petsc_reason(PetscErrorCode code) {
-  const char* text = nullptr;
-  char* specific = nullptr;
-  PetscErrorMessage(code, &text, &specific);
-  std::string reason = specific && *specific ? specific : (text ? text : "unknown error");
-  std::replace(reason.begin(), reason.end(), '\n', ' ');
-  return reason;
+void add_cells(const Contents& c, const std::string& file, const std::vector<PetscInt>& vertex,
+               InputMesh& mesh, std::set<int>& cell_tags) {
+  PetscInt index = 0;
+  for (int p = 0; p < kNumPolytopes; ++p) {
+    const Elements& e = c.elements[p];
+    if (kPolytopeDim[p] != mesh.dim || e.tags.empty()) continue;
+    if (!kCellType[p])
+      fail(
+          "{}: cell {} (0-based) is a {}; neomesh supports triangles, quadrilaterals, "
+          "tetrahedra and hexahedra",
+          file, index, kPolytopeName[p]);
+    const CellType type = *kCellType[p];
+    const int n = kPolytopeCorners[p];
+    for (std::size_t k = 0; k < e.tags.size(); ++k, ++index) {
+      const PetscInt* gmsh = e.corners.data() + k * n;
+      PetscInt canonical[8];
+      for (int i = 0; i < n; ++i) {
+        canonical[gmsh_from_canonical(type)[i]] = vertex[gmsh[i]];
+        if (std::find(gmsh, gmsh + i, gmsh[i]) != gmsh + i)
+          fail("{}: cell {} (0-based) has a repeated vertex", file, index);
+      }
+      const int tag = e.tags[k] > 0 ? e.tags[k] : 0;
+      if (tag > 0) cell_tags.insert(tag);
+      mesh.add_cell(type, canonical, tag);
+    }
+  }
 }
 
-OwnedDM read_plex(const std::filesystem::path& path) {
-  OwnedDM dm;
-  // Return errors instead of printing PETSc's multi-line banner.
-  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
-  const PetscErrorCode code =
-      DMPlexCreateGmshFromFile(PETSC_COMM_SELF, path.c_str(), PETSC_TRUE, dm.out());
-  const std::string reason = code != 0 ? petsc_reason(code) : "";
-  // A reader that failed half-way may leave its DM inconsistent; destroying it may fail too.
-  if (code != 0) dm.reset();
-  PetscPopErrorHandler();
-  if (code == 0) return dm;
-  if (reason.find("Could not determine Plex facet") != std::string::npos)
+// Facet elements with a physical tag; points and lower-dimensional elements are not kept.
+void add_facets(const Contents& c, const std::vector<PetscInt>& vertex, InputMesh& mesh,
+                std::set<int>& facet_tags) {
+  for (int p = 0; p < kNumPolytopes; ++p) {
+    const Elements& e = c.elements[p];
+    if (kPolytopeDim[p] != mesh.dim - 1) continue;
+    const int n = kPolytopeCorners[p];
+    for (std::size_t k = 0; k < e.tags.size(); ++k) {
+      if (e.tags[k] == kNoTag) continue;
+      PetscInt v[4];
+      for (int i = 0; i < n; ++i) v[i] = vertex[e.corners[k * n + i]];
+      mesh.facets.add(v, n, e.tags[k]);
+      facet_tags.insert(e.tags[k]);
+    }
+  }
+}
+
+// The dimension of the highest-dimensional elements, which are the cells; throws Error unless
+// they are 2D or 3D and first-order.
+int cell_dimension(const Contents& c, const std::string& file) {
+  int dim = 0, order = 1;
+  for (int p = 0; p < kNumPolytopes; ++p)
+    if (!c.elements[p].tags.empty()) dim = std::max(dim, kPolytopeDim[p]);
+  if (dim < 2)
     fail(
-        "{}: has lower-dimensional elements that are not faces of its cells (2D and 3D cells "
-        "mixed?); neomesh needs cells of one dimension",
-        path.string());
-  fail("{}: not a valid Gmsh mesh file ({})", path.string(), reason);
-}
-
-// Adds every point of `label_name` in [pStart, pEnd) to `out`, with its label value as tag.
-void read_tagged(DM dm, const char* label_name, TaggedEntities& out, std::set<int>& tags) {
-  DMLabel label = nullptr;
-  NM_PETSC(DMGetLabel(dm, label_name, &label));
-  if (!label) return;
-  PetscInt vStart, vEnd;
-  NM_PETSC(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  OwnedIS values;
-  NM_PETSC(DMLabelGetValueIS(label, values.out()));
-  PetscInt nvalues = 0;
-  const PetscInt* value = nullptr;
-  NM_PETSC(ISGetLocalSize(values, &nvalues));
-  NM_PETSC(ISGetIndices(values, &value));
-  for (PetscInt i = 0; i < nvalues; ++i) {
-    OwnedIS points;
-    NM_PETSC(DMLabelGetStratumIS(label, value[i], points.out()));
-    PetscInt npoints = 0;
-    const PetscInt* point = nullptr;
-    NM_PETSC(ISGetLocalSize(points, &npoints));
-    NM_PETSC(ISGetIndices(points, &point));
-    for (PetscInt k = 0; k < npoints; ++k) {
-      const auto v = closure_vertices(dm, point[k], vStart, vEnd);
-      out.add(v.data(), static_cast<PetscInt>(v.size()), static_cast<int>(value[i]));
-    }
-    NM_PETSC(ISRestoreIndices(points, &point));
-    tags.insert(static_cast<int>(value[i]));
-  }
-  NM_PETSC(ISRestoreIndices(values, &value));
-}
-
-void read_coordinates(DM dm, const std::string& file, InputMesh& mesh) {
-  PetscInt vStart, vEnd, cdim;
-  NM_PETSC(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  NM_PETSC(DMGetCoordinateDim(dm, &cdim));
-  Vec local = nullptr;
-  NM_PETSC(DMGetCoordinatesLocal(dm, &local));
-  PetscInt size = 0;
-  NM_PETSC(VecGetLocalSize(local, &size));
-  // PETSc stores extra coordinates per cell (a higher-order field) for curved elements.
-  if (size != (vEnd - vStart) * cdim || cdim != mesh.dim)
+        "{}: has no 2D or 3D cells (only {}D elements); neomesh needs triangles, "
+        "quadrilaterals, tetrahedra or hexahedra",
+        file, dim);
+  for (int p = 0; p < kNumPolytopes; ++p)
+    if (kPolytopeDim[p] == dim && !c.elements[p].tags.empty())
+      order = std::max(order, c.elements[p].order);
+  if (order > 1)
     fail(
         "{}: has second-order (curved) elements; neomesh needs first-order elements "
         "(Gmsh: Mesh.ElementOrder = 1)",
         file);
-  VecReadView x(local);
-  mesh.coords.assign(x.data(), x.data() + size);
-}
-
-void read_cells(DM dm, const std::string& file, InputMesh& mesh, std::set<int>& cell_tags) {
-  PetscInt cStart, cEnd, vStart, vEnd;
-  NM_PETSC(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
-  NM_PETSC(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  DMLabel sets = nullptr;
-  NM_PETSC(DMGetLabel(dm, "Cell Sets", &sets));
-  for (PetscInt c = cStart; c < cEnd; ++c) {
-    DMPolytopeType polytope;
-    NM_PETSC(DMPlexGetCellType(dm, c, &polytope));
-    CellType type;
-    if (!cell_type_of(polytope, type))
-      fail(
-          "{}: cell {} (0-based) is a {}; neomesh supports triangles, quadrilaterals, "
-          "tetrahedra and hexahedra",
-          file, c - cStart, DMPolytopeTypes[polytope]);
-    const auto plex = closure_vertices(dm, c, vStart, vEnd);
-    if (static_cast<int>(plex.size()) != num_vertices(type))
-      fail("{}: cell {} (0-based) has a repeated vertex", file, c - cStart);
-    PetscInt canonical[8];
-    for (int i = 0; i < num_vertices(type); ++i) canonical[i] = plex[canonical_from_plex(type)[i]];
-    PetscInt tag = -1;
-    if (sets) NM_PETSC(DMLabelGetValue(sets, c, &tag));
-    if (tag > 0) cell_tags.insert(static_cast<int>(tag));
-    mesh.add_cell(type, canonical, tag > 0 ? static_cast<int>(tag) : 0);
-  }
+  return dim;
 }
 
 }  // namespace
 
 InputMesh read_gmsh(const std::filesystem::path& path) {
   const std::string file = path.string();
-  OwnedDM dm = read_plex(path);
+  const Contents c = GmshParser(path).parse();
   InputMesh mesh;
-  PetscInt dim;
-  NM_PETSC(DMGetDimension(dm, &dim));
-  if (dim < 2)
-    fail(
-        "{}: has no 2D or 3D cells (only {}D elements); neomesh needs triangles, "
-        "quadrilaterals, tetrahedra or hexahedra",
-        file, dim);
-  mesh.dim = static_cast<int>(dim);
-  read_coordinates(dm, file, mesh);
+  mesh.dim = cell_dimension(c, file);
+  const std::vector<PetscInt> vertex = number_vertices(c, mesh);
+  std::set<int> cell_tags, facet_tags;
+  add_cells(c, file, vertex, mesh, cell_tags);
+  add_facets(c, vertex, mesh, facet_tags);
 
-  std::set<int> cell_tags, facet_tags, point_tags;
-  read_cells(dm, file, mesh, cell_tags);
-  read_tagged(dm, "Face Sets", mesh.facets, facet_tags);
-  read_tagged(dm, "Vertex Sets", mesh.points, point_tags);
-
-  const auto names = read_physical_names(path);
   auto add_groups = [&](int gdim, const std::set<int>& tags) {
     for (int tag : tags) {
-      auto it = names.find({gdim, tag});
-      mesh.groups.push_back({gdim, tag, it == names.end() ? "" : it->second});
+      auto it = c.names.find({gdim, tag});
+      mesh.groups.push_back({gdim, tag, it == c.names.end() ? "" : it->second});
     }
   };
-  add_groups(0, point_tags);
   add_groups(mesh.dim - 1, facet_tags);
   add_groups(mesh.dim, cell_tags);
   return mesh;

@@ -1,5 +1,10 @@
-// Reading Gmsh .msh files (2.2 and 4.1, ASCII and binary) with PETSc's reader, on one
-// process, into an InputMesh with the file's physical groups and their names.
+// Reading Gmsh .msh files (2.2 and 4.1, ASCII and binary), on one process, into an InputMesh
+// with the file's physical groups and their names.
+//
+// Numbering as PETSc's Gmsh reader (which neomesh used before) numbers, so outputs keep it:
+// cells by polytope (tetrahedra, hexahedra, triangles, quadrilaterals), each in file order;
+// vertices in the order of $Nodes, counting the nodes that are a corner of some element.
+// Facet elements keep the first physical tag; point elements are not kept.
 #pragma once
 
 #include <filesystem>
@@ -8,8 +13,8 @@
 
 namespace neomesh {
 
-// Not collective (call it on rank 0). Throws Error naming the file for anything PETSc cannot
-// read or neomesh cannot use (lines only, prisms, second-order elements, mixed dimensions).
+// Not collective (call it on rank 0). Throws Error naming the file for anything that is not a
+// valid Gmsh file or that neomesh cannot use (lines only, prisms, second-order elements).
 InputMesh read_gmsh(const std::filesystem::path& path);
 
 }  // namespace neomesh

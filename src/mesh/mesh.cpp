@@ -12,7 +12,6 @@
 #include "mesh/mesh_impl.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/plex_builder.hpp"
-#include "mesh/plex_util.hpp"
 #include "mesh/validate.hpp"
 
 namespace neomesh {
@@ -100,6 +99,23 @@ void build_cells(const Impl& m, const std::vector<PetscInt>& original, MeshView&
     view.num_cells += block.size();
     if (block.size() > 0) view.blocks.push_back(std::move(block));
   }
+}
+
+// Per local point (relative to the chart start): 1 if another rank owns it (a leaf of the
+// point SF).
+std::vector<std::uint8_t> ghost_points(DM dm) {
+  PetscInt pStart, pEnd;
+  NM_PETSC(DMPlexGetChart(dm, &pStart, &pEnd));
+  std::vector<std::uint8_t> ghost(pEnd - pStart, 0);
+  PetscSF sf;
+  NM_PETSC(DMGetPointSF(dm, &sf));
+  PetscInt nroots, nleaves;
+  const PetscInt* ilocal;
+  const PetscSFNode* iremote;
+  NM_PETSC(PetscSFGetGraph(sf, &nroots, &nleaves, &ilocal, &iremote));
+  for (PetscInt i = 0; nroots >= 0 && i < nleaves; ++i)
+    ghost[(ilocal ? ilocal[i] : i) - pStart] = 1;
+  return ghost;
 }
 
 // Rank 0 knows the boundary by input vertex; each rank fetches its local vertices' share.
