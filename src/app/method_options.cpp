@@ -1,8 +1,24 @@
 #include "app/method_options.hpp"
 
+#include <string_view>
+#include <utility>
+
 #include "core/error.hpp"
 
 namespace neomesh::app {
+
+namespace {
+
+// The value of a two-way choice option, or a one-line error naming both choices.
+template <typename T>
+T one_of(const char* option, const std::string& given, std::pair<std::string_view, T> first,
+         std::pair<std::string_view, T> second) {
+  if (given == first.first) return first.second;
+  if (given == second.first) return second.second;
+  fail("unknown {} '{}' (use {} or {})", option, given, first.first, second.first);
+}
+
+}  // namespace
 
 void add_method_options(CLI::App& cmd, MethodOptions& o) {
   const char* energy = "Energy (thesis §4)";
@@ -132,18 +148,12 @@ void finalize(MethodOptions& o) {
   if (!(o.solver.riesz_rtol > 0 && o.solver.riesz_rtol < 1))
     fail("--riesz-rtol must be in (0, 1) (got {})", o.solver.riesz_rtol);
   o.solver.linear_solver = parse_linear_solver(o.linear_solver);
-  if (o.riesz == "optimal")
-    o.solver.riesz = RieszLaplacian::OptimalCells;
-  else if (o.riesz == "current")
-    o.solver.riesz = RieszLaplacian::CurrentMesh;
-  else
-    fail("unknown --riesz '{}' (use optimal or current)", o.riesz);
-  if (o.hess_pc == "hessian")
-    o.solver.hessian_pc = HessianPreconditioner::Hessian;
-  else if (o.hess_pc == "laplacian")
-    o.solver.hessian_pc = HessianPreconditioner::Laplacian;
-  else
-    fail("unknown --hess-pc '{}' (use hessian or laplacian)", o.hess_pc);
+  o.solver.riesz =
+      one_of<RieszLaplacian>("--riesz", o.riesz, {"optimal", RieszLaplacian::OptimalCells},
+                             {"current", RieszLaplacian::CurrentMesh});
+  o.solver.hessian_pc = one_of<HessianPreconditioner>(
+      "--hess-pc", o.hess_pc, {"hessian", HessianPreconditioner::Hessian},
+      {"laplacian", HessianPreconditioner::Laplacian});
   o.solver.practical = !(o.no_practical || o.thesis);
   o.boundary_mode = parse_boundary_mode(o.boundary);
 }

@@ -130,15 +130,17 @@ struct QuasiNewton::Impl {
       Stopwatch watch(times.hessian_assembly);
       functional.assemble_hessian(x, alpha, hessian);
     }
-    const bool reuse = options.linear_solver == LinearSolverKind::Amg &&
+    // With L's hierarchy (a shell PC) there is nothing of H(α) to build or keep.
+    const bool own_pc = !laplacian_preconditions_hessian();
+    const bool reuse = own_pc && options.linear_solver == LinearSolverKind::Amg &&
                        hessian_pc_iterations > 0 &&
                        last_delta_iterations <= options.hessian_pc_reuse * hessian_pc_iterations;
+    rec.hessian_pc_built = own_pc && !reuse;
     {
       Stopwatch watch(times.hessian_setup);
       hessian_solver.set_operator(hessian, reuse);
-      if (!reuse && !laplacian_preconditions_hessian()) hessian_solver.setup();
+      if (rec.hessian_pc_built) hessian_solver.setup();
     }
-    rec.hessian_pc_built = !reuse && !laplacian_preconditions_hessian();
     LinearSolver::Outcome out;
     {
       Stopwatch watch(times.hessian_solve);

@@ -50,10 +50,11 @@ struct QuasiNewtonOptions {
   // half the Krylov iterations of 1e-8; docs/benchmarks.md). The thesis solves to 1e-8.
   double riesz_rtol = 1e-3;
   static constexpr double kThesisRieszRtol = 1e-8;
-  // With amg: keep the AMG hierarchy of an earlier H(α) while the δ̃ solve needs at most this
-  // many times the Krylov iterations it needed when the hierarchy was built (H(α) changes
-  // little between iterations, its setup costs about ten V-cycles); 0: rebuild always. 2 kept
-  // a hierarchy that needed 9-11 iterations where a fresh one needs 4 (square 1024²).
+  // With amg and hessian_pc = Hessian: keep the AMG hierarchy of an earlier H(α) while the δ̃ solve
+  // needs at most this many times the Krylov iterations it needed when the hierarchy was built
+  // (H(α) changes little between iterations, its setup costs about ten V-cycles); 0: rebuild
+  // always. 2 kept a hierarchy that needed 9-11 iterations where a fresh one needs 4 (square
+  // 1024²).
   double hessian_pc_reuse = 1.5;
   HessianPreconditioner hessian_pc = HessianPreconditioner::Laplacian;
   RieszLaplacian riesz = RieszLaplacian::OptimalCells;
