@@ -53,6 +53,15 @@ def main():
         check(report["solver_options"]["kmin"] == 4, f"command line must win: {report}")
         check(report["solver_options"]["linear_solver"] == "amg", f"command line: {report}")
         check(report["energy_options"]["lambda"] == 2.0, f"config still applies: {report}")
+        # Defaults that --thesis changes back: the Riesz tolerance (1e-3 vs the thesis' 1e-8)
+        # unless given; the δ̃ solve preconditioned by L's hierarchy unless --hess-pc hessian.
+        check(report["solver_options"]["riesz_rtol"] == 1e-3, f"Riesz default: {report}")
+        check(report["solver_options"]["hessian_pc"] == "laplacian", f"hess-pc: {report}")
+        _, report = smooth(tmp, "--linear-solver", "amg", "--thesis", "--hess-pc", "hessian")
+        check(report["solver_options"]["riesz_rtol"] == 1e-8, f"--thesis Riesz: {report}")
+        check(report["solver_options"]["hessian_pc"] == "hessian", f"--hess-pc: {report}")
+        _, report = smooth(tmp, "--thesis", "--riesz-rtol", "1e-5")
+        check(report["solver_options"]["riesz_rtol"] == 1e-5, f"--riesz-rtol wins: {report}")
     print("config file OK")
 
 
