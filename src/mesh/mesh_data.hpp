@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mesh/cell_type.hpp"
+#include "mesh/chart.hpp"
 
 namespace neomesh {
 
@@ -17,6 +18,7 @@ struct VertexSet {
   std::string name;
   int tag = 0;  // Gmsh physical tag; unique among the mesh's sets
   std::vector<std::int64_t> vertices;
+  std::string chart;  // name of the Chart the set lies on (FEAT3), or empty
 };
 
 struct MeshData {
@@ -25,6 +27,7 @@ struct MeshData {
   std::vector<double> coords;       // vertex-major, `dim` values per vertex
   std::vector<std::int64_t> cells;  // num_vertices(cell_type) per cell, canonical order
   std::vector<VertexSet> boundary_parts;
+  std::vector<Chart> charts;  // FEAT3 <Chart> blocks, referred to by VertexSet::chart
 
   std::int64_t num_vertices() const { return static_cast<std::int64_t>(coords.size()) / dim; }
   std::int64_t num_cells() const {
