@@ -15,6 +15,7 @@
 
 #include "core/error.hpp"
 #include "mesh/cell_order.hpp"
+#include "mesh/input_file.hpp"
 
 namespace neomesh {
 
@@ -56,6 +57,10 @@ bool element_type(long long gmsh_type, ElementType& t) {
 
 constexpr int kNoTag = std::numeric_limits<int>::min();
 
+// Node and element tags above this are an error: vertex numbers must fit PetscInt (and tags of
+// 2^32 and more were once silently wrapped).
+constexpr long long kMaxTag = std::min<long long>(PETSC_MAX_INT, (1LL << 32) - 1);
+
 // The elements of one polytope in file order: corner nodes (indices into $Nodes) and the
 // physical tag (the first one; kNoTag for none).
 struct Elements {
@@ -77,13 +82,8 @@ struct Contents {
 // reader's hot loop); binary blocks are copied.
 class GmshParser {
  public:
-  explicit GmshParser(const std::filesystem::path& path) : file_(path.string()) {
-    std::ifstream in(path, std::ios::binary);
-    in.seekg(0, std::ios::end);
-    text_.resize(static_cast<std::size_t>(in.tellg()));
-    in.seekg(0);
-    in.read(text_.data(), static_cast<std::streamsize>(text_.size()));
-    if (!in) fail("{}: cannot be read", file_);
+  explicit GmshParser(const std::filesystem::path& path)
+      : file_(path.string()), text_(read_input_file(path)) {
     pos_ = text_.data();
     end_ = pos_ + text_.size();
   }
@@ -93,8 +93,15 @@ class GmshParser {
     read_format();
     for (std::string_view section = word(); !section.empty(); section = word()) {
       section_ = section;
+      const bool known = section == "$PhysicalNames" || section == "$Nodes" ||
+                         section == "$Elements" || section == "$MeshFormat" ||
+                         (section == "$Entities" && c_.version == 41);
+      // A second $Nodes (or $Elements...) would renumber what the first one's users refer to.
+      if (known && !seen_.insert(std::string(section)).second)
+        invalid("it has two {} sections", section);
       // Binary sections of 4.1 start right after the newline that ends their name.
-      if (binary_ && c_.version == 41 && section != "$PhysicalNames") ++pos_;
+      if (binary_ && c_.version == 41 && section != "$PhysicalNames" && section != "$MeshFormat")
+        skip_newline();
       if (section == "$PhysicalNames")
         read_names();
       else if (section == "$Entities" && c_.version == 41)
@@ -138,18 +145,35 @@ class GmshParser {
     return {first, static_cast<std::size_t>(pos_ - first)};
   }
 
+  // One byte that must be there (the newline before a binary block).
+  void skip_newline() {
+    if (pos_ == end_) truncated();
+    ++pos_;
+  }
+
+  // A decimal integer word; out-of-range values are an error, never wrapped.
   long long integer() {
     skip_space();
     if (pos_ == end_) truncated();
     const char* first = pos_;
-    const bool negative = *pos_ == '-';
-    if (negative || *pos_ == '+') ++pos_;
+    if (*pos_ == '+') ++pos_;  // from_chars takes '-' but not '+'
     long long value = 0;
-    const char* digits = pos_;
-    while (pos_ < end_ && *pos_ >= '0' && *pos_ <= '9') value = 10 * value + (*pos_++ - '0');
-    if (pos_ == digits || (pos_ < end_ && !std::isspace(static_cast<unsigned char>(*pos_))))
+    const auto [next, ec] = std::from_chars(pos_, end_, value);
+    if (ec == std::errc::result_out_of_range) {
+      pos_ = first;
+      invalid("the number '{}' in {} is out of range", shown(word()), shown(section_));
+    }
+    if (ec != std::errc() || (next < end_ && !std::isspace(static_cast<unsigned char>(*next))))
       not_a_number(first, "an integer");
-    return negative ? -value : value;
+    pos_ = next;
+    return value;
+  }
+
+  // An integer that must lie in [lo, hi] (`what` names it in the message).
+  long long integer_in(long long value, long long lo, long long hi, const char* what) {
+    if (value < lo || value > hi)
+      invalid("{} {} in {} is out of range ({}..{})", what, value, shown(section_), lo, hi);
+    return value;
   }
 
   double real() {
@@ -184,16 +208,29 @@ class GmshParser {
     binary(&value, 1);
     return value;
   }
-  // A size_t of the file (4.1 binary: data-size bytes).
+  // A size_t of the file (4.1 binary: data-size bytes); beyond long long is an error.
   long long size() {
     if (!binary_) return integer();
-    return size_bytes_ == 8 ? static_cast<long long>(binary<std::uint64_t>())
-                            : static_cast<long long>(binary<std::uint32_t>());
+    if (size_bytes_ == 4) return binary<std::uint32_t>();
+    const std::uint64_t value = binary<std::uint64_t>();
+    if (value > static_cast<std::uint64_t>(std::numeric_limits<long long>::max()))
+      invalid("the number {} in {} is out of range", value, shown(section_));
+    return static_cast<long long>(value);
   }
-  int small_int() { return binary_ ? binary<int>() : static_cast<int>(integer()); }
-  // A number of items to allocate for: at most one per byte left.
-  long long count(long long n) {
-    if (n < 0 || n > end_ - pos_) invalid("{} announces {} items", shown(section_), n);
+  // An int of the file (entity and physical tags, element types, counts of tags).
+  int small_int() {
+    if (binary_) return binary<int>();
+    return static_cast<int>(integer_in(integer(), std::numeric_limits<int>::min(),
+                                       std::numeric_limits<int>::max(), "the number"));
+  }
+  // A node or element tag: in 0..kMaxTag.
+  long long tag(long long value, const char* what) { return integer_in(value, 0, kMaxTag, what); }
+  // A number of items to allocate for, each taking at least `bytes` bytes of the file: a count
+  // the rest of the file cannot hold is an error (and never a huge allocation).
+  long long count(long long n, long long bytes = 1) {
+    if (n < 0) invalid("{} announces {} items", shown(section_), n);
+    if (n > (end_ - pos_) / bytes)
+      invalid("the file ends inside {}, which announces {} items", shown(section_), n);
     return n;
   }
   double real_value() { return binary_ ? binary<double>() : real(); }
@@ -216,9 +253,10 @@ class GmshParser {
 
   void read_format() {
     section_ = "$MeshFormat";
+    seen_.insert("$MeshFormat");
     const std::string_view version = word();
     const long long file_type = integer();
-    size_bytes_ = static_cast<int>(integer());
+    size_bytes_ = static_cast<int>(integer_in(integer(), 0, 64, "the data size"));
     if (version == "2.2")
       c_.version = 22;
     else if (version == "4.1")
@@ -228,7 +266,7 @@ class GmshParser {
     binary_ = file_type == 1;
     if (binary_) {
       if (size_bytes_ != 4 && size_bytes_ != 8) invalid("data size {}", size_bytes_);
-      ++pos_;  // the newline before the binary one
+      skip_newline();  // the newline before the binary one
       if (binary<int>() != 1) invalid("binary data of another byte order");
     }
     expect_end("$MeshFormat");
@@ -238,7 +276,7 @@ class GmshParser {
   void read_names() {
     const long long n = integer();
     for (long long i = 0; i < n; ++i) {
-      const int dim = static_cast<int>(integer()), tag = static_cast<int>(integer());
+      const int dim = small_int(), tag = small_int();
       const char* eol = std::find(pos_, end_, '\n');
       const std::string_view line(pos_, static_cast<std::size_t>(eol - pos_));
       const auto open = line.find('"'), close = line.rfind('"');
@@ -269,16 +307,17 @@ class GmshParser {
 
   void read_nodes() {
     if (c_.version == 22) {
-      const long long n = count(integer());  // ASCII in binary files too
+      // ASCII in binary files too; a node takes at least "1 0 0 0\n" or 4 + 3 * 8 bytes.
+      const long long n = count(integer(), binary_ ? 28 : 8);
       c_.node_tags.resize(n);
       c_.xyz.resize(3 * n);
-      if (binary_) ++pos_;
+      if (binary_) skip_newline();
       for (long long i = 0; i < n; ++i) {
-        c_.node_tags[i] = small_int();
+        c_.node_tags[i] = tag(binary_ ? binary<int>() : integer(), "node tag");
         for (int d = 0; d < 3; ++d) c_.xyz[3 * i + d] = real_value();
       }
     } else {
-      const long long blocks = size(), total = count(size());
+      const long long blocks = size(), total = count(size(), binary_ ? size_bytes_ + 24 : 8);
       size();  // smallest and largest node tag
       size();
       c_.node_tags.reserve(total);
@@ -288,7 +327,9 @@ class GmshParser {
         small_int();
         if (small_int() != 0) invalid("parametric nodes are not supported");
         const long long n = size();
-        for (long long i = 0; i < n; ++i) c_.node_tags.push_back(size());
+        if (n > total - static_cast<long long>(c_.node_tags.size()))
+          invalid("$Nodes announces {} nodes and lists more", total);
+        for (long long i = 0; i < n; ++i) c_.node_tags.push_back(tag(size(), "node tag"));
         for (long long i = 0; i < 3 * n; ++i) c_.xyz.push_back(real_value());
       }
       if (static_cast<long long>(c_.node_tags.size()) != total)
@@ -315,6 +356,8 @@ class GmshParser {
   }
 
   PetscInt node(long long tag) {
+    if (tag < 0 || tag > kMaxTag)
+      invalid("an element refers to node {}, which is out of range (0..{})", tag, kMaxTag);
     const long long i = tag - first_tag_;
     if (i < 0 || i >= static_cast<long long>(node_index_.size()) || node_index_[i] < 0)
       invalid("an element refers to node {}, which $Nodes does not list", tag);
@@ -340,22 +383,24 @@ class GmshParser {
     long long nodes[32];
     if (c_.version == 22) {
       const long long total = integer();
-      if (binary_) ++pos_;
+      if (binary_) skip_newline();
       for (long long e = 0; e < total;) {
         // ASCII: number, type, tags, nodes per line; binary: blocks of elements of one type.
-        if (!binary_) integer();
+        if (!binary_) tag(integer(), "element tag");
         const ElementType t = type_of(small_int());
         const int block_size = binary_ ? binary<int>() : 1;
+        if (block_size < 1 || block_size > total - e)
+          invalid("a block of {} elements where {} are left", block_size, total - e);
         const int num_tags = small_int();
         for (int k = 0; k < block_size; ++k, ++e) {
-          if (binary_) binary<int>();  // the element number
-          int tag = kNoTag;
+          if (binary_) tag(binary<int>(), "element tag");
+          int physical = kNoTag;
           for (int i = 0; i < num_tags; ++i) {
             const int value = small_int();
-            if (i == 0) tag = value;
+            if (i == 0) physical = value;
           }
-          for (int i = 0; i < t.nodes; ++i) nodes[i] = small_int();
-          add_element(t, tag, nodes);
+          for (int i = 0; i < t.nodes; ++i) nodes[i] = binary_ ? binary<int>() : integer();
+          add_element(t, physical, nodes);
         }
       }
     } else {
@@ -367,11 +412,11 @@ class GmshParser {
         const int dim = small_int(), entity = small_int();
         const ElementType t = type_of(small_int());
         const auto it = c_.entity_tag.find({dim, entity});
-        const int tag = it == c_.entity_tag.end() ? kNoTag : it->second;
+        const int physical = it == c_.entity_tag.end() ? kNoTag : it->second;
         for (long long k = 0, n = size(); k < n; ++k) {
-          size();  // the element tag
+          tag(size(), "element tag");
           for (int i = 0; i < t.nodes; ++i) nodes[i] = size();
-          add_element(t, tag, nodes);
+          add_element(t, physical, nodes);
         }
       }
     }
@@ -383,6 +428,7 @@ class GmshParser {
   const char* pos_ = nullptr;
   const char* end_ = nullptr;
   std::string_view section_ = "$MeshFormat";
+  std::set<std::string> seen_;  // sections read (each at most once)
   bool binary_ = false;
   bool have_nodes_ = false;
   int size_bytes_ = 8;

@@ -61,7 +61,7 @@ TEST(ReadGmsh, RejectsOtherVersionsAndTruncatedFiles) {
   EXPECT_NE(error_reading("$MeshFormat\n3.0 0 8\n$EndMeshFormat\n").find("Gmsh 3.0 file"),
             std::string::npos);
   EXPECT_NE(error_reading("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n")
-                .find("not a valid Gmsh mesh file (the file ends inside $Nodes)"),
+                .find("not a valid Gmsh mesh file (the file ends inside $Nodes"),
             std::string::npos);
   EXPECT_NE(error_reading("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 x 0 0\n")
                 .find("expected a number in $Nodes, found 'x'"),

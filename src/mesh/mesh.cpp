@@ -8,6 +8,7 @@
 #include "mesh/collective_error.hpp"
 #include "mesh/feat_reader.hpp"
 #include "mesh/gmsh_reader.hpp"
+#include "mesh/input_file.hpp"
 #include "mesh/input_topology.hpp"
 #include "mesh/mesh_impl.hpp"
 #include "mesh/mesh_io.hpp"
@@ -21,11 +22,8 @@ namespace {
 using Impl = MeshAccess::Impl;
 
 void check_input_file(const std::filesystem::path& path) {
+  check_regular_file(path);  // before opening it: a FIFO with no writer would block forever
   std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (!std::filesystem::exists(status)) fail("{}: no such file", path.string());
-  if (std::filesystem::is_directory(status))
-    fail("{}: is a directory, not a mesh file", path.string());
   if (!std::ifstream(path)) fail("{}: cannot be opened for reading", path.string());
   if (std::filesystem::file_size(path, ec) == 0) fail("{}: the file is empty", path.string());
 }
