@@ -9,7 +9,7 @@ packages=(
   libpetsc-real-dev            # DMPlex, Vec/Mat/KSP, hypre, MUMPS, SuiteSparse, MPI
   libeigen3-dev libcli11-dev libfmt-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcairo2-dev libmuparser-dev
+  libcairo2-dev libmuparser-dev libpugixml-dev
   python3 python3-numpy python3-meshio gmsh   # tests: independent reader, example meshes
 )
 missing=()
