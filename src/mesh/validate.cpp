@@ -1,10 +1,13 @@
 #include "mesh/validate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
+#include "mesh/cell_order.hpp"
 #include "mesh/collective_error.hpp"
 
 namespace neomesh {
@@ -33,26 +36,129 @@ double scaled_det(const double (*e)[3], int dim) {
 
 }  // namespace
 
-double min_scaled_corner_jacobian(CellType type, const double* x) {
+namespace {
+
+// The smallest and largest scaled corner Jacobian of a cell (see min_scaled_corner_jacobian).
+std::pair<double, double> scaled_corner_jacobians(CellType type, const double* x) {
   const int dim = dimension(type);
   double e[3][3] = {};
   if (is_simplex(type)) {  // one Jacobian, the edge matrix [x1-x0, x2-x0(, x3-x0)]
     for (int i = 0; i < dim; ++i)
       for (int d = 0; d < dim; ++d) e[i][d] = x[(i + 1) * dim + d] - x[d];
-    return scaled_det(e, dim);
+    const double q = scaled_det(e, dim);
+    return {q, q};
   }
   // Tensor order: the neighbour of vertex v along direction j is v ^ (1 << j), and the edge
   // points along +ξ_j when bit j of v is 0.
-  double worst = INFINITY;
+  double worst = INFINITY, best = -INFINITY;
   for (int v = 0; v < num_vertices(type); ++v) {
     for (int j = 0; j < dim; ++j) {
       const int w = v ^ (1 << j);
       const double sign = (v >> j) & 1 ? -1.0 : 1.0;
       for (int d = 0; d < dim; ++d) e[j][d] = sign * (x[w * dim + d] - x[v * dim + d]);
     }
-    worst = std::min(worst, scaled_det(e, dim));
+    const double q = scaled_det(e, dim);
+    worst = std::min(worst, q);
+    best = std::max(best, q);
   }
-  return worst;
+  return {worst, best};
+}
+
+// The cell's vertex coordinates (canonical order) into x; false if a vertex index is invalid.
+bool cell_coordinates(const InputMesh& mesh, PetscInt c, double* x) {
+  const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
+  const int n = num_vertices(mesh.cell_types[c]);
+  if (dimension(mesh.cell_types[c]) != mesh.dim) return false;
+  for (int i = 0; i < n; ++i) {
+    if (cell[i] < 0 || cell[i] >= mesh.num_vertices()) return false;
+    std::copy_n(mesh.coords.data() + cell[i] * mesh.dim, mesh.dim, x + i * mesh.dim);
+  }
+  return true;
+}
+
+// Mirrors a cell's local order: the reference cell reflected in ξ_0 (tensor order: vertex i
+// trades places with i ^ 1) or two vertices swapped (simplices), which negates every corner
+// Jacobian.
+void mirror(CellType type, PetscInt* cell) {
+  if (is_simplex(type)) {
+    std::swap(cell[1], cell[2]);
+    return;
+  }
+  for (int i = 0; i < num_vertices(type); i += 2) std::swap(cell[i], cell[i + 1]);
+}
+
+// One facet of a cell: its sorted vertices (then -1), the cell, and which way the cell runs
+// around it (the facet's vertex cycle as seen from the cell, relative to the sorted order).
+struct FacetSide {
+  std::array<PetscInt, 4> key;
+  PetscInt cell;
+  bool forward;
+};
+
+FacetSide facet_side(const PetscInt* v, int n, PetscInt cell) {
+  FacetSide side{{-1, -1, -1, -1}, cell, v[0] < v[1]};
+  if (n >= 3) {  // the cycle's direction at its smallest vertex
+    const int m = static_cast<int>(std::min_element(v, v + n) - v);
+    side.forward = v[(m + 1) % n] < v[(m + n - 1) % n];
+  }
+  for (int i = 0; i < n && i < 4; ++i) {  // insertion sort: n ≤ 4
+    int j = i;
+    for (; j > 0 && side.key[j - 1] > v[i]; --j) side.key[j] = side.key[j - 1];
+    side.key[j] = v[i];
+  }
+  return side;
+}
+
+}  // namespace
+
+double min_scaled_corner_jacobian(CellType type, const double* x) {
+  return scaled_corner_jacobians(type, x).first;
+}
+
+std::vector<PetscInt> orient_mirrored_cells(InputMesh& mesh) {
+  std::vector<PetscInt> mirrored;
+  double x[8 * 3];
+  for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
+    if (!cell_coordinates(mesh, c, x)) continue;  // find_defect names it
+    if (scaled_corner_jacobians(mesh.cell_types[c], x).second >= -kDegenerateJacobian) continue;
+    mirror(mesh.cell_types[c], mesh.cell_vertices.data() + mesh.cell_offsets[c]);
+    mirrored.push_back(c);
+  }
+  return mirrored;
+}
+
+std::string find_fold(const InputMesh& mesh, const std::vector<PetscInt>& mirrored) {
+  // DMPlex's facets of a cell (kPlexFacets, on its cone) all run the same way around the cell,
+  // and cones of positively oriented cells all have the same orientation: two cells on opposite
+  // sides of a facet run around it in opposite directions.
+  struct KeyHash {
+    std::size_t operator()(const std::array<PetscInt, 4>& k) const {
+      std::size_t h = 0;
+      for (PetscInt v : k) h = h * 1000003u ^ static_cast<std::size_t>(v);
+      return h;
+    }
+  };
+  std::unordered_map<std::array<PetscInt, 4>, std::pair<PetscInt, bool>, KeyHash> first_side;
+  for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
+    const CellType type = mesh.cell_types[c];
+    const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
+    const FacetShape& shape = plex_facets(type);
+    for (int f = 0; f < shape.count; ++f) {
+      PetscInt v[4] = {};
+      for (int j = 0; j < shape.size; ++j)
+        v[j] = cell[plex_from_canonical(type)[shape.vertices[f][j]]];
+      const FacetSide side = facet_side(v, shape.size, c);
+      const auto [it, inserted] = first_side.try_emplace(side.key, c, side.forward);
+      if (inserted || it->second.second != side.forward) continue;
+      // Name the cell that was mirrored (it is the one that folds over), else the later one.
+      const PetscInt a = it->second.first;
+      const bool a_mirrored = std::binary_search(mirrored.begin(), mirrored.end(), a);
+      const PetscInt folded = a_mirrored ? a : c, other = a_mirrored ? c : a;
+      return fmt::format("cell {} (0-based, a {}) is inverted (it folds over cell {})", folded,
+                         name(mesh.cell_types[folded]), other);
+    }
+  }
+  return "";
 }
 
 std::string find_defect(const InputMesh& mesh) {
@@ -91,10 +197,16 @@ std::string find_defect(const InputMesh& mesh) {
   return "";
 }
 
-void validate(const InputMesh& mesh, const std::string& source, MPI_Comm comm) {
+void validate(InputMesh& mesh, const std::string& source, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  std::string defect = rank == 0 ? find_defect(mesh) : "";
+  std::string defect;
+  if (rank == 0) {
+    const std::vector<PetscInt> mirrored = orient_mirrored_cells(mesh);
+    defect = find_defect(mesh);
+    // A mirrored cell among cells of the other orientation may be a fold rather than a mirror.
+    if (defect.empty() && !mirrored.empty()) defect = find_fold(mesh, mirrored);
+  }
   throw_if_any(comm, defect.empty() ? "" : source + ": " + defect);
 }
 

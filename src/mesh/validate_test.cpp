@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/testing/test_data.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/mesh_test_util.hpp"
 
 namespace neomesh {
 namespace {
@@ -39,22 +40,21 @@ TEST_P(RejectsBadInput, WithOneLineNamingTheFile) {
 
 INSTANTIATE_TEST_SUITE_P(
     Files, RejectsBadInput,
-    ::testing::Values(BadInput{"no_such_file.msh", "no such file"},
-                      BadInput{"geo", "is a directory"},
-                      BadInput{"geo/square_tri.geo", "unknown mesh format"},
-                      BadInput{"bad_empty.msh", "the file is empty"},
-                      BadInput{"bad_garbage.msh", "not a valid Gmsh mesh file"},
-                      BadInput{"bad_truncated.msh", "not a valid Gmsh mesh file"},
-                      BadInput{"bad_nan.msh", "vertex 5 (0-based) has a non-finite coordinate"},
-                      BadInput{"bad_inverted.msh", "cell 0 (0-based, a triangle) is inverted"},
-                      BadInput{"bad_repeated_vertex.msh", "cell 0 (0-based) has a repeated vertex"},
-                      BadInput{"bad_prism.msh", "cell 0 (0-based) is a triangular_prism"},
-                      BadInput{"bad_second_order.msh", "second-order"},
-                      BadInput{"bad_lines_only.msh", "no 2D or 3D cells"},
-                      BadInput{"bad_mixed_dim.msh", "2D and 3D cells mixed"},
-                      BadInput{"bad_feat_truncated.xml", "unexpected end of file"},
-                      BadInput{"bad_feat_inverted.xml",
-                               "cell 2 (0-based, a quadrilateral) is inverted"}),
+    ::testing::Values(
+        BadInput{"no_such_file.msh", "no such file"}, BadInput{"geo", "is a directory"},
+        BadInput{"geo/square_tri.geo", "unknown mesh format"},
+        BadInput{"bad_empty.msh", "the file is empty"},
+        BadInput{"bad_garbage.msh", "not a valid Gmsh mesh file"},
+        BadInput{"bad_truncated.msh", "not a valid Gmsh mesh file"},
+        BadInput{"bad_nan.msh", "vertex 5 (0-based) has a non-finite coordinate"},
+        BadInput{"bad_inverted.msh", "cell 0 (0-based, a triangle) is inverted (it folds over"},
+        BadInput{"bad_repeated_vertex.msh", "cell 0 (0-based) has a repeated vertex"},
+        BadInput{"bad_prism.msh", "cell 0 (0-based) is a triangular_prism"},
+        BadInput{"bad_second_order.msh", "second-order"},
+        BadInput{"bad_lines_only.msh", "no 2D or 3D cells"},
+        BadInput{"bad_mixed_dim.msh", "2D and 3D cells mixed"},
+        BadInput{"bad_feat_truncated.xml", "unexpected end of file"},
+        BadInput{"bad_feat_inverted.xml", "cell 2 (0-based, a quadrilateral) is inverted"}),
     [](const auto& info) {
       std::string name = info.param.file;
       std::replace_if(
@@ -77,6 +77,50 @@ TEST(Validate, TensorOrderUnitCubeIsPositive) {
   EXPECT_DOUBLE_EQ(min_scaled_corner_jacobian(CellType::Hexahedron, x), 1.0);
   std::swap(x[0], x[3]);  // vertices 0 and 1 exchange their x: inverted
   EXPECT_LT(min_scaled_corner_jacobian(CellType::Hexahedron, x), 0.0);
+}
+
+// A unit cube (or square) in tensor order, mirrored in x when `mirrored`.
+InputMesh unit_cell(CellType type, bool mirrored) {
+  InputMesh mesh;
+  mesh.dim = dimension(type);
+  PetscInt cell[8];
+  for (int i = 0; i < num_vertices(type); ++i) {
+    for (int d = 0; d < mesh.dim; ++d) mesh.coords.push_back((i >> d) & 1);
+    if (mirrored) mesh.coords[i * mesh.dim] = 1 - mesh.coords[i * mesh.dim];
+    cell[i] = i;
+  }
+  mesh.add_cell(type, cell, 0);
+  return mesh;
+}
+
+TEST(Validate, MirroredCellsAreReorientedNotInverted) {
+  for (CellType type : {CellType::Quadrilateral, CellType::Hexahedron}) {
+    InputMesh mesh = unit_cell(type, true);
+    EXPECT_EQ(orient_mirrored_cells(mesh), std::vector<PetscInt>{0});
+    EXPECT_EQ(find_defect(mesh), "");
+    EXPECT_EQ(find_fold(mesh, {0}), "");
+    double x[24];
+    for (int i = 0; i < num_vertices(type); ++i)
+      std::copy_n(mesh.coords.data() + mesh.cell_vertices[i] * mesh.dim, mesh.dim,
+                  x + i * mesh.dim);
+    EXPECT_DOUBLE_EQ(min_scaled_corner_jacobian(type, x), 1.0) << name(type);
+    InputMesh positive = unit_cell(type, false);
+    EXPECT_TRUE(orient_mirrored_cells(positive).empty());
+  }
+}
+
+TEST(Validate, AMirroredTriangleAmongOthersLoads) {
+  // square_tri_v22.msh with element 13 listed clockwise.
+  Mesh mesh = Mesh::load(data_path("square_tri_v22_mirrored_cell.msh"));
+  EXPECT_EQ(mesh.global_num_cells(), 26);
+  EXPECT_GT(testing::min_view_jacobian(mesh.view()), 0.0);
+}
+
+TEST(Validate, AMirroredFeatRingAndHexMeshLoadPositive) {
+  for (const char* file : {"feat_ring_quad_mirrored.xml", "feat_cube_hex_jitter_mirrored.xml"}) {
+    Mesh mesh = Mesh::load(data_path(file));
+    EXPECT_GT(testing::min_view_jacobian(mesh.view()), 0.0) << file;
+  }
 }
 
 }  // namespace
