@@ -111,10 +111,25 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                              QuasiNewtonOptions{}.riesz_rtol, QuasiNewtonOptions::kThesisRieszRtol))
       ->group(linear);
   cmd.add_option("--boundary", o.boundary,
-                 "fixed (boundary vertices stay put, the thesis) or slide (they move within "
-                 "flat axis-aligned boundary faces and along edges; corners stay put)")
+  const char* boundary = "Boundary (docs/boundary.md)";
+                 "fixed (boundary vertices stay put, the thesis) or slide (they move along the "
+                 "input's boundary, curved or flat; corners stay put, ridge vertices slide along "
+                 "their ridge)")
       ->capture_default_str()
-      ->group(energy);
+      ->group(boundary);
+  cmd.add_option("--shape", o.shapes,
+                 "with --boundary slide: boundary part PART (physical group or FEAT3 mesh part) "
+                 "lies exactly on a shape: PART=circle:cx,cy,r | line:px,py,nx,ny | "
+                 "sphere:cx,cy,cz,r | plane:px,py,pz,nx,ny,nz | cylinder:px,py,pz,ax,ay,az,r | "
+                 "levelset:EXPR (repeatable; default: FEAT3 charts, flat faces, else the input's "
+                 "own facets)")
+      ->group(boundary);
+  cmd.add_option("--feature-angle", o.boundary_options.feature_angle,
+                 "with --boundary slide: the boundary has a corner (2D) or ridge (3D) where it "
+                 "turns by more than this many degrees; corners stay put, ridge vertices slide "
+                 "along the ridge")
+      ->capture_default_str()
+      ->group(boundary);
   cmd.add_flag("--thesis", o.thesis,
                "the thesis' conventions: uniform desired volumes, no practical stopping "
                "criterion (iterate to the defect tolerance), Riesz solve to 1e-8; default: off")
@@ -155,7 +170,18 @@ void finalize(MethodOptions& o) {
       "--hess-pc", o.hess_pc, {"hessian", HessianPreconditioner::Hessian},
       {"laplacian", HessianPreconditioner::Laplacian});
   o.solver.practical = !(o.no_practical || o.thesis);
-  o.boundary_mode = parse_boundary_mode(o.boundary);
+  o.boundary_options.mode = parse_boundary_mode(o.boundary);
+  const double angle = o.boundary_options.feature_angle;
+  if (!(angle > 0 && angle < 180)) fail("--feature-angle must be in (0, 180) degrees (got {})", angle);
+  o.boundary_options.shapes.clear();
+  for (const std::string& shape : o.shapes) {
+    const auto equals = shape.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 == shape.size())
+      fail("--shape '{}': expected PART=SHAPE, e.g. hole=circle:0,0,0.5", shape);
+    o.boundary_options.shapes.emplace_back(shape.substr(0, equals), shape.substr(equals + 1));
+  }
+  if (!o.shapes.empty() && o.boundary_options.mode != BoundaryMode::Slide)
+    fail("--shape needs --boundary slide (with fixed boundary vertices nothing slides on it)");
 }
 
 }  // namespace neomesh::app

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -22,8 +23,9 @@ struct MethodOptions {
   std::string hess_pc = "laplacian";
   std::optional<double>
       riesz_rtol;                  // unset: QuasiNewtonOptions' default, the thesis' with --thesis
-  std::string boundary = "fixed";  // resolved into boundary_mode by finalize()
-  BoundaryMode boundary_mode = BoundaryMode::Fixed;
+  std::string boundary = "fixed";  // resolved into boundary_options by finalize()
+  std::vector<std::string> shapes;  // --shape PART=SPEC, resolved likewise
+  BoundaryOptions boundary_options;
   bool no_practical = false;
   bool thesis = false;
 };

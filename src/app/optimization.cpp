@@ -71,6 +71,7 @@ struct OptimizationRun::Impl {
   std::unique_ptr<Functional> functional;
   OwnedVec cell_size;
 
+  std::unique_ptr<Boundary> boundary;
   Impl(const std::filesystem::path& input, MethodOptions& m)
       : method(m), mesh(load(input)), x(mesh.coordinates()) {
     read_seconds = MPI_Wtime() - start;
@@ -87,9 +88,11 @@ struct OptimizationRun::Impl {
     double local = 0.0;
     for (double v : input_volumes) local += v;
     MPI_Allreduce(&local, &mesh_volume, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
-    functional = std::make_unique<Functional>(
-        view, mesh.dofs(), method.energy,
-        FixedDofs{fixed_dofs(view, mesh.dofs(), method.boundary_mode)});
+    boundary = std::make_unique<Boundary>(view, mesh.dofs(), method.boundary_options);
+    functional = std::make_unique<Functional>(view, mesh.dofs(), method.energy,
+                                              boundary->fixed_dofs(),
+                                              boundary->sliding_vertices());
+    boundary->project(x);  // onto given shapes and charts: they pass within 1e-6 h
     method.solver.energy_roundoff = energy_roundoff(method.energy, view.dim, mesh_volume);
     prepare_seconds = MPI_Wtime() - start - read_seconds;
   }
@@ -207,7 +210,14 @@ void OptimizationRun::print_problem() const {
   say("lambda {}, mu {}, alpha0 {}, eta {}, kmin {}, linear solver {}, boundary {}\n",
       impl_->method.energy.lambda, impl_->method.energy.mu, impl_->method.solver.alpha0,
       impl_->method.solver.eta, impl_->method.solver.kmin, name(impl_->method.solver.linear_solver),
-      name(impl_->method.boundary_mode));
+      name(impl_->method.boundary_options.mode));
+  const BoundarySummary& b = impl_->boundary->summary();
+  if (impl_->method.boundary_options.mode == BoundaryMode::Slide) {
+    say("sliding boundary: {} patches, {} ridges; {} corners fixed, {} ridge and {} surface "
+        "vertices slide\n",
+        b.patches, b.ridges, b.corners, b.ridge_vertices, b.surface_vertices);
+    for (const std::string& g : b.patch_geometry) detail("  {}\n", g);
+  }
   if (verbosity() == Verbosity::Verbose) {
     const QuasiNewtonOptions& o = impl_->method.solver;
     detail(
@@ -325,7 +335,22 @@ void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesys
         {"free_dofs", static_cast<std::int64_t>(free)},
         {"energy_options", to_json(r.method.energy)},
         {"solver_options", to_json(r.method.solver)},
-        {"boundary", std::string(name(r.method.boundary_mode))},
+        {"boundary", std::string(name(r.method.boundary_options.mode))},
+        {"boundary_change", boundary_change},
+  // How much the domain changed: zero with fixed boundary vertices; with sliding ones bounded
+  // by the input's discretization (vertices stay on its facets or on the given shapes).
+  double volume_after = 0.0;
+  for (double v : quality.volume) volume_after += v;
+  MPI_Allreduce(MPI_IN_PLACE, &volume_after, 1, MPI_DOUBLE, MPI_SUM, r.mesh.comm());
+  const nlohmann::json boundary_change = {
+      {"max_distance_from_input_boundary", r.boundary->max_distance_from_input(r.x)},
+      {"relative_volume_change", (volume_after - r.mesh_volume) / r.mesh_volume}};
+  if (r.method.boundary_options.mode == BoundaryMode::Slide)
+    say("boundary: largest distance of a boundary vertex from the input's boundary {:.3g}, "
+        "domain volume change {:+.3g}%\n",
+        boundary_change["max_distance_from_input_boundary"].get<double>(),
+        100 * boundary_change["relative_volume_change"].get<double>());
+
         {"result", to_json(result)},
         {"quality_before", to_json(r.quality_before)},
         {"quality_after", to_json(after)},

@@ -25,7 +25,9 @@ struct SmoothOptions {
 // The quality guard (solver/quality_guard.hpp): no cell of the output worse than the input's
 // worst. Returns its record for the JSON report; F in `result` is updated if it moved vertices.
 nlohmann::json apply_quality_guard(OptimizationRun& run, Vec input, QuasiNewtonResult& result) {
-  const QualityGuardResult guard = guard_worst_quality(run.view(), run.dofs(), input, run.x());
+  const QualityGuardResult guard =
+      guard_worst_quality(run.view(), run.dofs(), input, run.x(),
+                          [&](Vec x) { run.functional().project_onto_boundary(x); });
   if (guard.vertices_moved > 0) {
     result.final_energy = run.functional().value(run.x());
     say("quality guard: {} vertices pulled back toward the input so that no cell is worse than "

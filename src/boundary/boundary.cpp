@@ -1,111 +1,126 @@
 #include "boundary/boundary.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <limits>
+#include <map>
+#include <span>
 
+#include <Eigen/Geometry>
+
+#include "boundary/discrete_geometry.hpp"
+#include "boundary/features.hpp"
+#include "boundary/shape.hpp"
 #include "core/error.hpp"
+#include "mesh/boundary_surface.hpp"
 
 namespace neomesh {
 
 namespace {
 
-// A facet as its sorted local vertex indices; edges and triangles have fewer than 4 vertices
-// and fill the unused slots with kNone, which sorts last.
-using Facet = std::array<PetscInt, 4>;
-constexpr PetscInt kNone = std::numeric_limits<PetscInt>::max();
+// How far (relative to the local mesh size) a vertex of a part may lie from the shape or chart
+// the part is said to lie on.
+constexpr double kShapeTolerance = 1e-6;
+// A patch is flat if its vertices lie within this (relative to its size) of one plane; a
+// plane's normal this close to an axis is taken as that axis, exactly.
+constexpr double kFlatTolerance = 1e-12;
 
-// The facets of a cell in canonical order (cell_type.hpp): a simplex' facet leaves out one
-// vertex; a Q1 cell's facet ξ_j = ±1 holds the vertices whose bit j is 0 or 1.
-void add_facets(CellType type, const PetscInt* cell, std::vector<Facet>& facets) {
-  const int nv = num_vertices(type);
-  const int d = dimension(type);
-  auto add = [&](auto&& in_facet) {
-    Facet f{kNone, kNone, kNone, kNone};
-    int n = 0;
-    for (int i = 0; i < nv; ++i)
-      if (in_facet(i)) f[n++] = cell[i];
-    std::sort(f.begin(), f.end());
-    facets.push_back(f);
-  };
-  if (is_simplex(type)) {
-    for (int left_out = 0; left_out < nv; ++left_out) add([&](int i) { return i != left_out; });
-  } else {
-    for (int j = 0; j < d; ++j)
-      for (int side = 0; side < 2; ++side) add([&](int i) { return ((i >> j) & 1) == side; });
-  }
+Point boundary_point(const BoundarySurface& s, PetscInt b) {
+  Point p = Point::Zero();
+  for (int j = 0; j < s.dim; ++j) p[j] = s.coords[b * s.dim + j];
+  return p;
 }
 
-// Facets of exactly one cell whose vertices all lie on the boundary. A facet between two
-// ranks' cells appears once on each rank: the candidates of all ranks are compared by their
-// global vertex numbers, and only those that appear once in the whole mesh are kept.
-std::vector<Facet> boundary_facets(const MeshView& view, const DofMap& dofs) {
-  std::vector<Facet> facets;
-  for (const CellBlock& block : view.blocks)
-    for (PetscInt c = 0; c < block.size(); ++c) add_facets(block.type, block.cell(c), facets);
-  std::sort(facets.begin(), facets.end());
-  std::vector<Facet> candidates;
-  for (std::size_t i = 0; i < facets.size();) {
-    std::size_t j = i + 1;
-    while (j < facets.size() && facets[j] == facets[i]) ++j;
-    const bool on_boundary = std::all_of(facets[i].begin(), facets[i].end(), [&](PetscInt v) {
-      return v == kNone || view.on_boundary[v];
-    });
-    if (j == i + 1 && on_boundary) candidates.push_back(facets[i]);
-    i = j;
-  }
-
-  auto global_key = [&](const Facet& f) {
-    Facet key;
-    for (int i = 0; i < 4; ++i)
-      key[i] = f[i] == kNone ? kNone : dofs.global_dof()[f[i] * view.dim] / view.dim;
-    std::sort(key.begin(), key.end());
-    return key;
-  };
-  std::vector<PetscInt> mine;
-  for (const Facet& f : candidates) {
-    const Facet key = global_key(f);
-    mine.insert(mine.end(), key.begin(), key.end());
-  }
-  int ranks = 1;
-  MPI_Comm_size(dofs.comm(), &ranks);
-  const int count = static_cast<int>(mine.size());
-  std::vector<int> counts(ranks), offsets(ranks, 0);
-  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, dofs.comm());
-  for (int r = 1; r < ranks; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
-  std::vector<PetscInt> all(static_cast<std::size_t>(offsets.back() + counts.back()));
-  MPI_Allgatherv(mine.data(), count, MPIU_INT, all.data(), counts.data(), offsets.data(), MPIU_INT,
-                 dofs.comm());
-  std::vector<Facet> everywhere(all.size() / 4);
-  for (std::size_t i = 0; i < everywhere.size(); ++i)
-    std::copy_n(all.begin() + 4 * i, 4, everywhere[i].begin());
-  std::sort(everywhere.begin(), everywhere.end());
-
-  std::vector<Facet> boundary;
-  for (const Facet& f : candidates) {
-    const auto [first, last] =
-        std::equal_range(everywhere.begin(), everywhere.end(), global_key(f));
-    if (last - first == 1) boundary.push_back(f);
-  }
-  return boundary;
+std::span<const PetscInt> facet(const BoundarySurface& s, PetscInt f) {
+  return {s.facet_vertices.data() + s.facet_offsets[f],
+          static_cast<std::size_t>(s.facet_offsets[f + 1] - s.facet_offsets[f])};
 }
 
-// The axis j with x_j equal at all vertices of the facet (up to round-off relative to its
-// size), or −1 if the facet is not in an axis-aligned plane.
-int normal_axis(const MeshView& view, const Facet& facet) {
-  const int d = view.dim;
-  const double* x0 = &view.coords[facet[0] * d];
-  std::array<double, 3> spread{};
-  for (PetscInt v : facet) {
-    if (v == kNone) break;
-    for (int j = 0; j < d; ++j)
-      spread[j] = std::max(spread[j], std::abs(view.coords[v * d + j] - x0[j]));
-  }
-  const double size = *std::max_element(spread.begin(), spread.begin() + d);
-  for (int j = 0; j < d; ++j)
-    if (spread[j] <= 1e-12 * size) return j;
+// ±e_j exactly if n is that close to an axis; n otherwise.
+Point snap_to_axis(const Point& n) {
+  for (int j = 0; j < 3; ++j)
+    if (std::abs(n[j]) > 1.0 - kFlatTolerance) {
+      Point e = Point::Zero();
+      e[j] = n[j] > 0 ? 1.0 : -1.0;
+      return e;
+    }
+  return n;
+}
+
+// The axis j if v is exactly ±e_j, else -1.
+int axis_of(const Point& v) {
+  for (int j = 0; j < 3; ++j)
+    if (std::abs(v[j]) == 1.0) return j;
   return -1;
+}
+
+// Segments (2D) or triangles (3D, quadrilaterals split in two) of some facets, on their own
+// points: what a DiscreteSurface or SimplexSet is built from.
+struct Simplices {
+  std::vector<Point> points;
+  std::vector<std::array<int, 3>> simplices;
+};
+
+Simplices triangulate(const BoundarySurface& s, const std::vector<PetscInt>& facets) {
+  Simplices out;
+  std::map<PetscInt, int> index;
+  auto point_index = [&](PetscInt b) {
+    const auto [it, added] = index.emplace(b, static_cast<int>(out.points.size()));
+    if (added) out.points.push_back(boundary_point(s, b));
+    return it->second;
+  };
+  for (PetscInt f : facets) {
+    const auto v = facet(s, f);
+    if (v.size() == 2)
+      out.simplices.push_back({point_index(v[0]), point_index(v[1]), 0});
+    else
+      for (std::size_t k = 1; k + 1 < v.size(); ++k)
+        out.simplices.push_back({point_index(v[0]), point_index(v[k]), point_index(v[k + 1])});
+  }
+  return out;
+}
+
+std::unique_ptr<Surface> chart_surface(const Chart& chart, int dim, const std::string& part) {
+  switch (chart.kind) {
+    case Chart::Kind::Circle:
+    case Chart::Kind::Sphere:
+      if ((chart.kind == Chart::Kind::Circle) != (dim == 2))
+        fail("chart '{}' of part '{}' is a {}, but the mesh is {}D", chart.name, part,
+             chart.kind == Chart::Kind::Circle ? "circle" : "sphere", dim);
+      return make_sphere({chart.centre[0], chart.centre[1], chart.centre[2]}, chart.radius);
+    case Chart::Kind::Polyline: {
+      if (dim != 2) fail("chart '{}' of part '{}' is a 2D curve, but the mesh is 3D", chart.name, part);
+      std::vector<Point> points;
+      for (std::size_t i = 0; i + 1 < chart.points.size(); i += 2)
+        points.emplace_back(chart.points[i], chart.points[i + 1], 0.0);
+      std::vector<std::array<int, 3>> segments;
+      const int n = static_cast<int>(points.size());
+      for (int i = 0; i + 1 < n; ++i) segments.push_back({i, i + 1, 0});
+      if (chart.closed && n > 2) segments.push_back({n - 1, 0, 0});
+      if (segments.empty()) fail("chart '{}' of part '{}' has fewer than two points", chart.name, part);
+      return std::make_unique<DiscreteSurface>(std::move(points), std::move(segments), 2);
+    }
+    case Chart::Kind::SurfaceMesh: {
+      if (dim != 3) fail("chart '{}' of part '{}' is a surface, but the mesh is 2D", chart.name, part);
+      std::vector<Point> points;
+      for (std::size_t i = 0; i + 2 < chart.points.size(); i += 3)
+        points.emplace_back(chart.points[i], chart.points[i + 1], chart.points[i + 2]);
+      std::vector<std::array<int, 3>> triangles;
+      for (std::size_t i = 0; i + 2 < chart.triangles.size(); i += 3) {
+        std::array<int, 3> t;
+        for (int k = 0; k < 3; ++k) {
+          const std::int64_t v = chart.triangles[i + k];
+          if (v < 0 || v >= static_cast<std::int64_t>(points.size()))
+            fail("chart '{}': triangle {} refers to point {} of {}", chart.name, i / 3, v,
+                 points.size());
+          t[k] = static_cast<int>(v);
+        }
+        triangles.push_back(t);
+      }
+      if (triangles.empty()) fail("chart '{}' of part '{}' has no triangles", chart.name, part);
+      return std::make_unique<DiscreteSurface>(std::move(points), std::move(triangles), 3);
+    }
+  }
+  fail("chart '{}': unknown kind", chart.name);
 }
 
 }  // namespace
@@ -120,36 +135,329 @@ std::string_view name(BoundaryMode mode) {
   return mode == BoundaryMode::Fixed ? "fixed" : "slide";
 }
 
-std::vector<std::uint8_t> fixed_dofs(const MeshView& view, const DofMap& dofs, BoundaryMode mode) {
-  const int d = view.dim;
-  std::vector<double> fixed(static_cast<std::size_t>(view.num_vertices) * d, 0.0);
-  if (mode == BoundaryMode::Fixed) {
-    for (PetscInt v = 0; v < view.num_vertices; ++v)
-      if (view.on_boundary[v]) std::fill_n(fixed.begin() + v * d, d, 1.0);
-  } else {
-    for (const Facet& facet : boundary_facets(view, dofs)) {
-      const int axis = normal_axis(view, facet);
-      for (PetscInt v : facet) {
-        if (v == kNone) break;
-        for (int j = 0; j < d; ++j)
-          if (axis < 0 || j == axis) fixed[v * d + j] = 1.0;
+struct Boundary::Impl {
+  const MeshView& view;
+  const DofMap& dofs;
+  BoundaryOptions options;
+  const BoundarySurface& surface;
+  BoundaryFeatures features;
+  std::vector<std::unique_ptr<Surface>> patch_surface;
+  std::vector<std::uint8_t> patch_analytic;  // shape, circle/sphere chart or plane
+  std::vector<std::unique_ptr<Curve>> ridge_curve;
+  std::vector<std::uint8_t> fixed;  // per local dof
+  // The vertices that slide in tangent spaces, with what they slide on (one of the two).
+  std::vector<PetscInt> sliding;
+  std::vector<const Surface*> sliding_surface;
+  std::vector<const Curve*> sliding_curve;
+  BoundarySummary summary;
+  mutable std::unique_ptr<SimplexSet> whole_boundary;  // for distances, built when first asked
+
+  Impl(const MeshView& v, const DofMap& d, const BoundaryOptions& o)
+      : view(v), dofs(d), options(o), surface(*v.boundary) {
+    fixed.assign(static_cast<std::size_t>(view.num_vertices) * view.dim, 0);
+    if (options.mode == BoundaryMode::Fixed) {
+      for (PetscInt u = 0; u < view.num_vertices; ++u)
+        if (view.on_boundary[u]) std::fill_n(fixed.begin() + u * view.dim, view.dim, 1);
+      return;
+    }
+    features = find_features(surface, options.feature_angle);
+    build_patches();
+    build_ridges();
+    assign_vertices();
+    summary.corners = features.count(VertexFeature::Corner);
+    summary.ridge_vertices = features.count(VertexFeature::Ridge);
+    summary.surface_vertices = features.count(VertexFeature::Surface);
+    summary.patches = features.num_patches;
+    summary.ridges = static_cast<int>(features.ridge_edges.size());
+  }
+
+  std::string part_name(int part) const {
+    return part >= 0 ? view.parts[part].name : std::string();
+  }
+
+  // The shape specs of --shape by part index; fails for names that are no facet group.
+  std::map<int, std::string> shapes_by_part() const {
+    std::vector<std::uint8_t> has_facets(view.parts.size(), 0);
+    for (int part : surface.facet_part)
+      if (part >= 0) has_facets[part] = 1;
+    std::map<int, std::string> out;
+    for (const auto& [name, spec] : options.shapes) {
+      int found = -1;
+      for (std::size_t p = 0; p < view.parts.size(); ++p)
+        if (view.parts[p].name == name && has_facets[p]) found = static_cast<int>(p);
+      if (found < 0) {
+        std::string names;
+        for (std::size_t p = 0; p < view.parts.size(); ++p)
+          if (has_facets[p] && !view.parts[p].name.empty())
+            names += (names.empty() ? "" : ", ") + view.parts[p].name;
+        fail("--shape {}={}: the mesh has no boundary part named '{}' ({})", name, spec, name,
+             names.empty() ? "it has no named boundary parts" : "its parts: " + names);
+      }
+      out[found] = spec;
+    }
+    return out;
+  }
+
+  // The plane the facets lie in, or null.
+  std::unique_ptr<Surface> plane_through(const std::vector<PetscInt>& facets) const {
+    Point n = Point::Zero(), lo = Point::Constant(1e300), hi = -lo;
+    PetscInt first = facet(surface, facets[0])[0];
+    for (PetscInt f : facets) {
+      const auto v = facet(surface, f);
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        const Point p = boundary_point(surface, v[i]);
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+      if (surface.dim == 2) {
+        const Point e = boundary_point(surface, v[1]) - boundary_point(surface, v[0]);
+        const Point m(-e.y(), e.x(), 0.0);
+        n += n.dot(m) < 0 ? -m : m;
+      } else {
+        Point m = Point::Zero();
+        for (std::size_t i = 0; i < v.size(); ++i)
+          m += boundary_point(surface, v[i]).cross(boundary_point(surface, v[(i + 1) % v.size()]));
+        n += n.dot(m) < 0 ? -m : m;
+      }
+    }
+    if (!(n.norm() > 0)) return nullptr;
+    n = snap_to_axis(n.normalized());
+    const Point origin = boundary_point(surface, first);
+    const double size = (hi - lo).norm();
+    for (PetscInt f : facets)
+      for (PetscInt b : facet(surface, f))
+        if (std::abs(n.dot(boundary_point(surface, b) - origin)) > kFlatTolerance * size)
+          return nullptr;
+    return make_plane(origin, n);
+  }
+
+  // Largest length of a boundary edge at each boundary vertex: the local mesh size.
+  std::vector<double> vertex_sizes() const {
+    std::vector<double> size(surface.num_vertices(), 0.0);
+    for (PetscInt f = 0; f < surface.num_facets(); ++f) {
+      const auto v = facet(surface, f);
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        const PetscInt a = v[i], b = v[(i + 1) % v.size()];
+        const double l = (boundary_point(surface, a) - boundary_point(surface, b)).norm();
+        size[a] = std::max(size[a], l);
+        size[b] = std::max(size[b], l);
+      }
+    }
+    return size;
+  }
+
+  // Every vertex of the facets must lie on the given geometry; `what` names it in the error.
+  void check_on_surface(const Surface& s, const std::vector<PetscInt>& facets,
+                        const std::vector<double>& size, const std::string& what) const {
+    for (PetscInt f : facets)
+      for (PetscInt b : facet(surface, f)) {
+        const Point p = boundary_point(surface, b);
+        const double distance = (s.closest_point(p) - p).norm();
+        if (!(distance <= kShapeTolerance * size[b]))
+          fail("{}: the vertex at ({:g}, {:g}{}) (number {} in input order) is {:.3g} from it, "
+               "more than {:g} of the local mesh size {:.3g}",
+               what, p[0], p[1], surface.dim == 3 ? fmt::format(", {:g}", p[2]) : "",
+               surface.input_vertex[b] + 1, distance, kShapeTolerance,
+               size[b]);
+      }
+  }
+
+  void build_patches() {
+    const int np = features.num_patches;
+    std::vector<std::vector<PetscInt>> facets(np);
+    for (PetscInt f = 0; f < surface.num_facets(); ++f) facets[features.facet_patch[f]].push_back(f);
+    const std::map<int, std::string> shapes = shapes_by_part();
+    const std::vector<double> size = vertex_sizes();
+    patch_surface.resize(np);
+    patch_analytic.assign(np, 0);
+    for (int p = 0; p < np; ++p) {
+      const int part = features.patch_part[p];
+      const std::string name = part_name(part);
+      const std::string chart = part >= 0 ? surface.part_chart[part] : std::string();
+      const std::string label = part >= 0 ? fmt::format("part '{}'", name) : "unnamed part";
+      if (const auto it = shapes.find(part); part >= 0 && it != shapes.end()) {
+        patch_surface[p] = parse_shape(it->second, surface.dim);
+        patch_analytic[p] = 1;
+        check_on_surface(*patch_surface[p], facets[p], size,
+                         fmt::format("--shape {}={}", name, it->second));
+      } else if (!chart.empty()) {
+        const auto c = std::find_if(surface.charts.begin(), surface.charts.end(),
+                                    [&](const Chart& x) { return x.name == chart; });
+        if (c == surface.charts.end())
+          fail("part '{}' is attached to chart '{}', which the mesh file does not define", name,
+               chart);
+        patch_surface[p] = chart_surface(*c, surface.dim, name);
+        patch_analytic[p] =
+            c->kind == Chart::Kind::Circle || c->kind == Chart::Kind::Sphere ? 1 : 0;
+        check_on_surface(*patch_surface[p], facets[p], size,
+                         fmt::format("chart '{}' of part '{}'", chart, name));
+      } else if (auto plane = plane_through(facets[p])) {
+        patch_surface[p] = std::move(plane);
+        patch_analytic[p] = 1;
+      } else {
+        Simplices s = triangulate(surface, facets[p]);
+        patch_surface[p] = std::make_unique<DiscreteSurface>(std::move(s.points),
+                                                             std::move(s.simplices), surface.dim);
+      }
+      summary.patch_geometry.push_back(
+          fmt::format("{}: {}", label, patch_surface[p]->describe()));
+    }
+  }
+
+  void build_ridges() {
+    for (std::size_t r = 0; r < features.ridge_edges.size(); ++r) {
+      const auto [a, b] = features.ridge_patches[r];
+      const auto& edges = features.ridge_edges[r];
+      if (a >= 0 && a != b && patch_analytic[a] && patch_analytic[b]) {
+        const Surface &sa = *patch_surface[a], &sb = *patch_surface[b];
+        const Point on = boundary_point(surface, edges[0][0]);
+        if (sa.is_flat() && sb.is_flat()) {
+          const Point direction = sa.normal(on).cross(sb.normal(on));
+          ridge_curve.push_back(make_line(on, snap_to_axis(direction.normalized())));
+        } else {
+          ridge_curve.push_back(make_intersection(sa, sb));
+        }
+        continue;
+      }
+      std::map<PetscInt, int> index;
+      std::vector<Point> points;
+      std::vector<std::array<int, 3>> segments;
+      auto point_index = [&](PetscInt v) {
+        const auto [it, added] = index.emplace(v, static_cast<int>(points.size()));
+        if (added) points.push_back(boundary_point(surface, v));
+        return it->second;
+      };
+      for (const auto& e : edges) segments.push_back({point_index(e[0]), point_index(e[1]), 0});
+      ridge_curve.push_back(std::make_unique<DiscreteCurve>(std::move(points), std::move(segments)));
+    }
+  }
+
+  void assign_vertices() {
+    const int d = view.dim;
+    for (PetscInt u = 0; u < view.num_vertices; ++u) {
+      if (!view.on_boundary[u]) continue;
+      const PetscInt b = surface.find(view.input_vertex[u]);
+      std::uint8_t* f = fixed.data() + u * d;
+      if (b < 0 || features.kind[b] == VertexFeature::Corner) {
+        std::fill_n(f, d, 1);
+        continue;
+      }
+      const Point at = boundary_point(surface, b);
+      if (features.kind[b] == VertexFeature::Surface) {
+        const Surface& s = *patch_surface[features.patch[b]];
+        const int axis = s.is_flat() ? axis_of(s.normal(at)) : -1;
+        if (axis >= 0) {
+          f[axis] = 1;  // stays exactly in its plane x_axis = const
+          continue;
+        }
+        sliding.push_back(u);
+        sliding_surface.push_back(&s);
+        sliding_curve.push_back(nullptr);
+      } else {
+        const Curve& c = *ridge_curve[features.ridge[b]];
+        const int axis = c.is_straight() ? axis_of(c.tangent(at)) : -1;
+        if (axis >= 0) {
+          for (int j = 0; j < d; ++j) f[j] = j != axis;  // stays exactly on its line
+          continue;
+        }
+        sliding.push_back(u);
+        sliding_surface.push_back(nullptr);
+        sliding_curve.push_back(&c);
       }
     }
   }
-  // A coordinate is fixed if any rank fixes it: sum the flags at the owners, send them back.
-  OwnedVec global = dofs.create_global_vector();
-  dofs.add_local_to_global(fixed, global);
-  dofs.global_to_local(global, fixed);
-  std::vector<std::uint8_t> result(fixed.size());
-  for (PetscInt v = 0; v < view.num_vertices; ++v) {
-    // A boundary vertex without a boundary facet on any rank (should not happen in a valid
-    // mesh) stays put rather than roam freely.
-    const bool free = std::all_of(fixed.begin() + v * d, fixed.begin() + (v + 1) * d,
-                                  [](double f) { return f == 0.0; });
-    for (int j = 0; j < d; ++j)
-      result[v * d + j] = fixed[v * d + j] > 0.0 || (view.on_boundary[v] && free);
+
+  Point local_point(std::span<const double> x, PetscInt u) const {
+    Point p = Point::Zero();
+    for (int j = 0; j < view.dim; ++j) p[j] = x[u * view.dim + j];
+    return p;
   }
-  return result;
+
+  void tangent_projectors(std::span<const double> x, std::span<double> out) const {
+    const int d = view.dim;
+    for (std::size_t i = 0; i < sliding.size(); ++i) {
+      const Point p = local_point(x, sliding[i]);
+      double* P = out.data() + i * d * d;
+      if (sliding_surface[i]) {
+        const Point n = sliding_surface[i]->normal(p);
+        for (int a = 0; a < d; ++a)
+          for (int c = 0; c < d; ++c) P[a * d + c] = (a == c ? 1.0 : 0.0) - n[a] * n[c];
+      } else {
+        const Point t = sliding_curve[i]->tangent(p);
+        for (int a = 0; a < d; ++a)
+          for (int c = 0; c < d; ++c) P[a * d + c] = t[a] * t[c];
+      }
+    }
+  }
+
+  void project(Vec x) const {
+    if (sliding.empty()) return;
+    const int d = view.dim;
+    PetscInt first = 0;
+    NM_PETSC(VecGetOwnershipRange(x, &first, nullptr));
+    double* a = nullptr;
+    NM_PETSC(VecGetArray(x, &a));
+    for (std::size_t i = 0; i < sliding.size(); ++i) {
+      const PetscInt u = sliding[i];
+      if (!view.owned[u]) continue;
+      double* at = a + dofs.global_dof()[u * d] - first;
+      Point p = Point::Zero();
+      for (int j = 0; j < d; ++j) p[j] = at[j];
+      const Point q = sliding_surface[i] ? sliding_surface[i]->closest_point(p)
+                                         : sliding_curve[i]->closest_point(p);
+      for (int j = 0; j < d; ++j) at[j] = q[j];
+    }
+    NM_PETSC(VecRestoreArray(x, &a));
+  }
+
+  double max_distance_from_input(Vec x) const {
+    if (!whole_boundary) {
+      std::vector<PetscInt> all(surface.num_facets());
+      for (PetscInt f = 0; f < surface.num_facets(); ++f) all[f] = f;
+      Simplices s = triangulate(surface, all);
+      whole_boundary = std::make_unique<SimplexSet>(std::move(s.points), std::move(s.simplices),
+                                                    surface.dim == 2 ? 2 : 3);
+    }
+    std::vector<double> local(static_cast<std::size_t>(dofs.num_local_dofs()));
+    dofs.global_to_local(x, local);
+    double largest = 0.0;
+    for (PetscInt u = 0; u < view.num_vertices; ++u)
+      if (view.on_boundary[u] && view.owned[u])
+        largest = std::max(largest, whole_boundary->closest(local_point(local, u)).distance);
+    MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, dofs.comm());
+    return largest;
+  }
+};
+
+Boundary::Boundary(const MeshView& view, const DofMap& dofs, const BoundaryOptions& options)
+    : impl_(std::make_unique<Impl>(view, dofs, options)) {}
+Boundary::~Boundary() = default;
+
+FixedDofs Boundary::fixed_dofs() const {
+  return FixedDofs{impl_->fixed};
+}
+
+SlidingVertices Boundary::sliding_vertices() const {
+  const Impl* impl = impl_.get();
+  SlidingVertices s;
+  s.vertices = impl->sliding;
+  s.tangent_projectors = [impl](std::span<const double> x, std::span<double> out) {
+    impl->tangent_projectors(x, out);
+  };
+  s.project = [impl](Vec x) { impl->project(x); };
+  return s;
+}
+
+void Boundary::project(Vec x) const {
+  impl_->project(x);
+}
+
+const BoundarySummary& Boundary::summary() const {
+  return impl_->summary;
+}
+
+double Boundary::max_distance_from_input(Vec x) const {
+  return impl_->max_distance_from_input(x);
 }
 
 }  // namespace neomesh

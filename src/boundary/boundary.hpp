@@ -1,20 +1,29 @@
-// Which coordinates of which vertices the optimization may change (MATH.md §7, thesis §3.2
-// and outlook).
+// What the boundary vertices may do during the optimization (docs/boundary.md, MATH.md §7).
 //
 // Fixed (the thesis' H¹₀ setting): every boundary vertex stays where it is.
-// Slide: a boundary vertex may move within the boundary. Every boundary facet (edge in 2D,
-// face in 3D) that lies in an axis-aligned plane x_j = const fixes component j of its
-// vertices; so a vertex inside a flat face of a box slides within the face, one on an edge
-// of the box slides along the edge, and a corner stays put. Keeping a coordinate fixed keeps
-// the vertex *exactly* on such a plane, so no projection is needed. A boundary facet that is
-// not axis-aligned (curved or oblique boundaries) fixes its vertices completely: sliding
-// there would need a projection back onto the boundary, which neomesh does not do yet.
+// Slide: boundary vertices move along the boundary of the input domain. The boundary is split
+// at its features (features.hpp) into patches and ridges; corners stay put, a ridge vertex
+// slides along its ridge, every other boundary vertex within its patch. Each patch slides on
+// the most exact geometry known for it:
+//   1. a shape named for its boundary part (`--shape part=circle:0,0,0.5`, shape.hpp);
+//   2. the FEAT3 chart its mesh part is attached to;
+//   3. the plane it lies in, if it is flat;
+//   4. otherwise the input's own facets (discrete_geometry.hpp).
+// A ridge between two patches with analytic geometry follows their exact intersection,
+// otherwise the input's ridge edges. Coordinates that stay exact by themselves — all of a
+// corner's, the normal one of a vertex in an axis-aligned plane, the two others of one on an
+// axis-aligned line — are fixed dofs; the other sliding vertices move in their tangent spaces
+// and are projected back onto their geometry after each step (sliding_vertices.hpp).
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
+#include "energy/functional.hpp"
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
 
@@ -26,9 +35,53 @@ enum class BoundaryMode { Fixed, Slide };
 BoundaryMode parse_boundary_mode(std::string_view name);
 std::string_view name(BoundaryMode mode);
 
-// Per local dof (dim * vertex + component, MeshView order): 1 if that coordinate does not
-// move. Collective: ranks agree on vertices they share (a rank may see only some of a
-// vertex's boundary facets).
-std::vector<std::uint8_t> fixed_dofs(const MeshView& view, const DofMap& dofs, BoundaryMode mode);
+struct BoundaryOptions {
+  BoundaryOptions() = default;
+  explicit BoundaryOptions(BoundaryMode m) : mode(m) {}
+
+  BoundaryMode mode = BoundaryMode::Fixed;
+  // Corners and ridges: where the boundary turns (2D) or folds (3D) by more than this, in
+  // degrees. 40 keeps the facets of a circle or sphere meshed with ≥ 9 edges per right angle
+  // in one patch and finds every corner of a box.
+  double feature_angle = 40.0;
+  // (part name, shape spec) pairs: boundary part `name` lies on the shape (shape.hpp).
+  std::vector<std::pair<std::string, std::string>> shapes;
+};
+
+// What a slide found on the whole boundary (the same on every rank).
+struct BoundarySummary {
+  PetscInt corners = 0, ridge_vertices = 0, surface_vertices = 0;
+  int patches = 0, ridges = 0;
+  // Per patch: "part 'hole': circle ...", "unnamed: the input's boundary", ...
+  std::vector<std::string> patch_geometry;
+};
+
+class Boundary {
+ public:
+  // Classifies the boundary and builds its geometry; throws Error for a shape naming an
+  // unknown part, or not passing through its part's vertices (naming the vertex). The view
+  // must outlive the Boundary. Collective.
+  Boundary(const MeshView& view, const DofMap& dofs, const BoundaryOptions& options);
+  ~Boundary();
+  Boundary(const Boundary&) = delete;
+  Boundary& operator=(const Boundary&) = delete;
+
+  // Per local dof: 1 if that coordinate never moves.
+  FixedDofs fixed_dofs() const;
+  // The vertices that slide in tangent spaces, for the Functional (refers to this Boundary,
+  // which must outlive it).
+  SlidingVertices sliding_vertices() const;
+  // Moves the owned sliding vertices of the global Vec x onto their geometry.
+  void project(Vec x) const;
+  const BoundarySummary& summary() const;
+
+  // The largest distance of a boundary vertex of x (global Vec) from the input's boundary,
+  // over all ranks. Collective.
+  double max_distance_from_input(Vec x) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace neomesh

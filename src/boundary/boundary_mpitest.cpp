@@ -1,5 +1,5 @@
 // Under `mpiexec -n 2`: a rank sees only some boundary facets of the vertices it shares
-// with the other rank; fixed_dofs must still give every local vertex, ghosts included, the
+// with the other rank; Boundary must still give every local vertex, ghosts included, the
 // mask of the whole mesh.
 #include <gtest/gtest.h>
 
@@ -20,7 +20,8 @@ void expect_box_mask_on_every_rank(CellType type, int n) {
       Mesh::from_data(mpi_rank(PETSC_COMM_WORLD) == 0 ? data : empty, "box", PETSC_COMM_WORLD);
   const MeshView& view = mesh.view();
   ASSERT_GT(view.num_cells, 0) << "the test needs cells on every rank";
-  const std::vector<std::uint8_t> slide = fixed_dofs(view, mesh.dofs(), BoundaryMode::Slide);
+  const std::vector<std::uint8_t> slide =
+      Boundary(view, mesh.dofs(), BoundaryOptions(BoundaryMode::Slide)).fixed_dofs().flags;
   const int d = view.dim;
   for (PetscInt v = 0; v < view.num_vertices; ++v)
     for (int j = 0; j < d; ++j)

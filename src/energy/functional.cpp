@@ -120,6 +120,9 @@ struct Functional::Impl {
   std::vector<std::uint8_t> fixed;  // per local dof
   std::vector<double> volumes;      // desired volume per local cell
   OwnedVec free_mask;
+  SlidingVertices sliding;
+  std::vector<PetscInt> projector_of;  // per local vertex: its index in sliding.vertices, or -1
+  bool slides_anywhere = false;        // sliding.vertices is not empty on some rank
 
   // The AIJ pattern (assembly_pattern.hpp), built by the first create_*matrix and shared by
   // every matrix of its kind (MatDuplicate with MAT_SHARE_NONZERO_PATTERN); assembly adds
@@ -133,9 +136,11 @@ struct Functional::Impl {
   mutable std::vector<double> thread_gradients;  // one local gradient per OpenMP thread
   mutable std::vector<double> local_gradient;
   mutable std::vector<PetscScalar> ghost_values;  // G of assembly_pattern.hpp
+  mutable std::vector<double> projectors;         // dim² per sliding.vertices entry, at local_x
 
-  Impl(const MeshView& v, const DofMap& d, const EnergyOptions& o, std::vector<std::uint8_t> f)
-      : view(v), dofs(d), kernels(make_kernels(o)), fixed(std::move(f)) {}
+  Impl(const MeshView& v, const DofMap& d, const EnergyOptions& o, std::vector<std::uint8_t> f,
+       SlidingVertices t)
+      : view(v), dofs(d), kernels(make_kernels(o)), fixed(std::move(f)), sliding(std::move(t)) {}
 
   template <CellType Type>
   const CellKernel<Type>& kernel() const {
@@ -153,7 +158,20 @@ struct Functional::Impl {
   void load_coordinates(Vec x) const {
     require_volumes();
     dofs.global_to_local(x, local_x);
+    if (!sliding.vertices.empty()) sliding.tangent_projectors(local_x, projectors);
   }
+
+  // The projector of local vertex v, or null if v does not slide.
+  const double* projector(PetscInt v) const {
+    const PetscInt i = projector_of[v];
+    return i < 0 ? nullptr : projectors.data() + i * view.dim * view.dim;
+  }
+  // g_v ← P_v g_v for every sliding vertex.
+  void project_gradient(std::vector<double>& gradient) const;
+  // B ← P B P over a cell's (dim · vertices)² block, P = diag(P_v) (identity for vertices that
+  // do not slide).
+  template <int D, int N, typename Block>
+  void project_block(const PetscInt* vertex, Block& block) const;
 
   double local_energy() const;
   double local_energy_and_gradient(std::vector<double>& gradient) const;
@@ -240,7 +258,29 @@ double Functional::Impl::local_energy_and_gradient(std::vector<double>& gradient
     for (int t = 0; t < threads; ++t) s += thread_gradients[n * t + i];
     gradient[i] = s;
   }
+  project_gradient(gradient);
   return sum;
+}
+
+void Functional::Impl::project_gradient(std::vector<double>& gradient) const {
+  const int d = view.dim;
+  for (PetscInt v : sliding.vertices) {
+    Eigen::Map<const Eigen::MatrixXd> p(projector(v), d, d);
+    Eigen::Map<Eigen::VectorXd> g(gradient.data() + d * v, d);
+    g = p * Eigen::VectorXd(g);
+  }
+}
+
+template <int D, int N, typename Block>
+void Functional::Impl::project_block(const PetscInt* vertex, Block& block) const {
+  for (int i = 0; i < N; ++i) {
+    const double* p = projector(vertex[i]);
+    if (!p) continue;
+    // P is symmetric, so its row-major array is also its column-major one.
+    const Eigen::Map<const Eigen::Matrix<double, D, D>> P(p);
+    block.template middleRows<D>(D * i) = P * block.template middleRows<D>(D * i);
+    block.template middleCols<D>(D * i) = block.template middleCols<D>(D * i) * P;
+  }
 }
 
 template <CellType Type, bool Coupled, typename Fill>
@@ -270,6 +310,7 @@ PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b, const AijV
         continue;
       }
       const PetscInt* vertex = block.cell(c);
+      if (!sliding.vertices.empty()) project_block<d, n>(vertex, cell_block);
       const PetscInt* entry = p.block_entry[b].data() + c * n * n;
       for (int vi = 0; vi < n; ++vi) {
         const PetscInt v = vertex[vi];
@@ -330,6 +371,16 @@ void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M) const {
     for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l)
       if (is_fixed_dof(l) && p.diagonal[l] >= 0)
         values.diagonal[coupled ? p.diagonal[l] : (p.diagonal[l] - l % d) / d] = 1.0;
+    // The normal part of a sliding vertex's rows: + (I − P_v) on its diagonal block.
+    for (PetscInt v : sliding.vertices) {
+      if (!view.owned[v]) continue;
+      if (!coupled) fail("internal error: a Laplacian without couplings for sliding vertices");
+      const double* proj = projector(v);
+      for (int a = 0; a < d; ++a)
+        for (int bb = 0; bb < d; ++bb)
+          values.diagonal[p.diagonal[d * v] + a * p.row_stride[v] + bb] +=
+              (a == bb ? 1.0 : 0.0) - proj[a * d + bb];
+    }
   }
   AijValues::mark_changed(M);
   std::string error;
@@ -358,8 +409,9 @@ Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOpt
     : Functional(view, dofs, options, per_dof(view, fixed)) {}
 
 Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
-                       FixedDofs fixed)
-    : impl_(std::make_unique<Impl>(view, dofs, options, std::move(fixed.flags))) {
+                       FixedDofs fixed, SlidingVertices sliding)
+    : impl_(std::make_unique<Impl>(view, dofs, options, std::move(fixed.flags),
+                                   std::move(sliding))) {
   if (dofs.dim() != view.dim)
     fail("Functional: the mesh is {}D but its DofMap has {} components", view.dim, dofs.dim());
   if (static_cast<PetscInt>(impl_->fixed.size()) != view.num_vertices * view.dim)
@@ -375,6 +427,13 @@ Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOpt
     if (dimension(block.type) != view.dim)
       fail("Functional: {} cells in a {}D mesh", name(block.type), view.dim);
   impl_->local_x.resize(static_cast<std::size_t>(dofs.num_local_dofs()));
+  impl_->projector_of.assign(view.num_vertices, -1);
+  for (std::size_t i = 0; i < impl_->sliding.vertices.size(); ++i)
+    impl_->projector_of[impl_->sliding.vertices[i]] = static_cast<PetscInt>(i);
+  impl_->projectors.resize(impl_->sliding.vertices.size() * view.dim * view.dim);
+  int slides = !impl_->sliding.vertices.empty();
+  MPI_Allreduce(MPI_IN_PLACE, &slides, 1, MPI_INT, MPI_MAX, dofs.comm());
+  impl_->slides_anywhere = slides != 0;
 
   // free_mask: every local dof of an owned vertex is owned.
   impl_->free_mask = dofs.create_global_vector();
@@ -453,7 +512,7 @@ OwnedMat Functional::create_matrix() const {
 }
 
 OwnedMat Functional::create_laplacian_matrix() const {
-  return impl_->create_matrix(false);
+  return impl_->create_matrix(impl_->slides_anywhere);
 }
 
 void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {
@@ -470,7 +529,10 @@ void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const {
                        auto block) { return kernel.current_laplacian(coordinates, volume, block); },
                     "current-mesh Laplacian", L);
   } else {
-    impl_->require_volumes();
+    if (impl_->slides_anywhere)
+      impl_->load_coordinates(x);  // for the tangent spaces
+    else
+      impl_->require_volumes();
     impl_->assemble(
         [](const auto& kernel, const auto&, double volume, auto block) {
           kernel.optimal_laplacian(volume, block);
@@ -503,6 +565,14 @@ CellFields Functional::cell_fields(Vec x) const {
     });
   }
   return fields;
+}
+
+void Functional::project_onto_boundary(Vec x) const {
+  if (impl_->sliding.project) impl_->sliding.project(x);
+}
+
+bool Functional::slides() const {
+  return impl_->slides_anywhere;
 }
 
 const DofMap& Functional::dofs() const {

@@ -6,7 +6,8 @@
 // Fixed dofs (all coordinates of boundary vertices by default, or single coordinates) are
 // eliminated: the gradient is zero there, and the rows and columns of H(α) and L are those
 // of the identity, so that the Newton defect is the free-dof norm of the gradient and every
-// linear solve leaves fixed dofs unchanged.
+// linear solve leaves fixed dofs unchanged. Vertices that slide on a curved boundary are
+// restricted to their tangent spaces the same way (sliding_vertices.hpp).
 #pragma once
 
 #include <cstdint>
@@ -16,6 +17,7 @@
 
 #include "core/petsc.hpp"
 #include "energy/neo_hooke.hpp"
+#include "energy/sliding_vertices.hpp"
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
 
@@ -53,9 +55,9 @@ class Functional {
   // and layout are used (coordinates always come from the Vec x of each call).
   Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
              const std::vector<std::uint8_t>& fixed);
-  // The same with single coordinates fixed.
+  // The same with single coordinates fixed, and vertices restricted to tangent spaces.
   Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
-             FixedDofs fixed);
+             FixedDofs fixed, SlidingVertices sliding = {});
   ~Functional();
   Functional(const Functional&) = delete;
   Functional& operator=(const Functional&) = delete;
@@ -74,11 +76,19 @@ class Functional {
   // H(α) at x into a matrix made by create_matrix (values only; the pattern is reused).
   void assemble_hessian(Vec x, double alpha, Mat H) const;
   // A matrix with the sparsity of L only: the vector Laplacian couples no two components, so
-  // it has 1/dim of the entries of create_matrix (cheaper AMG setup and V-cycles).
+  // it has 1/dim of the entries of create_matrix (cheaper AMG setup and V-cycles). With
+  // vertices in tangent spaces (on any rank) it is create_matrix's: their projectors couple
+  // the components.
   OwnedMat create_laplacian_matrix() const;
   // The Riesz Laplacian into a matrix made by create_laplacian_matrix or create_matrix. `x` is used
-  // only for RieszLaplacian::CurrentMesh.
+  // for RieszLaplacian::CurrentMesh and for the tangent spaces of sliding vertices.
   void assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const;
+
+  // Moves the sliding vertices of x back onto the boundary after a step (no-op if none
+  // slide). Not collective.
+  void project_onto_boundary(Vec x) const;
+  // True if vertices slide on a curved or oblique boundary on some rank.
+  bool slides() const;
 
   // Per-cell energy, min det G and volume ratio Q at x (MeshView order).
   CellFields cell_fields(Vec x) const;

@@ -16,7 +16,7 @@ InputMesh two_quads() {
   data.cell_type = CellType::Quadrilateral;
   data.coords = {0, 0, 1, 0, 2, 0, 0, 1, 1, 1, 2, 1};
   data.cells = {0, 1, 3, 4, 1, 2, 4, 5};
-  data.boundary_parts = {{"left", 1, {0, 3}}, {"corner", 2, {2}}};
+  data.boundary_parts = {{"left", 1, {0, 3}, {}}, {"corner", 2, {2}, {}}};
   return input_from_data(data);
 }
 

@@ -50,7 +50,7 @@ Packet pack(const Mesh& mesh, const MeshFields& fields) {
   out.ints.push_back(std::count(view.owned.begin(), view.owned.end(), 1));
   for (PetscInt v = 0; v < view.num_vertices; ++v) {
     if (!view.owned[v]) continue;
-    out.ints.push_back(m.input_vertex[v]);
+    out.ints.push_back(m.view->input_vertex[v]);
     out.reals.insert(out.reals.end(), view.coords.begin() + v * m.dim,
                      view.coords.begin() + (v + 1) * m.dim);
     for (const Field& f : fields.vertex)
@@ -64,7 +64,7 @@ Packet pack(const Mesh& mesh, const MeshFields& fields) {
       const PetscInt cell = block.first_cell + c;
       out.ints.insert(out.ints.end(), {view.global_cell[cell], static_cast<PetscInt>(block.type)});
       for (int i = 0; i < num_vertices(block.type); ++i)
-        out.ints.push_back(m.input_vertex[block.cell(c)[i]]);
+        out.ints.push_back(m.view->input_vertex[block.cell(c)[i]]);
       for (const Field& f : fields.cell)
         out.reals.insert(out.reals.end(), f.values.begin() + cell * f.components,
                          f.values.begin() + (cell + 1) * f.components);

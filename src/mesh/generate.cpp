@@ -52,7 +52,7 @@ MeshData lattice_mesh(int dim, int n, const std::function<void(const Index&, dou
   static constexpr std::array<const char*, 6> side_names = {"left", "right", "bottom",
                                                             "top",  "front", "back"};
   for (int side = 0; side < 2 * dim; ++side) {
-    VertexSet part{side_names[side], side + 1, {}};
+    VertexSet part{side_names[side], side + 1, {}, {}};
     const int axis = side / 2, fixed = side % 2 ? n : 0;
     for (int k = 0; k < nk; ++k)
       for (int j = 0; j <= n; ++j)
@@ -183,6 +183,58 @@ MeshData box(CellType type, int cells_per_direction) {
     for (int d = 0; d < dim; ++d) x[d] = -1.0 + 2.0 * ijk[d] / n;
   });
   if (is_simplex(type)) split_into_simplices(mesh);
+  return mesh;
+}
+
+MeshData ring(CellType type, int angular, int radial, double bunching) {
+  if (type == CellType::Tetrahedron) fail("ring: no tetrahedral version");
+  if (angular < 3 || radial < 1) fail("ring: needs at least 3 cells around and 1 across");
+  if (!(bunching >= 1.0)) fail("ring: bunching must be at least 1 (got {})", bunching);
+  const int dim = dimension(type), layers = dim == 3 ? radial : 0;
+  const double a = (bunching - 1.0) / (bunching + 1.0);  // (1 + a) / (1 - a) = bunching
+  MeshData mesh;
+  mesh.dim = dim;
+  mesh.cell_type = type;
+  // Vertex (i around, j across, k up).
+  auto vertex = [&](int i, int j, int k) -> std::int64_t {
+    return (static_cast<std::int64_t>(k) * (radial + 1) + j) * angular + (i % angular);
+  };
+  for (int k = 0; k <= layers; ++k)
+    for (int j = 0; j <= radial; ++j)
+      for (int i = 0; i < angular; ++i) {
+        const double s = static_cast<double>(i) / angular;
+        const double theta = 2 * std::numbers::pi * s + a * std::sin(2 * std::numbers::pi * s);
+        const double r = 0.5 + 0.5 * j / radial;
+        mesh.coords.push_back(r * std::cos(theta));
+        mesh.coords.push_back(r * std::sin(theta));
+        if (dim == 3) mesh.coords.push_back(0.5 * k / layers);
+      }
+  // Tensor order with ξ0 across, ξ1 around (and ξ2 up): positively oriented.
+  for (int k = 0; k < std::max(layers, 1); ++k)
+    for (int j = 0; j < radial; ++j)
+      for (int i = 0; i < angular; ++i) {
+        std::int64_t v[8];
+        for (int corner = 0; corner < (dim == 3 ? 8 : 4); ++corner)
+          v[corner] = vertex(i + ((corner >> 1) & 1), j + (corner & 1), k + ((corner >> 2) & 1));
+        if (type == CellType::Triangle)
+          mesh.cells.insert(mesh.cells.end(), {v[0], v[1], v[3], v[0], v[3], v[2]});
+        else
+          mesh.cells.insert(mesh.cells.end(), v, v + (dim == 3 ? 8 : 4));
+      }
+  auto part = [&](const char* name, auto&& on) {
+    VertexSet set{name, static_cast<int>(mesh.boundary_parts.size()) + 1, {}, {}};
+    for (int k = 0; k <= layers; ++k)
+      for (int j = 0; j <= radial; ++j)
+        for (int i = 0; i < angular; ++i)
+          if (on(j, k)) set.vertices.push_back(vertex(i, j, k));
+    mesh.boundary_parts.push_back(std::move(set));
+  };
+  part("inner", [](int j, int) { return j == 0; });
+  part("outer", [&](int j, int) { return j == radial; });
+  if (dim == 3) {
+    part("bottom", [](int, int k) { return k == 0; });
+    part("top", [&](int, int k) { return k == layers; });
+  }
   return mesh;
 }
 

@@ -60,6 +60,13 @@ MeshData triangle_curved(int refinements);
 // tets around its diagonal from (-,-,-) to (+,+,+), so neighbouring cubes' faces match).
 MeshData box(CellType type, int cells_per_direction);
 
+// The ring 1/2 ≤ r ≤ 1 (quadrilaterals or triangles) or the cylindrical shell 1/2 ≤ r ≤ 1,
+// 0 ≤ z ≤ 1/2 (hexahedra) with `angular` cells around and `radial` cells across (and as many
+// layers in z). The vertices sit at the angles θ(s) = 2πs + a sin 2πs, s = i/angular, so that
+// the largest angular gap is `bunching` times the smallest (1: uniform). Boundary parts
+// "inner", "outer" (and "bottom", "top").
+MeshData ring(CellType type, int angular, int radial, double bunching);
+
 // Displaces every interior vertex (not on boundary_vertices()) by up to amplitude·h in each
 // coordinate, uniformly at random, in vertex order; deterministic for a seed on every
 // platform. For lattice meshes of spacing h, 0 ≤ amplitude < 1/4 keeps quads and triangles

@@ -22,7 +22,7 @@ using Edge = std::pair<std::int64_t, std::int64_t>;  // (smaller, larger) vertex
 VertexSet side(const char* name, std::vector<std::int64_t> vertices) {
   static const std::map<std::string, int> tags = {
       {"left", 1}, {"right", 2}, {"bottom", 3}, {"top", 4}, {"circle", 1}};
-  return {name, tags.at(name), std::move(vertices)};
+  return {name, tags.at(name), std::move(vertices), {}};
 }
 
 MeshData coarse_mesh(CellType type, std::vector<double> coords, std::vector<std::int64_t> cells,

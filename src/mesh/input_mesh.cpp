@@ -10,6 +10,7 @@ InputMesh input_from_data(const MeshData& data) {
   mesh.coords = data.coords;
   const int nv = num_vertices(data.cell_type);
   for (std::int64_t c = 0; c < data.num_cells(); ++c) {
+  mesh.charts = data.charts;
     PetscInt v[8];
     for (int i = 0; i < nv; ++i) v[i] = static_cast<PetscInt>(data.cells[c * nv + i]);
     mesh.add_cell(data.cell_type, v, 0);

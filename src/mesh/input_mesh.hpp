@@ -49,6 +49,7 @@ struct InputMesh {
   PetscInt num_vertices() const { return static_cast<PetscInt>(coords.size()) / dim; }
   PetscInt num_cells() const { return static_cast<PetscInt>(cell_types.size()); }
   void add_cell(CellType t, const PetscInt* v, int tag) {
+  std::vector<Chart> charts;            // FEAT3 charts; VertexSet::chart names them
     cell_types.push_back(t);
     cell_vertices.insert(cell_vertices.end(), v, v + num_vertices_of(t));
     cell_offsets.push_back(static_cast<PetscInt>(cell_vertices.size()));

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "mesh/boundary_surface.hpp"
 #include "mesh/cell_order.hpp"
 #include "mesh/collective_error.hpp"
 #include "mesh/feat_reader.hpp"
@@ -120,7 +121,7 @@ std::vector<std::uint8_t> ghost_points(DM dm) {
 void build_boundary(const Impl& m, const InputTopology& root, MeshView& view) {
   const PetscInt nv = view.num_vertices;
   std::vector<PetscSFNode> remote(nv);
-  for (PetscInt v = 0; v < nv; ++v) remote[v] = {0, m.input_vertex[v]};
+  for (PetscInt v = 0; v < nv; ++v) remote[v] = {0, view.input_vertex[v]};
   OwnedSF sf;
   NM_PETSC(PetscSFCreate(m.comm, sf.out()));
   NM_PETSC(PetscSFSetGraph(sf, static_cast<PetscInt>(root.on_boundary.size()), nv, nullptr,
@@ -138,7 +139,7 @@ void build_boundary(const Impl& m, const InputTopology& root, MeshView& view) {
 }
 
 void build_view(Impl& m, const std::vector<PetscInt>& original, PetscInt root_vStart,
-                const InputTopology& root) {
+                const InputTopology& root, BoundarySurface surface) {
   auto view = std::make_unique<MeshView>();
   view->dim = m.dim;
   PetscInt pStart, pEnd, vStart, vEnd;
@@ -155,13 +156,14 @@ void build_view(Impl& m, const std::vector<PetscInt>& original, PetscInt root_vS
 
   const auto ghost = ghost_points(m.dm);
   view->owned.resize(view->num_vertices);
-  m.input_vertex.resize(view->num_vertices);
+  view->input_vertex.resize(view->num_vertices);
   for (PetscInt v = vStart; v < vEnd; ++v) {
     view->owned[v - vStart] = !ghost[v - pStart];
-    m.input_vertex[v - vStart] = original[v - pStart] - root_vStart;
+    view->input_vertex[v - vStart] = original[v - pStart] - root_vStart;
   }
   build_cells(m, original, *view);
   build_boundary(m, root, *view);
+  view->boundary = std::make_shared<const BoundarySurface>(std::move(surface));
   m.view = std::move(view);
 }
 
@@ -211,11 +213,14 @@ Mesh create(MPI_Comm comm, InputMesh& input, const std::string& source) {
   InputTopology root;
   CellGraph graph;
   on_root(comm, [&] {
+  BoundarySurface surface;
     const FacetTable table(input);
     root = input_topology(input, table, source);
     if (mpi_size(comm) > 1) graph = table.cell_graph();
+    surface = boundary_surface(input, table, root);
   });
   m->dm = build_plex(comm, input);
+  broadcast(surface, comm);
   PetscInt dim, vStart, vEnd, cStart, cEnd;
   NM_PETSC(DMGetDimension(m->dm, &dim));
   m->dim = static_cast<int>(dim);
@@ -232,7 +237,7 @@ Mesh create(MPI_Comm comm, InputMesh& input, const std::string& source) {
   m->points = std::move(root.points);
 
   const auto original = distribute(*m, graph);
-  build_view(*m, original, counts[2], root);
+  build_view(*m, original, counts[2], root, std::move(surface));
   build_dofs(*m);
   return MeshAccess::create(std::move(m));
 }

@@ -19,7 +19,6 @@ struct Mesh::Impl {
   PetscInt global_num_cells = 0;
   PetscInt global_num_vertices = 0;
   std::vector<PhysicalGroup> groups;   // the same on every rank, sorted by (dim, tag)
-  std::vector<PetscInt> input_vertex;  // per local vertex: its number in the input (0-based)
   // Rank 0 only, for the writers: per input cell its physical tag (0 for none), and the facets
   // and points of physical groups in input numbering (input_topology.hpp).
   std::vector<int> cell_tags;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,8 @@ struct CellBlock {
   const PetscInt* cell(PetscInt c) const { return vertices.data() + c * num_vertices(type); }
 };
 
+struct BoundarySurface;  // boundary_surface.hpp
+
 struct BoundaryPartInfo {
   std::string name;  // physical name (may be empty for unnamed Gmsh groups)
   int tag = 0;       // physical tag
@@ -47,6 +50,9 @@ struct MeshView {
   std::vector<std::uint8_t> part_count;
   std::vector<BoundaryPartInfo> parts;
   std::vector<PetscInt> global_cell;  // per local cell: cell number in the input file (0-based)
+  std::vector<PetscInt> input_vertex;  // per local vertex: its number in the input (0-based)
+  // The whole input boundary, the same on every rank (what sliding vertices slide on).
+  std::shared_ptr<const BoundarySurface> boundary;
 };
 
 }  // namespace neomesh

@@ -1,5 +1,8 @@
 #include "mesh/serial_view.hpp"
 
+#include <numeric>
+
+#include "mesh/boundary_surface.hpp"
 #include "mesh/generate.hpp"
 
 namespace neomesh {
@@ -29,7 +32,13 @@ MeshView serial_view(const MeshData& mesh) {
     }
   }
   view.global_cell.resize(view.num_cells);
-  for (PetscInt c = 0; c < view.num_cells; ++c) view.global_cell[c] = c;
+  std::iota(view.global_cell.begin(), view.global_cell.end(), PetscInt{0});
+  view.input_vertex.resize(view.num_vertices);
+  std::iota(view.input_vertex.begin(), view.input_vertex.end(), PetscInt{0});
+  InputMesh input = input_from_data(mesh);
+  const FacetTable table(input);
+  const InputTopology topology = input_topology(input, table, "serial view");
+  view.boundary = std::make_shared<const BoundarySurface>(boundary_surface(input, table, topology));
   return view;
 }
 

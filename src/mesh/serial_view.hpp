@@ -8,7 +8,7 @@
 namespace neomesh {
 
 // One cell block, every vertex owned, on_boundary from boundary_vertices(), the boundary
-// parts from mesh.boundary_parts, global_cell = 0..n-1.
+// parts from mesh.boundary_parts, global_cell and input_vertex = 0..n-1, the boundary surface.
 MeshView serial_view(const MeshData& mesh);
 
 }  // namespace neomesh

@@ -28,7 +28,8 @@ std::vector<double> scaled_jacobians(const MeshView& view, const DofMap& dofs, V
 
 }  // namespace
 
-QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs, Vec input, Vec x) {
+QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs, Vec input, Vec x,
+                                       const std::function<void(Vec)>& project) {
   QualityGuardResult result;
   result.input_min = global_min(scaled_jacobians(view, dofs, input), dofs.comm());
   OwnedVec marked = dofs.create_global_vector(), ever_marked = dofs.create_global_vector();
@@ -55,13 +56,17 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
 
     // x ← input + ½ (x − input) on marked coordinates; input itself after the last round.
     const double keep = round == kHalvings ? 0.0 : 0.5;
-    VecReadView x0(input), m(marked);
-    VecWriteView xv(x), ever(ever_marked);
-    for (PetscInt i = 0; i < xv.size(); ++i) {
-      if (m[i] == 0.0 || xv[i] == x0[i]) continue;
-      xv[i] = x0[i] + keep * (xv[i] - x0[i]);
-      ever[i] = 1.0;
+    {
+      VecReadView x0(input), m(marked);
+      VecWriteView xv(x), ever(ever_marked);
+      for (PetscInt i = 0; i < xv.size(); ++i) {
+        if (m[i] == 0.0 || xv[i] == x0[i]) continue;
+        xv[i] = x0[i] + keep * (xv[i] - x0[i]);
+        ever[i] = 1.0;
+      }
     }
+    // A chord between two points of a curved boundary leaves it: back onto the boundary.
+    if (project) project(x);
   }
   double moved_dofs = 0.0;
   NM_PETSC(VecSum(ever_marked, &moved_dofs));

@@ -8,6 +8,8 @@
 // below it. Vertices of good cells keep their optimized positions.
 #pragma once
 
+#include <functional>
+
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
 
@@ -21,8 +23,10 @@ struct QualityGuardResult {
   int rounds = 0;
 };
 
-// `input` and `x` are global coordinate Vecs laid out by `dofs`; x is changed in place.
+// `input` and `x` are global coordinate Vecs laid out by `dofs`; x is changed in place, and
+// `project` (if given) puts sliding boundary vertices back onto the boundary after each round.
 // Collective.
-QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs, Vec input, Vec x);
+QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs, Vec input, Vec x,
+                                       const std::function<void(Vec)>& project = {});
 
 }  // namespace neomesh

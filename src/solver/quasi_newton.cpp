@@ -77,6 +77,7 @@ struct QuasiNewton::Impl {
   int antigradient_left = 0;
   int hessian_pc_iterations = 0;  // δ̃ iterations right after the H preconditioner was built
   int last_delta_iterations = 0;
+  bool laplacian_fresh = false;  // L was assembled at the current x
   std::optional<StopReason> stop;
   PhaseTimes times;
   double start_time = MPI_Wtime();
@@ -110,6 +111,17 @@ struct QuasiNewton::Impl {
     functional.assemble_laplacian(options.riesz, x, laplacian);
     riesz_solver.set_operator(laplacian, false);
     riesz_solver.setup();
+    laplacian_fresh = true;
+  }
+
+  // Vertices that slide on a curved boundary turn their tangent spaces as they move, and L
+  // restricted to those spaces changes with them (with a stale L the antigradient steps of a
+  // 3:1-bunched ring needed 5-7 halvings and the angle test rejected most δ̃). The interior,
+  // and so the preconditioner, barely changes: it is kept, except for a direct solver.
+  void update_laplacian_tangents(Vec x) {
+    Stopwatch watch(times.riesz_setup);
+    functional.assemble_laplacian(options.riesz, x, laplacian);
+    riesz_solver.set_operator(laplacian, options.linear_solver != LinearSolverKind::Direct);
   }
 
   bool laplacian_preconditions_hessian() const {
@@ -172,13 +184,15 @@ struct QuasiNewton::Impl {
   }
 
   // Armijo backtracking: the largest σ = 0.5^j with F(x + σδ) finite and
-  // F(x) − F(x + σδ) ≥ β σ (−gᵀδ). Leaves the accepted point in `trial`.
+  // F(x) − F(x + σδ) ≥ β σ (−gᵀδ), where x + σδ has its sliding vertices projected back onto
+  // the boundary (to first order in σ the same point). Leaves the accepted point in `trial`.
   bool line_search(Vec x, IterationRecord& rec, double& new_energy, double& sigma) {
     Stopwatch watch(times.line_search);
     const double predicted = -dot(gradient, delta);
     sigma = 1.0;
     for (int halvings = 0; halvings <= options.max_halvings; ++halvings, sigma *= 0.5) {
       NM_PETSC(VecWAXPY(trial, sigma, delta, x));
+      functional.project_onto_boundary(trial);  // sliding vertices back onto the boundary
       new_energy = functional.value(trial);
       rec.armijo_steps = halvings;
       if (!std::isfinite(new_energy)) continue;
@@ -212,7 +226,11 @@ struct QuasiNewton::Impl {
     rec.defect = defect;
     rec.alpha = alpha;
 
-    if (options.riesz == RieszLaplacian::CurrentMesh) assemble_laplacian(x);
+    if (options.riesz == RieszLaplacian::CurrentMesh)
+      assemble_laplacian(x);
+    else if (functional.slides() && !laplacian_fresh)
+      update_laplacian_tangents(x);
+    laplacian_fresh = false;
     {
       Stopwatch watch(times.riesz_solve);
       const auto out = riesz_solver.solve(gradient, s);

@@ -1,10 +1,14 @@
 // Sliding boundary vertices (boundary/boundary.hpp) in the quasi-Newton method: on a box
 // whose desired volumes grow along x, the boundary vertices follow the grading within their
 // faces, so the energy ends lower than with fixed boundary vertices, while every vertex stays
-// exactly on the box faces it started on and the corners stay put.
+// exactly on the box faces it started on and the corners stay put. On a ring whose boundary
+// vertices are bunched 3:1 along its circles, they spread out evenly along the circles.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <numbers>
 
 #include "mesh/generate.hpp"
 #include "solver/thesis_problem.hpp"
@@ -72,6 +76,97 @@ TEST(SlidingBoundary, QuadsFollowTheGradingAlongTheSides) {
 
 TEST(SlidingBoundary, HexesFollowTheGradingWithinFacesAndAlongEdges) {
   expect_sliding_helps(CellType::Hexahedron, 4);
+}
+
+struct RingOutcome {
+  double worst_gap_ratio = 0.0;      // largest / smallest angular gap, over the circles
+  double worst_radius_error = 0.0;   // largest |r − R| of a vertex of a circle
+  double worst_height_error = 0.0;   // shell: largest |z − z₀| of a vertex of a top/bottom circle
+  double min_det = 0.0;              // smallest det G at a quadrature point
+  // Largest |r − R| relative to the sagitta R (1 − cos(g/2)) of the input's largest gap g.
+  double worst_sagitta_ratio = 0.0;
+};
+
+// Smooths ring(type, n, m, 3) with sliding boundary vertices (on the given shapes, if any)
+// and uniform desired volumes; measures the circles (the input's, by radius and height).
+RingOutcome smooth_ring(CellType type, int n, int m,
+                        const std::vector<std::pair<std::string, std::string>>& shapes) {
+  BoundaryOptions options(BoundaryMode::Slide);
+  options.shapes = shapes;
+  ThesisProblem p(ring(type, n, m, 3.0), {}, options);
+  const QuasiNewtonResult result = p.minimize(QuasiNewtonOptions{
+      .energy_roundoff = energy_roundoff(p.energy, p.view.dim, p.volume)});
+  if (getenv("NEOMESH_TRACE"))
+    for (const auto& r : result.history)
+      std::printf("%d %d %.3e %.3e %.10e %.2f %.2f %d %d\n", r.k, r.armijo_steps, r.defect,
+                  r.direction_norm, r.energy, r.eta, r.alpha, r.krylov_delta, r.used_s);
+  EXPECT_NE(result.reason, StopReason::LineSearchFailed);
+  EXPECT_NE(result.reason, StopReason::MaxIterations);
+
+  const int d = p.view.dim;
+  std::vector<double> x(p.dofs.num_local_dofs());
+  p.dofs.global_to_local(p.x, x);
+  RingOutcome out;
+  // The input's largest angular gap is below 2π/n · 3/2 (θ' ranges over [1/2, 3/2]·2π).
+  const double gap = 2 * std::numbers::pi / n * 1.5;
+  std::map<std::pair<double, double>, std::vector<double>> circles;  // (R, z₀) → angles
+  for (PetscInt v = 0; v < p.view.num_vertices; ++v) {
+    const double* start = p.view.coords.data() + v * d;
+    const double radius = std::hypot(start[0], start[1]);
+    const double z = d == 3 ? start[2] : 0.0;
+    const bool on_circle = std::abs(radius - 0.5) < 1e-12 || std::abs(radius - 1.0) < 1e-12;
+    if (!on_circle || (d == 3 && z != 0.0 && z != 0.5)) continue;
+    const double R = radius < 0.75 ? 0.5 : 1.0;
+    const double error = std::abs(std::hypot(x[v * d], x[v * d + 1]) - R);
+    out.worst_radius_error = std::max(out.worst_radius_error, error);
+    out.worst_sagitta_ratio = std::max(out.worst_sagitta_ratio, error / (R * (1 - std::cos(gap / 2))));
+    if (d == 3) out.worst_height_error = std::max(out.worst_height_error, std::abs(x[v * d + 2] - z));
+    circles[{R, z}].push_back(std::atan2(x[v * d + 1], x[v * d]));
+  }
+  for (auto& [circle, angles] : circles) {
+    std::sort(angles.begin(), angles.end());
+    double smallest = 1e300, largest = 0.0;
+    for (std::size_t i = 0; i < angles.size(); ++i) {
+      const double g = i + 1 < angles.size() ? angles[i + 1] - angles[i]
+                                              : angles[0] + 2 * std::numbers::pi - angles[i];
+      smallest = std::min(smallest, g);
+      largest = std::max(largest, g);
+    }
+    out.worst_gap_ratio = std::max(out.worst_gap_ratio, largest / smallest);
+  }
+  const CellFields fields = p.functional->cell_fields(p.x);
+  out.min_det = *std::min_element(fields.min_det.begin(), fields.min_det.end());
+  return out;
+}
+
+void expect_even_ring(CellType type, int n, int m) {
+  const RingOutcome discrete = smooth_ring(type, n, m, {});
+  EXPECT_LE(discrete.worst_gap_ratio, 1.2);
+  EXPECT_LE(discrete.worst_sagitta_ratio, 1.0);  // on the input's polygons
+  EXPECT_LE(discrete.worst_height_error, 1e-15);
+  EXPECT_GT(discrete.min_det, 0.0);
+  std::vector<std::pair<std::string, std::string>> shapes;
+  if (dimension(type) == 2)
+    shapes = {{"inner", "circle:0,0,0.5"}, {"outer", "circle:0,0,1"}};
+  else
+    shapes = {{"inner", "cylinder:0,0,0,0,0,1,0.5"}, {"outer", "cylinder:0,0,0,0,0,1,1"}};
+  const RingOutcome exact = smooth_ring(type, n, m, shapes);
+  EXPECT_LE(exact.worst_gap_ratio, 1.2);
+  EXPECT_LE(exact.worst_radius_error, 1e-10);  // on the circles themselves
+  EXPECT_LE(exact.worst_height_error, 1e-14);
+  EXPECT_GT(exact.min_det, 0.0);
+}
+
+TEST(SlidingBoundary, RingQuadsSpreadEvenlyAlongTheCircles) {
+  expect_even_ring(CellType::Quadrilateral, 48, 4);
+}
+
+TEST(SlidingBoundary, RingTrianglesSpreadEvenlyAlongTheCircles) {
+  expect_even_ring(CellType::Triangle, 48, 4);
+}
+
+TEST(SlidingBoundary, ShellHexesSpreadEvenlyAlongTheCirclesAndKeepTheirRidges) {
+  expect_even_ring(CellType::Hexahedron, 24, 2);
 }
 
 }  // namespace

@@ -4,17 +4,23 @@ namespace neomesh {
 
 ThesisProblem::ThesisProblem(MeshData mesh_data, EnergyOptions energy_options,
                              BoundaryMode boundary)
+    : ThesisProblem(std::move(mesh_data), energy_options, BoundaryOptions(boundary)) {}
+
+ThesisProblem::ThesisProblem(MeshData mesh_data, EnergyOptions energy_options,
+                             const BoundaryOptions& boundary_options)
     : data(std::move(mesh_data)),
       view(serial_view(data)),
       dofs(DofMap::serial(view.dim, view.num_vertices)),
-      energy(energy_options) {
-  functional =
-      std::make_unique<Functional>(view, dofs, energy, FixedDofs{fixed_dofs(view, dofs, boundary)});
+      energy(energy_options),
+      boundary(std::make_unique<Boundary>(view, dofs, boundary_options)) {
+  functional = std::make_unique<Functional>(view, dofs, energy, boundary->fixed_dofs(),
+                                            boundary->sliding_vertices());
   x = dofs.create_global_vector();
   {
     VecWriteView out(x);
     for (PetscInt i = 0; i < out.size(); ++i) out[i] = view.coords[i];
   }
+  boundary->project(x);  // onto given shapes (they pass through the vertices to 1e-6 h)
   volume = mesh_volume(view, dofs, x);
   const std::vector<double> volumes(view.num_cells, volume / view.num_cells);
   functional->set_desired_volumes(volumes);

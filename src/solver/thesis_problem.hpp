@@ -17,11 +17,13 @@ namespace neomesh {
 struct ThesisProblem {
   explicit ThesisProblem(MeshData mesh_data, EnergyOptions energy = {},
                          BoundaryMode boundary = BoundaryMode::Fixed);
+  ThesisProblem(MeshData mesh_data, EnergyOptions energy, const BoundaryOptions& boundary);
 
   MeshData data;
   MeshView view;
   DofMap dofs;
   EnergyOptions energy;
+  std::unique_ptr<Boundary> boundary;
   std::unique_ptr<Functional> functional;
   OwnedVec x;  // initial coordinates; minimize() moves them
   OwnedVec cell_size;

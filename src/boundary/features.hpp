@@ -1,0 +1,46 @@
+// The features of a mesh's boundary (docs/boundary.md): where it bends sharply or where two
+// boundary parts (physical groups) meet. They split the boundary into patches that vertices
+// slide within:
+// - 2D: a corner is a boundary vertex where the boundary turns by more than the feature angle,
+//   where two parts meet, or where other than two boundary edges meet; the edges between
+//   corners form the patches (curves).
+// - 3D: a ridge edge is a boundary edge whose two facets' normals differ by more than the
+//   feature angle, whose facets are in different parts, or that has other than two facets;
+//   the facets between ridges form the patches (surfaces). A vertex on no ridge edge is a
+//   surface vertex; on two ridge edges that continue each other (turning by less than the
+//   feature angle, between the same two patches), a ridge vertex; otherwise a corner.
+// Computed from the whole input boundary, identically on every rank.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <petscsys.h>
+
+#include "mesh/boundary_surface.hpp"
+
+namespace neomesh {
+
+enum class VertexFeature : std::uint8_t { Surface, Ridge, Corner };
+
+struct BoundaryFeatures {
+  // Per boundary vertex (BoundarySurface numbering).
+  std::vector<VertexFeature> kind;
+  std::vector<int> patch;  // Surface vertices: their patch; else -1
+  std::vector<int> ridge;  // Ridge vertices: their ridge; else -1
+  // Per facet: its patch.
+  std::vector<int> facet_patch;
+  int num_patches = 0;
+  // Per patch: the part (MeshView::parts index) of its facets, or -1.
+  std::vector<int> patch_part;
+  // Per ridge (3D): its edges (pairs of boundary vertices) and the two patches it separates.
+  std::vector<std::vector<std::array<PetscInt, 2>>> ridge_edges;
+  std::vector<std::array<int, 2>> ridge_patches;
+
+  PetscInt count(VertexFeature k) const;
+};
+
+BoundaryFeatures find_features(const BoundarySurface& surface, double feature_angle_degrees);
+
+}  // namespace neomesh

@@ -1,0 +1,272 @@
+#include "boundary/shape.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <muParser.h>
+
+#include "core/error.hpp"
+
+namespace neomesh {
+
+namespace {
+
+std::string numbers(const Point& p, int n) {
+  std::string s;
+  for (int i = 0; i < n; ++i) s += fmt::format("{}{:g}", i ? "," : "", p[i]);
+  return s;
+}
+
+class Plane final : public Surface {
+ public:
+  Plane(const Point& point, const Point& normal) : point_(point), normal_(normal.normalized()) {}
+  Point closest_point(const Point& p) const override {
+    return p - normal_.dot(p - point_) * normal_;
+  }
+  Point normal(const Point&) const override { return normal_; }
+  bool is_flat() const override { return true; }
+  std::string describe() const override {
+    return fmt::format("plane through ({}) with normal ({})", numbers(point_, 3),
+                       numbers(normal_, 3));
+  }
+
+ private:
+  Point point_, normal_;
+};
+
+class Sphere final : public Surface {
+ public:
+  Sphere(const Point& centre, double radius) : centre_(centre), radius_(radius) {}
+  Point closest_point(const Point& p) const override {
+    const Point r = p - centre_;
+    const double n = r.norm();
+    return n > 0.0 ? Point(centre_ + (radius_ / n) * r) : p;  // the centre: no closest point
+  }
+  Point normal(const Point& q) const override { return (q - centre_).normalized(); }
+  std::string describe() const override {
+    return fmt::format("sphere (circle in 2D) about ({}) of radius {:g}", numbers(centre_, 3),
+                       radius_);
+  }
+
+ private:
+  Point centre_;
+  double radius_;
+};
+
+class Cylinder final : public Surface {
+ public:
+  Cylinder(const Point& point, const Point& axis, double radius)
+      : point_(point), axis_(axis.normalized()), radius_(radius) {}
+  Point closest_point(const Point& p) const override {
+    const Point foot = point_ + axis_.dot(p - point_) * axis_;
+    const Point r = p - foot;
+    const double n = r.norm();
+    return n > 0.0 ? Point(foot + (radius_ / n) * r) : p;
+  }
+  Point normal(const Point& q) const override {
+    const Point r = q - point_;
+    return (r - axis_.dot(r) * axis_).normalized();
+  }
+  std::string describe() const override {
+    return fmt::format("cylinder about the axis through ({}) along ({}) of radius {:g}",
+                       numbers(point_, 3), numbers(axis_, 3), radius_);
+  }
+
+ private:
+  Point point_, axis_;
+  double radius_;
+};
+
+// The zero set of φ: closest points by Newton steps along ∇φ (the foot of the gradient
+// flow, which is the closest point to first order), ∇φ by central differences.
+class LevelSet final : public Surface {
+ public:
+  LevelSet(const std::string& expression, int dim) : expression_(expression), dim_(dim) {
+    try {
+      parser_.DefineVar("x", &x_[0]);
+      parser_.DefineVar("y", &x_[1]);
+      parser_.DefineVar("z", &x_[2]);
+      parser_.SetExpr(expression);
+      parser_.Eval();
+    } catch (const mu::Parser::exception_type& e) {
+      fail("level set '{}': {}", expression, e.GetMsg());
+    }
+  }
+  Point closest_point(const Point& p) const override {
+    Point q = p;
+    for (int it = 0; it < 50; ++it) {
+      const double phi = value(q);
+      const Point g = gradient(q);
+      const double g2 = g.squaredNorm();
+      if (!(g2 > 0.0)) break;
+      const Point step = (phi / g2) * g;
+      q -= step;
+      if (step.norm() <= 1e-15 * (1.0 + q.norm())) break;
+    }
+    return q;
+  }
+  Point normal(const Point& q) const override { return gradient(q).normalized(); }
+  std::string describe() const override { return fmt::format("level set {} = 0", expression_); }
+
+ private:
+  double value(const Point& p) const {
+    for (int i = 0; i < 3; ++i) x_[i] = i < dim_ ? p[i] : 0.0;
+    return parser_.Eval();
+  }
+  Point gradient(const Point& p) const {
+    Point g = Point::Zero();
+    const double h = 1e-6 * (1.0 + p.norm());
+    for (int i = 0; i < dim_; ++i) {
+      Point a = p, b = p;
+      a[i] += h;
+      b[i] -= h;
+      g[i] = (value(a) - value(b)) / (2 * h);
+    }
+    return g;
+  }
+
+  std::string expression_;
+  int dim_;
+  mutable double x_[3] = {0, 0, 0};
+  mutable mu::Parser parser_;
+};
+
+class Line final : public Curve {
+ public:
+  Line(const Point& point, const Point& direction)
+      : point_(point), direction_(direction.normalized()) {}
+  Point closest_point(const Point& p) const override {
+    return point_ + direction_.dot(p - point_) * direction_;
+  }
+  Point tangent(const Point&) const override { return direction_; }
+  bool is_straight() const override { return true; }
+
+ private:
+  Point point_, direction_;
+};
+
+// Newton's method on the two surfaces' tangent planes: each step moves to the point of the
+// planes' intersection line closest to the current point.
+class Intersection final : public Curve {
+ public:
+  Intersection(const Surface& a, const Surface& b) : a_(a), b_(b) {}
+  Point closest_point(const Point& p) const override {
+    Point y = p;
+    for (int it = 0; it < 30; ++it) {
+      const Point ca = a_.closest_point(y), cb = b_.closest_point(y);
+      const Point na = a_.normal(ca), nb = b_.normal(cb);
+      const double c = na.dot(nb);
+      const double det = 1.0 - c * c;
+      if (!(det > 1e-12)) return ca;  // tangent surfaces: no well-defined ridge
+      const double ra = na.dot(y - ca), rb = nb.dot(y - cb);
+      const double la = (ra - c * rb) / det, lb = (rb - c * ra) / det;
+      const Point step = la * na + lb * nb;
+      y -= step;
+      if (step.norm() <= 1e-15 * (1.0 + y.norm())) break;
+    }
+    return y;
+  }
+  Point tangent(const Point& q) const override {
+    return a_.normal(a_.closest_point(q)).cross(b_.normal(b_.closest_point(q))).normalized();
+  }
+
+ private:
+  const Surface& a_;
+  const Surface& b_;
+};
+
+// The comma-separated numbers of a shape spec; throws unless there are `count` finite ones.
+std::vector<double> parse_numbers(std::string_view spec, std::string_view list, std::size_t count,
+                                  std::string_view expected) {
+  std::vector<double> values;
+  for (std::size_t start = 0; start <= list.size();) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string_view field = list.substr(start, comma - start);
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), v);
+    if (field.empty() || ec != std::errc() || end != field.data() + field.size() ||
+        !std::isfinite(v))
+      fail("--shape '{}': expected {}", spec, expected);
+    values.push_back(v);
+    start = comma + 1;
+  }
+  if (values.size() != count) fail("--shape '{}': expected {}", spec, expected);
+  return values;
+}
+
+}  // namespace
+
+std::unique_ptr<Surface> make_plane(const Point& point, const Point& normal) {
+  return std::make_unique<Plane>(point, normal);
+}
+std::unique_ptr<Surface> make_sphere(const Point& centre, double radius) {
+  return std::make_unique<Sphere>(centre, radius);
+}
+std::unique_ptr<Surface> make_cylinder(const Point& point, const Point& axis, double radius) {
+  return std::make_unique<Cylinder>(point, axis, radius);
+}
+std::unique_ptr<Surface> make_level_set(const std::string& expression, int dim) {
+  return std::make_unique<LevelSet>(expression, dim);
+}
+std::unique_ptr<Curve> make_line(const Point& point, const Point& direction) {
+  return std::make_unique<Line>(point, direction);
+}
+std::unique_ptr<Curve> make_intersection(const Surface& a, const Surface& b) {
+  return std::make_unique<Intersection>(a, b);
+}
+
+std::unique_ptr<Surface> parse_shape(std::string_view spec, int dim) {
+  const auto colon = spec.find(':');
+  if (colon == std::string_view::npos)
+    fail("--shape '{}': expected KIND:PARAMETERS (circle, sphere, line, plane, cylinder or "
+         "levelset)",
+         spec);
+  const std::string_view kind = spec.substr(0, colon), rest = spec.substr(colon + 1);
+  auto need_dim = [&](int d) {
+    if (dim != d) fail("--shape '{}': a {} needs a {}D mesh, this one is {}D", spec, kind, d, dim);
+  };
+  if (kind == "circle") {
+    need_dim(2);
+    const auto v = parse_numbers(spec, rest, 3, "circle:cx,cy,r");
+    if (!(v[2] > 0)) fail("--shape '{}': the radius must be positive", spec);
+    return make_sphere({v[0], v[1], 0.0}, v[2]);
+  }
+  if (kind == "sphere") {
+    need_dim(3);
+    const auto v = parse_numbers(spec, rest, 4, "sphere:cx,cy,cz,r");
+    if (!(v[3] > 0)) fail("--shape '{}': the radius must be positive", spec);
+    return make_sphere({v[0], v[1], v[2]}, v[3]);
+  }
+  if (kind == "line") {
+    need_dim(2);
+    const auto v = parse_numbers(spec, rest, 4, "line:px,py,nx,ny (a point and the normal)");
+    const Point n(v[2], v[3], 0.0);
+    if (!(n.norm() > 0)) fail("--shape '{}': the normal must not be zero", spec);
+    return make_plane({v[0], v[1], 0.0}, n);
+  }
+  if (kind == "plane") {
+    need_dim(3);
+    const auto v = parse_numbers(spec, rest, 6, "plane:px,py,pz,nx,ny,nz (a point and the normal)");
+    const Point n(v[3], v[4], v[5]);
+    if (!(n.norm() > 0)) fail("--shape '{}': the normal must not be zero", spec);
+    return make_plane({v[0], v[1], v[2]}, n);
+  }
+  if (kind == "cylinder") {
+    need_dim(3);
+    const auto v = parse_numbers(spec, rest, 7, "cylinder:px,py,pz,ax,ay,az,r");
+    const Point axis(v[3], v[4], v[5]);
+    if (!(axis.norm() > 0)) fail("--shape '{}': the axis must not be zero", spec);
+    if (!(v[6] > 0)) fail("--shape '{}': the radius must be positive", spec);
+    return make_cylinder({v[0], v[1], v[2]}, axis, v[6]);
+  }
+  if (kind == "levelset") {
+    if (rest.empty()) fail("--shape '{}': expected levelset:EXPRESSION", spec);
+    return make_level_set(std::string(rest), dim);
+  }
+  fail("--shape '{}': unknown shape '{}' (circle, sphere, line, plane, cylinder or levelset)",
+       spec, kind);
+}
+
+}  // namespace neomesh

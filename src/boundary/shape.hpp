@@ -1,0 +1,65 @@
+// The geometry boundary vertices slide on, as closest-point maps (docs/boundary.md):
+// - Surface: codimension 1 — a curve in 2D (z = 0), a surface in 3D. Boundary vertices inside
+//   a boundary patch stay on it.
+// - Curve: codimension 2 in 3D — a ridge where two patches meet. Its vertices stay on it.
+// Analytic shapes (plane, circle/sphere, cylinder, level set) are exact; the input's own
+// boundary is represented by DiscreteSurface and DiscreteCurve (discrete_geometry.hpp).
+//
+// Points are 3D (z = 0 in 2D) so that one implementation serves both dimensions.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include <Eigen/Core>
+
+namespace neomesh {
+
+using Point = Eigen::Vector3d;
+
+class Surface {
+ public:
+  virtual ~Surface() = default;
+  // The point of the surface closest to p (p lies near the surface: within a step).
+  virtual Point closest_point(const Point& p) const = 0;
+  // Unit normal at a point of the surface (any orientation).
+  virtual Point normal(const Point& on_surface) const = 0;
+  // True for a plane or straight line: its tangent space is the same everywhere.
+  virtual bool is_flat() const { return false; }
+  // For messages: "circle:0,0,0.5", "the input's boundary".
+  virtual std::string describe() const = 0;
+};
+
+class Curve {
+ public:
+  virtual ~Curve() = default;
+  virtual Point closest_point(const Point& p) const = 0;
+  // Unit tangent at a point of the curve (any orientation).
+  virtual Point tangent(const Point& on_curve) const = 0;
+  virtual bool is_straight() const { return false; }
+};
+
+// x·n = n·point.
+std::unique_ptr<Surface> make_plane(const Point& point, const Point& normal);
+// |x − centre| = radius: a circle in 2D, a sphere in 3D.
+std::unique_ptr<Surface> make_sphere(const Point& centre, double radius);
+// Distance radius from the line through `point` along `axis` (3D).
+std::unique_ptr<Surface> make_cylinder(const Point& point, const Point& axis, double radius);
+// The zero level set of a muparser expression in x, y (and z); throws Error if it does not
+// parse or uses other variables.
+std::unique_ptr<Surface> make_level_set(const std::string& expression, int dim);
+
+// The straight line through `point` along `direction`.
+std::unique_ptr<Curve> make_line(const Point& point, const Point& direction);
+// The curve where two surfaces meet (a ridge between two analytic patches). Keeps references.
+std::unique_ptr<Curve> make_intersection(const Surface& a, const Surface& b);
+
+// A shape as the command line gives it (`--shape part=SPEC`), for a mesh of dimension `dim`:
+//   circle:cx,cy,r (2D)   sphere:cx,cy,cz,r (3D)   line:px,py,nx,ny (2D, point and normal)
+//   plane:px,py,pz,nx,ny,nz (3D)   cylinder:px,py,pz,ax,ay,az,r (3D, axis point and direction)
+//   levelset:EXPRESSION   (zero set of a muparser expression in x, y, z)
+// Throws Error with a one-line message naming `spec` for anything else.
+std::unique_ptr<Surface> parse_shape(std::string_view spec, int dim);
+
+}  // namespace neomesh
