@@ -6,23 +6,15 @@
 
 #include "core/error.hpp"
 #include "core/testing/test_data.hpp"
+#include "mesh/mesh_test_util.hpp"
 
 namespace neomesh {
 namespace {
 
 using testing::data_path;
-using testing::scratch_dir;
 
-// The message of the Error that reading `text` as a FEAT3 file throws ("" if none).
 std::string error_reading(const std::string& text) {
-  const auto path = scratch_dir("FeatReaderErrors") / "in.xml";
-  std::ofstream(path) << text;
-  try {
-    read_feat(path);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return testing::read_error(text, "in.xml", [](const auto& path) { read_feat(path); });
 }
 
 // A triangle mesh with `charts` and `parts` spliced in (the cell on line 9).

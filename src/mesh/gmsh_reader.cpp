@@ -123,7 +123,7 @@ class GmshParser {
     fail("{}: not a valid Gmsh mesh file ({})", file_,
          fmt::format(format, std::forward<Args>(args)...));
   }
-  [[noreturn]] void truncated() { invalid("the file ends inside {}", shown(section_)); }
+  [[noreturn]] void truncated() { invalid("truncated: the file ends inside {}", shown(section_)); }
 
   // A word of the file for a message: short, printable.
   static std::string shown(std::string_view word) {
@@ -230,7 +230,7 @@ class GmshParser {
   long long count(long long n, long long bytes = 1) {
     if (n < 0) invalid("{} announces {} items", shown(section_), n);
     if (n > (end_ - pos_) / bytes)
-      invalid("the file ends inside {}, which announces {} items", shown(section_), n);
+      invalid("truncated: the file ends inside {}, which announces {} items", shown(section_), n);
     return n;
   }
   double real_value() { return binary_ ? binary<double>() : real(); }

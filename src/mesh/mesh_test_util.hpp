@@ -2,6 +2,11 @@
 #pragma once
 
 #include <algorithm>
+#include <fstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/testing/test_data.hpp"
 
 #include "mesh/mesh.hpp"
 #include "mesh/validate.hpp"
@@ -20,6 +25,20 @@ inline double min_view_jacobian(const MeshView& view) {
       worst = std::min(worst, min_scaled_corner_jacobian(block.type, x));
     }
   return worst;
+}
+
+// The message of the Error that `read(path)` throws for a scratch file `name` holding `text`
+// ("" if none): how the readers' tests try a bad input.
+template <typename Reader>
+std::string read_error(const std::string& text, const std::string& name, Reader read) {
+  const auto path = scratch_dir("ReaderErrors") / name;
+  std::ofstream(path, std::ios::binary) << text;
+  try {
+    read(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace neomesh::testing
