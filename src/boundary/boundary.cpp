@@ -86,7 +86,7 @@ std::unique_ptr<Surface> chart_surface(const Chart& chart, int dim, const std::s
       if ((chart.kind == Chart::Kind::Circle) != (dim == 2))
         fail("chart '{}' of part '{}' is a {}, but the mesh is {}D", chart.name, part,
              chart.kind == Chart::Kind::Circle ? "circle" : "sphere", dim);
-      return make_sphere({chart.centre[0], chart.centre[1], chart.centre[2]}, chart.radius);
+      return make_sphere({chart.centre[0], chart.centre[1], chart.centre[2]}, chart.radius, dim);
     case Chart::Kind::Polyline: {
       if (dim != 2) fail("chart '{}' of part '{}' is a 2D curve, but the mesh is 3D", chart.name, part);
       std::vector<Point> points;
@@ -373,19 +373,32 @@ struct Boundary::Impl {
     return p;
   }
 
-  void tangent_projectors(std::span<const double> x, std::span<double> out) const {
+  // P, w, M of each sliding vertex (sliding_vertices.hpp).
+  void tangent_spaces(std::span<const double> x, std::span<double> out) const {
     const int d = view.dim;
     for (std::size_t i = 0; i < sliding.size(); ++i) {
       const Point p = local_point(x, sliding[i]);
-      double* P = out.data() + i * d * d;
+      double* P = out.data() + i * tangent_space_size(d);
+      double* w = P + d * d;
+      double* M = w + d;
+      Point bend;
+      Matrix3 shape;
       if (sliding_surface[i]) {
         const Point n = sliding_surface[i]->normal(p);
+        bend = -n;
+        shape = sliding_surface[i]->shape_operator(p);
         for (int a = 0; a < d; ++a)
           for (int c = 0; c < d; ++c) P[a * d + c] = (a == c ? 1.0 : 0.0) - n[a] * n[c];
       } else {
         const Point t = sliding_curve[i]->tangent(p);
+        bend = sliding_curve[i]->curvature(p);
+        shape = t * t.transpose();
         for (int a = 0; a < d; ++a)
           for (int c = 0; c < d; ++c) P[a * d + c] = t[a] * t[c];
+      }
+      for (int a = 0; a < d; ++a) {
+        w[a] = bend[a];
+        for (int c = 0; c < d; ++c) M[a * d + c] = shape(a, c);
       }
     }
   }
@@ -441,8 +454,8 @@ SlidingVertices Boundary::sliding_vertices() const {
   const Impl* impl = impl_.get();
   SlidingVertices s;
   s.vertices = impl->sliding;
-  s.tangent_projectors = [impl](std::span<const double> x, std::span<double> out) {
-    impl->tangent_projectors(x, out);
+  s.tangent_spaces = [impl](std::span<const double> x, std::span<double> out) {
+    impl->tangent_spaces(x, out);
   };
   s.project = [impl](Vec x) { impl->project(x); };
   return s;

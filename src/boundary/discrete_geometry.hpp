@@ -56,6 +56,7 @@ class DiscreteSurface final : public Surface {
   DiscreteSurface(std::vector<Point> points, std::vector<std::array<int, 3>> simplices, int dim);
   Point closest_point(const Point& p) const override;
   Point normal(const Point& on_surface) const override;
+  Matrix3 shape_operator(const Point&) const override { return Matrix3::Zero(); }
   std::string describe() const override { return "the input's boundary"; }
 
  private:
@@ -71,6 +72,7 @@ class DiscreteCurve final : public Curve {
   DiscreteCurve(std::vector<Point> points, std::vector<std::array<int, 3>> segments);
   Point closest_point(const Point& p) const override;
   Point tangent(const Point& on_curve) const override;
+  Point curvature(const Point&) const override { return Point::Zero(); }
 
  private:
   Point segment_tangent(int s) const;

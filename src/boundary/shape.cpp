@@ -26,6 +26,7 @@ class Plane final : public Surface {
     return p - normal_.dot(p - point_) * normal_;
   }
   Point normal(const Point&) const override { return normal_; }
+  Matrix3 shape_operator(const Point&) const override { return Matrix3::Zero(); }
   bool is_flat() const override { return true; }
   std::string describe() const override {
     return fmt::format("plane through ({}) with normal ({})", numbers(point_, 3),
@@ -38,13 +39,20 @@ class Plane final : public Surface {
 
 class Sphere final : public Surface {
  public:
-  Sphere(const Point& centre, double radius) : centre_(centre), radius_(radius) {}
+  Sphere(const Point& centre, double radius, int dim)
+      : centre_(centre), radius_(radius), dim_(dim) {}
   Point closest_point(const Point& p) const override {
     const Point r = p - centre_;
     const double n = r.norm();
     return n > 0.0 ? Point(centre_ + (radius_ / n) * r) : p;  // the centre: no closest point
   }
   Point normal(const Point& q) const override { return (q - centre_).normalized(); }
+  Matrix3 shape_operator(const Point& q) const override {
+    const Point n = normal(q);
+    Matrix3 s = (Matrix3::Identity() - n * n.transpose()) / radius_;
+    if (dim_ == 2) s(2, 2) = 0.0;  // a circle: curved in the plane only
+    return s;
+  }
   std::string describe() const override {
     return fmt::format("sphere (circle in 2D) about ({}) of radius {:g}", numbers(centre_, 3),
                        radius_);
@@ -53,6 +61,7 @@ class Sphere final : public Surface {
  private:
   Point centre_;
   double radius_;
+  int dim_;
 };
 
 class Cylinder final : public Surface {
@@ -68,6 +77,10 @@ class Cylinder final : public Surface {
   Point normal(const Point& q) const override {
     const Point r = q - point_;
     return (r - axis_.dot(r) * axis_).normalized();
+  }
+  Matrix3 shape_operator(const Point& q) const override {
+    const Point n = normal(q);
+    return (Matrix3::Identity() - n * n.transpose() - axis_ * axis_.transpose()) / radius_;
   }
   std::string describe() const override {
     return fmt::format("cylinder about the axis through ({}) along ({}) of radius {:g}",
@@ -108,6 +121,24 @@ class LevelSet final : public Surface {
     return q;
   }
   Point normal(const Point& q) const override { return gradient(q).normalized(); }
+  // ∇(∇φ/|∇φ|) = P ∇²φ P / |∇φ| on the surface, ∇²φ by central differences of ∇φ.
+  Matrix3 shape_operator(const Point& q) const override {
+    const Point g = gradient(q);
+    const double norm = g.norm();
+    if (!(norm > 0)) return Matrix3::Zero();
+    Matrix3 hessian = Matrix3::Zero();
+    const double h = 1e-4 * (1.0 + q.norm());
+    for (int i = 0; i < dim_; ++i) {
+      Point a = q, b = q;
+      a[i] += h;
+      b[i] -= h;
+      hessian.col(i) = (gradient(a) - gradient(b)) / (2 * h);
+    }
+    const Point n = g / norm;
+    const Matrix3 p = Matrix3::Identity() - n * n.transpose();
+    const Matrix3 s = p * (0.5 * (hessian + hessian.transpose())) * p / norm;
+    return s;
+  }
   std::string describe() const override { return fmt::format("level set {} = 0", expression_); }
 
  private:
@@ -141,6 +172,7 @@ class Line final : public Curve {
     return point_ + direction_.dot(p - point_) * direction_;
   }
   Point tangent(const Point&) const override { return direction_; }
+  Point curvature(const Point&) const override { return Point::Zero(); }
   bool is_straight() const override { return true; }
 
  private:
@@ -170,6 +202,16 @@ class Intersection final : public Curve {
   }
   Point tangent(const Point& q) const override {
     return a_.normal(a_.closest_point(q)).cross(b_.normal(b_.closest_point(q))).normalized();
+  }
+  // dt/ds by central differences along the curve.
+  Point curvature(const Point& q) const override {
+    const Point t = tangent(q);
+    const double h = 1e-4 * (1.0 + q.norm());
+    const Point ahead = closest_point(q + h * t), behind = closest_point(q - h * t);
+    Point t1 = tangent(ahead), t0 = tangent(behind);
+    if (t1.dot(t) < 0) t1 = -t1;
+    if (t0.dot(t) < 0) t0 = -t0;
+    return (t1 - t0) / (ahead - behind).norm();
   }
 
  private:
@@ -201,8 +243,8 @@ std::vector<double> parse_numbers(std::string_view spec, std::string_view list, 
 std::unique_ptr<Surface> make_plane(const Point& point, const Point& normal) {
   return std::make_unique<Plane>(point, normal);
 }
-std::unique_ptr<Surface> make_sphere(const Point& centre, double radius) {
-  return std::make_unique<Sphere>(centre, radius);
+std::unique_ptr<Surface> make_sphere(const Point& centre, double radius, int dim) {
+  return std::make_unique<Sphere>(centre, radius, dim);
 }
 std::unique_ptr<Surface> make_cylinder(const Point& point, const Point& axis, double radius) {
   return std::make_unique<Cylinder>(point, axis, radius);
@@ -231,13 +273,13 @@ std::unique_ptr<Surface> parse_shape(std::string_view spec, int dim) {
     need_dim(2);
     const auto v = parse_numbers(spec, rest, 3, "circle:cx,cy,r");
     if (!(v[2] > 0)) fail("--shape '{}': the radius must be positive", spec);
-    return make_sphere({v[0], v[1], 0.0}, v[2]);
+    return make_sphere({v[0], v[1], 0.0}, v[2], 2);
   }
   if (kind == "sphere") {
     need_dim(3);
     const auto v = parse_numbers(spec, rest, 4, "sphere:cx,cy,cz,r");
     if (!(v[3] > 0)) fail("--shape '{}': the radius must be positive", spec);
-    return make_sphere({v[0], v[1], v[2]}, v[3]);
+    return make_sphere({v[0], v[1], v[2]}, v[3], 3);
   }
   if (kind == "line") {
     need_dim(2);

@@ -17,6 +17,7 @@
 namespace neomesh {
 
 using Point = Eigen::Vector3d;
+using Matrix3 = Eigen::Matrix3d;
 
 class Surface {
  public:
@@ -25,6 +26,10 @@ class Surface {
   virtual Point closest_point(const Point& p) const = 0;
   // Unit normal at a point of the surface (any orientation).
   virtual Point normal(const Point& on_surface) const = 0;
+  // The shape operator S = ∇n (tangent × tangent, for the orientation normal() returns): the
+  // closest-point map bends a tangent step u by −(uᵀ S u) n to second order. Zero for planes
+  // and for piecewise-flat discrete surfaces (their curvature sits in the kinks).
+  virtual Matrix3 shape_operator(const Point& on_surface) const = 0;
   // True for a plane or straight line: its tangent space is the same everywhere.
   virtual bool is_flat() const { return false; }
   // For messages: "circle:0,0,0.5", "the input's boundary".
@@ -37,13 +42,16 @@ class Curve {
   virtual Point closest_point(const Point& p) const = 0;
   // Unit tangent at a point of the curve (any orientation).
   virtual Point tangent(const Point& on_curve) const = 0;
+  // The curvature vector dt/ds: the closest-point map bends a step ε t by ε²/2 times it.
+  // Zero for lines and polylines.
+  virtual Point curvature(const Point& on_curve) const = 0;
   virtual bool is_straight() const { return false; }
 };
 
 // x·n = n·point.
 std::unique_ptr<Surface> make_plane(const Point& point, const Point& normal);
-// |x − centre| = radius: a circle in 2D, a sphere in 3D.
-std::unique_ptr<Surface> make_sphere(const Point& centre, double radius);
+// |x − centre| = radius: a circle in 2D (z = 0), a sphere in 3D.
+std::unique_ptr<Surface> make_sphere(const Point& centre, double radius, int dim);
 // Distance radius from the line through `point` along `axis` (3D).
 std::unique_ptr<Surface> make_cylinder(const Point& point, const Point& axis, double radius);
 // The zero level set of a muparser expression in x, y (and z); throws Error if it does not

@@ -136,7 +136,8 @@ struct Functional::Impl {
   mutable std::vector<double> thread_gradients;  // one local gradient per OpenMP thread
   mutable std::vector<double> local_gradient;
   mutable std::vector<PetscScalar> ghost_values;  // G of assembly_pattern.hpp
-  mutable std::vector<double> projectors;         // dim² per sliding.vertices entry, at local_x
+  mutable std::vector<double> tangent_spaces;     // per sliding.vertices entry, at local_x
+  mutable std::vector<double> bending_force;      // per sliding.vertices entry: g · w (owned)
 
   Impl(const MeshView& v, const DofMap& d, const EnergyOptions& o, std::vector<std::uint8_t> f,
        SlidingVertices t)
@@ -158,16 +159,17 @@ struct Functional::Impl {
   void load_coordinates(Vec x) const {
     require_volumes();
     dofs.global_to_local(x, local_x);
-    if (!sliding.vertices.empty()) sliding.tangent_projectors(local_x, projectors);
+    if (!sliding.vertices.empty()) sliding.tangent_spaces(local_x, tangent_spaces);
   }
 
-  // The projector of local vertex v, or null if v does not slide.
+  // The projector of local vertex v (sliding_vertices.hpp), or null if v does not slide.
   const double* projector(PetscInt v) const {
     const PetscInt i = projector_of[v];
-    return i < 0 ? nullptr : projectors.data() + i * view.dim * view.dim;
+    return i < 0 ? nullptr : tangent_spaces.data() + i * tangent_space_size(view.dim);
   }
-  // g_v ← P_v g_v for every sliding vertex.
-  void project_gradient(std::vector<double>& gradient) const;
+  // g_v ← P_v g_v for every owned sliding vertex of the global gradient; keeps g_v · w_v
+  // (the force that bends along the boundary) for the curvature term of H(α).
+  void project_gradient(Vec gradient) const;
   // B ← P B P over a cell's (dim · vertices)² block, P = diag(P_v) (identity for vertices that
   // do not slide).
   template <int D, int N, typename Block>
@@ -196,8 +198,9 @@ struct Functional::Impl {
   }
   // Assembles the cell blocks computed by fill(kernel, x, volume, block) -> bool into M
   // (values only); fails on every rank, naming the first cell for which fill returned false.
+  // With sliding vertices, `curvature` times their curvature term is added (α for H(α)).
   template <typename Fill>
-  void assemble(Fill&& fill, const char* what, Mat M) const;
+  void assemble(Fill&& fill, const char* what, Mat M, double curvature = 0.0) const;
   // Adds the blocks of the cells of block b into A, B and G; returns the first cell for which
   // fill returned false (or the largest PetscInt).
   template <CellType Type, bool Coupled, typename Fill>
@@ -258,16 +261,24 @@ double Functional::Impl::local_energy_and_gradient(std::vector<double>& gradient
     for (int t = 0; t < threads; ++t) s += thread_gradients[n * t + i];
     gradient[i] = s;
   }
-  project_gradient(gradient);
   return sum;
 }
 
-void Functional::Impl::project_gradient(std::vector<double>& gradient) const {
+void Functional::Impl::project_gradient(Vec gradient) const {
+  if (sliding.vertices.empty()) return;
   const int d = view.dim;
-  for (PetscInt v : sliding.vertices) {
-    Eigen::Map<const Eigen::MatrixXd> p(projector(v), d, d);
-    Eigen::Map<Eigen::VectorXd> g(gradient.data() + d * v, d);
-    g = p * Eigen::VectorXd(g);
+  PetscInt first = 0;
+  NM_PETSC(VecGetOwnershipRange(gradient, &first, nullptr));
+  VecWriteView g(gradient);
+  for (std::size_t i = 0; i < sliding.vertices.size(); ++i) {
+    const PetscInt v = sliding.vertices[i];
+    if (!view.owned[v]) continue;
+    const double* space = projector(v);
+    Eigen::Map<const Eigen::MatrixXd> p(space, d, d);
+    Eigen::Map<const Eigen::VectorXd> w(space + d * d, d);
+    Eigen::Map<Eigen::VectorXd> at(g.data() + dofs.global_dof()[d * v] - first, d);
+    bending_force[i] = w.dot(at);
+    at = p * Eigen::VectorXd(at);
   }
 }
 
@@ -341,7 +352,7 @@ PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b, const AijV
 }
 
 template <typename Fill>
-void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M) const {
+void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M, double curvature) const {
   const AssemblyPattern& p = *pattern;
   const int d = dofs.dim();
   // The pattern of M: all couplings (create_matrix) or only within components (Laplacian).
@@ -371,15 +382,19 @@ void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M) const {
     for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l)
       if (is_fixed_dof(l) && p.diagonal[l] >= 0)
         values.diagonal[coupled ? p.diagonal[l] : (p.diagonal[l] - l % d) / d] = 1.0;
-    // The normal part of a sliding vertex's rows: + (I − P_v) on its diagonal block.
-    for (PetscInt v : sliding.vertices) {
+    // The normal part of a sliding vertex's rows: + (I − P_v) on its diagonal block; and the
+    // curvature term (g_v · w_v) M_v of the last gradient (sliding_vertices.hpp).
+    for (std::size_t i = 0; i < sliding.vertices.size(); ++i) {
+      const PetscInt v = sliding.vertices[i];
       if (!view.owned[v]) continue;
       if (!coupled) fail("internal error: a Laplacian without couplings for sliding vertices");
       const double* proj = projector(v);
+      const double* bend = proj + d * d + d;
+      const double force = curvature * bending_force[i];
       for (int a = 0; a < d; ++a)
         for (int bb = 0; bb < d; ++bb)
           values.diagonal[p.diagonal[d * v] + a * p.row_stride[v] + bb] +=
-              (a == bb ? 1.0 : 0.0) - proj[a * d + bb];
+              (a == bb ? 1.0 : 0.0) - proj[a * d + bb] + force * bend[a * d + bb];
     }
   }
   AijValues::mark_changed(M);
@@ -430,7 +445,8 @@ Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOpt
   impl_->projector_of.assign(view.num_vertices, -1);
   for (std::size_t i = 0; i < impl_->sliding.vertices.size(); ++i)
     impl_->projector_of[impl_->sliding.vertices[i]] = static_cast<PetscInt>(i);
-  impl_->projectors.resize(impl_->sliding.vertices.size() * view.dim * view.dim);
+  impl_->tangent_spaces.resize(impl_->sliding.vertices.size() * tangent_space_size(view.dim));
+  impl_->bending_force.assign(impl_->sliding.vertices.size(), 0.0);
   int slides = !impl_->sliding.vertices.empty();
   MPI_Allreduce(MPI_IN_PLACE, &slides, 1, MPI_INT, MPI_MAX, dofs.comm());
   impl_->slides_anywhere = slides != 0;
@@ -471,6 +487,7 @@ double Functional::value_and_gradient(Vec x, Vec gradient) const {
   const double local = impl_->local_energy_and_gradient(impl_->local_gradient);
   NM_PETSC(VecZeroEntries(gradient));
   impl_->dofs.add_local_to_global(impl_->local_gradient, gradient);
+  impl_->project_gradient(gradient);  // once whole: the force on the boundary is kept
   return sum_over_ranks(local, impl_->dofs.comm());
 }
 
@@ -519,7 +536,7 @@ void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {
   impl_->load_coordinates(x);
   impl_->assemble([alpha](const auto& kernel, const auto& coordinates, double volume,
                           auto block) { return kernel.hessian(coordinates, volume, alpha, block); },
-                  "H(alpha)", H);
+                  "H(alpha)", H, alpha);
 }
 
 void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const {

@@ -73,7 +73,9 @@ class Functional {
 
   // A matrix with the sparsity of H(α) and L (one-time pattern), not yet assembled.
   OwnedMat create_matrix() const;
-  // H(α) at x into a matrix made by create_matrix (values only; the pattern is reused).
+  // H(α) at x into a matrix made by create_matrix (values only; the pattern is reused). With
+  // vertices sliding on a curved boundary its curvature term uses the forces of the last
+  // value_and_gradient, which must have been at the same x.
   void assemble_hessian(Vec x, double alpha, Mat H) const;
   // A matrix with the sparsity of L only: the vector Laplacian couples no two components, so
   // it has 1/dim of the entries of create_matrix (cheaper AMG setup and V-cycles). With
