@@ -54,8 +54,8 @@ class Sphere final : public Surface {
     return s;
   }
   std::string describe() const override {
-    return fmt::format("sphere (circle in 2D) about ({}) of radius {:g}", numbers(centre_, 3),
-                       radius_);
+    return fmt::format("{} about ({}) of radius {:g}", dim_ == 2 ? "circle" : "sphere",
+                       numbers(centre_, dim_), radius_);
   }
 
  private:
