@@ -45,11 +45,11 @@ struct InputMesh {
   std::vector<VertexSet> vertex_sets;   // named vertex sets (turned into facets, input_topology)
   TaggedEntities points;                // single vertices in physical groups
   std::vector<PhysicalGroup> groups;    // every group above, sorted by (dim, tag)
+  std::vector<Chart> charts;            // FEAT3 charts; VertexSet::chart names them
 
   PetscInt num_vertices() const { return static_cast<PetscInt>(coords.size()) / dim; }
   PetscInt num_cells() const { return static_cast<PetscInt>(cell_types.size()); }
   void add_cell(CellType t, const PetscInt* v, int tag) {
-  std::vector<Chart> charts;            // FEAT3 charts; VertexSet::chart names them
     cell_types.push_back(t);
     cell_vertices.insert(cell_vertices.end(), v, v + num_vertices_of(t));
     cell_offsets.push_back(static_cast<PetscInt>(cell_vertices.size()));
