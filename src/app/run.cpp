@@ -2,10 +2,14 @@
 
 #include <cctype>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
-#include <regex>
+#include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <petscsys.h>
@@ -58,13 +62,27 @@ SplitArguments split_arguments(int argc, char** argv) {
 // Set once MPI is up; the signal handler may not call MPI.
 volatile std::sig_atomic_t report_interrupt = 1;
 
+void write_stderr(const char* text) noexcept {
+  (void)!write(STDERR_FILENO, text, std::strlen(text));
+}
+
 // Ctrl-C (SIGINT) or a kill (SIGTERM, also what mpiexec forwards): remove the temporary
-// file being written, if any, and die of the signal. Output files only appear by a rename
-// at the very end, so nothing partial is left behind.
+// file being written, if any, say which outputs were already renamed into place (all or
+// nothing each: see core/atomic_file.hpp), and die of the signal. Async-signal-safe.
 extern "C" void on_interrupt(int signal) {
   remove_temporary_files();
-  const char message[] = "\nneomesh: interrupted; no output file was written\n";
-  if (report_interrupt) (void)!write(STDERR_FILENO, message, sizeof message - 1);
+  if (report_interrupt) {
+    const char* written = committed_targets();
+    if (*written == '\0') {
+      write_stderr(
+          "\nneomesh: interrupted; no output file was written (existing files are "
+          "untouched)\n");
+    } else {
+      write_stderr("\nneomesh: interrupted; written completely before the interrupt: ");
+      write_stderr(written);
+      write_stderr("; no other output file was written\n");
+    }
+  }
   std::signal(signal, SIG_DFL);
   std::raise(signal);
 }
@@ -127,49 +145,75 @@ std::string expected_value(const CLI::App* command, const std::string& option) {
   return "a valid value";
 }
 
+// Text between `prefix` and `suffix` if `m` is exactly prefix + text + suffix (no std::regex:
+// its recursion overflows the stack on a value of 30,000 characters).
+std::optional<std::string> between(const std::string& m, std::string_view prefix,
+                                   std::string_view suffix) {
+  if (m.size() < prefix.size() + suffix.size() || !m.starts_with(prefix) || !m.ends_with(suffix))
+    return std::nullopt;
+  return m.substr(prefix.size(), m.size() - prefix.size() - suffix.size());
+}
+
+// "a: b" split at the first (or last) ": ".
+std::optional<std::pair<std::string, std::string>> split_at(const std::string& m,
+                                                            std::string_view separator,
+                                                            bool last = false) {
+  const auto at = last ? m.rfind(separator) : m.find(separator);
+  if (at == std::string::npos) return std::nullopt;
+  return std::pair{m.substr(0, at), m.substr(at + separator.size())};
+}
+
 std::string describe_parse_error(const CLI::ParseError& e, const std::vector<std::string>& args,
                                  const CLI::App* command) {
   std::string config_file;
   for (std::size_t i = 1; i < args.size(); ++i)
-    if (args[i - 1] == "--config") config_file = args[i];
+    if (args[i - 1] == "--config") config_file = shorten(args[i], 200);
   std::string m = e.what();
-  std::smatch match;
-  if (std::regex_match(m, match, std::regex("Could not convert: (\\S+) = (.*)")))
-    return fmt::format("{}: '{}' is not {}", match[1].str(), match[2].str(),
-                       expected_value(command, match[1].str()));
+  if (auto rest = between(m, "Could not convert: ", ""))
+    if (auto parts = split_at(*rest, " = "))
+      return fmt::format("{}: '{}' is not {}", shorten(parts->first), shorten(parts->second),
+                         expected_value(command, parts->first));
   // --circle 1,2 (CLI11 says "At least 3 required", or "At Most" for too many values)
-  if (std::regex_match(m, match,
-                       std::regex("(\\S+): At (least|Most) (\\d+) required but received (\\d+)")))
-    return fmt::format("{} takes {} {} comma-separated values (got {})", match[1].str(),
-                       match[2].str() == "least" ? "at least" : "at most", match[3].str(),
-                       match[4].str());
-  if (std::regex_match(m, match, std::regex("([a-z]\\S*) is required")))
-    return fmt::format("missing the {} argument", match[1].str());
-  if (std::regex_match(m, match,
-                       std::regex("The following arguments? (was|were) not expected: (.*)")))
-    return fmt::format("unknown option or extra argument: {}", match[2].str());
-  if (std::regex_match(m, match, std::regex("(.*): (.*) not in \\{(.*)\\}"))) {
-    std::string choices = std::regex_replace(match[3].str(), std::regex(","), ", ");
-    return fmt::format("{}: unknown value '{}' (choose one of {})", match[1].str(), match[2].str(),
-                       choices);
-  }
-  if (std::regex_match(m, match, std::regex("INI was not able to parse (.*)"))) {
-    std::string item = match[1].str();
-    const auto dot = item.rfind('.');
+  if (auto parts = split_at(m, ": At "))
+    for (std::string_view how : {"least", "Most"})
+      if (auto counts = between(parts->second, std::string(how) + " ", ""))
+        if (auto numbers = split_at(*counts, " required but received "))
+          return fmt::format("{} takes {} {} comma-separated values (got {})",
+                             shorten(parts->first), how == "least" ? "at least" : "at most",
+                             numbers->first, numbers->second);
+  if (auto option = between(m, "", " is required");
+      option && !option->empty() && std::islower(static_cast<unsigned char>(option->front())) &&
+      option->find(' ') == std::string::npos)
+    return fmt::format("missing the {} argument", shorten(*option));
+  for (std::string_view prefix :
+       {"The following argument was not expected: ", "The following arguments were not expected: "})
+    if (auto extra = between(m, prefix, ""))
+      return fmt::format("unknown option or extra argument: {}", shorten(*extra));
+  if (auto choices = between(m, "", "}"))
+    if (auto parts = split_at(*choices, " not in {", true))
+      if (auto option_value = split_at(parts->first, ": ")) {
+        std::string list = parts->second;
+        for (auto at = list.find(','); at != std::string::npos; at = list.find(',', at + 2))
+          list.replace(at, 1, ", ");
+        return fmt::format("{}: unknown value '{}' (choose one of {})",
+                           shorten(option_value->first), shorten(option_value->second), list);
+      }
+  if (auto item = between(m, "INI was not able to parse ", "")) {
+    const auto dot = item->rfind('.');
     if (dot == std::string::npos)
       return fmt::format(
           "--config {}: unknown option '{}' (options of a subcommand go in its section, "
           "e.g. [smooth])",
-          config_file, item);
+          config_file, shorten(*item));
     return fmt::format("--config {}: unknown option '{}' in section [{}]", config_file,
-                       item.substr(dot + 1), item.substr(0, dot));
+                       shorten(item->substr(dot + 1)), shorten(item->substr(0, dot)));
   }
-  if (std::regex_match(m, match, std::regex("(.*) was not readable \\(missing\\?\\)")))
-    return fmt::format("--config {}: cannot read the file (missing?)", match[1].str());
+  if (auto file = between(m, "", " was not readable (missing?)"))
+    return fmt::format("--config {}: cannot read the file (missing?)", shorten(*file, 200));
   if (m == "A subcommand is required")
     return "give a subcommand: generate, quality, convert, smooth, render or adapt";
   if (!m.empty()) m[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(m[0])));
-  return m;
+  return shorten(m, 300);
 }
 
 // The main help lists each subcommand with the first sentence of its description; the
@@ -207,6 +251,71 @@ a subcommand's options in its section; values given on the command line win:
 Parallel: mpiexec -n 4 neomesh smooth in.msh -o out.msh
 Each subcommand has its own --help. User guide: docs/user-guide.md)";
 
+constexpr int kFailure = 1;     // the command failed: bad input, unwritable output, ...
+constexpr int kUsageError = 2;  // the command line could not be parsed
+
+// Open MPI's MPI_Abort without the banner that MPI_Abort prints first ("MPI_ABORT was invoked
+// on rank 0 ... NOTE: invoking MPI_ABORT causes Open MPI to kill all MPI processes"): it ends
+// every rank and mpiexec exits with the given code. Weak: absent with other MPI libraries.
+extern "C" int ompi_mpi_abort(MPI_Comm comm, int errcode) __attribute__((weak));
+
+// Started by a launcher (mpiexec, srun), even with one process.
+bool launched_by_mpi() {
+  for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(variable)) return true;
+  return false;
+}
+
+// Ends every process of the job with exit code `code` and no further output.
+[[noreturn]] void end_job(int code) {
+  std::fflush(stdout);
+  std::fflush(stderr);
+  if (ompi_mpi_abort) ompi_mpi_abort(MPI_COMM_WORLD, code);
+  MPI_Abort(MPI_COMM_WORLD, code);
+  std::_Exit(code);
+}
+
+enum class Agreed {
+  AllRanks,      // every rank has the same error (CollectiveError, the command line)
+  ThisRankOnly,  // the others may be waiting in a collective call for this one
+};
+
+// How a failed command ends: one line `neomesh: error: <message>` on stderr, exit code `code`.
+// A serial run returns the code (PETSc finalizes as usual). Under mpiexec a process that
+// exits with a non-zero code makes Open MPI print a banner of its own, and so does
+// MPI_Abort, so the job is ended by end_job(): when every rank has the error, rank 0 prints
+// it once every rank has unwound its stack (no temporary file left) and ends the job; an
+// error of this rank only is printed by rank 0 at once, by another rank after a grace
+// period (in which a rank 0 that failed the same way ends the job first, so the line is
+// printed once).
+int end_failed_command(const std::string& message, int code, Agreed agreed) {
+  const std::string line = fmt::format("neomesh: error: {}\n", message);
+  int size = 1, rank = 0;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (size == 1 && !launched_by_mpi()) {
+    std::fputs(line.c_str(), stderr);
+    return code;
+  }
+  if (agreed == Agreed::AllRanks) {
+    if (rank == 0) std::fputs(line.c_str(), stderr);
+    std::fflush(stderr);
+    // Every rank is here: wait for all (at most a few seconds, in case one is not).
+    MPI_Request request;
+    MPI_Ibarrier(MPI_COMM_WORLD, &request);
+    int done = 0;
+    for (int waited_ms = 0; !done && waited_ms < 10000; ++waited_ms) {
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (!done) usleep(1000);
+    }
+    if (rank != 0) sleep(10);  // rank 0 ends the job meanwhile
+    end_job(code);
+  }
+  if (rank != 0) sleep(3);
+  std::fputs(line.c_str(), stderr);
+  end_job(code);
+}
+
 }  // namespace
 
 int run(int argc, char** argv) {
@@ -239,47 +348,45 @@ int run(int argc, char** argv) {
     c.cli->set_help_flag("-h,--help", "print this help and exit");
   }
 
+  // MPI first: under mpiexec every rank parses the same command line, and rank 0 alone
+  // prints help, errors and results.
+  std::optional<PetscSession> petsc;
+  try {
+    petsc.emplace(args.petsc);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "neomesh: error: %s\n", user_message(e).c_str());
+    return 1;
+  }
+
   try {
     std::vector<std::string> reversed(args.neomesh.rbegin(), args.neomesh.rend() - 1);
     cli.parse(std::move(reversed));
-  } catch (const CLI::CallForHelp& e) {
-    return cli.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return cli.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return cli.exit(e);
   } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) {  // --help, --version
+      std::ostringstream ignored;
+      const bool root = is_root_rank();
+      return cli.exit(e, root ? std::cout : ignored, root ? std::cerr : ignored);
+    }
     const CLI::App* command = nullptr;
     for (auto& c : commands)
       if (c.cli->parsed()) command = c.cli;
     const std::string help =
         command ? "neomesh " + command->get_name() + " --help" : "neomesh --help";
-    std::fprintf(stderr, "neomesh: error: %s (see %s)\n",
-                 describe_parse_error(e, args.neomesh, command).c_str(), help.c_str());
-    return 2;
+    // The same command line on every rank: every rank found the same error.
+    return end_failed_command(
+        fmt::format("{} (see {})", describe_parse_error(e, args.neomesh, command), help),
+        kUsageError, Agreed::AllRanks);
   }
   set_verbosity(quiet ? Verbosity::Quiet : verbose ? Verbosity::Verbose : Verbosity::Normal);
 
   try {
-    PetscSession petsc(args.petsc);
-    try {
-      for (auto& c : commands)
-        if (c.cli->parsed()) c.run();
-      PetscSession::warn_unused_options();
-    } catch (const std::exception& e) {
-      // Printed by whichever rank found it (input errors are found collectively, so that
-      // is usually rank 0 alone); other ranks may be blocked in a collective call, so a
-      // parallel run ends the whole job.
-      std::fprintf(stderr, "neomesh: error: %s\n", e.what());
-      std::fflush(stderr);
-      int size = 1;
-      MPI_Comm_size(MPI_COMM_WORLD, &size);
-      if (size > 1) MPI_Abort(MPI_COMM_WORLD, 1);
-      return 1;
-    }
+    for (auto& c : commands)
+      if (c.cli->parsed()) c.run();
+    PetscSession::warn_unused_options();
+  } catch (const CollectiveError& e) {
+    return end_failed_command(e.what(), kFailure, Agreed::AllRanks);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "neomesh: error: %s\n", e.what());
-    return 1;
+    return end_failed_command(user_message(e), kFailure, Agreed::ThisRankOnly);
   }
   return 0;
 }

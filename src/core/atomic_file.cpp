@@ -1,6 +1,8 @@
 #include "core/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <array>
@@ -39,6 +41,44 @@ void unregister_temporary(int slot) {
   if (slot >= 0) slot_state[slot].store(Free);
 }
 
+// The targets committed so far ("a.msh, r.json"), for the interrupt message, and whether a
+// commit is between its rename and its record in that list right now.
+std::array<char, kMaxPath> committed_list{};
+std::atomic<std::size_t> committed_length{0};
+std::atomic<bool> committing{false};
+std::atomic<bool> stopping{false};  // a signal handler is removing the temporary files
+
+void record_committed(const std::string& target) {
+  std::size_t length = committed_length.load();
+  const std::string entry = length == 0 ? target : ", " + target;
+  if (length + entry.size() + 1 > committed_list.size()) return;  // the start is enough
+  std::memcpy(committed_list.data() + length, entry.c_str(), entry.size() + 1);
+  committed_length.store(length + entry.size());
+}
+
+// SIGINT and SIGTERM held back on this thread while a commit renames and records its file:
+// the handler then never runs between the two on this thread (and waits on another).
+class SignalsHeld {
+ public:
+  SignalsHeld() {
+    sigset_t held;
+    sigemptyset(&held);
+    sigaddset(&held, SIGINT);
+    sigaddset(&held, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &held, &previous_);
+    committing.store(true);
+  }
+  ~SignalsHeld() {
+    committing.store(false);
+    pthread_sigmask(SIG_SETMASK, &previous_, nullptr);
+  }
+  SignalsHeld(const SignalsHeld&) = delete;
+  SignalsHeld& operator=(const SignalsHeld&) = delete;
+
+ private:
+  sigset_t previous_;
+};
+
 std::filesystem::path directory_of(const std::filesystem::path& target) {
   return target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
 }
@@ -69,8 +109,16 @@ void check_writable(const std::filesystem::path& target) {
 }
 
 void remove_temporary_files() noexcept {
+  // A commit either saw `stopping` and renames nothing, or finishes before the files go.
+  stopping.store(true);
+  const timespec pause{0, 1000000};  // 1 ms
+  while (committing.load()) nanosleep(&pause, nullptr);
   for (int i = 0; i < kSlots; ++i)
     if (slot_state[i].load() == Ready) ::unlink(slot_path[i].data());
+}
+
+const char* committed_targets() noexcept {
+  return committed_list.data();
 }
 
 AtomicFile::AtomicFile(const std::filesystem::path& target, bool binary) : target_(target) {
@@ -98,10 +146,17 @@ void AtomicFile::commit() {
   if (!stream_) fail("writing {} failed (disk full?)", target_.string());
   stream_.close();
   std::error_code error;
-  std::filesystem::rename(temporary_, target_, error);
+  {
+    const SignalsHeld held;
+    if (stopping.load()) fail("interrupted before {} was written", target_.string());
+    std::filesystem::rename(temporary_, target_, error);
+    if (!error) {
+      record_committed(target_.string());
+      committed_ = true;
+      unregister_temporary(slot_);
+    }
+  }
   if (error) fail("cannot write {}: {}", target_.string(), error.message());
-  committed_ = true;
-  unregister_temporary(slot_);
 }
 
 }  // namespace neomesh

@@ -13,8 +13,14 @@ namespace neomesh {
 void check_writable(const std::filesystem::path& target);
 
 // Removes the temporary files of every AtomicFile not yet committed. Async-signal-safe:
-// for a SIGINT/SIGTERM handler.
+// for a SIGINT/SIGTERM handler. If a commit is renaming a file right now (on another
+// thread), waits for it to finish first, so that committed_targets() is then true.
 void remove_temporary_files() noexcept;
+
+// Async-signal-safe: the targets that commit() has renamed into place so far in this process,
+// separated by ", " (cut after a few thousand characters), or "" if none. For an interrupt
+// message that says what was, and was not, written.
+const char* committed_targets() noexcept;
 
 class AtomicFile {
  public:

@@ -18,7 +18,7 @@ void throw_if_any(MPI_Comm comm, const std::string& local_error) {
   MPI_Bcast(&size, 1, MPI_INT, first, comm);
   message.resize(size);
   MPI_Bcast(message.data(), size, MPI_CHAR, first, comm);
-  throw Error(message);
+  throw CollectiveError(message);
 }
 
 }  // namespace neomesh

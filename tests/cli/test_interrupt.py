@@ -1,6 +1,16 @@
-"""Ctrl-C during a run leaves no partial output: SIGINT while `smooth` iterates on a mesh
-large enough to take several seconds; the process must end on the signal, say it was
-interrupted, and leave neither the output file nor a temporary file behind."""
+"""Ctrl-C tells the truth and leaves no partial output. SIGINT arrives while neomesh writes:
+
+1. the output mesh: its temporary file is removed, an existing output file keeps its old
+   content, and neomesh says that no output file was written;
+2. the JSON report, after the mesh was renamed into place: the new mesh stays, no report or
+   temporary file is left, and neomesh says which file was written.
+
+To catch neomesh in the middle of a write, the test puts a FIFO where neomesh's temporary
+file will be (`.NAME.tmp-PID` beside the target, see src/core/atomic_file.cpp): opening it
+blocks until the signal comes, and only neomesh's clean-up removes it. Both cases run
+serially and, with NEOMESH_MPIEXEC, under `mpiexec -n 2` (the signal goes to mpiexec; rank
+0 writes the files).
+"""
 import os
 import signal
 import subprocess
@@ -9,6 +19,7 @@ import tempfile
 import time
 
 NEOMESH = os.path.abspath(os.environ["NEOMESH"]) if "NEOMESH" in os.environ else "neomesh"
+MPIEXEC = os.environ.get("NEOMESH_MPIEXEC")
 
 
 def check(condition, message):
@@ -16,37 +27,88 @@ def check(condition, message):
         sys.exit(message)
 
 
-def main():
-    with tempfile.TemporaryDirectory() as tmp:
-        mesh = os.path.join(tmp, "random.msh")
-        subprocess.run([NEOMESH, "generate", "square-random", "--level", "7", "-o", mesh],
-                       check=True, capture_output=True, timeout=60)
-        before = sorted(os.listdir(tmp))
-        # Iterates until interrupted: no stopping criterion can be met.
-        proc = subprocess.Popen(
-            [NEOMESH, "smooth", mesh, "-o", os.path.join(tmp, "out.vtu"), "--no-table",
-             "--no-practical", "--tol", "0", "--rtol", "0", "--max-iter", "100000",
-             "--report", os.path.join(tmp, "report.json")],
-            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        start = time.monotonic()
-        # Wait until it iterates, then about a second more.
+def rank_zero(launcher_pid):
+    """The process of rank 0 among mpiexec's children (the one that writes the outputs)."""
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat") as f:
+                parent = int(f.read().rsplit(")", 1)[1].split()[1])
+            with open(f"/proc/{entry}/environ", "rb") as f:
+                environment = f.read().split(b"\0")
+        except (OSError, IndexError, ValueError):
+            continue
+        if parent == launcher_pid and (b"OMPI_COMM_WORLD_RANK=0" in environment
+                                       or b"PMI_RANK=0" in environment):
+            return int(entry)
+    sys.exit(f"no rank 0 among the children of mpiexec (pid {launcher_pid})")
+
+
+def interrupt_while_writing(tmp, mesh, blocked, ranks):
+    """Runs a short smooth that writes out.vtu, then report.json; SIGINT while it blocks on
+    opening the temporary file of `blocked`. Returns stderr."""
+    out = os.path.join(tmp, "out.vtu")
+    report = os.path.join(tmp, "report.json")
+    launcher = [] if ranks == 1 else [MPIEXEC, "--allow-run-as-root", "--oversubscribe",
+                                      "-n", str(ranks)]
+    proc = subprocess.Popen(
+        [*launcher, NEOMESH, "smooth", mesh, "-o", out, "--no-table", "--no-practical",
+         "--tol", "0", "--rtol", "0", "--max-iter", "3", "--report", report],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        # The outputs were checked (and their probe files removed) before iteration 1.
         for line in proc.stdout:
             if line.startswith("iteration 1:"):
                 break
-        time.sleep(max(0.0, 1.0 - (time.monotonic() - start)) + 0.3)
-        check(proc.poll() is None, f"smooth ended before the interrupt: {proc.returncode}")
+        writer = proc.pid if ranks == 1 else rank_zero(proc.pid)
+        fifo = os.path.join(tmp, f".{blocked}.tmp-{writer}")
+        os.mkfifo(fifo)
+        # The run ends after 3 iterations; then the write blocks on the FIFO.
+        for line in proc.stdout:
+            if line.startswith("stopped after"):
+                break
+        time.sleep(1.0)
+        check(proc.poll() is None, f"neomesh ended before the interrupt: {proc.returncode}")
         proc.send_signal(signal.SIGINT)
-        try:
-            _, err = proc.communicate(timeout=30)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            sys.exit("smooth did not stop within 30 s of SIGINT")
-        check(proc.returncode == -signal.SIGINT,
-              f"expected death by SIGINT, exit {proc.returncode}; stderr {err!r}")
-        check("interrupted" in err, f"stderr does not say it was interrupted: {err!r}")
-        after = sorted(os.listdir(tmp))
-        check(after == before, f"files left behind: {sorted(set(after) - set(before))}")
-    print("Ctrl-C leaves no output")
+        _, err = proc.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        sys.exit("neomesh did not stop within 30 s of SIGINT")
+    check(proc.returncode != 0, f"exit code 0 after SIGINT; stderr {err!r}")
+    check(not os.path.exists(fifo), f"the temporary file was not removed: {fifo}")
+    return err
+
+
+def main():
+    runs = [1] + ([2] if MPIEXEC else [])
+    for ranks in runs:
+        with tempfile.TemporaryDirectory() as tmp:
+            mesh = os.path.join(tmp, "random.msh")
+            subprocess.run([NEOMESH, "generate", "square-random", "--level", "6", "-o", mesh],
+                           check=True, capture_output=True, timeout=60)
+            out = os.path.join(tmp, "out.vtu")
+            with open(out, "w") as f:
+                f.write("the old output\n")
+
+            err = interrupt_while_writing(tmp, mesh, "out.vtu", ranks)
+            check("interrupted; no output file was written" in err,
+                  f"{ranks} rank(s), interrupted in the mesh write: stderr {err!r}")
+            with open(out) as f:
+                check(f.read() == "the old output\n", "the old output file was changed")
+            check(sorted(os.listdir(tmp)) == ["out.vtu", "random.msh"],
+                  f"files left behind: {sorted(os.listdir(tmp))}")
+
+            err = interrupt_while_writing(tmp, mesh, "report.json", ranks)
+            check("interrupted; written completely before the interrupt: " in err
+                  and "out.vtu; no other output file was written" in err,
+                  f"{ranks} rank(s), interrupted in the report write: stderr {err!r}")
+            with open(out) as f:
+                check("<VTKFile" in f.read(), "out.vtu is not the new output")
+            check(sorted(os.listdir(tmp)) == ["out.vtu", "random.msh"],
+                  f"files left behind: {sorted(os.listdir(tmp))}")
+        print(f"Ctrl-C on {ranks} rank(s): true message, old output kept or new one complete, "
+              "temporary file removed")
 
 
 if __name__ == "__main__":
