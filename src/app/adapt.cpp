@@ -8,6 +8,7 @@
 #include "adapt/picard.hpp"
 #include "adapt/size_field.hpp"
 #include "adapt/volume_ratio.hpp"
+#include "app/checks.hpp"
 #include "app/method_options.hpp"
 #include "app/optimization.hpp"
 #include "app/subcommand.hpp"
@@ -68,18 +69,23 @@ void use_thesis_scheme(AdaptOptions& o) {
 }
 
 void check(const AdaptOptions& o) {
-  if (!(o.sizes.power > 0)) fail("--power must be positive (got {})", o.sizes.power);
-  if (!(o.sizes.floor >= 0)) fail("--floor must be 0 or more (got {})", o.sizes.floor);
-  if (!(o.sizes.max_ratio == 0 || o.sizes.max_ratio > 1))
-    fail("--max-ratio must be above 1, or 0 for no bound (got {})", o.sizes.max_ratio);
-  if (o.sizes.smoothing_passes < 0)
-    fail("--smooth-sizes must be 0 or more (got {})", o.sizes.smoothing_passes);
-  if (o.picard.min_updates < 0)
-    fail("--min-updates must be 0 or more (got {})", o.picard.min_updates);
-  if (o.picard.update_every < 1)
-    fail("--update-every must be at least 1 (got {})", o.picard.update_every);
-  if (!(o.picard.relaxation > 0 && o.picard.relaxation <= 1))
-    fail("--relaxation must be in (0, 1] (got {})", o.picard.relaxation);
+  check_option("--power", o.sizes.power, o.sizes.power > 0, "positive");
+  check_option("--floor", o.sizes.floor, o.sizes.floor >= 0, "0 or more");
+  check_option("--max-ratio", o.sizes.max_ratio, o.sizes.max_ratio == 0 || o.sizes.max_ratio > 1,
+               "above 1, or 0 for no bound");
+  check_option("--smooth-sizes", o.sizes.smoothing_passes, o.sizes.smoothing_passes >= 0,
+               "0 or more");
+  check_option("--min-updates", o.picard.min_updates, o.picard.min_updates >= 0, "0 or more");
+  check_option("--update-every", o.picard.update_every, o.picard.update_every >= 1, "at least 1");
+  check_option("--update-move", o.picard.update_move, o.picard.update_move >= 0, "0 or more");
+  check_option("--update-step", o.picard.update_step_norm, o.picard.update_step_norm >= 0,
+               "0 or more");
+  check_option("--relaxation", o.picard.relaxation,
+               o.picard.relaxation > 0 && o.picard.relaxation <= 1, "in (0, 1]");
+  check_finite("--circle", o.circle);
+  check_finite("--sphere", o.sphere);
+  check_finite("--plane", o.plane);
+  check_finite("--box", o.box);
 }
 
 void adapt(AdaptOptions& o) {
@@ -92,6 +98,7 @@ void adapt(AdaptOptions& o) {
   check_run_outputs(o.outputs);
 
   OptimizationRun run(o.input, o.method);
+  check_run_outputs(o.outputs, run.view().dim);  // pictures of a 3D mesh: before the run
   say("size field: {}\n", field.description());
   run.print_problem();
   const auto target_volumes =

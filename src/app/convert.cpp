@@ -4,10 +4,12 @@
 #include <memory>
 #include <string>
 
+#include "app/checks.hpp"
 #include "app/subcommand.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "mesh/collective_error.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/mesh_io.hpp"
 
@@ -27,13 +29,18 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
 }
 
 void run_convert(const ConvertOptions& o) {
-  check_readable_format(o.input);
-  check_writable_format(o.output);
-  if (!o.force && same_file(o.input, o.output))
-    fail("{}: output is the input file; choose another -o or pass --force", o.output);
-  check_writable(o.output);
+  collectively(PETSC_COMM_WORLD, [&] {
+    check_readable_format(o.input);
+    check_output_file("-o/--output", o.output, OutputKind::Mesh);
+    if (!o.force && same_file(o.input, o.output))
+      fail("{}: output is the input file; choose another -o or pass --force", o.output);
+  });
   say("reading {} ...\n", o.input);
-  const Mesh mesh = Mesh::load(o.input);
+  const Mesh mesh = [&] {
+    const Activity reading("reading " + o.input);
+    return Mesh::load(o.input);
+  }();
+  const Activity writing("writing " + o.output);
   write_mesh(mesh, o.output);
   say("wrote {}: {} cells, {} vertices\n", o.output, mesh.global_num_cells(),
       mesh.global_num_vertices());

@@ -6,10 +6,12 @@
 #include <string>
 #include <string_view>
 
+#include "app/checks.hpp"
 #include "app/subcommand.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "geometry/quality.hpp"
+#include "mesh/collective_error.hpp"
 #include "mesh/generate.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/mesh_io.hpp"
@@ -96,15 +98,17 @@ int size_of(const Case& c, const GenerateOptions& o) {
 }
 
 void run_generate(const GenerateOptions& o) {
-  check_writable_format(o.output);
   const Case& c = find_case(o.name);
   const int size = size_of(c, o);
+  check_option("--rotate", o.rotate_degrees, true, "in degrees");
   if (!(o.amplitude >= 0.0 && o.amplitude < 0.25))
     fail("generate: --amplitude must be in [0, 0.25) (got {})", o.amplitude);
   const bool is_box = std::string_view(c.name).starts_with("box-");
   if (o.jitter != 0.0 && !is_box) fail("generate {}: --jitter applies to the box cases", c.name);
   if (!(o.jitter >= 0.0 && o.jitter < 0.25))
     fail("generate: --jitter must be in [0, 0.25) (got {})", o.jitter);
+  collectively(PETSC_COMM_WORLD,
+               [&] { check_output_file("-o/--output", o.output, OutputKind::Mesh); });
   // The mesh is built on rank 0; Mesh::from_data distributes it.
   MeshData data;
   if (is_root_rank()) {

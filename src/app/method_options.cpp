@@ -3,6 +3,7 @@
 #include <string_view>
 #include <utility>
 
+#include "app/checks.hpp"
 #include "core/error.hpp"
 
 namespace neomesh::app {
@@ -15,7 +16,7 @@ T one_of(const char* option, const std::string& given, std::pair<std::string_vie
          std::pair<std::string_view, T> second) {
   if (given == first.first) return first.second;
   if (given == second.first) return second.second;
-  fail("unknown {} '{}' (use {} or {})", option, given, first.first, second.first);
+  fail("unknown {} '{}' (use {} or {})", option, shorten(given), first.first, second.first);
 }
 
 }  // namespace
@@ -110,8 +111,8 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                              "{:g})",
                              QuasiNewtonOptions{}.riesz_rtol, QuasiNewtonOptions::kThesisRieszRtol))
       ->group(linear);
-  cmd.add_option("--boundary", o.boundary,
   const char* boundary = "Boundary (docs/boundary.md)";
+  cmd.add_option("--boundary", o.boundary,
                  "fixed (boundary vertices stay put, the thesis) or slide (they move along the "
                  "input's boundary, curved or flat; corners stay put, ridge vertices slide along "
                  "their ridge)")
@@ -137,31 +138,31 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
 }
 
 void finalize(MethodOptions& o) {
-  if (!(o.energy.lambda > 0)) fail("--lambda must be positive (got {})", o.energy.lambda);
-  if (!(o.energy.mu > 0)) fail("--mu must be positive (got {})", o.energy.mu);
-  if (o.energy.kappa != -1.0 && !(o.energy.kappa > 0))
-    fail("--kappa must be positive (got {})", o.energy.kappa);
-  if (o.energy.gauss_points < 1 || o.energy.gauss_points > 5)
-    fail("--gauss must be between 1 and 5 (got {})", o.energy.gauss_points);
-  if (!(o.solver.alpha0 > 0 && o.solver.alpha0 <= 1))
-    fail("--alpha0 must be in (0, 1] (got {})", o.solver.alpha0);
-  if (!(o.solver.eta > 0 && o.solver.eta < 1))
-    fail("--eta must be in (0, 1) (got {})", o.solver.eta);
-  if (o.solver.kmin < 0) fail("--kmin must be 0 or more (got {})", o.solver.kmin);
-  if (o.solver.max_iterations < 1)
-    fail("--max-iter must be at least 1 (got {})", o.solver.max_iterations);
-  if (!(o.solver.defect_atol >= 0)) fail("--tol must be 0 or more (got {})", o.solver.defect_atol);
-  if (!(o.solver.defect_rtol >= 0)) fail("--rtol must be 0 or more (got {})", o.solver.defect_rtol);
-  if (!(o.solver.hessian_rtol > 0 && o.solver.hessian_rtol < 1))
-    fail("--hess-rtol must be in (0, 1) (got {})", o.solver.hessian_rtol);
-  if (!(o.solver.hessian_pc_reuse >= 0))
-    fail("--hess-pc-reuse must be 0 or more (got {})", o.solver.hessian_pc_reuse);
+  const auto& e = o.energy;
+  check_option("--lambda", e.lambda, e.lambda > 0, "positive");
+  check_option("--mu", e.mu, e.mu > 0, "positive");
+  if (e.kappa != -1.0) check_option("--kappa", e.kappa, e.kappa > 0, "positive");
+  check_option("--gauss", e.gauss_points, e.gauss_points >= 1 && e.gauss_points <= 5,
+               "between 1 and 5");
+  const auto& q = o.solver;
+  check_option("--alpha0", q.alpha0, q.alpha0 > 0 && q.alpha0 <= 1, "in (0, 1]");
+  check_option("--eta", q.eta, q.eta > 0 && q.eta < 1, "in (0, 1)");
+  check_option("--kmin", q.kmin, q.kmin >= 0, "0 or more");
+  check_option("--max-iter", q.max_iterations, q.max_iterations >= 1, "at least 1");
+  check_option("--tol", q.defect_atol, q.defect_atol >= 0, "0 or more");
+  check_option("--rtol", q.defect_rtol, q.defect_rtol >= 0, "0 or more");
+  check_option("--energy-rtol", q.energy_rtol, q.energy_rtol >= 0, "0 or more");
+  check_option("--move-rtol", q.move_rtol, q.move_rtol >= 0, "0 or more");
+  check_option("--alpha-start-defect", q.initial_previous_defect, q.initial_previous_defect > 0,
+               "positive");
+  check_option("--hess-rtol", q.hessian_rtol, q.hessian_rtol > 0 && q.hessian_rtol < 1,
+               "in (0, 1)");
+  check_option("--hess-pc-reuse", q.hessian_pc_reuse, q.hessian_pc_reuse >= 0, "0 or more");
   if (o.riesz_rtol)
     o.solver.riesz_rtol = *o.riesz_rtol;
   else if (o.thesis)
     o.solver.riesz_rtol = QuasiNewtonOptions::kThesisRieszRtol;
-  if (!(o.solver.riesz_rtol > 0 && o.solver.riesz_rtol < 1))
-    fail("--riesz-rtol must be in (0, 1) (got {})", o.solver.riesz_rtol);
+  check_option("--riesz-rtol", q.riesz_rtol, q.riesz_rtol > 0 && q.riesz_rtol < 1, "in (0, 1)");
   o.solver.linear_solver = parse_linear_solver(o.linear_solver);
   o.solver.riesz =
       one_of<RieszLaplacian>("--riesz", o.riesz, {"optimal", RieszLaplacian::OptimalCells},

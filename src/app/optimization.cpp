@@ -5,10 +5,12 @@
 #include <sys/resource.h>
 #include <cstdlib>
 
+#include "app/checks.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "geometry/quality.hpp"
+#include "mesh/collective_error.hpp"
 #include "mesh/mesh_io.hpp"
 #include "report/canvas.hpp"
 #include "report/history_plot.hpp"
@@ -20,12 +22,13 @@ namespace neomesh::app {
 
 void check_output_path(const std::filesystem::path& input, const std::filesystem::path& output,
                        bool force) {
-  check_writable_format(output);
-  std::error_code ignored;
-  if (!force && std::filesystem::equivalent(input, output, ignored))
-    fail("output {} is the input file; choose another name or pass --force to overwrite it",
-         output.string());
-  check_writable(output);  // fail now, not after a long run
+  collectively(PETSC_COMM_WORLD, [&] {
+    check_output_file("-o/--output", output.string(), OutputKind::Mesh);  // fail now, not after a long run
+    std::error_code ignored;
+    if (!force && std::filesystem::equivalent(input, output, ignored))
+      fail("output {} is the input file; choose another name or pass --force to overwrite it",
+           output.string());
+  });
 }
 
 namespace {
@@ -68,10 +71,10 @@ struct OptimizationRun::Impl {
   std::vector<double> input_volumes;
   double mesh_volume = 0.0;
   QualitySummary quality_before;
+  std::unique_ptr<Boundary> boundary;
   std::unique_ptr<Functional> functional;
   OwnedVec cell_size;
 
-  std::unique_ptr<Boundary> boundary;
   Impl(const std::filesystem::path& input, MethodOptions& m)
       : method(m), mesh(load(input)), x(mesh.coordinates()) {
     read_seconds = MPI_Wtime() - start;
@@ -101,6 +104,7 @@ struct OptimizationRun::Impl {
     const int ranks = mpi_size(PETSC_COMM_WORLD);
     say("reading {}{} ...\n", input.string(),
         ranks > 1 ? fmt::format(" and distributing it over {} processes", ranks) : "");
+    const Activity reading("reading " + input.string());
     return Mesh::load(input);
   }
 
@@ -259,26 +263,45 @@ void add_run_output_options(CLI::App& cmd, RunOutputs& o, const std::string& pic
   o.picture_field = picture_field;
   cmd.add_option("--report", o.report,
                  "write parameters, history, timings and quality as JSON to this file (default: "
-                 "none)");
+                 "none)")
+      ->check(kOutputPath);
   cmd.add_option("--plot-history", o.history_plot,
-                 "draw the Newton defect and F per iteration to this .png or .svg (default: none)");
+                 "draw the Newton defect and F per iteration to this .png or .svg (default: none)")
+      ->check(kOutputPath);
   cmd.add_flag("--no-table", o.progress_lines,
                "one progress line per iteration (with elapsed time) instead of the iteration "
                "table (default: table)");
   cmd.add_option(
       "--picture-before", o.picture_before,
-      "2D: draw the input mesh coloured by --picture-field (.png or .svg; default: none)");
+      "2D: draw the input mesh coloured by --picture-field (.png or .svg; default: none)")
+      ->check(kOutputPath);
   cmd.add_option("--picture", o.picture_after,
-                 "2D: draw the result coloured by --picture-field (.png or .svg; default: none)");
+                 "2D: draw the result coloured by --picture-field (.png or .svg; default: none)")
+      ->check(kOutputPath);
   cmd.add_option("--picture-field", o.picture_field, "cell field the pictures are coloured by")
       ->check(CLI::IsMember(kPictureFields))
       ->capture_default_str();
 }
 
 void check_run_outputs(const RunOutputs& o) {
-  if (!o.report.empty()) check_writable(o.report);
-  for (const std::string& picture : {o.history_plot, o.picture_before, o.picture_after})
-    if (!picture.empty()) picture_format(picture), check_writable(picture);
+  collectively(PETSC_COMM_WORLD, [&] {
+    if (!o.report.empty()) check_output_file("--report", o.report, OutputKind::Json);
+    const std::pair<const char*, const std::string&> pictures[] = {
+        {"--plot-history", o.history_plot},
+        {"--picture-before", o.picture_before},
+        {"--picture", o.picture_after}};
+    for (const auto& [option, path] : pictures)
+      if (!path.empty()) check_output_file(option, path, OutputKind::Picture);
+  });
+}
+
+void check_run_outputs(const RunOutputs& o, int dim) {
+  if (dim == 2) return;
+  for (const std::string& picture : {o.picture_before, o.picture_after})
+    if (!picture.empty())
+      fail("--picture{} {}: pictures are drawn of 2D meshes only; for this {}D mesh write a .vtu "
+           "output and open it in ParaView",
+           picture == o.picture_before ? "-before" : "", picture, dim);
 }
 
 void OptimizationRun::draw(const std::filesystem::path& path, const std::string& field,
@@ -317,8 +340,25 @@ void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesys
   say("\nquality before:\n{}\nquality after:\n{}\n", format_table(r.quality_before),
       format_table(after));
 
+  // How much the domain changed: zero with fixed boundary vertices; with sliding ones bounded
+  // by the input's discretization (vertices stay on its facets or on the given shapes).
+  double volume_after = 0.0;
+  for (double v : quality.volume) volume_after += v;
+  MPI_Allreduce(MPI_IN_PLACE, &volume_after, 1, MPI_DOUBLE, MPI_SUM, r.mesh.comm());
+  const nlohmann::json boundary_change = {
+      {"max_distance_from_input_boundary", r.boundary->max_distance_from_input(r.x)},
+      {"relative_volume_change", (volume_after - r.mesh_volume) / r.mesh_volume}};
+  if (r.method.boundary_options.mode == BoundaryMode::Slide)
+    say("boundary: largest distance of a boundary vertex from the input's boundary {:.3g}, "
+        "domain volume change {:+.3g}%\n",
+        boundary_change["max_distance_from_input_boundary"].get<double>(),
+        100 * boundary_change["relative_volume_change"].get<double>());
+
   const double write_start = MPI_Wtime();
-  write_mesh(r.mesh, output, r.output_fields(quality));
+  {
+    const Activity writing("writing " + output.string());
+    write_mesh(r.mesh, output, r.output_fields(quality));
+  }
   const double write_seconds = MPI_Wtime() - write_start;
   always("wrote {} ({:.2f} s)\n", output.string(), MPI_Wtime() - r.start);
 
@@ -337,20 +377,6 @@ void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesys
         {"solver_options", to_json(r.method.solver)},
         {"boundary", std::string(name(r.method.boundary_options.mode))},
         {"boundary_change", boundary_change},
-  // How much the domain changed: zero with fixed boundary vertices; with sliding ones bounded
-  // by the input's discretization (vertices stay on its facets or on the given shapes).
-  double volume_after = 0.0;
-  for (double v : quality.volume) volume_after += v;
-  MPI_Allreduce(MPI_IN_PLACE, &volume_after, 1, MPI_DOUBLE, MPI_SUM, r.mesh.comm());
-  const nlohmann::json boundary_change = {
-      {"max_distance_from_input_boundary", r.boundary->max_distance_from_input(r.x)},
-      {"relative_volume_change", (volume_after - r.mesh_volume) / r.mesh_volume}};
-  if (r.method.boundary_options.mode == BoundaryMode::Slide)
-    say("boundary: largest distance of a boundary vertex from the input's boundary {:.3g}, "
-        "domain volume change {:+.3g}%\n",
-        boundary_change["max_distance_from_input_boundary"].get<double>(),
-        100 * boundary_change["relative_volume_change"].get<double>());
-
         {"result", to_json(result)},
         {"quality_before", to_json(r.quality_before)},
         {"quality_after", to_json(after)},
@@ -360,11 +386,14 @@ void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesys
         {"peak_rss_mib_all_ranks", memory.sum_mib},
         {"seconds", MPI_Wtime() - r.start}};
     if (extra.is_object()) json.update(extra);
-    write_json(json, outputs.report);
+    on_root(r.mesh.comm(), [&] { write_json(json, outputs.report); });
   }
-  if (!outputs.history_plot.empty() && is_root_rank())
-    plot_history(result.history, result.initial_energy, result.initial_defect, outputs.history_plot,
-                 {.width = 1000, .height = 700, .title = "", .final_defect = result.final_defect});
+  if (!outputs.history_plot.empty())
+    on_root(r.mesh.comm(), [&] {
+      plot_history(result.history, result.initial_energy, result.initial_defect,
+                   outputs.history_plot,
+                   {.width = 1000, .height = 700, .title = "", .final_defect = result.final_defect});
+    });
   if (!outputs.picture_after.empty())
     draw(outputs.picture_after, outputs.picture_field, "result: " + output.string());
 }

@@ -21,6 +21,7 @@
 namespace neomesh::app {
 
 // Throws Error unless `output` has a writable format and differs from `input` (or `force`).
+// Collective (every rank throws).
 void check_output_path(const std::filesystem::path& input, const std::filesystem::path& output,
                        bool force);
 
@@ -36,7 +37,11 @@ struct RunOutputs {
 };
 void add_run_output_options(CLI::App& cmd, RunOutputs& outputs, const std::string& picture_field);
 // Throws Error for an unwritable or unknown-format path, before the run costs any time.
+// Collective (every rank throws).
 void check_run_outputs(const RunOutputs& outputs);
+// Once the mesh is read, before the run: throws Error if `outputs` asks for a picture of a
+// mesh of dimension `dim` that cannot be drawn (3D).
+void check_run_outputs(const RunOutputs& outputs, int dim);
 
 class OptimizationRun {
  public:

@@ -50,6 +50,7 @@ void smooth(SmoothOptions& o) {
   check_run_outputs(o.outputs);
 
   OptimizationRun run(o.input, o.method);
+  check_run_outputs(o.outputs, run.view().dim);  // pictures of a 3D mesh: before the run
   run.set_desired_volumes(desired_volumes(sizes, run.view(), run.dofs(), run.input_volumes()));
   run.print_problem();
   if (!o.outputs.picture_before.empty())

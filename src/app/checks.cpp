@@ -1,0 +1,36 @@
+#include "app/checks.hpp"
+
+#include "core/atomic_file.hpp"
+#include "mesh/mesh_io.hpp"
+#include "report/canvas.hpp"
+
+namespace neomesh::app {
+
+void check_finite(const char* option, std::span<const double> values) {
+  for (double v : values)
+    if (!std::isfinite(v)) fail("{}: every value must be a finite number (got {})", option, v);
+}
+
+void check_output_file(const char* option, const std::string& path, OutputKind kind) {
+  if (path.empty()) fail("{}: the output path is empty", option);
+  try {
+    switch (kind) {
+      case OutputKind::Mesh:
+        check_writable_format(path);
+        break;
+      case OutputKind::Picture:
+        picture_format(path);
+        break;
+      case OutputKind::Json:
+        break;
+    }
+    check_writable(path);
+  } catch (const Error& e) {
+    fail("{}: {}", option, e.what());  // which option, when a run writes several files
+  }
+}
+
+const CLI::Validator kOutputPath(
+    [](const std::string& path) { return path.empty() ? "the output path is empty" : ""; }, "PATH");
+
+}  // namespace neomesh::app
