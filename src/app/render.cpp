@@ -8,12 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "app/checks.hpp"
 #include "app/subcommand.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "energy/functional.hpp"
 #include "geometry/quality.hpp"
+#include "mesh/collective_error.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/mesh_io.hpp"
 #include "report/canvas.hpp"
@@ -81,12 +83,19 @@ std::vector<double> field_values(const Mesh& mesh, const RenderCommandOptions& o
 }
 
 void run_render(const RenderCommandOptions& o) {
-  picture_format(o.output);  // fail before the (possibly long) load
-  check_writable(o.output);
-  check_readable_format(o.input);
   if (!o.range.empty() && o.range.size() != 2)
     fail("--range takes MIN,MAX (got {} numbers)", o.range.size());
-  const Mesh mesh = Mesh::load(o.input);
+  check_finite("--range", o.range);
+  // Fail before the (possibly long) load.
+  collectively(PETSC_COMM_WORLD, [&] {
+    check_output_file("-o/--output", o.output, OutputKind::Picture);
+    check_readable_format(o.input);
+  });
+  // Inverted cells are drawn in red and counted, not refused.
+  const Mesh mesh = [&] {
+    const Activity reading("reading " + o.input);
+    return Mesh::load(o.input, PETSC_COMM_WORLD, InvertedCells::Keep);
+  }();
 
   RenderOptions options;
   options.width = o.width;

@@ -66,6 +66,7 @@ constexpr long long kMaxTag = std::min<long long>(PETSC_MAX_INT, (1LL << 32) - 1
 struct Elements {
   std::vector<PetscInt> corners;
   std::vector<int> tags;
+  std::vector<long long> numbers;  // element tags, for messages (InputMesh::element_tag)
   int order = 1;
 };
 
@@ -371,10 +372,11 @@ class GmshParser {
   }
 
   // One element's nodes (after its number and tags): keeps the corners.
-  void add_element(const ElementType& t, int tag, const long long* nodes) {
+  void add_element(const ElementType& t, int tag, const long long* nodes, long long number) {
     Elements& e = c_.elements[t.polytope];
     for (int i = 0; i < kPolytopeCorners[t.polytope]; ++i) e.corners.push_back(node(nodes[i]));
     e.tags.push_back(tag);
+    e.numbers.push_back(number);
     e.order = std::max(e.order, t.order);
   }
 
@@ -386,21 +388,21 @@ class GmshParser {
       if (binary_) skip_newline();
       for (long long e = 0; e < total;) {
         // ASCII: number, type, tags, nodes per line; binary: blocks of elements of one type.
-        if (!binary_) tag(integer(), "element tag");
+        long long number = binary_ ? 0 : tag(integer(), "element tag");
         const ElementType t = type_of(small_int());
         const int block_size = binary_ ? binary<int>() : 1;
         if (block_size < 1 || block_size > total - e)
           invalid("a block of {} elements where {} are left", block_size, total - e);
         const int num_tags = small_int();
         for (int k = 0; k < block_size; ++k, ++e) {
-          if (binary_) tag(binary<int>(), "element tag");
+          if (binary_) number = tag(binary<int>(), "element tag");
           int physical = kNoTag;
           for (int i = 0; i < num_tags; ++i) {
             const int value = small_int();
             if (i == 0) physical = value;
           }
           for (int i = 0; i < t.nodes; ++i) nodes[i] = binary_ ? binary<int>() : integer();
-          add_element(t, physical, nodes);
+          add_element(t, physical, nodes, number);
         }
       }
     } else {
@@ -414,9 +416,9 @@ class GmshParser {
         const auto it = c_.entity_tag.find({dim, entity});
         const int physical = it == c_.entity_tag.end() ? kNoTag : it->second;
         for (long long k = 0, n = size(); k < n; ++k) {
-          tag(size(), "element tag");
+          const long long number = tag(size(), "element tag");
           for (int i = 0; i < t.nodes; ++i) nodes[i] = size();
-          add_element(t, physical, nodes);
+          add_element(t, physical, nodes, number);
         }
       }
     }
@@ -485,6 +487,7 @@ void add_cells(const Contents& c, const std::string& file, const std::vector<Pet
       const int tag = e.tags[k] > 0 ? e.tags[k] : 0;
       if (tag > 0) cell_tags.insert(tag);
       mesh.add_cell(type, canonical, tag);
+      mesh.element_tag.push_back(e.numbers[k]);
     }
   }
 }

@@ -2,15 +2,17 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
 namespace neomesh {
 
 InputMesh input_from_data(const MeshData& data) {
   InputMesh mesh;
   mesh.dim = data.dim;
   mesh.coords = data.coords;
+  mesh.charts = data.charts;
   const int nv = num_vertices(data.cell_type);
   for (std::int64_t c = 0; c < data.num_cells(); ++c) {
-  mesh.charts = data.charts;
     PetscInt v[8];
     for (int i = 0; i < nv; ++i) v[i] = static_cast<PetscInt>(data.cells[c * nv + i]);
     mesh.add_cell(data.cell_type, v, 0);
@@ -25,6 +27,12 @@ InputMesh input_from_data(const MeshData& data) {
     return std::pair(a.dim, a.tag) < std::pair(b.dim, b.tag);
   });
   return mesh;
+}
+
+std::string describe_cell(const InputMesh& mesh, PetscInt c) {
+  if (c >= 0 && c < static_cast<PetscInt>(mesh.element_tag.size()))
+    return fmt::format("cell {} (0-based; element {} of the file)", c, mesh.element_tag[c]);
+  return fmt::format("cell {} (0-based)", c);
 }
 
 }  // namespace neomesh

@@ -3,6 +3,7 @@
 // in input order; physical groups keep their Gmsh (dim, tag, name).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,9 @@ struct InputMesh {
   std::vector<PetscInt> cell_offsets = {0};
   std::vector<PetscInt> cell_vertices;  // canonical order
   std::vector<int> cell_tags;           // per cell: Gmsh physical tag, or 0 for none
+  // Per cell: the number the file gives it (Gmsh element tag), for messages; empty when the
+  // format numbers cells by position only (FEAT3, generated meshes).
+  std::vector<std::int64_t> element_tag;
   TaggedEntities facets;                // boundary facets in physical groups
   std::vector<VertexSet> vertex_sets;   // named vertex sets (turned into facets, input_topology)
   TaggedEntities points;                // single vertices in physical groups
@@ -61,5 +65,9 @@ struct InputMesh {
 };
 
 InputMesh input_from_data(const MeshData& data);
+
+// How messages name cell `c`: "cell 12 (0-based; element 40 of the file)", or "cell 12
+// (0-based)" without element numbers. Users find the element number in Gmsh.
+std::string describe_cell(const InputMesh& mesh, PetscInt c);
 
 }  // namespace neomesh

@@ -205,22 +205,23 @@ void build_dofs(Impl& m) {
 }
 
 // The common end of load and from_data: validate on rank 0, build, distribute, view.
-Mesh create(MPI_Comm comm, InputMesh& input, const std::string& source) {
-  validate(input, source, comm);
+Mesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
+            InvertedCells inverted = InvertedCells::Refuse) {
+  validate(input, source, comm, inverted == InvertedCells::Keep);
   auto m = std::make_unique<Impl>();
   m->comm = comm;
   m->source = source;
   InputTopology root;
   CellGraph graph;
-  on_root(comm, [&] {
   BoundarySurface surface;
+  on_root(comm, [&] {
     const FacetTable table(input);
     root = input_topology(input, table, source);
-    if (mpi_size(comm) > 1) graph = table.cell_graph();
     surface = boundary_surface(input, table, root);
+    if (mpi_size(comm) > 1) graph = table.cell_graph();
   });
-  m->dm = build_plex(comm, input);
   broadcast(surface, comm);
+  m->dm = build_plex(comm, input);
   PetscInt dim, vStart, vEnd, cStart, cEnd;
   NM_PETSC(DMGetDimension(m->dm, &dim));
   m->dim = static_cast<int>(dim);
@@ -244,14 +245,14 @@ Mesh create(MPI_Comm comm, InputMesh& input, const std::string& source) {
 
 }  // namespace
 
-Mesh Mesh::load(const std::filesystem::path& path, MPI_Comm comm) {
+Mesh Mesh::load(const std::filesystem::path& path, MPI_Comm comm, InvertedCells inverted) {
   InputMesh input;
   on_root(comm, [&] {
     check_input_file(path);
     check_readable_format(path);
     input = path.extension() == ".msh" ? read_gmsh(path) : input_from_data(read_feat(path));
   });
-  return create(comm, input, path.string());
+  return create(comm, input, path.string(), inverted);
 }
 
 Mesh Mesh::from_data(const MeshData& data, const std::string& source, MPI_Comm comm) {

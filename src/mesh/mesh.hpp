@@ -18,11 +18,16 @@
 
 namespace neomesh {
 
+// Whether load() refuses inverted and degenerate cells (to optimize a mesh) or keeps them (to
+// inspect it: `quality` counts them, `render` draws them in red).
+enum class InvertedCells { Refuse, Keep };
+
 class Mesh {
  public:
   // Reads .msh (Gmsh 2.2/4.1, ASCII or binary) or .xml (FEAT3). Validates the mesh (see
   // validate.hpp): throws Error naming the file (and cell) for anything neomesh cannot use.
-  static Mesh load(const std::filesystem::path& path, MPI_Comm comm = PETSC_COMM_WORLD);
+  static Mesh load(const std::filesystem::path& path, MPI_Comm comm = PETSC_COMM_WORLD,
+                   InvertedCells inverted = InvertedCells::Refuse);
   // Builds a mesh from arrays given on rank 0 (other ranks pass an empty MeshData).
   static Mesh from_data(const MeshData& data, const std::string& source,
                         MPI_Comm comm = PETSC_COMM_WORLD);

@@ -154,14 +154,14 @@ std::string find_fold(const InputMesh& mesh, const std::vector<PetscInt>& mirror
       const PetscInt a = it->second.first;
       const bool a_mirrored = std::binary_search(mirrored.begin(), mirrored.end(), a);
       const PetscInt folded = a_mirrored ? a : c, other = a_mirrored ? c : a;
-      return fmt::format("cell {} (0-based, a {}) is inverted (it folds over cell {})", folded,
-                         name(mesh.cell_types[folded]), other);
+      return fmt::format("{}, a {}, is inverted (it folds over {})", describe_cell(mesh, folded),
+                         name(mesh.cell_types[folded]), describe_cell(mesh, other));
     }
   }
   return "";
 }
 
-std::string find_defect(const InputMesh& mesh) {
+std::string find_defect(const InputMesh& mesh, bool keep_inverted) {
   const PetscInt nv = mesh.num_vertices();
   for (PetscInt v = 0; v < nv; ++v)
     for (int d = 0; d < mesh.dim; ++d)
@@ -177,35 +177,43 @@ std::string find_defect(const InputMesh& mesh) {
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
     const CellType type = mesh.cell_types[c];
     if (dimension(type) != mesh.dim)
-      return fmt::format("cell {} (0-based) is a {} in a {}D mesh", c, name(type), mesh.dim);
+      return fmt::format("{} is a {} in a {}D mesh", describe_cell(mesh, c), name(type), mesh.dim);
     const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
     const int n = num_vertices(type);
     for (int i = 0; i < n; ++i) {
       if (cell[i] < 0 || cell[i] >= nv)
-        return fmt::format("cell {} (0-based) refers to vertex {}, but there are {} vertices", c,
-                           cell[i], nv);
+        return fmt::format("{} refers to vertex {}, but there are {} vertices",
+                           describe_cell(mesh, c), cell[i], nv);
       for (int j = 0; j < i; ++j)
         if (cell[i] == cell[j])
-          return fmt::format("cell {} (0-based) has a repeated vertex ({})", c, cell[i]);
+          return fmt::format("{} has a repeated vertex ({})", describe_cell(mesh, c), cell[i]);
       std::copy_n(mesh.coords.data() + cell[i] * mesh.dim, mesh.dim, x + i * mesh.dim);
     }
     const double q = min_scaled_corner_jacobian(type, x);
-    if (q <= kDegenerateJacobian)
-      return fmt::format("cell {} (0-based, a {}) is {} (scaled det J = {:.3g})", c, name(type),
-                         q < -kDegenerateJacobian ? "inverted" : "degenerate", q);
+    if (q <= kDegenerateJacobian && !keep_inverted)
+      return fmt::format("{}, a {}, is {} (scaled det J = {:.3g})", describe_cell(mesh, c),
+                         name(type), q < -kDegenerateJacobian ? "inverted" : "degenerate", q);
   }
   return "";
 }
 
-void validate(InputMesh& mesh, const std::string& source, MPI_Comm comm) {
+void validate(InputMesh& mesh, const std::string& source, MPI_Comm comm, bool keep_inverted) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::string defect;
   if (rank == 0) {
+    const std::vector<PetscInt> input_order =
+        keep_inverted ? mesh.cell_vertices : std::vector<PetscInt>{};
     const std::vector<PetscInt> mirrored = orient_mirrored_cells(mesh);
-    defect = find_defect(mesh);
+    defect = find_defect(mesh, keep_inverted);
     // A mirrored cell among cells of the other orientation may be a fold rather than a mirror.
-    if (defect.empty() && !mirrored.empty()) defect = find_fold(mesh, mirrored);
+    if (defect.empty() && !mirrored.empty()) {
+      const std::string fold = find_fold(mesh, mirrored);
+      if (!keep_inverted)
+        defect = fold;
+      else if (!fold.empty())
+        mesh.cell_vertices = input_order;  // the folded cells stay inverted, to be counted
+    }
   }
   throw_if_any(comm, defect.empty() ? "" : source + ": " + defect);
 }

@@ -22,7 +22,8 @@
 namespace neomesh {
 
 // The first defect of `mesh` as a sentence ("cell 12 (0-based) is inverted ..."), or "".
-std::string find_defect(const InputMesh& mesh);
+// With `keep_inverted`, inverted and degenerate cells are not defects (for inspecting a mesh).
+std::string find_defect(const InputMesh& mesh, bool keep_inverted = false);
 
 // Reorients every mirrored cell of `mesh`; returns their indices, ascending.
 std::vector<PetscInt> orient_mirrored_cells(InputMesh& mesh);
@@ -33,7 +34,10 @@ std::string find_fold(const InputMesh& mesh, const std::vector<PetscInt>& mirror
 
 // Collective: on rank 0 reorients mirrored cells, then throws Error "<source>: <defect>" on
 // every rank if rank 0's `mesh` has a defect.
-void validate(InputMesh& mesh, const std::string& source, MPI_Comm comm);
+// With `keep_inverted` (quality, render: they count and draw inverted cells), inverted and
+// degenerate cells are kept as they are; the mesh is reoriented only if that leaves no fold.
+void validate(InputMesh& mesh, const std::string& source, MPI_Comm comm,
+              bool keep_inverted = false);
 
 // The smallest Jacobian determinant of a cell at its vertices, relative to the cube of its
 // longest edge from each vertex (≤ 0 for an inverted or degenerate cell). `x` holds the

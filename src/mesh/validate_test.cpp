@@ -47,14 +47,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"bad_garbage.msh", "not a valid Gmsh mesh file"},
         BadInput{"bad_truncated.msh", "not a valid Gmsh mesh file"},
         BadInput{"bad_nan.msh", "vertex 5 (0-based) has a non-finite coordinate"},
-        BadInput{"bad_inverted.msh", "cell 0 (0-based, a triangle) is inverted (it folds over"},
+        BadInput{
+            "bad_inverted.msh",
+            "cell 0 (0-based; element 13 of the file), a triangle, is inverted (it folds over"},
         BadInput{"bad_repeated_vertex.msh", "cell 0 (0-based) has a repeated vertex"},
         BadInput{"bad_prism.msh", "cell 0 (0-based) is a triangular_prism"},
         BadInput{"bad_second_order.msh", "second-order"},
         BadInput{"bad_lines_only.msh", "no 2D or 3D cells"},
         BadInput{"bad_mixed_dim.msh", "2D and 3D cells mixed"},
         BadInput{"bad_feat_truncated.xml", "unexpected end of file"},
-        BadInput{"bad_feat_inverted.xml", "cell 2 (0-based, a quadrilateral) is inverted"}),
+        BadInput{"bad_feat_inverted.xml", "cell 2 (0-based), a quadrilateral, is inverted"}),
     [](const auto& info) {
       std::string name = info.param.file;
       std::replace_if(

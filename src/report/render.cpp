@@ -195,13 +195,17 @@ void draw_cells(cairo_t* cr, const MeshView& view, const Layout& l, std::span<co
   // leaves between neighbouring fills.
   cairo_set_line_width(cr, 0.6);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  for_each_cell(view, [&](const CellBlock& block, PetscInt c, PetscInt cell) {
-    const double v = values[cell];
-    set_colour(cr, std::isfinite(v) ? viridis(scale.position(v)) : kInvalidColour);
-    trace_cell(cr, l, coords, block, c);
-    cairo_fill_preserve(cr);
-    cairo_stroke(cr);
-  });
+  // Invalid (inverted) cells last: an inverted cell overlaps its neighbours, which would
+  // otherwise cover it.
+  for (const bool invalid : {false, true})
+    for_each_cell(view, [&](const CellBlock& block, PetscInt c, PetscInt cell) {
+      const double v = values[cell];
+      if (std::isfinite(v) == invalid) return;
+      set_colour(cr, invalid ? kInvalidColour : viridis(scale.position(v)));
+      trace_cell(cr, l, coords, block, c);
+      cairo_fill_preserve(cr);
+      cairo_stroke(cr);
+    });
 }
 
 // All edges as one path, so that an edge shared by two cells is not darkened twice.
