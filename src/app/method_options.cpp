@@ -132,8 +132,9 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
       ->capture_default_str()
       ->group(boundary);
   cmd.add_flag("--thesis", o.thesis,
-               "the thesis' conventions: uniform desired volumes, no practical stopping "
-               "criterion (iterate to the defect tolerance), Riesz solve to 1e-8; default: off")
+               "the thesis' conventions: uniform desired volumes, fixed boundary vertices, no "
+               "practical stopping criterion (iterate to the defect tolerance), Riesz solve to "
+               "1e-8; default: off")
       ->group(method);
 }
 
@@ -171,6 +172,7 @@ void finalize(MethodOptions& o) {
       "--hess-pc", o.hess_pc, {"hessian", HessianPreconditioner::Hessian},
       {"laplacian", HessianPreconditioner::Laplacian});
   o.solver.practical = !(o.no_practical || o.thesis);
+  if (o.thesis) o.boundary = "fixed";  // the thesis' H¹₀ setting
   o.boundary_options.mode = parse_boundary_mode(o.boundary);
   const double angle = o.boundary_options.feature_angle;
   if (!(angle > 0 && angle < 180)) fail("--feature-angle must be in (0, 180) degrees (got {})", angle);

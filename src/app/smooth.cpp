@@ -1,5 +1,5 @@
 // `neomesh smooth IN -o OUT`: every cell towards an ideal cell of its desired volume
-// (thesis chapter 5), boundary vertices fixed.
+// (thesis chapter 5), boundary vertices sliding along the boundary (fixed with --thesis).
 #include <filesystem>
 #include <memory>
 
@@ -69,11 +69,16 @@ void smooth(SmoothOptions& o) {
 
 Subcommand add_smooth(CLI::App& app) {
   auto o = std::make_shared<SmoothOptions>();
+  // The worst cells of real meshes touch the boundary, and only sliding vertices can fix them
+  // (box_with_hole: min scaled Jacobian 0.024 fixed, 0.151 sliding); the boundary stays on the
+  // input's facets, corners and group borders stay put (docs/boundary.md).
+  o->method.boundary = "slide";
   CLI::App* cmd = app.add_subcommand(
       "smooth",
-      "Improve the shape of every cell. Moves the interior vertices (connectivity and boundary\n"
-      "stay) to minimize the Neo-Hookean energy with the quasi-Newton method of the thesis;\n"
-      "prints one row per iteration and the quality before and after.");
+      "Improve the shape of every cell. Moves the vertices (the connectivity stays; boundary\n"
+      "vertices slide along the boundary, corners stay) to minimize the Neo-Hookean energy with\n"
+      "the quasi-Newton method of the thesis; prints one row per iteration and the quality\n"
+      "before and after.");
   cmd->add_option("input", o->input, "mesh to smooth (.msh Gmsh 2.2/4.1, .xml FEAT3)")->required();
   cmd->add_option("-o,--output", o->output, "smoothed mesh (.vtu with quality fields, or .msh)")
       ->required();

@@ -82,7 +82,7 @@ def plate(tmp, quads):
     mesh = os.path.join(tmp, f"plate-{kind}.msh")
     run(["gmsh", "-2", os.path.join(EXAMPLES, "plate_with_holes.geo"), "-setnumber", "quads",
          str(int(quads)), "-format", "msh41", "-o", mesh], tmp)
-    fixed = smooth(tmp, mesh, f"fixed-{kind}.msh")
+    fixed = smooth(tmp, mesh, f"fixed-{kind}.msh", "--boundary", "fixed")
     slide = smooth(tmp, mesh, f"slide-{kind}.msh", "--boundary", "slide")
     shape = smooth(tmp, mesh, f"shape-{kind}.msh", "--boundary", "slide", "--shape",
                    "holes=" + HOLES_LEVEL_SET)
@@ -115,7 +115,7 @@ def box_with_hole(tmp):
     mesh = os.path.join(tmp, "box.msh")
     run(["gmsh", "-3", os.path.join(EXAMPLES, "box_with_hole.geo"), "-format", "msh41", "-o",
          mesh], tmp)
-    fixed = smooth(tmp, mesh, "box-fixed.msh")
+    fixed = smooth(tmp, mesh, "box-fixed.msh", "--boundary", "fixed")
     slide = smooth(tmp, mesh, "box-slide.msh", "--boundary", "slide")
     shape = smooth(tmp, mesh, "box-shape.msh", "--boundary", "slide", "--shape",
                    "sphere=sphere:0.5,0.5,0.5,0.25")
