@@ -40,8 +40,9 @@ bool is_parse_failure(std::string_view what) {
 
 std::string shorten(std::string_view text, std::size_t max) {
   if (text.size() <= max) return std::string(text);
-  const std::size_t keep = max > 20 ? max - 20 : max;
-  return fmt::format("{}... ({} characters)", text.substr(0, keep), text.size());
+  const std::string rest = fmt::format("... ({} characters)", text.size());
+  const std::size_t keep = max > 2 * rest.size() ? max - rest.size() : rest.size();
+  return std::string(text.substr(0, keep)) + rest;
 }
 
 Activity::Activity(std::string what) : uncaught_(std::uncaught_exceptions()) {
