@@ -23,7 +23,8 @@ namespace neomesh::app {
 void check_output_path(const std::filesystem::path& input, const std::filesystem::path& output,
                        bool force) {
   collectively(PETSC_COMM_WORLD, [&] {
-    check_output_file("-o/--output", output.string(), OutputKind::Mesh);  // fail now, not after a long run
+    // Fail now, not after a long run.
+    check_output_file("-o/--output", output.string(), OutputKind::Mesh);
     std::error_code ignored;
     if (!force && std::filesystem::equivalent(input, output, ignored))
       fail("output {} is the input file; choose another name or pass --force to overwrite it",
@@ -272,8 +273,8 @@ void add_run_output_options(CLI::App& cmd, RunOutputs& o, const std::string& pic
                "one progress line per iteration (with elapsed time) instead of the iteration "
                "table (default: table)");
   cmd.add_option(
-      "--picture-before", o.picture_before,
-      "2D: draw the input mesh coloured by --picture-field (.png or .svg; default: none)")
+         "--picture-before", o.picture_before,
+         "2D: draw the input mesh coloured by --picture-field (.png or .svg; default: none)")
       ->check(kOutputPath);
   cmd.add_option("--picture", o.picture_after,
                  "2D: draw the result coloured by --picture-field (.png or .svg; default: none)")
@@ -299,9 +300,10 @@ void check_run_outputs(const RunOutputs& o, int dim) {
   if (dim == 2) return;
   for (const std::string& picture : {o.picture_before, o.picture_after})
     if (!picture.empty())
-      fail("--picture{} {}: pictures are drawn of 2D meshes only; for this {}D mesh write a .vtu "
-           "output and open it in ParaView",
-           picture == o.picture_before ? "-before" : "", picture, dim);
+      fail(
+          "--picture{} {}: pictures are drawn of 2D meshes only; for this {}D mesh write a .vtu "
+          "output and open it in ParaView",
+          picture == o.picture_before ? "-before" : "", picture, dim);
 }
 
 void OptimizationRun::draw(const std::filesystem::path& path, const std::string& field,
@@ -390,9 +392,9 @@ void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesys
   }
   if (!outputs.history_plot.empty())
     on_root(r.mesh.comm(), [&] {
-      plot_history(result.history, result.initial_energy, result.initial_defect,
-                   outputs.history_plot,
-                   {.width = 1000, .height = 700, .title = "", .final_defect = result.final_defect});
+      plot_history(
+          result.history, result.initial_energy, result.initial_defect, outputs.history_plot,
+          {.width = 1000, .height = 700, .title = "", .final_defect = result.final_defect});
     });
   if (!outputs.picture_after.empty())
     draw(outputs.picture_after, outputs.picture_field, "result: " + output.string());

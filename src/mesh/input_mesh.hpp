@@ -42,14 +42,14 @@ struct InputMesh {
   std::vector<PetscInt> cell_offsets = {0};
   std::vector<PetscInt> cell_vertices;  // canonical order
   std::vector<int> cell_tags;           // per cell: Gmsh physical tag, or 0 for none
-  // Per cell: the number the file gives it (Gmsh element tag), for messages; empty when the
-  // format numbers cells by position only (FEAT3, generated meshes).
-  std::vector<std::int64_t> element_tag;
   TaggedEntities facets;                // boundary facets in physical groups
   std::vector<VertexSet> vertex_sets;   // named vertex sets (turned into facets, input_topology)
   TaggedEntities points;                // single vertices in physical groups
   std::vector<PhysicalGroup> groups;    // every group above, sorted by (dim, tag)
   std::vector<Chart> charts;            // FEAT3 charts; VertexSet::chart names them
+  // Per cell: the number the file gives it (Gmsh element tag), for messages; empty when the
+  // format numbers cells by position only (FEAT3, generated meshes).
+  std::vector<std::int64_t> element_tag;
 
   PetscInt num_vertices() const { return static_cast<PetscInt>(coords.size()) / dim; }
   PetscInt num_cells() const { return static_cast<PetscInt>(cell_types.size()); }
