@@ -4,6 +4,7 @@
 
 #include "app/checks.hpp"
 #include "app/subcommand.hpp"
+#include "boundary/boundary_distance.hpp"
 #include "core/atomic_file.hpp"
 #include "core/log.hpp"
 #include "geometry/quality.hpp"
@@ -18,11 +19,43 @@ namespace {
 struct QualityOptions {
   std::string input;
   std::string json;
+  std::string reference;
 };
+
+double total_volume(const Mesh& mesh) {
+  double sum = 0.0;
+  for (double v : cell_quality(mesh.view(), mesh.view().coords).volume) sum += v;
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
+  return sum;
+}
+
+// How far the mesh's boundary is from the reference's (a mesh before smoothing): the largest
+// distance of a boundary vertex from the reference's boundary facets, and the relative change
+// of the domain's volume.
+nlohmann::json compare_boundary(const Mesh& mesh, const std::string& reference_file) {
+  const Mesh reference = [&] {
+    const Activity reading("reading " + reference_file);
+    return Mesh::load(reference_file, PETSC_COMM_WORLD, InvertedCells::Keep);
+  }();
+  if (reference.dim() != mesh.dim())
+    fail("--reference {} is {}D, the mesh {}D", reference_file, reference.dim(), mesh.dim());
+  const double distance =
+      max_boundary_distance(mesh.view(), mesh.view().coords,
+                            DistanceToBoundary(*reference.view().boundary), mesh.comm());
+  const double before = total_volume(reference);
+  const double change = (total_volume(mesh) - before) / before;
+  always("boundary against {}: largest distance of a boundary vertex from its boundary {:.3g}, "
+         "domain volume change {:+.3g}%\n",
+         reference_file, distance, 100 * change);
+  return {{"reference", reference_file},
+          {"max_distance_from_reference_boundary", distance},
+          {"relative_volume_change", change}};
+}
 
 void run_quality(const QualityOptions& o) {
   collectively(PETSC_COMM_WORLD, [&] {
     check_readable_format(o.input);
+    if (!o.reference.empty()) check_readable_format(o.reference);
     if (!o.json.empty()) check_output_file("--json", o.json, OutputKind::Json);
   });
   // Inverted and degenerate cells are what this command counts, not a reason to refuse.
@@ -33,10 +66,12 @@ void run_quality(const QualityOptions& o) {
   const MeshView& view = mesh.view();
   const QualitySummary summary = summarize(cell_quality(view, view.coords), mesh.comm());
   always("{}\n{}", o.input, format_table(summary));
+  nlohmann::json json = to_json(summary);
+  if (!o.reference.empty()) json["boundary_change"] = compare_boundary(mesh, o.reference);
   if (!o.json.empty())
     on_root(mesh.comm(), [&] {
       AtomicFile file(o.json);
-      file.stream() << to_json(summary).dump(2) << '\n';
+      file.stream() << json.dump(2) << '\n';
       file.commit();
     });
 }
@@ -51,6 +86,10 @@ Subcommand add_quality(CLI::App& app) {
       "corners and Gauss points, scaled Jacobian (1 = ideal, <= 0 = inverted), angles and edge "
       "ratio, and the number of inverted and degenerate cells.");
   cmd->add_option("mesh", options->input, "mesh file (.msh or .xml)")->required();
+  cmd->add_option("--reference", options->reference,
+                  "compare the boundary with this mesh's (e.g. the input of smooth): the largest "
+                  "distance of a boundary vertex from its boundary and the domain volume change "
+                  "(default: none)");
   cmd->add_option("--json", options->json,
                   "also write the summary as JSON to this file (default: none)")
       ->check(kOutputPath);

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "boundary/boundary_distance.hpp"
 #include "boundary/discrete_geometry.hpp"
 #include "boundary/features.hpp"
 #include "boundary/shape.hpp"
@@ -88,7 +89,8 @@ std::unique_ptr<Surface> chart_surface(const Chart& chart, int dim, const std::s
              chart.kind == Chart::Kind::Circle ? "circle" : "sphere", dim);
       return make_sphere({chart.centre[0], chart.centre[1], chart.centre[2]}, chart.radius, dim);
     case Chart::Kind::Polyline: {
-      if (dim != 2) fail("chart '{}' of part '{}' is a 2D curve, but the mesh is 3D", chart.name, part);
+      if (dim != 2)
+        fail("chart '{}' of part '{}' is a 2D curve, but the mesh is 3D", chart.name, part);
       std::vector<Point> points;
       for (std::size_t i = 0; i + 1 < chart.points.size(); i += 2)
         points.emplace_back(chart.points[i], chart.points[i + 1], 0.0);
@@ -96,11 +98,13 @@ std::unique_ptr<Surface> chart_surface(const Chart& chart, int dim, const std::s
       const int n = static_cast<int>(points.size());
       for (int i = 0; i + 1 < n; ++i) segments.push_back({i, i + 1, 0});
       if (chart.closed && n > 2) segments.push_back({n - 1, 0, 0});
-      if (segments.empty()) fail("chart '{}' of part '{}' has fewer than two points", chart.name, part);
+      if (segments.empty())
+        fail("chart '{}' of part '{}' has fewer than two points", chart.name, part);
       return std::make_unique<DiscreteSurface>(std::move(points), std::move(segments), 2);
     }
     case Chart::Kind::SurfaceMesh: {
-      if (dim != 3) fail("chart '{}' of part '{}' is a surface, but the mesh is 2D", chart.name, part);
+      if (dim != 3)
+        fail("chart '{}' of part '{}' is a surface, but the mesh is 2D", chart.name, part);
       std::vector<Point> points;
       for (std::size_t i = 0; i + 2 < chart.points.size(); i += 3)
         points.emplace_back(chart.points[i], chart.points[i + 1], chart.points[i + 2]);
@@ -150,7 +154,7 @@ struct Boundary::Impl {
   std::vector<const Surface*> sliding_surface;
   std::vector<const Curve*> sliding_curve;
   BoundarySummary summary;
-  mutable std::unique_ptr<SimplexSet> whole_boundary;  // for distances, built when first asked
+  mutable std::unique_ptr<DistanceToBoundary> input_boundary;  // built when first asked
 
   Impl(const MeshView& v, const DofMap& d, const BoundaryOptions& o)
       : view(v), dofs(d), options(o), surface(*v.boundary) {
@@ -254,18 +258,19 @@ struct Boundary::Impl {
         const Point p = boundary_point(surface, b);
         const double distance = (s.closest_point(p) - p).norm();
         if (!(distance <= kShapeTolerance * size[b]))
-          fail("{}: the vertex at ({:g}, {:g}{}) (number {} in input order) is {:.3g} from it, "
-               "more than {:g} of the local mesh size {:.3g}",
-               what, p[0], p[1], surface.dim == 3 ? fmt::format(", {:g}", p[2]) : "",
-               surface.input_vertex[b] + 1, distance, kShapeTolerance,
-               size[b]);
+          fail(
+              "{}: the vertex at ({:g}, {:g}{}) (number {} in input order) is {:.3g} from it, "
+              "more than {:g} of the local mesh size {:.3g}",
+              what, p[0], p[1], surface.dim == 3 ? fmt::format(", {:g}", p[2]) : "",
+              surface.input_vertex[b] + 1, distance, kShapeTolerance, size[b]);
       }
   }
 
   void build_patches() {
     const int np = features.num_patches;
     std::vector<std::vector<PetscInt>> facets(np);
-    for (PetscInt f = 0; f < surface.num_facets(); ++f) facets[features.facet_patch[f]].push_back(f);
+    for (PetscInt f = 0; f < surface.num_facets(); ++f)
+      facets[features.facet_patch[f]].push_back(f);
     const std::map<int, std::string> shapes = shapes_by_part();
     const std::vector<double> size = vertex_sizes();
     patch_surface.resize(np);
@@ -299,8 +304,7 @@ struct Boundary::Impl {
         patch_surface[p] = std::make_unique<DiscreteSurface>(std::move(s.points),
                                                              std::move(s.simplices), surface.dim);
       }
-      summary.patch_geometry.push_back(
-          fmt::format("{}: {}", label, patch_surface[p]->describe()));
+      summary.patch_geometry.push_back(fmt::format("{}: {}", label, patch_surface[p]->describe()));
     }
   }
 
@@ -328,7 +332,8 @@ struct Boundary::Impl {
         return it->second;
       };
       for (const auto& e : edges) segments.push_back({point_index(e[0]), point_index(e[1]), 0});
-      ridge_curve.push_back(std::make_unique<DiscreteCurve>(std::move(points), std::move(segments)));
+      ridge_curve.push_back(
+          std::make_unique<DiscreteCurve>(std::move(points), std::move(segments)));
     }
   }
 
@@ -424,21 +429,10 @@ struct Boundary::Impl {
   }
 
   double max_distance_from_input(Vec x) const {
-    if (!whole_boundary) {
-      std::vector<PetscInt> all(surface.num_facets());
-      for (PetscInt f = 0; f < surface.num_facets(); ++f) all[f] = f;
-      Simplices s = triangulate(surface, all);
-      whole_boundary = std::make_unique<SimplexSet>(std::move(s.points), std::move(s.simplices),
-                                                    surface.dim == 2 ? 2 : 3);
-    }
+    if (!input_boundary) input_boundary = std::make_unique<DistanceToBoundary>(surface);
     std::vector<double> local(static_cast<std::size_t>(dofs.num_local_dofs()));
     dofs.global_to_local(x, local);
-    double largest = 0.0;
-    for (PetscInt u = 0; u < view.num_vertices; ++u)
-      if (view.on_boundary[u] && view.owned[u])
-        largest = std::max(largest, whole_boundary->closest(local_point(local, u)).distance);
-    MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, dofs.comm());
-    return largest;
+    return max_boundary_distance(view, local, *input_boundary, dofs.comm());
   }
 };
 

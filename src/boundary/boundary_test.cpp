@@ -110,8 +110,9 @@ TEST(Shape, ParsesEveryKindAndRefusesBadSpecs) {
   const auto level = parse_shape("levelset:x^2+y^2-0.25", 2);
   EXPECT_NEAR(level->closest_point({0.6, 0.0, 0})[0], 0.5, 1e-12);
   EXPECT_NEAR(level->normal({0.5, 0.0, 0})[0], 1.0, 1e-8);
-  for (const char* bad : {"circle", "circle:0,0", "circle:0,0,-1", "circle:0,0,x", "circle:0,,1",
-                          "sphere:0,0,1", "blob:1", "levelset:", "levelset:x+", "plane:0,0,0,0,0,0"})
+  for (const char* bad :
+       {"circle", "circle:0,0", "circle:0,0,-1", "circle:0,0,x", "circle:0,,1", "sphere:0,0,1",
+        "blob:1", "levelset:", "levelset:x+", "plane:0,0,0,0,0,0"})
     EXPECT_THROW(parse_shape(bad, 2), Error) << bad;
   EXPECT_THROW(parse_shape("circle:0,0,1", 3), Error);
 }

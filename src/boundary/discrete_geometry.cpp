@@ -140,7 +140,8 @@ SimplexSet::SimplexSet(std::vector<Point> points, std::vector<std::array<int, 3>
 SimplexSet::Cell SimplexSet::cell_of(const Point& p) const {
   Cell c;
   for (int a = 0; a < 3; ++a)
-    c[a] = static_cast<long long>(std::floor(std::clamp((p[a] - origin_[a]) / spacing_, -1e15, 1e15)));
+    c[a] =
+        static_cast<long long>(std::floor(std::clamp((p[a] - origin_[a]) / spacing_, -1e15, 1e15)));
   return c;
 }
 
@@ -188,7 +189,8 @@ SimplexSet::Hit SimplexSet::closest(const Point& p) const {
     for (long long i = lo[0]; i <= hi[0]; ++i)
       for (long long j = lo[1]; j <= hi[1]; ++j)
         for (long long k = lo[2]; k <= hi[2]; ++k) {
-          const long long ring = std::max({std::abs(i - c[0]), std::abs(j - c[1]), std::abs(k - c[2])});
+          const long long ring =
+              std::max({std::abs(i - c[0]), std::abs(j - c[1]), std::abs(k - c[2])});
           if (ring == r) visit({i, j, k}, p, best);
         }
     if (best.distance <= static_cast<double>(r - 1) * spacing_) break;
@@ -232,12 +234,14 @@ DiscreteCurve::DiscreteCurve(std::vector<Point> points, std::vector<std::array<i
     : set_(std::move(points), std::move(segments), 2) {
   std::vector<Point> weighted;
   for (int s = 0; s < static_cast<int>(set_.simplices().size()); ++s)
-    weighted.push_back(set_.points()[set_.simplices()[s][1]] - set_.points()[set_.simplices()[s][0]]);
+    weighted.push_back(set_.points()[set_.simplices()[s][1]] -
+                       set_.points()[set_.simplices()[s][0]]);
   point_tangent_ = point_average(set_, weighted);
 }
 
 Point DiscreteCurve::segment_tangent(int s) const {
-  return (set_.points()[set_.simplices()[s][1]] - set_.points()[set_.simplices()[s][0]]).normalized();
+  return (set_.points()[set_.simplices()[s][1]] - set_.points()[set_.simplices()[s][0]])
+      .normalized();
 }
 
 Point DiscreteCurve::closest_point(const Point& p) const {

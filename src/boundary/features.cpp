@@ -152,8 +152,8 @@ void features_3d(const BoundarySurface& s, double angle, BoundaryFeatures& out) 
       ridge = s.facet_part[x.facet] != s.facet_part[y.facet] || between > angle;
       if (!ridge) patches.join(x.facet, y.facet);
     }
-    edges.push_back({uses[i].a, uses[i].b, static_cast<PetscInt>(i), static_cast<PetscInt>(j),
-                     ridge});
+    edges.push_back(
+        {uses[i].a, uses[i].b, static_cast<PetscInt>(i), static_cast<PetscInt>(j), ridge});
     i = j;
   }
   out.facet_patch = patches.labels(out.num_patches);
@@ -161,7 +161,8 @@ void features_3d(const BoundarySurface& s, double angle, BoundaryFeatures& out) 
   // The two patches a ridge edge separates (sorted), or (-1, -1).
   auto sides = [&](const Edge& e) -> std::array<int, 2> {
     if (e.last - e.first != 2) return {-1, -1};
-    const int p = out.facet_patch[uses[e.first].facet], q = out.facet_patch[uses[e.first + 1].facet];
+    const int p = out.facet_patch[uses[e.first].facet],
+              q = out.facet_patch[uses[e.first + 1].facet];
     return {std::min(p, q), std::max(p, q)};
   };
   std::vector<std::vector<PetscInt>> ridge_edges_at(nv);

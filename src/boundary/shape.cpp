@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include <Eigen/Dense>
 #include <muParser.h>
+#include <Eigen/Dense>
 
 #include "core/error.hpp"
 
@@ -262,9 +262,10 @@ std::unique_ptr<Curve> make_intersection(const Surface& a, const Surface& b) {
 std::unique_ptr<Surface> parse_shape(std::string_view spec, int dim) {
   const auto colon = spec.find(':');
   if (colon == std::string_view::npos)
-    fail("--shape '{}': expected KIND:PARAMETERS (circle, sphere, line, plane, cylinder or "
-         "levelset)",
-         spec);
+    fail(
+        "--shape '{}': expected KIND:PARAMETERS (circle, sphere, line, plane, cylinder or "
+        "levelset)",
+        spec);
   const std::string_view kind = spec.substr(0, colon), rest = spec.substr(colon + 1);
   auto need_dim = [&](int d) {
     if (dim != d) fail("--shape '{}': a {} needs a {}D mesh, this one is {}D", spec, kind, d, dim);
@@ -307,8 +308,8 @@ std::unique_ptr<Surface> parse_shape(std::string_view spec, int dim) {
     if (rest.empty()) fail("--shape '{}': expected levelset:EXPRESSION", spec);
     return make_level_set(std::string(rest), dim);
   }
-  fail("--shape '{}': unknown shape '{}' (circle, sphere, line, plane, cylinder or levelset)",
-       spec, kind);
+  fail("--shape '{}': unknown shape '{}' (circle, sphere, line, plane, cylinder or levelset)", spec,
+       kind);
 }
 
 }  // namespace neomesh

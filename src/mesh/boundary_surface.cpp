@@ -48,9 +48,9 @@ void broadcast_vector(std::vector<T>& v, MPI_Datatype type, MPI_Comm comm) {
 }
 
 nlohmann::json to_json(const Chart& c) {
-  return {{"name", c.name},         {"kind", static_cast<int>(c.kind)},
-          {"centre", c.centre},     {"radius", c.radius},
-          {"points", c.points},     {"closed", c.closed},
+  return {{"name", c.name},          {"kind", static_cast<int>(c.kind)},
+          {"centre", c.centre},      {"radius", c.radius},
+          {"points", c.points},      {"closed", c.closed},
           {"triangles", c.triangles}};
 }
 

@@ -79,10 +79,10 @@ TEST(SlidingBoundary, HexesFollowTheGradingWithinFacesAndAlongEdges) {
 }
 
 struct RingOutcome {
-  double worst_gap_ratio = 0.0;      // largest / smallest angular gap, over the circles
-  double worst_radius_error = 0.0;   // largest |r − R| of a vertex of a circle
-  double worst_height_error = 0.0;   // shell: largest |z − z₀| of a vertex of a top/bottom circle
-  double min_det = 0.0;              // smallest det G at a quadrature point
+  double worst_gap_ratio = 0.0;     // largest / smallest angular gap, over the circles
+  double worst_radius_error = 0.0;  // largest |r − R| of a vertex of a circle
+  double worst_height_error = 0.0;  // shell: largest |z − z₀| of a vertex of a top/bottom circle
+  double min_det = 0.0;             // smallest det G at a quadrature point
   // Largest |r − R| relative to the sagitta R (1 − cos(g/2)) of the input's largest gap g.
   double worst_sagitta_ratio = 0.0;
 };
@@ -94,8 +94,8 @@ RingOutcome smooth_ring(CellType type, int n, int m,
   BoundaryOptions options(BoundaryMode::Slide);
   options.shapes = shapes;
   ThesisProblem p(ring(type, n, m, 3.0), {}, options);
-  const QuasiNewtonResult result = p.minimize(QuasiNewtonOptions{
-      .energy_roundoff = energy_roundoff(p.energy, p.view.dim, p.volume)});
+  const QuasiNewtonResult result = p.minimize(
+      QuasiNewtonOptions{.energy_roundoff = energy_roundoff(p.energy, p.view.dim, p.volume)});
   if (getenv("NEOMESH_TRACE"))
     for (const auto& r : result.history)
       std::printf("%d %d %.3e %.3e %.10e %.2f %.2f %d %d\n", r.k, r.armijo_steps, r.defect,
@@ -119,8 +119,10 @@ RingOutcome smooth_ring(CellType type, int n, int m,
     const double R = radius < 0.75 ? 0.5 : 1.0;
     const double error = std::abs(std::hypot(x[v * d], x[v * d + 1]) - R);
     out.worst_radius_error = std::max(out.worst_radius_error, error);
-    out.worst_sagitta_ratio = std::max(out.worst_sagitta_ratio, error / (R * (1 - std::cos(gap / 2))));
-    if (d == 3) out.worst_height_error = std::max(out.worst_height_error, std::abs(x[v * d + 2] - z));
+    out.worst_sagitta_ratio =
+        std::max(out.worst_sagitta_ratio, error / (R * (1 - std::cos(gap / 2))));
+    if (d == 3)
+      out.worst_height_error = std::max(out.worst_height_error, std::abs(x[v * d + 2] - z));
     circles[{R, z}].push_back(std::atan2(x[v * d + 1], x[v * d]));
   }
   for (auto& [circle, angles] : circles) {
@@ -128,7 +130,7 @@ RingOutcome smooth_ring(CellType type, int n, int m,
     double smallest = 1e300, largest = 0.0;
     for (std::size_t i = 0; i < angles.size(); ++i) {
       const double g = i + 1 < angles.size() ? angles[i + 1] - angles[i]
-                                              : angles[0] + 2 * std::numbers::pi - angles[i];
+                                             : angles[0] + 2 * std::numbers::pi - angles[i];
       smallest = std::min(smallest, g);
       largest = std::max(largest, g);
     }

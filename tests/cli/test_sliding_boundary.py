@@ -96,6 +96,14 @@ def plate(tmp, quads):
     check(min_sj(slide) >= min_sj(fixed) + margin,
           f"plate {kind}: sliding ends above the fixed boundary ({min_sj(slide):.3f} vs "
           f"{min_sj(fixed):.3f})")
+    # `quality --reference` measures what the run reported: on the input's facets, volume +.
+    run([NEOMESH, "quality", f"slide-{kind}.msh", "--reference", mesh, "--json", "q.json"], tmp)
+    with open(os.path.join(tmp, "q.json")) as f:
+        change = json.load(f)["boundary_change"]
+    check(change["max_distance_from_reference_boundary"] <= 1e-12 and
+          abs(change["relative_volume_change"] -
+              slide["boundary_change"]["relative_volume_change"]) <= 1e-12,
+          f"plate {kind}: quality --reference agrees with the run's report ({change})")
     before = read_msh(mesh)
     box = [(0, 0, 0), (4, 0, 0), (4, 2, 0), (0, 2, 0)]
     h = 0.1  # edge length on the holes (h/2 of the .geo's 0.2)
