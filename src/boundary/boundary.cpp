@@ -25,17 +25,6 @@ constexpr double kShapeTolerance = 1e-6;
 // plane's normal this close to an axis is taken as that axis, exactly.
 constexpr double kFlatTolerance = 1e-12;
 
-Point boundary_point(const BoundarySurface& s, PetscInt b) {
-  Point p = Point::Zero();
-  for (int j = 0; j < s.dim; ++j) p[j] = s.coords[b * s.dim + j];
-  return p;
-}
-
-std::span<const PetscInt> facet(const BoundarySurface& s, PetscInt f) {
-  return {s.facet_vertices.data() + s.facet_offsets[f],
-          static_cast<std::size_t>(s.facet_offsets[f + 1] - s.facet_offsets[f])};
-}
-
 // ±e_j exactly if n is that close to an axis; n otherwise.
 Point snap_to_axis(const Point& n) {
   for (int j = 0; j < 3; ++j)
@@ -66,11 +55,11 @@ Simplices triangulate(const BoundarySurface& s, const std::vector<PetscInt>& fac
   std::map<PetscInt, int> index;
   auto point_index = [&](PetscInt b) {
     const auto [it, added] = index.emplace(b, static_cast<int>(out.points.size()));
-    if (added) out.points.push_back(boundary_point(s, b));
+    if (added) out.points.push_back(surface_point(s, b));
     return it->second;
   };
   for (PetscInt f : facets) {
-    const auto v = facet(s, f);
+    const auto v = s.facet(f);
     if (v.size() == 2)
       out.simplices.push_back({point_index(v[0]), point_index(v[1]), 0});
     else
@@ -205,32 +194,32 @@ struct Boundary::Impl {
   // The plane the facets lie in, or null.
   std::unique_ptr<Surface> plane_through(const std::vector<PetscInt>& facets) const {
     Point n = Point::Zero(), lo = Point::Constant(1e300), hi = -lo;
-    PetscInt first = facet(surface, facets[0])[0];
+    PetscInt first = surface.facet(facets[0])[0];
     for (PetscInt f : facets) {
-      const auto v = facet(surface, f);
+      const auto v = surface.facet(f);
       for (std::size_t i = 0; i < v.size(); ++i) {
-        const Point p = boundary_point(surface, v[i]);
+        const Point p = surface_point(surface, v[i]);
         lo = lo.cwiseMin(p);
         hi = hi.cwiseMax(p);
       }
       if (surface.dim == 2) {
-        const Point e = boundary_point(surface, v[1]) - boundary_point(surface, v[0]);
+        const Point e = surface_point(surface, v[1]) - surface_point(surface, v[0]);
         const Point m(-e.y(), e.x(), 0.0);
         n += n.dot(m) < 0 ? -m : m;
       } else {
         Point m = Point::Zero();
         for (std::size_t i = 0; i < v.size(); ++i)
-          m += boundary_point(surface, v[i]).cross(boundary_point(surface, v[(i + 1) % v.size()]));
+          m += surface_point(surface, v[i]).cross(surface_point(surface, v[(i + 1) % v.size()]));
         n += n.dot(m) < 0 ? -m : m;
       }
     }
     if (!(n.norm() > 0)) return nullptr;
     n = snap_to_axis(n.normalized());
-    const Point origin = boundary_point(surface, first);
+    const Point origin = surface_point(surface, first);
     const double size = (hi - lo).norm();
     for (PetscInt f : facets)
-      for (PetscInt b : facet(surface, f))
-        if (std::abs(n.dot(boundary_point(surface, b) - origin)) > kFlatTolerance * size)
+      for (PetscInt b : surface.facet(f))
+        if (std::abs(n.dot(surface_point(surface, b) - origin)) > kFlatTolerance * size)
           return nullptr;
     return make_plane(origin, n);
   }
@@ -239,10 +228,10 @@ struct Boundary::Impl {
   std::vector<double> vertex_sizes() const {
     std::vector<double> size(surface.num_vertices(), 0.0);
     for (PetscInt f = 0; f < surface.num_facets(); ++f) {
-      const auto v = facet(surface, f);
+      const auto v = surface.facet(f);
       for (std::size_t i = 0; i < v.size(); ++i) {
         const PetscInt a = v[i], b = v[(i + 1) % v.size()];
-        const double l = (boundary_point(surface, a) - boundary_point(surface, b)).norm();
+        const double l = (surface_point(surface, a) - surface_point(surface, b)).norm();
         size[a] = std::max(size[a], l);
         size[b] = std::max(size[b], l);
       }
@@ -254,8 +243,8 @@ struct Boundary::Impl {
   void check_on_surface(const Surface& s, const std::vector<PetscInt>& facets,
                         const std::vector<double>& size, const std::string& what) const {
     for (PetscInt f : facets)
-      for (PetscInt b : facet(surface, f)) {
-        const Point p = boundary_point(surface, b);
+      for (PetscInt b : surface.facet(f)) {
+        const Point p = surface_point(surface, b);
         const double distance = (s.closest_point(p) - p).norm();
         if (!(distance <= kShapeTolerance * size[b]))
           fail(
@@ -314,7 +303,7 @@ struct Boundary::Impl {
       const auto& edges = features.ridge_edges[r];
       if (a >= 0 && a != b && patch_analytic[a] && patch_analytic[b]) {
         const Surface &sa = *patch_surface[a], &sb = *patch_surface[b];
-        const Point on = boundary_point(surface, edges[0][0]);
+        const Point on = surface_point(surface, edges[0][0]);
         if (sa.is_flat() && sb.is_flat()) {
           const Point direction = sa.normal(on).cross(sb.normal(on));
           ridge_curve.push_back(make_line(on, snap_to_axis(direction.normalized())));
@@ -328,7 +317,7 @@ struct Boundary::Impl {
       std::vector<std::array<int, 3>> segments;
       auto point_index = [&](PetscInt v) {
         const auto [it, added] = index.emplace(v, static_cast<int>(points.size()));
-        if (added) points.push_back(boundary_point(surface, v));
+        if (added) points.push_back(surface_point(surface, v));
         return it->second;
       };
       for (const auto& e : edges) segments.push_back({point_index(e[0]), point_index(e[1]), 0});
@@ -347,7 +336,7 @@ struct Boundary::Impl {
         std::fill_n(f, d, 1);
         continue;
       }
-      const Point at = boundary_point(surface, b);
+      const Point at = surface_point(surface, b);
       if (features.kind[b] == VertexFeature::Surface) {
         const Surface& s = *patch_surface[features.patch[b]];
         const int axis = s.is_flat() ? axis_of(s.normal(at)) : -1;

@@ -39,17 +39,6 @@ struct UnionFind {
   std::vector<std::size_t> parent;
 };
 
-Point point(const BoundarySurface& s, PetscInt v) {
-  Point p = Point::Zero();
-  for (int j = 0; j < s.dim; ++j) p[j] = s.coords[v * s.dim + j];
-  return p;
-}
-
-std::span<const PetscInt> facet(const BoundarySurface& s, PetscInt f) {
-  return {s.facet_vertices.data() + s.facet_offsets[f],
-          static_cast<std::size_t>(s.facet_offsets[f + 1] - s.facet_offsets[f])};
-}
-
 // The angle by which a polyline turns at b coming from a and going on to c, in degrees.
 double turning_angle(const Point& a, const Point& b, const Point& c) {
   const Point d1 = b - a, d2 = c - b;
@@ -69,12 +58,12 @@ Incidence incidence(const BoundarySurface& s) {
   Incidence in;
   in.offsets.assign(s.num_vertices() + 1, 0);
   for (PetscInt f = 0; f < s.num_facets(); ++f)
-    for (PetscInt v : facet(s, f)) ++in.offsets[v + 1];
+    for (PetscInt v : s.facet(f)) ++in.offsets[v + 1];
   std::partial_sum(in.offsets.begin(), in.offsets.end(), in.offsets.begin());
   in.facets.resize(in.offsets.back());
   std::vector<PetscInt> next(in.offsets.begin(), in.offsets.end() - 1);
   for (PetscInt f = 0; f < s.num_facets(); ++f)
-    for (PetscInt v : facet(s, f)) in.facets[next[v]++] = f;
+    for (PetscInt v : s.facet(f)) in.facets[next[v]++] = f;
   return in;
 }
 
@@ -82,15 +71,15 @@ void features_2d(const BoundarySurface& s, double angle, BoundaryFeatures& out) 
   const Incidence in = incidence(s);
   const PetscInt nv = s.num_vertices();
   auto other_end = [&](PetscInt f, PetscInt v) {
-    const auto e = facet(s, f);
+    const auto e = s.facet(f);
     return e[0] == v ? e[1] : e[0];
   };
   std::vector<std::uint8_t> corner(nv, 0);
   for (PetscInt v = 0; v < nv; ++v) {
     const auto edges = in.of(v);
     corner[v] = edges.size() != 2 || s.facet_part[edges[0]] != s.facet_part[edges[1]] ||
-                turning_angle(point(s, other_end(edges[0], v)), point(s, v),
-                              point(s, other_end(edges[1], v))) > angle;
+                turning_angle(surface_point(s, other_end(edges[0], v)), surface_point(s, v),
+                              surface_point(s, other_end(edges[1], v))) > angle;
   }
   UnionFind patches(s.num_facets());
   for (PetscInt v = 0; v < nv; ++v)
@@ -104,10 +93,10 @@ void features_2d(const BoundarySurface& s, double angle, BoundaryFeatures& out) 
 
 // Unit normal of a polygonal facet (Newell's method), in the facet's vertex order.
 Point facet_normal(const BoundarySurface& s, PetscInt f) {
-  const auto v = facet(s, f);
+  const auto v = s.facet(f);
   Point n = Point::Zero();
   for (std::size_t i = 0; i < v.size(); ++i)
-    n += point(s, v[i]).cross(point(s, v[(i + 1) % v.size()]));
+    n += surface_point(s, v[i]).cross(surface_point(s, v[(i + 1) % v.size()]));
   return n.normalized();
 }
 
@@ -121,7 +110,7 @@ void features_3d(const BoundarySurface& s, double angle, BoundaryFeatures& out) 
   };
   std::vector<EdgeUse> uses;
   for (PetscInt f = 0; f < s.num_facets(); ++f) {
-    const auto v = facet(s, f);
+    const auto v = s.facet(f);
     for (std::size_t i = 0; i < v.size(); ++i) {
       const PetscInt p = v[i], q = v[(i + 1) % v.size()];
       uses.push_back({std::min(p, q), std::max(p, q), f, p > q});
@@ -184,7 +173,8 @@ void features_3d(const BoundarySurface& s, double angle, BoundaryFeatures& out) 
     if (at.size() != 2) continue;
     const Edge &e1 = edges[at[0]], &e2 = edges[at[1]];
     const PetscInt a = e1.a == v ? e1.b : e1.a, c = e2.a == v ? e2.b : e2.a;
-    if (sides(e1) != sides(e2) || turning_angle(point(s, a), point(s, v), point(s, c)) > angle)
+    if (sides(e1) != sides(e2) ||
+        turning_angle(surface_point(s, a), surface_point(s, v), surface_point(s, c)) > angle)
       continue;
     out.kind[v] = VertexFeature::Ridge;
     ridges.join(at[0], at[1]);

@@ -18,9 +18,17 @@
 
 #include <petscsys.h>
 
+#include "boundary/shape.hpp"
 #include "mesh/boundary_surface.hpp"
 
 namespace neomesh {
+
+// Boundary vertex b of the surface as a point (z = 0 in 2D).
+inline Point surface_point(const BoundarySurface& s, PetscInt b) {
+  Point p = Point::Zero();
+  for (int j = 0; j < s.dim; ++j) p[j] = s.coords[b * s.dim + j];
+  return p;
+}
 
 enum class VertexFeature : std::uint8_t { Surface, Ridge, Corner };
 

@@ -5,6 +5,7 @@
 // rank 0 from the whole input mesh, so that serial and distributed runs see the same geometry.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,11 @@ struct BoundarySurface {
   std::vector<Chart> charts;
 
   PetscInt num_vertices() const { return static_cast<PetscInt>(input_vertex.size()); }
+  // Facet f's boundary vertices, in cyclic order.
+  std::span<const PetscInt> facet(PetscInt f) const {
+    return {facet_vertices.data() + facet_offsets[f],
+            static_cast<std::size_t>(facet_offsets[f + 1] - facet_offsets[f])};
+  }
   PetscInt num_facets() const { return static_cast<PetscInt>(facet_part.size()); }
   // The boundary vertex with this input number, or -1.
   PetscInt find(PetscInt input_number) const;

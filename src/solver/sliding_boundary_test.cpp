@@ -96,10 +96,6 @@ RingOutcome smooth_ring(CellType type, int n, int m,
   ThesisProblem p(ring(type, n, m, 3.0), {}, options);
   const QuasiNewtonResult result = p.minimize(
       QuasiNewtonOptions{.energy_roundoff = energy_roundoff(p.energy, p.view.dim, p.volume)});
-  if (getenv("NEOMESH_TRACE"))
-    for (const auto& r : result.history)
-      std::printf("%d %d %.3e %.3e %.10e %.2f %.2f %d %d\n", r.k, r.armijo_steps, r.defect,
-                  r.direction_norm, r.energy, r.eta, r.alpha, r.krylov_delta, r.used_s);
   EXPECT_NE(result.reason, StopReason::LineSearchFailed);
   EXPECT_NE(result.reason, StopReason::MaxIterations);
 
