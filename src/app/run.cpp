@@ -251,8 +251,9 @@ a subcommand's options in its section; values given on the command line win:
 Parallel: mpiexec -n 4 neomesh smooth in.msh -o out.msh
 Each subcommand has its own --help. User guide: docs/user-guide.md)";
 
-constexpr int kFailure = 1;     // the command failed: bad input, unwritable output, ...
-constexpr int kUsageError = 2;  // the command line could not be parsed
+// Every failure, a command line that cannot be parsed included: scripts test for non-zero,
+// and the message says what went wrong.
+constexpr int kFailure = 1;
 
 // Open MPI's MPI_Abort without the banner that MPI_Abort prints first ("MPI_ABORT was invoked
 // on rank 0 ... NOTE: invoking MPI_ABORT causes Open MPI to kill all MPI processes"): it ends
@@ -375,7 +376,7 @@ int run(int argc, char** argv) {
     // The same command line on every rank: every rank found the same error.
     return end_failed_command(
         fmt::format("{} (see {})", describe_parse_error(e, args.neomesh, command), help),
-        kUsageError, Agreed::AllRanks);
+        kFailure, Agreed::AllRanks);
   }
   set_verbosity(quiet ? Verbosity::Quiet : verbose ? Verbosity::Verbose : Verbosity::Normal);
 

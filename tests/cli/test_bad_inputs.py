@@ -1,4 +1,4 @@
-"""Bad inputs and options, as a table: every case must exit non-zero with exactly one line
+"""Bad inputs and options, as a table: every case must exit with code 1 and exactly one line
 on stderr, `neomesh: error: ...`, that names the file or option at fault and carries no
 raw standard-library text ("stoi", "std::bad_alloc", ...), and must leave no output file
 (nor a temporary one) behind. The cases of MPI_CASES run again under `mpiexec -n 2`
@@ -211,8 +211,8 @@ def run_case(case, base, ranks=1):
     except subprocess.TimeoutExpired:
         return name, ranks, args, "", ["no exit within 60 s (a hang)"]
     problems = []
-    if proc.returncode not in (1, 2):  # 2: the command line could not be parsed
-        problems.append(f"exit code {proc.returncode}, not 1 (2 for a usage error)")
+    if proc.returncode != 1:
+        problems.append(f"exit code {proc.returncode}, not 1")
     lines = proc.stderr.splitlines()
     if len(lines) != 1 or not lines[0].startswith("neomesh: error: "):
         problems.append(f"stderr is not one 'neomesh: error:' line: {proc.stderr[:2000]!r}")
