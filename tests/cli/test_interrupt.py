@@ -45,6 +45,22 @@ def rank_zero(launcher_pid):
     sys.exit(f"no rank 0 among the children of mpiexec (pid {launcher_pid})")
 
 
+def wait_until_blocked_on_fifo(pid, timeout=60.0):
+    """Waits until `pid` sleeps in open() on a FIFO with no reader (the kernel's
+    wait_for_partner, fifo_open in older kernels): a fixed pause was not enough on a loaded
+    machine, where the signal then came before the write and the FIFO stayed behind."""
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        try:
+            with open(f"/proc/{pid}/wchan") as f:
+                if f.read().strip() in ("wait_for_partner", "fifo_open"):
+                    return
+        except OSError:
+            return  # no /proc: fall back on the time it already took
+        time.sleep(0.05)
+    sys.exit(f"neomesh (pid {pid}) did not reach the write within {timeout:.0f} s")
+
+
 def interrupt_while_writing(tmp, mesh, blocked, ranks):
     """Runs a short smooth that writes out.vtu, then report.json; SIGINT while it blocks on
     opening the temporary file of `blocked`. Returns stderr."""
@@ -68,7 +84,7 @@ def interrupt_while_writing(tmp, mesh, blocked, ranks):
         for line in proc.stdout:
             if line.startswith("stopped after"):
                 break
-        time.sleep(1.0)
+        wait_until_blocked_on_fifo(writer)
         check(proc.poll() is None, f"neomesh ended before the interrupt: {proc.returncode}")
         proc.send_signal(signal.SIGINT)
         _, err = proc.communicate(timeout=30)
