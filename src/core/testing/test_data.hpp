@@ -12,7 +12,7 @@ inline std::filesystem::path data_path(const std::string& name) {
   return std::filesystem::path(dir ? dir : "tests/data") / name;
 }
 
-// A fresh, empty directory for one test's output files.
+// A fresh, empty directory for one test's output files (per process; removed at exit).
 std::filesystem::path scratch_dir(const std::string& test_name);
 
 }  // namespace neomesh::testing

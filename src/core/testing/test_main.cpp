@@ -2,6 +2,10 @@
 // Under `mpiexec -n P` only rank 0 prints gtest's report; every rank runs every test.
 #include <gtest/gtest.h>
 #include <petscsys.h>
+#include <unistd.h>
+
+#include <string>
+#include <vector>
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
@@ -24,10 +28,28 @@ int main(int argc, char** argv) {
 
 namespace neomesh::testing {
 
+namespace {
+
+// The scratch directories of this process, removed when it ends.
+struct ScratchDirs {
+  std::vector<std::filesystem::path> dirs;
+  ~ScratchDirs() {
+    std::error_code ignored;
+    for (const auto& dir : dirs) std::filesystem::remove_all(dir, ignored);
+  }
+};
+ScratchDirs scratch_dirs;
+
+}  // namespace
+
+// One directory per test name and process: `ctest -j` runs every instance of a parameterized
+// test as a process of its own, and they must not share (and wipe) each other's files.
 std::filesystem::path scratch_dir(const std::string& test_name) {
-  auto dir = std::filesystem::temp_directory_path() / ("neomesh-test-" + test_name);
+  auto dir = std::filesystem::temp_directory_path() /
+             ("neomesh-test-" + test_name + "-" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  scratch_dirs.dirs.push_back(dir);
   return dir;
 }
 
