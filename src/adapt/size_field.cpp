@@ -32,17 +32,18 @@ std::string coordinates(std::span<const double> v) {
   return fmt::format("{:.4g}", fmt::join(v, ", "));
 }
 
-// A muparser expression in x, y, z. The parser keeps the addresses of the variables, so both
-// live together on the heap and are never moved.
+// A muparser expression in x, y, z and the time t. The parser keeps the addresses of the variables,
+// so both live together on the heap and are never moved.
 struct Expression {
   mu::Parser parser;
-  double x = 0.0, y = 0.0, z = 0.0;
+  double x = 0.0, y = 0.0, z = 0.0, t = 0.0;
 
   explicit Expression(const std::string& text) {
     try {
       parser.DefineVar("x", &x);
       parser.DefineVar("y", &y);
       parser.DefineVar("z", &z);
+      parser.DefineVar("t", &t);
       parser.SetExpr(text);
       parser.Eval();  // muparser parses on the first evaluation
     } catch (const mu::Parser::exception_type& e) {
@@ -129,8 +130,14 @@ SizeField SizeField::box(std::vector<double> lower, std::vector<double> upper) {
 
 SizeField SizeField::level_set(const std::string& expression) {
   auto phi = std::make_shared<Expression>(expression);
-  return {fmt::format("|{}|", expression), 0,
-          [phi](std::span<const double> p) { return std::abs((*phi)(p)); }};
+  SizeField field(fmt::format("|{}|", expression), 0,
+                  [phi](std::span<const double> p) { return std::abs((*phi)(p)); });
+  field.set_time_ = [phi](double t) { phi->t = t; };
+  return field;
+}
+
+void SizeField::set_time(double t) {
+  if (set_time_) set_time_(t);
 }
 
 SizeField SizeField::cell_values(std::vector<double> values) {

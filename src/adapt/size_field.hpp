@@ -47,7 +47,8 @@ class SizeField {
   static SizeField plane(std::vector<double> point, std::vector<double> normal);
   // Distance to the surface of the axis-aligned box [lower, upper] (inside and outside).
   static SizeField box(std::vector<double> lower, std::vector<double> upper);
-  // d = |φ(x, y, z)| for a signed-distance expression φ (muparser syntax; z = 0 in 2D).
+  // d = |φ(x, y, z, t)| for a signed-distance expression φ (muparser syntax; z = 0 in 2D; t is
+  // the time set by set_time, 0 until then).
   static SizeField level_set(const std::string& expression);
   // Relative volumes per cell, indexed by the cell's number in the input mesh.
   static SizeField cell_values(std::vector<double> values);
@@ -61,6 +62,9 @@ class SizeField {
   std::vector<double> relative_volumes(const MeshView& view, std::span<const double> coords,
                                        const SizeFieldOptions& options, MPI_Comm comm) const;
 
+  // The time t of a level-set expression (a geometry that moves); other fields ignore it.
+  void set_time(double t);
+
   // A one-line description for the run's summary ("distance to the sphere ...").
   const std::string& description() const { return description_; }
 
@@ -71,7 +75,8 @@ class SizeField {
   std::string description_;
   int dim_ = 0;  // dimension the field needs, 0 for any
   Distance distance_;
-  std::vector<double> cell_values_;  // for cell_values(); empty otherwise
+  std::vector<double> cell_values_;       // for cell_values(); empty otherwise
+  std::function<void(double)> set_time_;  // for level_set(); empty otherwise
 };
 
 // Centroid (vertex mean) of every local cell: num_cells × dim values.

@@ -12,15 +12,19 @@
 #include "app/method_options.hpp"
 #include "app/optimization.hpp"
 #include "app/subcommand.hpp"
+#include "app/time_series.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "mesh/collective_error.hpp"
+#include "report/run_report.hpp"
 
 namespace neomesh::app {
 
 namespace {
 
 struct AdaptOptions {
-  std::string input, output, levelset, sizes_file;
+  std::string input, output, levelset, sizes_file, time;
+  int step_updates = 1;  // Picard updates before a time step after the first may stop
   std::vector<double> circle, sphere, plane, box;
   bool force = false;
   SizeFieldOptions sizes;
@@ -76,6 +80,7 @@ void check(const AdaptOptions& o) {
   check_option("--smooth-sizes", o.sizes.smoothing_passes, o.sizes.smoothing_passes >= 0,
                "0 or more");
   check_option("--min-updates", o.picard.min_updates, o.picard.min_updates >= 0, "0 or more");
+  check_option("--step-updates", o.step_updates, o.step_updates >= 0, "0 or more");
   check_option("--update-every", o.picard.update_every, o.picard.update_every >= 1, "at least 1");
   check_option("--update-move", o.picard.update_move, o.picard.update_move >= 0, "0 or more");
   check_option("--update-step", o.picard.update_step_norm, o.picard.update_step_norm >= 0,
@@ -88,16 +93,93 @@ void check(const AdaptOptions& o) {
   check_finite("--box", o.box);
 }
 
+// A geometry that moves: the size field at each time of `times` in turn, every step warm-started
+// from the mesh and desired volumes of the one before; one mesh file, summary line (and
+// picture) per step, and a ParaView collection for an .pvd output.
+void adapt_in_time(const AdaptOptions& o, SizeField& field, OptimizationRun& run,
+                   const std::vector<double>& times) {
+  const std::filesystem::path output = o.output;
+  const auto target_volumes =
+      size_field_volumes(field, o.sizes, run.view(), run.dofs(), run.mesh_volume());
+  const auto set_volumes = [&run](const std::vector<double>& v) { run.set_desired_volumes(v); };
+  std::vector<std::filesystem::path> members;
+  nlohmann::json steps = nlohmann::json::array();
+  const double start = MPI_Wtime();
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    field.set_time(times[i]);
+    PicardOptions picard_options = o.picard;
+    if (i > 0) picard_options.min_updates = o.step_updates;
+    const double step_start = MPI_Wtime();
+    const PicardResult result = picard(run.functional(), run.view(), run.x(), target_volumes,
+                                       set_volumes, picard_options, o.method.solver);
+    const double seconds = MPI_Wtime() - step_start;
+    members.push_back(series_member(output, static_cast<int>(i)));
+    const QualitySummary quality = run.snapshot(members.back());
+    const VolumeRatioStats q =
+        volume_ratio_stats(run.functional().cell_fields(run.x()).volume_ratio, run.dofs().comm());
+    const double min_sj = quality.scaled_jacobian.min;
+    always(
+        "step {}/{}, t = {:.4g}: {} iterations, {} updates, {}; Q in [0.5, 2] for {:.1f}% of "
+        "the cells; min scaled Jacobian {:.3f}; {:.2f} s; wrote {}\n",
+        i + 1, times.size(), times[i], result.run.history.size(), result.update_iterations.size(),
+        describe(result.run.reason), 100 * q.within, min_sj, seconds, members.back().string());
+    if (!o.outputs.picture_after.empty())
+      run.draw(numbered_path("--picture", o.outputs.picture_after, static_cast<int>(i)),
+               o.outputs.picture_field, fmt::format("{}, t = {:.4g}", o.input, times[i]));
+    steps.push_back({{"time", times[i]},
+                     {"file", members.back().string()},
+                     {"iterations", result.run.history.size()},
+                     {"updates", result.update_iterations.size()},
+                     {"stop", describe(result.run.reason)},
+                     {"volume_ratio", to_json(q)},
+                     {"min_scaled_jacobian", min_sj},
+                     {"inverted", quality.inverted},
+                     {"seconds", seconds}});
+  }
+  if (output.extension() == ".pvd") {
+    on_root(run.dofs().comm(), [&] { write_pvd(output, times, members); });
+    always("wrote {}: {} steps ({:.2f} s)\n", output.string(), times.size(), MPI_Wtime() - start);
+  }
+  if (!o.outputs.report.empty())
+    on_root(run.dofs().comm(), [&] {
+      const nlohmann::json report = {{"input", o.input},
+                                     {"output", o.output},
+                                     {"size_field", field.description()},
+                                     {"steps", steps},
+                                     {"seconds", MPI_Wtime() - start}};
+      write_json(report, o.outputs.report);
+    });
+}
+
 void adapt(AdaptOptions& o) {
   if (o.method.thesis) use_thesis_scheme(o);
   finalize(o.method);
   check(o);
-  const SizeField field = make_size_field(o);
-  check_output_path(o.input, o.output, o.force);
+  SizeField field = make_size_field(o);
+  const std::vector<double> times =
+      o.time.empty() ? std::vector<double>{} : parse_time_steps(o.time);
+  const std::filesystem::path output = o.output;
+  if (times.empty() && output.extension() == ".pvd")
+    fail("-o {}: a ParaView collection (.pvd) holds a time series; give --time", o.output);
+  check_output_path(o.input, times.empty() ? output : series_member(output, 0), o.force);
   // Every output is checked before the run, so that a typo does not cost a long run.
   check_run_outputs(o.outputs);
+  if (!times.empty()) {
+    if (!o.outputs.picture_after.empty()) numbered_path("--picture", o.outputs.picture_after, 0);
+    if (!o.outputs.history_plot.empty() || !o.outputs.picture_before.empty())
+      fail(
+          "--plot-history and --picture-before draw one run; with --time use --picture with a "
+          "pattern");
+  }
 
   OptimizationRun run(o.input, o.method);
+  if (!times.empty()) {
+    check_run_outputs(o.outputs, run.view().dim);
+    say("size field: {}\n", field.description());
+    run.print_problem();
+    adapt_in_time(o, field, run, times);
+    return;
+  }
   check_run_outputs(o.outputs, run.view().dim);  // pictures of a 3D mesh: before the run
   say("size field: {}\n", field.description());
   run.print_problem();
@@ -221,6 +303,18 @@ Subcommand add_adapt(CLI::App& app) {
                   "ω in v ← (1−ω) v_old + ω v(centroids), in (0, 1]")
       ->capture_default_str()
       ->group(picard);
+
+  const char* time = "A geometry that moves";
+  cmd->add_option("--time", o->time,
+                  "START:END:STEPS: adapt at STEPS times from START to END (t in --levelset), each "
+                  "step starting from the one before; -o OUT.pvd writes OUT-0000.vtu ... and "
+                  "ParaView's collection, -o OUT.msh writes OUT-0000.msh ...")
+      ->group(time);
+  cmd->add_option("--step-updates", o->step_updates,
+                  "Picard updates before a time step after the first may stop (the first step "
+                  "uses --min-updates)")
+      ->capture_default_str()
+      ->group(time);
 
   add_run_output_options(*cmd, o->outputs, "Q");
   add_method_options(*cmd, o->method);

@@ -94,8 +94,7 @@ struct OptimizationRun::Impl {
     MPI_Allreduce(&local, &mesh_volume, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
     boundary = std::make_unique<Boundary>(view, mesh.dofs(), method.boundary_options);
     functional = std::make_unique<Functional>(view, mesh.dofs(), method.energy,
-                                              boundary->fixed_dofs(),
-                                              boundary->sliding_vertices());
+                                              boundary->fixed_dofs(), boundary->sliding_vertices());
     boundary->project(x);  // onto given shapes and charts: they pass within 1e-6 h
     method.solver.energy_roundoff = energy_roundoff(method.energy, view.dim, mesh_volume);
     prepare_seconds = MPI_Wtime() - start - read_seconds;
@@ -321,6 +320,32 @@ void OptimizationRun::draw(const std::filesystem::path& path, const std::string&
   fail("--picture-field: unknown field '{}'", field);
 }
 
+namespace {
+
+// The energy is infinite for an inverted cell, so the method cannot produce one; this guards
+// the promise that no output file ever contains one.
+void check_valid(const QualitySummary& q) {
+  if (q.inverted > 0 || q.degenerate > 0)
+    fail(
+        "the optimized mesh has {} inverted and {} degenerate cells; nothing was written "
+        "(please report this with the input mesh)",
+        q.inverted, q.degenerate);
+}
+
+}  // namespace
+
+QualitySummary OptimizationRun::snapshot(const std::filesystem::path& output) {
+  Impl& r = *impl_;
+  r.mesh.set_coordinates(r.x);
+  const MeshView& view = r.mesh.view();
+  const CellQuality quality = cell_quality(view, view.coords);
+  const QualitySummary summary = summarize(quality, r.mesh.comm());
+  check_valid(summary);
+  const Activity writing("writing " + output.string());
+  write_mesh(r.mesh, output, r.output_fields(quality));
+  return summary;
+}
+
 void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesystem::path& output,
                              const RunOutputs& outputs, const nlohmann::json& extra) {
   Impl& r = *impl_;
@@ -328,13 +353,7 @@ void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesys
   const MeshView& view = r.mesh.view();
   const CellQuality quality = cell_quality(view, view.coords);
   const QualitySummary after = summarize(quality, r.mesh.comm());
-  // The energy is infinite for an inverted cell, so the method cannot produce one; this
-  // guards the promise that no output file ever contains one.
-  if (after.inverted > 0 || after.degenerate > 0)
-    fail(
-        "the optimized mesh has {} inverted and {} degenerate cells; nothing was written "
-        "(please report this with the input mesh)",
-        after.inverted, after.degenerate);
+  check_valid(after);
 
   always("stopped after {} iterations: {}\nF {:.6g} -> {:.6g}, Newton defect {:.3e} -> {:.3e}\n",
          result.history.size(), describe(result.reason), result.initial_energy, result.final_energy,

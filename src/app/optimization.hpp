@@ -15,6 +15,7 @@
 
 #include "app/method_options.hpp"
 #include "energy/functional.hpp"
+#include "geometry/quality.hpp"
 #include "mesh/mesh.hpp"
 #include "solver/quasi_newton.hpp"
 
@@ -67,6 +68,9 @@ class OptimizationRun {
   // Observer for minimize(): the iteration table (or progress lines with `progress_only`).
   std::function<void(const IterationRecord&)> table_printer(bool progress_only) const;
 
+  // Moves the mesh to x(), checks it has no inverted cell and writes `output` with per-cell
+  // fields (one step of a time series); returns its quality.
+  QualitySummary snapshot(const std::filesystem::path& output);
   // Moves the mesh to x(), checks it has no inverted cell, writes `output` with per-cell
   // fields, and the optional JSON report (with `extra` merged in), history plot and picture.
   void finish(const QuasiNewtonResult& result, const std::filesystem::path& output,
