@@ -108,6 +108,8 @@ struct OptimizationRun::Impl {
     return Mesh::load(input);
   }
 
+  std::pair<CellQuality, QualitySummary> move_mesh_and_check();
+
   // At the current coordinates (view.coords and x agree before the run and after finish()).
   MeshFields output_fields() const {
     return output_fields(cell_quality(mesh.view(), mesh.view().coords));
@@ -320,40 +322,33 @@ void OptimizationRun::draw(const std::filesystem::path& path, const std::string&
   fail("--picture-field: unknown field '{}'", field);
 }
 
-namespace {
-
-// The energy is infinite for an inverted cell, so the method cannot produce one; this guards
-// the promise that no output file ever contains one.
-void check_valid(const QualitySummary& q) {
-  if (q.inverted > 0 || q.degenerate > 0)
+// The mesh moved to x, its cells' quality, and their summary. The energy is infinite for an
+// inverted cell, so the method cannot produce one; the check guards the promise that no
+// output file ever contains one.
+std::pair<CellQuality, QualitySummary> OptimizationRun::Impl::move_mesh_and_check() {
+  mesh.set_coordinates(x);
+  const MeshView& view = mesh.view();
+  CellQuality quality = cell_quality(view, view.coords);
+  const QualitySummary summary = summarize(quality, mesh.comm());
+  if (summary.inverted > 0 || summary.degenerate > 0)
     fail(
         "the optimized mesh has {} inverted and {} degenerate cells; nothing was written "
         "(please report this with the input mesh)",
-        q.inverted, q.degenerate);
+        summary.inverted, summary.degenerate);
+  return {std::move(quality), summary};
 }
 
-}  // namespace
-
 QualitySummary OptimizationRun::snapshot(const std::filesystem::path& output) {
-  Impl& r = *impl_;
-  r.mesh.set_coordinates(r.x);
-  const MeshView& view = r.mesh.view();
-  const CellQuality quality = cell_quality(view, view.coords);
-  const QualitySummary summary = summarize(quality, r.mesh.comm());
-  check_valid(summary);
+  const auto [quality, summary] = impl_->move_mesh_and_check();
   const Activity writing("writing " + output.string());
-  write_mesh(r.mesh, output, r.output_fields(quality));
+  write_mesh(impl_->mesh, output, impl_->output_fields(quality));
   return summary;
 }
 
 void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesystem::path& output,
                              const RunOutputs& outputs, const nlohmann::json& extra) {
   Impl& r = *impl_;
-  r.mesh.set_coordinates(r.x);
-  const MeshView& view = r.mesh.view();
-  const CellQuality quality = cell_quality(view, view.coords);
-  const QualitySummary after = summarize(quality, r.mesh.comm());
-  check_valid(after);
+  const auto [quality, after] = r.move_mesh_and_check();
 
   always("stopped after {} iterations: {}\nF {:.6g} -> {:.6g}, Newton defect {:.3e} -> {:.3e}\n",
          result.history.size(), describe(result.reason), result.initial_energy, result.final_energy,
