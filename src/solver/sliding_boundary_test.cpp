@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 
@@ -85,6 +86,7 @@ struct RingOutcome {
   double min_det = 0.0;             // smallest det G at a quadrature point
   // Largest |r − R| relative to the sagitta R (1 − cos(g/2)) of the input's largest gap g.
   double worst_sagitta_ratio = 0.0;
+  std::size_t iterations = 0;
 };
 
 // Smooths ring(type, n, m, 3) with sliding boundary vertices (on the given shapes, if any)
@@ -103,6 +105,7 @@ RingOutcome smooth_ring(CellType type, int n, int m,
   std::vector<double> x(p.dofs.num_local_dofs());
   p.dofs.global_to_local(p.x, x);
   RingOutcome out;
+  out.iterations = result.history.size();
   // The input's largest angular gap is below 2π/n · 3/2 (θ' ranges over [1/2, 3/2]·2π).
   const double gap = 2 * std::numbers::pi / n * 1.5;
   std::map<std::pair<double, double>, std::vector<double>> circles;  // (R, z₀) → angles
@@ -149,6 +152,13 @@ void expect_even_ring(CellType type, int n, int m) {
   else
     shapes = {{"inner", "cylinder:0,0,0,0,0,1,0.5"}, {"outer", "cylinder:0,0,0,0,0,1,1"}};
   const RingOutcome exact = smooth_ring(type, n, m, shapes);
+  std::printf(
+      "%s ring %d x %d, 3:1 bunched: largest/smallest gap %.3f on the input's polygon (%zu "
+      "iterations, radius error %.1e = %.2f sagittas), %.3f on the circles (%zu iterations, "
+      "radius error %.1e)\n",
+      std::string(name(type)).c_str(), n, m, discrete.worst_gap_ratio, discrete.iterations,
+      discrete.worst_radius_error, discrete.worst_sagitta_ratio, exact.worst_gap_ratio,
+      exact.iterations, exact.worst_radius_error);
   EXPECT_LE(exact.worst_gap_ratio, 1.2);
   EXPECT_LE(exact.worst_radius_error, 1e-10);  // on the circles themselves
   EXPECT_LE(exact.worst_height_error, 1e-14);
