@@ -19,6 +19,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/petsc.hpp"
 
 namespace neomesh::app {
 
@@ -104,6 +105,7 @@ class PetscSession {
     argv_.push_back(nullptr);
     int argc = static_cast<int>(args.size());
     char** argv = argv_.data();
+    configure_singleton_mpi();
     if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0)
       throw Error("could not initialize PETSc/MPI");
     PetscPopSignalHandler();
@@ -375,8 +377,8 @@ int run(int argc, char** argv) {
         command ? "neomesh " + command->get_name() + " --help" : "neomesh --help";
     // The same command line on every rank: every rank found the same error.
     return end_failed_command(
-        fmt::format("{} (see {})", describe_parse_error(e, args.neomesh, command), help),
-        kFailure, Agreed::AllRanks);
+        fmt::format("{} (see {})", describe_parse_error(e, args.neomesh, command), help), kFailure,
+        Agreed::AllRanks);
   }
   set_verbosity(quiet ? Verbosity::Quiet : verbose ? Verbosity::Verbose : Verbosity::Normal);
 

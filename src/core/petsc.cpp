@@ -1,5 +1,7 @@
 #include "core/petsc.hpp"
 
+#include <cstdlib>
+
 #include <filesystem>
 
 namespace neomesh {
@@ -44,6 +46,18 @@ int mpi_size(MPI_Comm comm) {
   int s = 1;
   MPI_Comm_size(comm, &s);
   return s;
+}
+
+// A run not started by mpiexec initializes Open MPI as a singleton, which by default starts a
+// daemon and probes the UCX network transports: most of the wall time of a small run
+// (docs/benchmarks.md, "Start-up"). One process needs neither, so unless the user set them,
+// a singleton skips the daemon and uses the plain point-to-point layer. Under mpiexec nothing
+// changes.
+void configure_singleton_mpi() {
+  for (const char* launched : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+    if (std::getenv(launched)) return;
+  setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+  setenv("OMPI_MCA_pml", "ob1", 0);
 }
 
 }  // namespace neomesh

@@ -102,6 +102,10 @@ class VecWriteView {
   PetscInt size_ = 0;
 };
 
+// Before PetscInitialize: a process not started by mpiexec skips Open MPI's singleton daemon
+// and network-transport probing (unless the user's environment says otherwise).
+void configure_singleton_mpi();
+
 int mpi_rank(MPI_Comm comm = PETSC_COMM_WORLD);
 int mpi_size(MPI_Comm comm = PETSC_COMM_WORLD);
 

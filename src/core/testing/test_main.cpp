@@ -7,8 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "core/petsc.hpp"
+
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
+  neomesh::configure_singleton_mpi();  // ctest starts a process per test: keep start-up short
   if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0) return 1;
   int rank = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
