@@ -175,7 +175,8 @@ void finalize(MethodOptions& o) {
   if (o.thesis) o.boundary = "fixed";  // the thesis' H¹₀ setting
   o.boundary_options.mode = parse_boundary_mode(o.boundary);
   const double angle = o.boundary_options.feature_angle;
-  if (!(angle > 0 && angle < 180)) fail("--feature-angle must be in (0, 180) degrees (got {})", angle);
+  if (!(angle > 0 && angle < 180))
+    fail("--feature-angle must be in (0, 180) degrees (got {})", angle);
   o.boundary_options.shapes.clear();
   for (const std::string& shape : o.shapes) {
     const auto equals = shape.find('=');

@@ -22,8 +22,8 @@ struct MethodOptions {
   std::string riesz = "optimal";
   std::string hess_pc = "laplacian";
   std::optional<double>
-      riesz_rtol;                  // unset: QuasiNewtonOptions' default, the thesis' with --thesis
-  std::string boundary = "fixed";  // resolved into boundary_options by finalize()
+      riesz_rtol;                   // unset: QuasiNewtonOptions' default, the thesis' with --thesis
+  std::string boundary = "fixed";   // resolved into boundary_options by finalize()
   std::vector<std::string> shapes;  // --shape PART=SPEC, resolved likewise
   BoundaryOptions boundary_options;
   bool no_practical = false;

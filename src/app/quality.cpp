@@ -39,14 +39,14 @@ nlohmann::json compare_boundary(const Mesh& mesh, const std::string& reference_f
   }();
   if (reference.dim() != mesh.dim())
     fail("--reference {} is {}D, the mesh {}D", reference_file, reference.dim(), mesh.dim());
-  const double distance =
-      max_boundary_distance(mesh.view(), mesh.view().coords,
-                            DistanceToBoundary(*reference.view().boundary), mesh.comm());
+  const double distance = max_boundary_distance(
+      mesh.view(), mesh.view().coords, DistanceToBoundary(*reference.view().boundary), mesh.comm());
   const double before = total_volume(reference);
   const double change = (total_volume(mesh) - before) / before;
-  always("boundary against {}: largest distance of a boundary vertex from its boundary {:.3g}, "
-         "domain volume change {:+.3g}%\n",
-         reference_file, distance, 100 * change);
+  always(
+      "boundary against {}: largest distance of a boundary vertex from its boundary {:.3g}, "
+      "domain volume change {:+.3g}%\n",
+      reference_file, distance, 100 * change);
   return {{"reference", reference_file},
           {"max_distance_from_reference_boundary", distance},
           {"relative_volume_change", change}};

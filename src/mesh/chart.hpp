@@ -22,10 +22,10 @@ struct Chart {
   };
   std::string name;
   Kind kind = Kind::Circle;
-  std::array<double, 3> centre{};  // Circle, Sphere (z = 0 in 2D)
-  double radius = 0.0;             // Circle, Sphere
-  std::vector<double> points;      // Polyline: 2 values per point; SurfaceMesh: 3 per point
-  bool closed = false;             // Polyline: the last point joins the first
+  std::array<double, 3> centre{};       // Circle, Sphere (z = 0 in 2D)
+  double radius = 0.0;                  // Circle, Sphere
+  std::vector<double> points;           // Polyline: 2 values per point; SurfaceMesh: 3 per point
+  bool closed = false;                  // Polyline: the last point joins the first
   std::vector<std::int64_t> triangles;  // SurfaceMesh: 3 point indices (0-based) per triangle
 };
 

@@ -18,7 +18,7 @@ struct Mesh::Impl {
   std::string source;
   PetscInt global_num_cells = 0;
   PetscInt global_num_vertices = 0;
-  std::vector<PhysicalGroup> groups;   // the same on every rank, sorted by (dim, tag)
+  std::vector<PhysicalGroup> groups;  // the same on every rank, sorted by (dim, tag)
   // Rank 0 only, for the writers: per input cell its physical tag (0 for none), and the facets
   // and points of physical groups in input numbering (input_topology.hpp).
   std::vector<int> cell_tags;

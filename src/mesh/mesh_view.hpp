@@ -49,7 +49,7 @@ struct MeshView {
   std::vector<int> boundary_part;
   std::vector<std::uint8_t> part_count;
   std::vector<BoundaryPartInfo> parts;
-  std::vector<PetscInt> global_cell;  // per local cell: cell number in the input file (0-based)
+  std::vector<PetscInt> global_cell;   // per local cell: cell number in the input file (0-based)
   std::vector<PetscInt> input_vertex;  // per local vertex: its number in the input (0-based)
   // The whole input boundary, the same on every rank (what sliding vertices slide on).
   std::shared_ptr<const BoundarySurface> boundary;
