@@ -43,32 +43,6 @@ int axis_of(const Point& v) {
   return -1;
 }
 
-// Segments (2D) or triangles (3D, quadrilaterals split in two) of some facets, on their own
-// points: what a DiscreteSurface or SimplexSet is built from.
-struct Simplices {
-  std::vector<Point> points;
-  std::vector<std::array<int, 3>> simplices;
-};
-
-Simplices triangulate(const BoundarySurface& s, const std::vector<PetscInt>& facets) {
-  Simplices out;
-  std::map<PetscInt, int> index;
-  auto point_index = [&](PetscInt b) {
-    const auto [it, added] = index.emplace(b, static_cast<int>(out.points.size()));
-    if (added) out.points.push_back(surface_point(s, b));
-    return it->second;
-  };
-  for (PetscInt f : facets) {
-    const auto v = s.facet(f);
-    if (v.size() == 2)
-      out.simplices.push_back({point_index(v[0]), point_index(v[1]), 0});
-    else
-      for (std::size_t k = 1; k + 1 < v.size(); ++k)
-        out.simplices.push_back({point_index(v[0]), point_index(v[k]), point_index(v[k + 1])});
-  }
-  return out;
-}
-
 std::unique_ptr<Surface> chart_surface(const Chart& chart, int dim, const std::string& part) {
   switch (chart.kind) {
     case Chart::Kind::Circle:
@@ -202,16 +176,8 @@ struct Boundary::Impl {
         lo = lo.cwiseMin(p);
         hi = hi.cwiseMax(p);
       }
-      if (surface.dim == 2) {
-        const Point e = surface_point(surface, v[1]) - surface_point(surface, v[0]);
-        const Point m(-e.y(), e.x(), 0.0);
-        n += n.dot(m) < 0 ? -m : m;
-      } else {
-        Point m = Point::Zero();
-        for (std::size_t i = 0; i < v.size(); ++i)
-          m += surface_point(surface, v[i]).cross(surface_point(surface, v[(i + 1) % v.size()]));
-        n += n.dot(m) < 0 ? -m : m;
-      }
+      const Point m = facet_area_normal(surface, f);
+      n += n.dot(m) < 0 ? -m : m;
     }
     if (!(n.norm() > 0)) return nullptr;
     n = snap_to_axis(n.normalized());
@@ -289,7 +255,7 @@ struct Boundary::Impl {
         patch_surface[p] = std::move(plane);
         patch_analytic[p] = 1;
       } else {
-        Simplices s = triangulate(surface, facets[p]);
+        FacetSimplices s = facet_simplices(surface, facets[p]);
         patch_surface[p] = std::make_unique<DiscreteSurface>(std::move(s.points),
                                                              std::move(s.simplices), surface.dim);
       }

@@ -1,28 +1,18 @@
 #include "boundary/boundary_distance.hpp"
 
 #include <algorithm>
+#include <numeric>
 
 #include "boundary/discrete_geometry.hpp"
 
 namespace neomesh {
 
 DistanceToBoundary::DistanceToBoundary(const BoundarySurface& s) {
-  std::vector<Point> points(s.num_vertices(), Point::Zero());
-  for (PetscInt v = 0; v < s.num_vertices(); ++v)
-    for (int j = 0; j < s.dim; ++j) points[v][j] = s.coords[v * s.dim + j];
-  std::vector<std::array<int, 3>> simplices;
-  for (PetscInt f = 0; f < s.num_facets(); ++f) {
-    const PetscInt* v = s.facet_vertices.data() + s.facet_offsets[f];
-    const PetscInt n = s.facet_offsets[f + 1] - s.facet_offsets[f];
-    if (n == 2)
-      simplices.push_back({static_cast<int>(v[0]), static_cast<int>(v[1]), 0});
-    else  // a fan: quadrilateral faces in two triangles
-      for (PetscInt k = 1; k + 1 < n; ++k)
-        simplices.push_back(
-            {static_cast<int>(v[0]), static_cast<int>(v[k]), static_cast<int>(v[k + 1])});
-  }
-  facets_ =
-      std::make_unique<SimplexSet>(std::move(points), std::move(simplices), s.dim == 2 ? 2 : 3);
+  std::vector<PetscInt> all(s.num_facets());
+  std::iota(all.begin(), all.end(), PetscInt{0});
+  FacetSimplices facets = facet_simplices(s, all);
+  facets_ = std::make_unique<SimplexSet>(std::move(facets.points), std::move(facets.simplices),
+                                         facets.corners);
 }
 
 DistanceToBoundary::~DistanceToBoundary() = default;

@@ -6,6 +6,8 @@
 
 #include <Eigen/Geometry>
 
+#include "boundary/features.hpp"
+
 namespace neomesh {
 
 namespace {
@@ -89,6 +91,26 @@ std::vector<Point> point_average(const SimplexSet& set, const std::vector<Point>
 }
 
 }  // namespace
+
+FacetSimplices facet_simplices(const BoundarySurface& s, std::span<const PetscInt> facets) {
+  FacetSimplices out;
+  out.corners = s.dim == 2 ? 2 : 3;
+  std::unordered_map<PetscInt, int> index;  // boundary vertex → point
+  auto point_index = [&](PetscInt b) {
+    const auto [it, added] = index.emplace(b, static_cast<int>(out.points.size()));
+    if (added) out.points.push_back(surface_point(s, b));
+    return it->second;
+  };
+  for (PetscInt f : facets) {
+    const auto v = s.facet(f);
+    if (v.size() == 2)
+      out.simplices.push_back({point_index(v[0]), point_index(v[1]), 0});
+    else
+      for (std::size_t k = 1; k + 1 < v.size(); ++k)
+        out.simplices.push_back({point_index(v[0]), point_index(v[k]), point_index(v[k + 1])});
+  }
+  return out;
+}
 
 SimplexSet::SimplexSet(std::vector<Point> points, std::vector<std::array<int, 3>> simplices,
                        int corners)

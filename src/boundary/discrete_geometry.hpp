@@ -8,10 +8,12 @@
 
 #include <array>
 #include <memory>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
 #include "boundary/shape.hpp"
+#include "mesh/boundary_surface.hpp"
 
 namespace neomesh {
 
@@ -49,6 +51,15 @@ class SimplexSet {
   std::unordered_map<long long, std::vector<int>> grid_;
   std::vector<int> large_;  // simplices too large for the grid, checked always
 };
+
+// Segments (2D) or triangles (3D, polygons split in a fan) of some facets of a boundary
+// surface, on their own points: what a DiscreteSurface or SimplexSet is built from.
+struct FacetSimplices {
+  std::vector<Point> points;
+  std::vector<std::array<int, 3>> simplices;
+  int corners = 2;  // 2 or 3 per simplex
+};
+FacetSimplices facet_simplices(const BoundarySurface& s, std::span<const PetscInt> facets);
 
 // A polyline (2D) or triangulated surface (3D) with per-point normals.
 class DiscreteSurface final : public Surface {

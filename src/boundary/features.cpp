@@ -91,15 +91,6 @@ void features_2d(const BoundarySurface& s, double angle, BoundaryFeatures& out) 
   }
 }
 
-// Unit normal of a polygonal facet (Newell's method), in the facet's vertex order.
-Point facet_normal(const BoundarySurface& s, PetscInt f) {
-  const auto v = s.facet(f);
-  Point n = Point::Zero();
-  for (std::size_t i = 0; i < v.size(); ++i)
-    n += surface_point(s, v[i]).cross(surface_point(s, v[(i + 1) % v.size()]));
-  return n.normalized();
-}
-
 void features_3d(const BoundarySurface& s, double angle, BoundaryFeatures& out) {
   const PetscInt nv = s.num_vertices();
   // Every facet's edges as (smaller vertex, larger vertex, facet, 1 if the facet runs from the
@@ -120,7 +111,7 @@ void features_3d(const BoundarySurface& s, double angle, BoundaryFeatures& out) 
     return std::tie(x.a, x.b, x.facet) < std::tie(y.a, y.b, y.facet);
   });
   std::vector<Point> normal(s.num_facets());
-  for (PetscInt f = 0; f < s.num_facets(); ++f) normal[f] = facet_normal(s, f);
+  for (PetscInt f = 0; f < s.num_facets(); ++f) normal[f] = facet_area_normal(s, f).normalized();
 
   struct Edge {
     PetscInt a, b, first, last;  // uses[first, last)
@@ -198,6 +189,18 @@ void features_3d(const BoundarySurface& s, double angle, BoundaryFeatures& out) 
 }
 
 }  // namespace
+
+Point facet_area_normal(const BoundarySurface& s, PetscInt f) {
+  const auto v = s.facet(f);
+  if (v.size() == 2) {
+    const Point e = surface_point(s, v[1]) - surface_point(s, v[0]);
+    return {-e.y(), e.x(), 0.0};
+  }
+  Point n = Point::Zero();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    n += surface_point(s, v[i]).cross(surface_point(s, v[(i + 1) % v.size()]));
+  return n;
+}
 
 PetscInt BoundaryFeatures::count(VertexFeature k) const {
   return static_cast<PetscInt>(std::count(kind.begin(), kind.end(), k));

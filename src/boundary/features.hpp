@@ -30,6 +30,10 @@ inline Point surface_point(const BoundarySurface& s, PetscInt b) {
   return p;
 }
 
+// Facet f's normal scaled by its size, in its vertex order: an edge's perpendicular (2D,
+// length = edge length), Newell's sum for a polygon (3D, length = twice the area).
+Point facet_area_normal(const BoundarySurface& s, PetscInt f);
+
 enum class VertexFeature : std::uint8_t { Surface, Ridge, Corner };
 
 struct BoundaryFeatures {

@@ -159,6 +159,11 @@ struct Functional::Impl {
   void load_coordinates(Vec x) const {
     require_volumes();
     dofs.global_to_local(x, local_x);
+  }
+  // The same, and the tangent spaces of sliding vertices at x, for derivatives (the energy
+  // alone, evaluated at every line-search trial point, does not need them).
+  void load_coordinates_and_tangents(Vec x) const {
+    load_coordinates(x);
     if (!sliding.vertices.empty()) sliding.tangent_spaces(local_x, tangent_spaces);
   }
 
@@ -425,8 +430,8 @@ Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOpt
 
 Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
                        FixedDofs fixed, SlidingVertices sliding)
-    : impl_(std::make_unique<Impl>(view, dofs, options, std::move(fixed.flags),
-                                   std::move(sliding))) {
+    : impl_(
+          std::make_unique<Impl>(view, dofs, options, std::move(fixed.flags), std::move(sliding))) {
   if (dofs.dim() != view.dim)
     fail("Functional: the mesh is {}D but its DofMap has {} components", view.dim, dofs.dim());
   if (static_cast<PetscInt>(impl_->fixed.size()) != view.num_vertices * view.dim)
@@ -483,7 +488,7 @@ double Functional::value(Vec x) const {
 }
 
 double Functional::value_and_gradient(Vec x, Vec gradient) const {
-  impl_->load_coordinates(x);
+  impl_->load_coordinates_and_tangents(x);
   const double local = impl_->local_energy_and_gradient(impl_->local_gradient);
   NM_PETSC(VecZeroEntries(gradient));
   impl_->dofs.add_local_to_global(impl_->local_gradient, gradient);
@@ -533,7 +538,7 @@ OwnedMat Functional::create_laplacian_matrix() const {
 }
 
 void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {
-  impl_->load_coordinates(x);
+  impl_->load_coordinates_and_tangents(x);
   impl_->assemble([alpha](const auto& kernel, const auto& coordinates, double volume,
                           auto block) { return kernel.hessian(coordinates, volume, alpha, block); },
                   "H(alpha)", H, alpha);
@@ -541,13 +546,13 @@ void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {
 
 void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const {
   if (kind == RieszLaplacian::CurrentMesh) {
-    impl_->load_coordinates(x);
+    impl_->load_coordinates_and_tangents(x);
     impl_->assemble([](const auto& kernel, const auto& coordinates, double volume,
                        auto block) { return kernel.current_laplacian(coordinates, volume, block); },
                     "current-mesh Laplacian", L);
   } else {
     if (impl_->slides_anywhere)
-      impl_->load_coordinates(x);  // for the tangent spaces
+      impl_->load_coordinates_and_tangents(x);
     else
       impl_->require_volumes();
     impl_->assemble(
