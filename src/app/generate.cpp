@@ -105,8 +105,8 @@ void run_generate(const GenerateOptions& o) {
     fail("generate: --amplitude must be in [0, 0.25) (got {})", o.amplitude);
   const bool is_box = std::string_view(c.name).starts_with("box-");
   if (o.jitter != 0.0 && !is_box) fail("generate {}: --jitter applies to the box cases", c.name);
-  if (!(o.jitter >= 0.0 && o.jitter < 0.25))
-    fail("generate: --jitter must be in [0, 0.25) (got {})", o.jitter);
+  if (!(o.jitter >= 0.0 && o.jitter < 1.0))
+    fail("generate: --jitter must be in [0, 1) (got {})", o.jitter);
   collectively(PETSC_COMM_WORLD,
                [&] { check_output_file("-o/--output", o.output, OutputKind::Mesh); });
   // The mesh is built on rank 0; Mesh::from_data distributes it.
@@ -117,10 +117,15 @@ void run_generate(const GenerateOptions& o) {
     if (o.rotate_degrees != 0.0) rotate(data, o.rotate_degrees);
   }
   const CellType type = data.cell_type;
-  const Mesh mesh = Mesh::from_data(data, c.name);
+  // A large --jitter folds cells over: such meshes are written as they are, to be untangled.
+  const Mesh mesh = Mesh::from_data(data, c.name, PETSC_COMM_WORLD, InvertedCells::Keep);
   write_mesh(mesh, o.output);
   say("wrote {}: {} {}, {} vertices\n", o.output, mesh.global_num_cells(), plural_name(type),
       mesh.global_num_vertices());
+  const QualitySummary quality =
+      summarize(cell_quality(mesh.view(), mesh.view().coords), mesh.comm());
+  if (quality.inverted > 0)
+    say("{} of them are inverted (neomesh smooth untangles them)\n", quality.inverted);
 }
 
 }  // namespace
@@ -159,7 +164,7 @@ Subcommand add_generate(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--jitter", options->jitter,
                   "box cases: displace interior vertices by up to this many cell widths per "
-                  "coordinate, at random, < 0.25 (tets and hexes may invert near 0.25)")
+                  "coordinate, at random, < 1 (from 0.25 on, cells may fold over: a tangled mesh)")
       ->capture_default_str();
   cmd->add_option("-o,--output", options->output, "output file (.msh or .vtu)")->required();
   return {cmd, [options] { run_generate(*options); }};

@@ -75,19 +75,19 @@ struct OptimizationRun::Impl {
   std::unique_ptr<Boundary> boundary;
   std::unique_ptr<Functional> functional;
   OwnedVec cell_size;
+  bool untangled = false;  // untangle() ran: the table names the phases
 
-  Impl(const std::filesystem::path& input, MethodOptions& m)
-      : method(m), mesh(load(input)), x(mesh.coordinates()) {
+  Impl(const std::filesystem::path& input, MethodOptions& m, InvertedCells inverted)
+      : method(m), mesh(load(input, inverted)), x(mesh.coordinates()) {
     read_seconds = MPI_Wtime() - start;
     share_cores(mesh.comm());
     const MeshView& view = mesh.view();
     const CellQuality quality = cell_quality(view, view.coords);
     quality_before = summarize(quality, mesh.comm());
-    if (quality_before.inverted > 0 || quality_before.degenerate > 0)
-      fail(
-          "{} has {} inverted and {} degenerate cells; neomesh needs a valid mesh to start "
-          "from (untangling is not supported yet)",
-          input.string(), quality_before.inverted, quality_before.degenerate);
+    if (inverted == InvertedCells::Refuse &&
+        (quality_before.inverted > 0 || quality_before.degenerate > 0))
+      fail("{} has {} inverted and {} degenerate cells; `neomesh smooth` untangles them",
+           input.string(), quality_before.inverted, quality_before.degenerate);
     input_volumes = quality.volume;
     double local = 0.0;
     for (double v : input_volumes) local += v;
@@ -100,12 +100,12 @@ struct OptimizationRun::Impl {
     prepare_seconds = MPI_Wtime() - start - read_seconds;
   }
 
-  static Mesh load(const std::filesystem::path& input) {
+  static Mesh load(const std::filesystem::path& input, InvertedCells inverted) {
     const int ranks = mpi_size(PETSC_COMM_WORLD);
     say("reading {}{} ...\n", input.string(),
         ranks > 1 ? fmt::format(" and distributing it over {} processes", ranks) : "");
     const Activity reading("reading " + input.string());
-    return Mesh::load(input);
+    return Mesh::load(input, PETSC_COMM_WORLD, inverted);
   }
 
   std::pair<CellQuality, QualitySummary> move_mesh_and_check();
@@ -128,8 +128,9 @@ struct OptimizationRun::Impl {
   }
 };
 
-OptimizationRun::OptimizationRun(const std::filesystem::path& input, MethodOptions& method)
-    : impl_(std::make_unique<Impl>(input, method)) {}
+OptimizationRun::OptimizationRun(const std::filesystem::path& input, MethodOptions& method,
+                                 InvertedCells inverted)
+    : impl_(std::make_unique<Impl>(input, method, inverted)) {}
 OptimizationRun::~OptimizationRun() = default;
 
 const MeshView& OptimizationRun::view() const {
@@ -243,7 +244,13 @@ void OptimizationRun::print_problem() const {
 std::function<void(const IterationRecord&)> OptimizationRun::table_printer(
     bool progress_only) const {
   auto header_printed = std::make_shared<bool>(false);
-  return [header_printed, progress_only](const IterationRecord& rec) {
+  // The table of a run that untangled first names each phase (round) above its rows.
+  auto round = std::make_shared<int>(impl_->untangled ? -1 : 0);
+  return [header_printed, round, progress_only](const IterationRecord& rec) {
+    if (rec.untangling_round != *round) {
+      say("{}\n", untangling_phase_line(rec));
+      *round = rec.untangling_round;
+    }
     if (progress_only) {
       say("{}\n", progress_line(rec));
     } else {
@@ -253,6 +260,30 @@ std::function<void(const IterationRecord&)> OptimizationRun::table_printer(
     }
     print_solver_details(rec);
   };
+}
+
+nlohmann::json OptimizationRun::untangle(bool progress_only) {
+  Impl& r = *impl_;
+  const Inversion inverted = r.functional->inversion(r.x);
+  if (inverted.count == 0) return {};
+  say("{} cells are inverted: untangling them first\n", inverted.count);
+  r.untangled = true;
+  const UntangleResult result = neomesh::untangle(*r.functional, r.x, r.method.solver, r.cell_size,
+                                                  {}, table_printer(progress_only));
+  if (result.after.count > 0) {
+    std::string cells;
+    for (PetscInt c : result.after.cells)
+      cells += fmt::format("{}{}", cells.empty() ? "" : ", ", c);
+    fail(
+        "{}: the mesh cannot be untangled with its boundary as it is: {} of {} inverted cells are "
+        "still inverted after {} iterations (cells {}{}; 0-based, in input order); nothing was "
+        "written",
+        r.mesh.source(), result.after.count, result.before.count, result.history.size(), cells,
+        result.after.count > static_cast<PetscInt>(result.after.cells.size()) ? ", ..." : "");
+  }
+  say("untangled {} cells in {} iterations ({:.2f} s)\n", result.before.count,
+      result.history.size(), result.seconds);
+  return {{"untangling", to_json(result)}};
 }
 
 namespace {

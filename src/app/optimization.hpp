@@ -46,7 +46,9 @@ void check_run_outputs(const RunOutputs& outputs, int dim);
 
 class OptimizationRun {
  public:
-  OptimizationRun(const std::filesystem::path& input, MethodOptions& method);
+  // With InvertedCells::Keep, a mesh with inverted cells is read as it is, for untangle().
+  OptimizationRun(const std::filesystem::path& input, MethodOptions& method,
+                  InvertedCells inverted = InvertedCells::Refuse);
   ~OptimizationRun();
 
   const MeshView& view() const;
@@ -67,6 +69,10 @@ class OptimizationRun {
             const std::string& title) const;
   // Observer for minimize(): the iteration table (or progress lines with `progress_only`).
   std::function<void(const IterationRecord&)> table_printer(bool progress_only) const;
+  // If cells are inverted at x(), untangles them (solver/untangle.hpp), printing its table;
+  // returns the report's "untangling" record (empty if nothing was inverted). Throws Error
+  // naming the cells that stay inverted. Needs the desired volumes.
+  nlohmann::json untangle(bool progress_only);
 
   // Moves the mesh to x(), checks it has no inverted cell and writes `output` with per-cell
   // fields (one step of a time series); returns its quality.

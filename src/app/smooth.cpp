@@ -17,7 +17,7 @@ namespace {
 
 struct SmoothOptions {
   std::string input, output, sizes = "smoothed";
-  bool force = false, no_guard = false;
+  bool force = false, no_guard = false, no_untangle = false;
   MethodOptions method;
   RunOutputs outputs;
 };
@@ -49,20 +49,23 @@ void smooth(SmoothOptions& o) {
   // Every output is checked before the run, so that a typo does not cost a long run.
   check_run_outputs(o.outputs);
 
-  OptimizationRun run(o.input, o.method);
+  OptimizationRun run(o.input, o.method,
+                      o.no_untangle ? InvertedCells::Refuse : InvertedCells::Keep);
   check_run_outputs(o.outputs, run.view().dim);  // pictures of a 3D mesh: before the run
   run.set_desired_volumes(desired_volumes(sizes, run.view(), run.dofs(), run.input_volumes()));
   run.print_problem();
   if (!o.outputs.picture_before.empty())
     run.draw(o.outputs.picture_before, o.outputs.picture_field, "input: " + o.input);
+  nlohmann::json report = run.untangle(o.outputs.progress_lines);
+  // The guard's reference is the mesh the Neo-Hookean phase starts from (untangled, if it was
+  // tangled: the input's worst cell would be an inverted one).
   OwnedVec input;
   NM_PETSC(VecDuplicate(run.x(), input.out()));
   NM_PETSC(VecCopy(run.x(), input));
   QuasiNewtonResult result = minimize(run.functional(), run.x(), o.method.solver, run.cell_size(),
                                       run.table_printer(o.outputs.progress_lines));
-  const bool guard = !(o.no_guard || o.method.thesis);
-  run.finish(result, o.output, o.outputs,
-             guard ? apply_quality_guard(run, input, result) : nlohmann::json{});
+  if (!(o.no_guard || o.method.thesis)) report.update(apply_quality_guard(run, input, result));
+  run.finish(result, o.output, o.outputs, report);
 }
 
 }  // namespace
@@ -78,7 +81,7 @@ Subcommand add_smooth(CLI::App& app) {
       "Improve the shape of every cell. Moves the vertices (the connectivity stays; boundary\n"
       "vertices slide along the boundary, corners stay) to minimize the Neo-Hookean energy with\n"
       "the quasi-Newton method of the thesis; prints one row per iteration and the quality\n"
-      "before and after.");
+      "before and after. A mesh with inverted cells is untangled first.");
   cmd->add_option("input", o->input, "mesh to smooth (.msh Gmsh 2.2/4.1, .xml FEAT3)")->required();
   cmd->add_option("-o,--output", o->output, "smoothed mesh (.vtu with quality fields, or .msh)")
       ->required();
@@ -87,6 +90,9 @@ Subcommand add_smooth(CLI::App& app) {
                 "keep the energy's optimum even where a cell ends up worse than the input's worst "
                 "cell (default: off, i.e. such cells' vertices are pulled back; --thesis implies "
                 "it)");
+  cmd->add_flag("--no-untangle", o->no_untangle,
+                "refuse a mesh with inverted cells instead of untangling it first (default: off, "
+                "i.e. inverted cells are untangled, then the mesh is smoothed)");
   cmd->add_option("--sizes", o->sizes,
                   "desired cell volumes: smoothed (input volumes averaged over neighbours: keeps "
                   "the grading), input (each cell's own volume) or uniform (all equal, the thesis)")

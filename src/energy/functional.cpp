@@ -11,6 +11,7 @@
 
 #include "energy/assembly_pattern.hpp"
 #include "energy/cell_kernels.hpp"
+#include "energy/untangling_kernel.hpp"
 #include "mesh/collective_error.hpp"
 
 namespace neomesh {
@@ -47,6 +48,20 @@ typename CellKernel<Type>::Coordinates cell_coordinates(const CellBlock& block, 
 
 using Kernels = std::tuple<CellKernel<CellType::Triangle>, CellKernel<CellType::Quadrilateral>,
                            CellKernel<CellType::Tetrahedron>, CellKernel<CellType::Hexahedron>>;
+
+using UntanglingKernels =
+    std::tuple<UntanglingKernel<CellType::Triangle>, UntanglingKernel<CellType::Quadrilateral>,
+               UntanglingKernel<CellType::Tetrahedron>, UntanglingKernel<CellType::Hexahedron>>;
+
+UntanglingKernels make_untangling_kernels(const EnergyOptions& options, double epsilon) {
+  const RegularizedNeoHooke<2> law2{options.lambda, options.mu, epsilon};
+  const RegularizedNeoHooke<3> law3{options.lambda, options.mu, epsilon};
+  const int n = options.gauss_points;
+  return UntanglingKernels{UntanglingKernel<CellType::Triangle>(law2, n),
+                           UntanglingKernel<CellType::Quadrilateral>(law2, n),
+                           UntanglingKernel<CellType::Tetrahedron>(law3, n),
+                           UntanglingKernel<CellType::Hexahedron>(law3, n)};
+}
 
 Kernels make_kernels(const EnergyOptions& options) {
   const double kappa = options.kappa < 0.0 ? options.lambda : options.kappa;
@@ -116,7 +131,12 @@ class AijValues {
 struct Functional::Impl {
   const MeshView& view;
   const DofMap& dofs;
+  EnergyOptions options;
   Kernels kernels;
+  // While `untangling`, value, gradient and H(α) are those of the untangling energy; its
+  // kernels also find inverted cells (their sample points are where det G must be > 0).
+  UntanglingKernels untangling_kernels;
+  bool untangling = false;
   std::vector<std::uint8_t> fixed;  // per local dof
   std::vector<double> volumes;      // desired volume per local cell
   OwnedVec free_mask;
@@ -141,11 +161,23 @@ struct Functional::Impl {
 
   Impl(const MeshView& v, const DofMap& d, const EnergyOptions& o, std::vector<std::uint8_t> f,
        SlidingVertices t)
-      : view(v), dofs(d), kernels(make_kernels(o)), fixed(std::move(f)), sliding(std::move(t)) {}
+      : view(v),
+        dofs(d),
+        options(o),
+        kernels(make_kernels(o)),
+        untangling_kernels(make_untangling_kernels(o, 1.0)),
+        fixed(std::move(f)),
+        sliding(std::move(t)) {}
 
   template <CellType Type>
   const CellKernel<Type>& kernel() const {
     return std::get<CellKernel<Type>>(kernels);
+  }
+  // Calls f with the kernel of the energy being minimized: Neo-Hookean, or untangling.
+  template <CellType Type, typename F>
+  decltype(auto) with_energy_kernel(F&& f) const {
+    if (untangling) return f(std::get<UntanglingKernel<Type>>(untangling_kernels));
+    return f(kernel<Type>());
   }
 
   bool is_fixed_dof(PetscInt local_dof) const { return fixed[local_dof] != 0; }
@@ -201,7 +233,7 @@ struct Functional::Impl {
     NM_PETSC(MatGetInfo(M, MAT_GLOBAL_SUM, &info));
     return static_cast<PetscInt>(info.nz_allocated) == pattern->global_entries;
   }
-  // Assembles the cell blocks computed by fill(kernel, x, volume, block) -> bool into M
+  // Assembles the cell blocks computed by fill(CellTag<type>, x, volume, block) -> bool into M
   // (values only); fails on every rank, naming the first cell for which fill returned false.
   // With sliding vertices, `curvature` times their curvature term is added (α for H(α)).
   template <typename Fill>
@@ -217,13 +249,14 @@ double Functional::Impl::local_energy() const {
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
     dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
-      const CellKernel<Type>& k = kernel<Type>();
-      const double* desired = volumes.data() + block.first_cell;
-      double block_sum = 0.0;
+      with_energy_kernel<Type>([&](const auto& k) {
+        const double* desired = volumes.data() + block.first_cell;
+        double block_sum = 0.0;
 #pragma omp parallel for reduction(+ : block_sum) schedule(static)
-      for (PetscInt c = 0; c < block.size(); ++c)
-        block_sum += k.energy(cell_coordinates<Type>(block, c, local_x.data()), desired[c]);
-      sum += block_sum;
+        for (PetscInt c = 0; c < block.size(); ++c)
+          block_sum += k.energy(cell_coordinates<Type>(block, c, local_x.data()), desired[c]);
+        sum += block_sum;
+      });
     });
   }
   return sum;
@@ -239,23 +272,24 @@ double Functional::Impl::local_energy_and_gradient(std::vector<double>& gradient
   for (const CellBlock& block : view.blocks) {
     dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
       constexpr int dim = CellKernel<Type>::dim;
-      const CellKernel<Type>& k = kernel<Type>();
-      const double* desired = volumes.data() + block.first_cell;
-      double block_sum = 0.0;
+      with_energy_kernel<Type>([&](const auto& k) {
+        const double* desired = volumes.data() + block.first_cell;
+        double block_sum = 0.0;
 #pragma omp parallel reduction(+ : block_sum)
-      {
-        double* mine = thread_gradients.data() + n * omp_get_thread_num();
-        typename CellKernel<Type>::Gradient g;
+        {
+          double* mine = thread_gradients.data() + n * omp_get_thread_num();
+          typename CellKernel<Type>::Gradient g;
 #pragma omp for schedule(static)
-        for (PetscInt c = 0; c < block.size(); ++c) {
-          block_sum += k.energy_and_gradient(cell_coordinates<Type>(block, c, local_x.data()),
-                                             desired[c], g);
-          const PetscInt* vertex = block.cell(c);
-          for (int i = 0; i < CellKernel<Type>::vertices; ++i)
-            Eigen::Map<Vector<dim>>(mine + dim * vertex[i]) += g.col(i);
+          for (PetscInt c = 0; c < block.size(); ++c) {
+            block_sum += k.energy_and_gradient(cell_coordinates<Type>(block, c, local_x.data()),
+                                               desired[c], g);
+            const PetscInt* vertex = block.cell(c);
+            for (int i = 0; i < CellKernel<Type>::vertices; ++i)
+              Eigen::Map<Vector<dim>>(mine + dim * vertex[i]) += g.col(i);
+          }
         }
-      }
-      sum += block_sum;
+        sum += block_sum;
+      });
     });
   }
   gradient.assign(n, 0.0);
@@ -309,7 +343,6 @@ PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b, const AijV
   constexpr int shrink = Coupled ? 1 : d;
   const AssemblyPattern& p = *pattern;
   const CellBlock& block = view.blocks[b];
-  const CellKernel<Type>& k = kernel<Type>();
   const double* desired = volumes.data() + block.first_cell;
   const std::vector<PetscInt>& order = p.colour_order[b];
   const std::vector<PetscInt>& start = p.colour_start[b];
@@ -320,7 +353,7 @@ PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b, const AijV
     for (PetscInt i = start[colour]; i < start[colour + 1]; ++i) {
       const PetscInt c = order[i];
       Block cell_block;
-      if (!fill(k, cell_coordinates<Type>(block, c, local_x.data()), desired[c],
+      if (!fill(CellTag<Type>{}, cell_coordinates<Type>(block, c, local_x.data()), desired[c],
                 Eigen::Map<Block>(cell_block.data()))) {
         first_bad = std::min(first_bad, block.first_cell + c);
         continue;
@@ -539,25 +572,34 @@ OwnedMat Functional::create_laplacian_matrix() const {
 
 void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {
   impl_->load_coordinates_and_tangents(x);
-  impl_->assemble([alpha](const auto& kernel, const auto& coordinates, double volume,
-                          auto block) { return kernel.hessian(coordinates, volume, alpha, block); },
-                  "H(alpha)", H, alpha);
+  const Impl& impl = *impl_;
+  impl.assemble(
+      [&impl, alpha]<CellType Type>(CellTag<Type>, const auto& coordinates, double volume,
+                                    auto block) {
+        return impl.with_energy_kernel<Type>(
+            [&](const auto& k) { return k.hessian(coordinates, volume, alpha, block); });
+      },
+      "H(alpha)", H, alpha);
 }
 
 void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const {
   if (kind == RieszLaplacian::CurrentMesh) {
     impl_->load_coordinates_and_tangents(x);
-    impl_->assemble([](const auto& kernel, const auto& coordinates, double volume,
-                       auto block) { return kernel.current_laplacian(coordinates, volume, block); },
-                    "current-mesh Laplacian", L);
+    const Impl& impl = *impl_;
+    impl.assemble(
+        [&impl]<CellType Type>(CellTag<Type>, const auto& coordinates, double volume, auto block) {
+          return impl.kernel<Type>().current_laplacian(coordinates, volume, block);
+        },
+        "current-mesh Laplacian", L);
   } else {
     if (impl_->slides_anywhere)
       impl_->load_coordinates_and_tangents(x);
     else
       impl_->require_volumes();
-    impl_->assemble(
-        [](const auto& kernel, const auto&, double volume, auto block) {
-          kernel.optimal_laplacian(volume, block);
+    const Impl& impl = *impl_;
+    impl.assemble(
+        [&impl]<CellType Type>(CellTag<Type>, const auto&, double volume, auto block) {
+          impl.kernel<Type>().optimal_laplacian(volume, block);
           return true;
         },
         "optimal-cell Laplacian", L);
@@ -587,6 +629,45 @@ CellFields Functional::cell_fields(Vec x) const {
     });
   }
   return fields;
+}
+
+void Functional::set_untangling(double epsilon) {
+  impl_->untangling = epsilon > 0.0;
+  if (impl_->untangling)
+    impl_->untangling_kernels = make_untangling_kernels(impl_->options, epsilon);
+}
+
+Inversion Functional::inversion(Vec x, int listed) const {
+  impl_->load_coordinates(x);
+  const MeshView& view = impl_->view;
+  Inversion local{0, std::numeric_limits<double>::infinity(), {}};
+  for (const CellBlock& block : view.blocks) {
+    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
+      const UntanglingKernel<Type>& k = std::get<UntanglingKernel<Type>>(impl_->untangling_kernels);
+      for (PetscInt c = 0; c < block.size(); ++c) {
+        const PetscInt cell = block.first_cell + c;
+        const double det = k.min_det(cell_coordinates<Type>(block, c, impl_->local_x.data()),
+                                     impl_->volumes[cell]);
+        local.min_det = std::min(local.min_det, det);
+        if (det > 0.0) continue;
+        ++local.count;
+        if (static_cast<int>(local.cells.size()) < listed)
+          local.cells.push_back(view.global_cell.empty() ? cell : view.global_cell[cell]);
+      }
+    });
+  }
+  const MPI_Comm comm = impl_->dofs.comm();
+  Inversion global;
+  MPI_Allreduce(&local.count, &global.count, 1, MPIU_INT, MPI_SUM, comm);
+  MPI_Allreduce(&local.min_det, &global.min_det, 1, MPI_DOUBLE, MPI_MIN, comm);
+  // The first `listed` cells by global number: every rank's first `listed`, padded with -1.
+  local.cells.resize(listed, -1);
+  global.cells.resize(static_cast<std::size_t>(listed) * mpi_size(comm));
+  MPI_Allgather(local.cells.data(), listed, MPIU_INT, global.cells.data(), listed, MPIU_INT, comm);
+  std::erase(global.cells, -1);
+  std::sort(global.cells.begin(), global.cells.end());
+  if (static_cast<int>(global.cells.size()) > listed) global.cells.resize(listed);
+  return global;
 }
 
 void Functional::project_onto_boundary(Vec x) const {

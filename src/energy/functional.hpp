@@ -48,6 +48,14 @@ struct FixedDofs {
   std::vector<std::uint8_t> flags;
 };
 
+// Cells inverted at some x: det G ≤ 0 at a sample point of the untangling energy
+// (untangling_kernel.hpp: the corners of Q1 cells, and the Gauss points of hexahedra).
+struct Inversion {
+  PetscInt count = 0;           // over all ranks
+  double min_det = 0.0;         // the smallest det G at a sample point, over all ranks
+  std::vector<PetscInt> cells;  // the first few inverted cells, global (input) numbers
+};
+
 class Functional {
  public:
   // `fixed` marks local vertices whose coordinates do not move (MeshView order). `view` and
@@ -85,6 +93,13 @@ class Functional {
   // The Riesz Laplacian into a matrix made by create_laplacian_matrix or create_matrix. `x` is used
   // for RieszLaplacian::CurrentMesh and for the tangent spaces of sliding vertices.
   void assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const;
+
+  // Untangling (docs/untangling.md): with ε > 0, value, gradient and H(α) are those of the
+  // untangling energy (regularized_neo_hooke.hpp), finite on inverted cells; ε = 0 switches
+  // back to the Neo-Hookean energy. The Riesz Laplacian and cell_fields do not change.
+  void set_untangling(double epsilon);
+  // The inverted cells at x, listing at most `listed` of them. Collective.
+  Inversion inversion(Vec x, int listed = 10) const;
 
   // Moves the sliding vertices of x back onto the boundary after a step (no-op if none
   // slide). Not collective.

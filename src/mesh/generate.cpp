@@ -240,9 +240,9 @@ MeshData ring(CellType type, int angular, int radial, double bunching) {
 
 void jitter(MeshData& mesh, double h, double amplitude, unsigned seed) {
   // Corner Jacobians of quads and triangles stay positive while every edge vector is off by
-  // less than h/2.
-  if (!(amplitude >= 0.0 && amplitude < 0.25))
-    fail("the random displacement amplitude must be in [0, 0.25) (got {})", amplitude);
+  // less than h/2; larger amplitudes fold cells over (test meshes for untangling).
+  if (!(amplitude >= 0.0 && amplitude < 1.0))
+    fail("the random displacement amplitude must be in [0, 1) (got {})", amplitude);
   const std::vector<std::uint8_t> on_boundary = boundary_vertices(mesh);
   std::mt19937 random(seed);
   for (std::int64_t v = 0; v < mesh.num_vertices(); ++v) {

@@ -70,7 +70,7 @@ MeshData ring(CellType type, int angular, int radial, double bunching);
 // Displaces every interior vertex (not on boundary_vertices()) by up to amplitude·h in each
 // coordinate, uniformly at random, in vertex order; deterministic for a seed on every
 // platform. For lattice meshes of spacing h, 0 ≤ amplitude < 1/4 keeps quads and triangles
-// valid; tets and hexes can invert near 1/4.
+// valid; tets and hexes can invert near 1/4; up to amplitude < 1 makes tangled meshes.
 void jitter(MeshData& mesh, double h, double amplitude, unsigned seed);
 
 // Rotates the mesh counter-clockwise about the origin (2D) or the z axis (3D).

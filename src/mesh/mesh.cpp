@@ -255,9 +255,10 @@ Mesh Mesh::load(const std::filesystem::path& path, MPI_Comm comm, InvertedCells 
   return create(comm, input, path.string(), inverted);
 }
 
-Mesh Mesh::from_data(const MeshData& data, const std::string& source, MPI_Comm comm) {
+Mesh Mesh::from_data(const MeshData& data, const std::string& source, MPI_Comm comm,
+                     InvertedCells inverted) {
   InputMesh input = mpi_rank(comm) == 0 ? input_from_data(data) : InputMesh{};
-  return create(comm, input, source);
+  return create(comm, input, source, inverted);
 }
 
 Mesh::Mesh(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

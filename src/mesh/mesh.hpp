@@ -18,8 +18,8 @@
 
 namespace neomesh {
 
-// Whether load() refuses inverted and degenerate cells (to optimize a mesh) or keeps them (to
-// inspect it: `quality` counts them, `render` draws them in red).
+// Whether load() refuses inverted and degenerate cells or keeps them: `quality` counts them,
+// `render` draws them in red, `smooth` untangles them.
 enum class InvertedCells { Refuse, Keep };
 
 class Mesh {
@@ -30,7 +30,8 @@ class Mesh {
                    InvertedCells inverted = InvertedCells::Refuse);
   // Builds a mesh from arrays given on rank 0 (other ranks pass an empty MeshData).
   static Mesh from_data(const MeshData& data, const std::string& source,
-                        MPI_Comm comm = PETSC_COMM_WORLD);
+                        MPI_Comm comm = PETSC_COMM_WORLD,
+                        InvertedCells inverted = InvertedCells::Refuse);
 
   Mesh(Mesh&&) noexcept;
   Mesh& operator=(Mesh&&) noexcept;

@@ -209,10 +209,16 @@ void validate(InputMesh& mesh, const std::string& source, MPI_Comm comm, bool ke
     // A mirrored cell among cells of the other orientation may be a fold rather than a mirror.
     if (defect.empty() && !mirrored.empty()) {
       const std::string fold = find_fold(mesh, mirrored);
-      if (!keep_inverted)
+      if (!keep_inverted) {
         defect = fold;
-      else if (!fold.empty())
-        mesh.cell_vertices = input_order;  // the folded cells stay inverted, to be counted
+      } else if (!fold.empty()) {
+        // The folded cells stay inverted, to be counted or untangled; the orientation of the
+        // majority is the mesh's (a mirrored mesh with a few folds is mirrored as a whole).
+        mesh.cell_vertices = input_order;
+        if (2 * static_cast<PetscInt>(mirrored.size()) > mesh.num_cells())
+          for (PetscInt c = 0; c < mesh.num_cells(); ++c)
+            mirror(mesh.cell_types[c], mesh.cell_vertices.data() + mesh.cell_offsets[c]);
+      }
     }
   }
   throw_if_any(comm, defect.empty() ? "" : source + ": " + defect);

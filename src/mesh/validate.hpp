@@ -34,8 +34,9 @@ std::string find_fold(const InputMesh& mesh, const std::vector<PetscInt>& mirror
 
 // Collective: on rank 0 reorients mirrored cells, then throws Error "<source>: <defect>" on
 // every rank if rank 0's `mesh` has a defect.
-// With `keep_inverted` (quality, render: they count and draw inverted cells), inverted and
-// degenerate cells are kept as they are; the mesh is reoriented only if that leaves no fold.
+// With `keep_inverted` (quality and render count and draw inverted cells, smooth untangles
+// them), inverted and degenerate cells are kept; mirrored cells are reoriented one by one if
+// that leaves no fold, else all cells are if most of them are mirrored.
 void validate(InputMesh& mesh, const std::string& source, MPI_Comm comm,
               bool keep_inverted = false);
 

@@ -4,6 +4,13 @@
 
 namespace neomesh {
 
+namespace {
+// Untangling rows (F is the untangling energy there) end with the cells still inverted.
+std::string untangling_note(const IterationRecord& rec) {
+  return rec.untangling_round > 0 ? fmt::format("  {} inverted", rec.inverted) : "";
+}
+}  // namespace
+
 std::string iteration_table_header() {
   return fmt::format("{:>4} {:>6} {:>10} {:>10} {:>10} {:>5} {:>5} {:>6} {:>9} {:>6} {:>5}", "k",
                      "armijo", "defect", "|delta|", "F", "eta", "alpha", "ksp_d", "res_d", "ksp_s",
@@ -19,15 +26,21 @@ std::string iteration_table_row(const IterationRecord& rec) {
                                              : "s";
   return fmt::format(
       "{:>4} {:>6} {:>10.2E} {:>10.2E} {:>10.2E} {:>5.2f} {:>5.2f} {:>6} {:>9} "
-      "{:>6} {:>6}{}",
+      "{:>6} {:>6}{}{}",
       rec.k, rec.armijo_steps, rec.defect, rec.direction_norm, rec.energy, rec.eta, rec.alpha,
       ksp_delta, res_delta, rec.krylov_s, direction,
-      rec.roundoff_step ? "  (round-off: full step)" : "");
+      rec.roundoff_step ? "  (round-off: full step)" : "", untangling_note(rec));
+}
+
+std::string untangling_phase_line(const IterationRecord& rec) {
+  if (rec.untangling_round == 0) return "optimizing the Neo-Hookean energy:";
+  return fmt::format("untangling, round {} (epsilon {:.2e}):", rec.untangling_round, rec.epsilon);
 }
 
 std::string progress_line(const IterationRecord& rec) {
-  return fmt::format("iteration {}: defect {:.2e}, F {:.4e}, {:.2f} s", rec.k, rec.defect,
-                     rec.energy, rec.seconds);
+  return fmt::format("{}iteration {}: defect {:.2e}, F {:.4e}, {:.2f} s{}",
+                     rec.untangling_round > 0 ? "untangling " : "", rec.k, rec.defect, rec.energy,
+                     rec.seconds, untangling_note(rec));
 }
 
 }  // namespace neomesh

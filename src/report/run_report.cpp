@@ -14,24 +14,42 @@ nlohmann::json number(double x) {
 }  // namespace
 
 nlohmann::json to_json(const IterationRecord& r) {
-  return {{"k", r.k},
-          {"armijo_steps", r.armijo_steps},
-          {"defect", number(r.defect)},
-          {"direction_norm", number(r.direction_norm)},
-          {"energy", number(r.energy)},
-          {"eta", number(r.eta)},
-          {"alpha", r.alpha},
-          {"krylov_delta", r.krylov_delta},
-          {"residual_delta", number(r.residual_delta)},
-          {"delta_solved", r.delta_solved},
-          {"delta_failed", r.delta_failed},
-          {"delta_truncated", r.delta_truncated},
-          {"krylov_s", r.krylov_s},
-          {"used_s", r.used_s},
-          {"roundoff_step", r.roundoff_step},
-          {"hessian_pc_built", r.hessian_pc_built},
-          {"max_move", number(r.max_move)},
-          {"seconds", r.seconds}};
+  nlohmann::json row = {{"k", r.k},
+                        {"armijo_steps", r.armijo_steps},
+                        {"defect", number(r.defect)},
+                        {"direction_norm", number(r.direction_norm)},
+                        {"energy", number(r.energy)},
+                        {"eta", number(r.eta)},
+                        {"alpha", r.alpha},
+                        {"krylov_delta", r.krylov_delta},
+                        {"residual_delta", number(r.residual_delta)},
+                        {"delta_solved", r.delta_solved},
+                        {"delta_failed", r.delta_failed},
+                        {"delta_truncated", r.delta_truncated},
+                        {"krylov_s", r.krylov_s},
+                        {"used_s", r.used_s},
+                        {"roundoff_step", r.roundoff_step},
+                        {"hessian_pc_built", r.hessian_pc_built},
+                        {"max_move", number(r.max_move)},
+                        {"seconds", r.seconds}};
+  if (r.untangling_round > 0)
+    row.update({{"untangling_round", r.untangling_round},
+                {"epsilon", r.epsilon},
+                {"inverted", r.inverted}});
+  return row;
+}
+
+nlohmann::json to_json(const UntangleResult& result) {
+  nlohmann::json history = nlohmann::json::array();
+  for (const IterationRecord& rec : result.history) history.push_back(to_json(rec));
+  return {{"inverted_before", result.before.count},
+          {"inverted_after", result.after.count},
+          {"min_det_before", result.before.min_det},
+          {"min_det_after", result.after.min_det},
+          {"iterations", result.history.size()},
+          {"rounds", result.rounds},
+          {"seconds", result.seconds},
+          {"history", history}};
 }
 
 nlohmann::json to_json(const PhaseTimes& t) {

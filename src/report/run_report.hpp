@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/quasi_newton.hpp"
+#include "solver/untangle.hpp"
 
 namespace neomesh {
 
@@ -15,6 +16,7 @@ nlohmann::json to_json(const PhaseTimes& times);
 nlohmann::json to_json(const QuasiNewtonOptions& options);
 nlohmann::json to_json(const EnergyOptions& options);
 nlohmann::json to_json(const QuasiNewtonResult& result);
+nlohmann::json to_json(const UntangleResult& result);
 
 // Writes `report` (pretty-printed) atomically; rank 0 only.
 void write_json(const nlohmann::json& report, const std::filesystem::path& path);

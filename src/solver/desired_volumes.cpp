@@ -1,5 +1,6 @@
 #include "solver/desired_volumes.hpp"
 
+#include <algorithm>
 #include <numeric>
 
 #include "core/error.hpp"
@@ -60,10 +61,45 @@ std::vector<double> average_over_neighbours(const MeshView& view, const DofMap& 
   return averaged;
 }
 
+namespace {
+
+// Cells of a tangled input have no meaningful volume of their own (an inverted simplex's is
+// negative): those with volume ≤ 0 take the mean of their neighbours with a positive one,
+// growing inwards pass by pass, and in the end the mean of all positive volumes.
+void fill_in_non_positive_volumes(const MeshView& view, const DofMap& dofs,
+                                  std::vector<double>& volumes) {
+  const MPI_Comm comm = dofs.comm();
+  std::vector<double> known(volumes.size());
+  for (int pass = 0;; ++pass) {
+    std::size_t unknown = 0;
+    for (std::size_t c = 0; c < volumes.size(); ++c) {
+      known[c] = volumes[c] > 0.0 ? 1.0 : 0.0;
+      if (known[c] == 0.0) volumes[c] = 0.0;
+      unknown += known[c] == 0.0;
+    }
+    unsigned long global_unknown = unknown;
+    MPI_Allreduce(MPI_IN_PLACE, &global_unknown, 1, MPI_UNSIGNED_LONG, MPI_SUM, comm);
+    if (global_unknown == 0) return;
+    if (pass == kSmoothingPasses) {
+      const double mean = global_sum(volumes, comm) / std::max(global_sum(known, comm), 1.0);
+      for (std::size_t c = 0; c < volumes.size(); ++c)
+        if (known[c] == 0.0) volumes[c] = mean;
+      return;
+    }
+    const std::vector<double> sum = average_over_neighbours(view, dofs, volumes);
+    const std::vector<double> share = average_over_neighbours(view, dofs, known);
+    for (std::size_t c = 0; c < volumes.size(); ++c)
+      if (known[c] == 0.0 && share[c] > 0.0) volumes[c] = sum[c] / share[c];
+  }
+}
+
+}  // namespace
+
 std::vector<double> desired_volumes(SizeMode mode, const MeshView& view, const DofMap& dofs,
                                     std::span<const double> cell_volumes) {
   std::vector<double> volumes(cell_volumes.begin(), cell_volumes.end());
   const double total = global_sum(cell_volumes, dofs.comm());
+  if (mode != SizeMode::Uniform) fill_in_non_positive_volumes(view, dofs, volumes);
   switch (mode) {
     case SizeMode::Uniform:
       std::fill(volumes.begin(), volumes.end(), 1.0);

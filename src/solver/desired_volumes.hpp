@@ -4,7 +4,8 @@
 //   input     every cell keeps its own input volume
 //   smoothed  the input volumes averaged over neighbouring cells a few times: the grading
 //             stays while noise from badly shaped cells is removed (default)
-// All are scaled so that they sum to the mesh volume |Ω|.
+// All are scaled so that they sum to the mesh volume |Ω|. Cells with a non-positive input
+// volume (inverted, to be untangled) take their neighbours' volumes.
 #pragma once
 
 #include <span>

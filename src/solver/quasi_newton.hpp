@@ -87,6 +87,10 @@ struct IterationRecord {
   bool roundoff_step = false;     // Armijo skipped: predicted decrease below round-off
   double max_move = 0.0;          // largest vertex move / local cell size
   double seconds = 0.0;           // wall time since start
+  // Untangling (solver/untangle.hpp) sets these; 0 and −1 in the Neo-Hookean phase.
+  int untangling_round = 0;  // ≥ 1: the round (value of ε) this iteration belongs to
+  double epsilon = 0.0;      // ε of the untangling energy
+  PetscInt inverted = -1;    // cells inverted after the step
 };
 
 enum class StopReason {

@@ -43,7 +43,7 @@ CASES = [
      ["out.txt", "unknown output format"]),
     ("NaN coordinate", ["smooth", "{data}/bad_nan.msh", "-o", "out.msh"],
      ["bad_nan.msh", "non-finite"]),
-    ("inverted cell", ["smooth", "{data}/bad_inverted.msh", "-o", "out.msh"],
+    ("inverted cell", ["smooth", "{data}/bad_inverted.msh", "-o", "out.msh", "--no-untangle"],
      ["bad_inverted.msh", "inverted"]),
     ("repeated vertex", ["convert", "{data}/bad_repeated_vertex.msh", "-o", "out.vtu"],
      ["bad_repeated_vertex.msh", "repeated vertex"]),

@@ -1,6 +1,6 @@
 """neomesh smooth on 2 MPI ranks gives the serial result: final coordinates within 1e-8, the
 same number of iterations ±1, and an output file with the input's vertices and cells (the
-.msh writer keeps the input numbering), for a 2D and a 3D case."""
+.msh writer keeps the input numbering), for a 2D and a 3D case and a tangled 2D case."""
 import json
 import os
 import subprocess
@@ -80,6 +80,8 @@ def main():
         tight = ["--no-practical", "--tol", "1e-11"]
         compare(tmp, "square", ["square-midpoint", "--level", "4"], ["--sizes", "uniform", *tight])
         compare(tmp, "cube", ["cube-midpoint", "--level", "2"], tight)
+        # Untangled first (docs/untangling.md), then smoothed to the same optimum.
+        compare(tmp, "tangled", ["box-quad", "--cells", "16", "--jitter", "0.6"], tight)
 
 
 if __name__ == "__main__":

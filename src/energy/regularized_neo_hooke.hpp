@@ -1,0 +1,80 @@
+// energy/regularized_neo_hooke.hpp — the untangling law: the Neo-Hookean energy with det G
+// replaced by a regularized determinant that stays positive on inverted cells (Garanzha et
+// al., "Foldover-free maps in 50 lines of code", 2021; docs/untangling.md):
+//
+//   χ_ε(D) = (D + √(ε² + D²)) / 2,   D = det G,  ε > 0
+//   W_ε(G) = λ/2 (log χ)² − μ log χ + μ/2 (tr GᵀG − d)
+//
+// χ_ε > 0 for every D, χ_ε(D) → D for D ≫ ε and → ε²/(4|D|) for D ≪ −ε: W_ε is finite and
+// smooth everywhere, large on inverted cells, and tends to the Neo-Hookean W (without its
+// κ-term) as ε → 0 on valid ones. The argument G is ∇γ_K (optimal → actual), as in
+// neo_hooke.hpp.
+//
+// The derivatives are written with the cofactor C = ∂D/∂G (C = D G⁻ᵀ where G is
+// invertible), which, unlike G⁻ᵀ, exists at D ≤ 0. With φ(D) = W_ε − μ/2 (tr GᵀG − d):
+//   P = φ′(D) C + μ G
+//   ∂²W_ε/∂G²[H] = φ″(D) (C:H) C + φ′(D) ∂C/∂G[H] + μ H
+// The quasi-Newton split (as in thesis §4.4, B1 + α B2 + B3 with H(1) the exact Hessian):
+//   B1 = φ″₊ (C:H) C,  B2 = φ″₋ (C:H) C + φ′ ∂C/∂G[H],  B3 = μ H.
+#pragma once
+
+#include <cmath>
+
+#include "geometry/reference_cell.hpp"
+
+namespace neomesh {
+
+// The cofactor matrix C = ∂ det G / ∂G: in 2D [[g11, −g10], [−g01, g00]], in 3D the
+// columns g1 × g2, g2 × g0, g0 × g1 of G's columns g0, g1, g2.
+template <int Dim>
+Matrix<Dim> cofactor(const Matrix<Dim>& G) {
+  Matrix<Dim> C;
+  if constexpr (Dim == 2) {
+    C << G(1, 1), -G(1, 0), -G(0, 1), G(0, 0);
+  } else {
+    C.col(0) = G.col(1).cross(G.col(2));
+    C.col(1) = G.col(2).cross(G.col(0));
+    C.col(2) = G.col(0).cross(G.col(1));
+  }
+  return C;
+}
+
+// φ and its derivatives at one D: what the kernel needs per sample point.
+struct RegularizedDeterminant {
+  double chi;    // χ_ε(D)
+  double phi;    // λ/2 (log χ)² − μ log χ
+  double dphi;   // φ′(D)
+  double d2phi;  // φ″(D)
+};
+
+template <int Dim>
+struct RegularizedNeoHooke {
+  double lambda, mu, epsilon;
+
+  // χ, φ, φ′, φ″ at D. With r = √(ε² + D²): χ′ = χ / r, χ″ = χ (r − D) / r³, and
+  // φ′ = (λ log χ − μ) / r, φ″ = (λ + μ − λ log χ) / r² + (λ log χ − μ)(r − D) / r³.
+  RegularizedDeterminant at(double D) const {
+    const double r = std::hypot(epsilon, D);
+    // For D < 0, D + r cancels: use the equal ε² / (2 (r − D)).
+    const double chi = D >= 0.0 ? 0.5 * (D + r) : 0.5 * epsilon * epsilon / (r - D);
+    const double log_chi = std::log(chi);
+    const double b = lambda * log_chi - mu;
+    return RegularizedDeterminant{
+        .chi = chi,
+        .phi = 0.5 * lambda * log_chi * log_chi - mu * log_chi,
+        .dphi = b / r,
+        .d2phi = (lambda - b) / (r * r) + b * (r - D) / (r * r * r),
+    };
+  }
+
+  // W_ε(G).
+  double energy(const Matrix<Dim>& G) const {
+    return at(G.determinant()).phi + 0.5 * mu * (G.squaredNorm() - Dim);
+  }
+  // P = ∂W_ε/∂G.
+  Matrix<Dim> stress(const Matrix<Dim>& G) const {
+    return at(G.determinant()).dphi * cofactor(G) + mu * G;
+  }
+};
+
+}  // namespace neomesh

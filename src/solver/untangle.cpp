@@ -1,0 +1,76 @@
+#include "solver/untangle.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <mpi.h>
+
+namespace neomesh {
+
+namespace {
+
+// χ_ε(D) (regularized_neo_hooke.hpp).
+double regularized_det(double det, double epsilon) {
+  const double r = std::hypot(epsilon, det);
+  return det >= 0.0 ? 0.5 * (det + r) : 0.5 * epsilon * epsilon / (r - det);
+}
+
+// The next ε (Garanzha et al. 2021, §3): the worst sample's χ shrinks by the relative energy
+// decrease σ of the last round, at least 10%: ε such that χ_ε(D_min) = (1 − σ) χ_ε_old(D_min).
+double next_epsilon(double epsilon, double min_det, double energy_before, double energy_after) {
+  const double sigma = std::max(1.0 - energy_after / energy_before, 0.1);
+  const double target = (1.0 - sigma) * regularized_det(min_det, epsilon);
+  if (min_det >= target) return epsilon;  // only positive dets left: nothing to sharpen
+  return 2.0 * std::sqrt(target * (target - min_det));
+}
+
+}  // namespace
+
+UntangleResult untangle(Functional& functional, Vec x, const QuasiNewtonOptions& options,
+                        Vec cell_size, const UntangleOptions& untangle_options,
+                        const std::function<void(const IterationRecord&)>& observe) {
+  const double start = MPI_Wtime();
+  UntangleResult result;
+  result.before = result.after = functional.inversion(x);
+  if (result.before.count == 0) return result;
+
+  // Every round restarts the method (k_min antigradient steps); the untangling energy is
+  // finite everywhere, so the Neo-Hookean round-off level does not apply.
+  QuasiNewtonOptions method = options;
+  method.max_iterations = untangle_options.max_rounds * untangle_options.steps_per_round + 1;
+  method.practical = false;
+  double epsilon =
+      std::max(untangle_options.initial_epsilon * std::abs(result.before.min_det), 1e-6);
+  functional.set_untangling(epsilon);
+  QuasiNewton solver(functional, method, cell_size);
+  Inversion best = result.before;
+  int stalled = 0;
+  for (int round = 1; round <= untangle_options.max_rounds; ++round) {
+    result.rounds = round;
+    solver.restart(x);
+    const double energy_before = solver.energy();
+    for (int step = 0; step < untangle_options.steps_per_round; ++step) {
+      IterationRecord rec = solver.step(x);
+      result.after = functional.inversion(x);
+      rec.untangling_round = round;
+      rec.epsilon = epsilon;
+      rec.inverted = result.after.count;
+      result.history.push_back(rec);
+      if (observe) observe(rec);
+      if (result.after.count == 0 || solver.stop_reason()) break;
+    }
+    if (result.after.count == 0) break;
+    const bool progress = result.after.count < best.count ||
+                          result.after.min_det > best.min_det + 0.01 * std::abs(best.min_det);
+    if (progress) best = result.after;
+    stalled = progress ? 0 : stalled + 1;
+    if (stalled >= untangle_options.stalled_rounds) break;
+    epsilon = next_epsilon(epsilon, result.after.min_det, energy_before, solver.energy());
+    functional.set_untangling(epsilon);
+  }
+  functional.set_untangling(0.0);
+  result.seconds = MPI_Wtime() - start;
+  return result;
+}
+
+}  // namespace neomesh
