@@ -28,6 +28,10 @@ nlohmann::json apply_quality_guard(OptimizationRun& run, Vec input, QuasiNewtonR
   const QualityGuardResult guard =
       guard_worst_quality(run.view(), run.dofs(), input, run.x(),
                           [&](Vec x) { run.functional().project_onto_boundary(x); });
+  if (guard.gave_up)
+    say("quality guard: pulling cells back toward the input made the worst cell worse; the "
+        "optimized mesh is kept (min scaled Jacobian {:.4f}; input {:.4f})\n",
+        guard.min_before, guard.input_min);
   if (guard.vertices_moved > 0) {
     result.final_energy = run.functional().value(run.x());
     say("quality guard: {} vertices pulled back toward the input so that no cell is worse than "
@@ -39,6 +43,7 @@ nlohmann::json apply_quality_guard(OptimizationRun& run, Vec input, QuasiNewtonR
             {"min_scaled_jacobian_before", guard.min_before},
             {"min_scaled_jacobian_after", guard.min_after},
             {"vertices_moved", guard.vertices_moved},
+            {"gave_up", guard.gave_up},
             {"rounds", guard.rounds}}}};
 }
 
@@ -56,12 +61,12 @@ void smooth(SmoothOptions& o) {
   run.print_problem();
   if (!o.outputs.picture_before.empty())
     run.draw(o.outputs.picture_before, o.outputs.picture_field, "input: " + o.input);
-  nlohmann::json report = run.untangle(o.outputs.progress_lines);
-  // The guard's reference is the mesh the Neo-Hookean phase starts from (untangled, if it was
-  // tangled: the input's worst cell would be an inverted one).
+  // The guard's promise is about the input: a tangled input's worst cell is inverted, so any
+  // untangled output keeps it.
   OwnedVec input;
   NM_PETSC(VecDuplicate(run.x(), input.out()));
   NM_PETSC(VecCopy(run.x(), input));
+  nlohmann::json report = run.untangle(o.outputs.progress_lines);
   QuasiNewtonResult result = minimize(run.functional(), run.x(), o.method.solver, run.cell_size(),
                                       run.table_printer(o.outputs.progress_lines));
   if (!(o.no_guard || o.method.thesis)) report.update(apply_quality_guard(run, input, result));

@@ -32,6 +32,9 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
                                        const std::function<void(Vec)>& project) {
   QualityGuardResult result;
   result.input_min = global_min(scaled_jacobians(view, dofs, input), dofs.comm());
+  OwnedVec optimum;  // x as the method left it
+  NM_PETSC(VecDuplicate(x, optimum.out()));
+  NM_PETSC(VecCopy(x, optimum));
   OwnedVec marked = dofs.create_global_vector(), ever_marked = dofs.create_global_vector();
   std::vector<double> local_marks(dofs.num_local_dofs());
   const int d = view.dim;
@@ -67,6 +70,14 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
     }
     // A chord between two points of a curved boundary leaves it: back onto the boundary.
     if (project) project(x);
+  }
+  // Moving some vertices of a cell back and not others can make it worse still, even invert
+  // it, when the input is far from the optimum: then the guard gives up rather than harm.
+  if (result.min_after < result.min_before) {
+    NM_PETSC(VecCopy(optimum, x));
+    result.min_after = result.min_before;
+    result.gave_up = true;
+    return result;
   }
   double moved_dofs = 0.0;
   NM_PETSC(VecSum(ever_marked, &moved_dofs));

@@ -5,7 +5,9 @@
 // after the optimization the guard pulls the vertices of every cell whose scaled Jacobian
 // fell below the input's minimum back toward their input positions, halving their
 // displacement round by round (and resetting them after the last round), until no cell is
-// below it. Vertices of good cells keep their optimized positions.
+// below it. Vertices of good cells keep their optimized positions. If that leaves the worst
+// cell worse than the optimized mesh's (the input far from the optimum: mixing old and new
+// positions folds cells), the guard gives up and keeps the optimized mesh.
 #pragma once
 
 #include <functional>
@@ -21,6 +23,7 @@ struct QualityGuardResult {
   double min_after = 0.0;       // ... after it (≥ input_min)
   PetscInt vertices_moved = 0;  // vertices the guard pulled back (global count)
   int rounds = 0;
+  bool gave_up = false;  // pulling back made the worst cell worse: x is the optimized mesh
 };
 
 // `input` and `x` are global coordinate Vecs laid out by `dofs`; x is changed in place, and
