@@ -17,8 +17,12 @@ double regularized_det(double det, double epsilon) {
 
 // The next ε (Garanzha et al. 2021, §3): the worst sample's χ shrinks by the relative energy
 // decrease σ of the last round, at least 10%: ε such that χ_ε(D_min) = (1 − σ) χ_ε_old(D_min).
+// Unlike their energy, W_ε can be negative, so σ is the decrease relative to |F| and kept in
+// [0.1, 0.9] (a sign change of F would otherwise give σ > 1 and a negative target).
 double next_epsilon(double epsilon, double min_det, double energy_before, double energy_after) {
-  const double sigma = std::max(1.0 - energy_after / energy_before, 0.1);
+  const double decrease =
+      (energy_before - energy_after) / std::max(std::abs(energy_before), 1e-300);
+  const double sigma = std::clamp(decrease, 0.1, 0.9);
   const double target = (1.0 - sigma) * regularized_det(min_det, epsilon);
   if (min_det >= target) return epsilon;  // only positive dets left: nothing to sharpen
   return 2.0 * std::sqrt(target * (target - min_det));

@@ -70,6 +70,29 @@ INSTANTIATE_TEST_SUITE_P(
                       TangledBox{"tets_8x8x8_0_6h", CellType::Tetrahedron, 8, 0.6, 100}),
     [](const auto& info) { return std::string(info.param.name); });
 
+// A moving boundary pushed through the cells: the bottom face of [-1,1]³ bulged up by
+// 0.8 (1 − x²)(1 − y²), the cells above it left where they were. With the boundary fixed the
+// cells above must move far and together: several rounds of ε, and the untangling energy
+// changes sign on the way (which once made ε NaN).
+TEST(Untangle, HexBoxWithItsBottomPushedThroughTheCells) {
+  MeshData mesh = box(CellType::Hexahedron, 12);
+  for (std::size_t v = 0; v < mesh.coords.size(); v += 3) {
+    double* x = mesh.coords.data() + v;
+    if (x[2] == -1.0) x[2] += 0.8 * (1 - x[0] * x[0]) * (1 - x[1] * x[1]);
+  }
+  ThesisProblem p(std::move(mesh));
+  QuasiNewtonOptions options;
+  options.energy_roundoff = energy_roundoff(p.energy, p.view.dim, p.volume);
+  const UntangleResult r = untangle(*p.functional, p.x, options, p.cell_size);
+  std::printf("bumped hex box: %ld inverted -> %ld in %zu iterations, %d rounds\n",
+              long(r.before.count), long(r.after.count), r.history.size(), r.rounds);
+  EXPECT_GE(r.before.count, 100);
+  EXPECT_EQ(r.after.count, 0);
+  EXPECT_GE(r.rounds, 2) << "the case must need more than one value of epsilon";
+  EXPECT_NE(p.minimize(options).reason, StopReason::LineSearchFailed);
+  EXPECT_EQ(p.functional->inversion(p.x).count, 0);
+}
+
 TEST(Untangle, ValidMeshIsLeftAlone) {
   MeshData mesh = box(CellType::Quadrilateral, 6);
   jitter(mesh, 2.0 / 6, 0.2, 5);
