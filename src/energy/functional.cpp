@@ -17,22 +17,6 @@ namespace neomesh {
 
 namespace {
 
-// Calls body(CellTag<type>{}) with the cell type as a compile-time constant: the dispatch
-// happens once per block, the loop over the block's cells is compiled per type.
-template <typename Body>
-void dispatch(CellType type, Body&& body) {
-  switch (type) {
-    case CellType::Triangle:
-      return body(CellTag<CellType::Triangle>{});
-    case CellType::Quadrilateral:
-      return body(CellTag<CellType::Quadrilateral>{});
-    case CellType::Tetrahedron:
-      return body(CellTag<CellType::Tetrahedron>{});
-    case CellType::Hexahedron:
-      return body(CellTag<CellType::Hexahedron>{});
-  }
-}
-
 // The coordinates of cell c of `block` from the local coordinate array.
 template <CellType Type>
 typename CellKernel<Type>::Coordinates cell_coordinates(const CellBlock& block, PetscInt c,
@@ -46,7 +30,8 @@ typename CellKernel<Type>::Coordinates cell_coordinates(const CellBlock& block, 
 }
 
 using Kernels = std::tuple<CellKernel<CellType::Triangle>, CellKernel<CellType::Quadrilateral>,
-                           CellKernel<CellType::Tetrahedron>, CellKernel<CellType::Hexahedron>>;
+                           CellKernel<CellType::Tetrahedron>, CellKernel<CellType::Hexahedron>,
+                           CellKernel<CellType::Wedge>, CellKernel<CellType::Pyramid>>;
 
 Kernels make_kernels(const EnergyOptions& options) {
   const double kappa = options.kappa < 0.0 ? options.lambda : options.kappa;
@@ -54,8 +39,9 @@ Kernels make_kernels(const EnergyOptions& options) {
   const NeoHooke<3> law3{options.lambda, options.mu, kappa};
   const int n = options.gauss_points;
   return Kernels{
-      CellKernel<CellType::Triangle>(law2, n), CellKernel<CellType::Quadrilateral>(law2, n),
-      CellKernel<CellType::Tetrahedron>(law3, n), CellKernel<CellType::Hexahedron>(law3, n)};
+      CellKernel<CellType::Triangle>(law2, n),    CellKernel<CellType::Quadrilateral>(law2, n),
+      CellKernel<CellType::Tetrahedron>(law3, n), CellKernel<CellType::Hexahedron>(law3, n),
+      CellKernel<CellType::Wedge>(law3, n),       CellKernel<CellType::Pyramid>(law3, n)};
 }
 
 double sum_over_ranks(double local, MPI_Comm comm) {
@@ -216,7 +202,7 @@ struct Functional::Impl {
 double Functional::Impl::local_energy() const {
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
-    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
+    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
       const CellKernel<Type>& k = kernel<Type>();
       const double* desired = volumes.data() + block.first_cell;
       double block_sum = 0.0;
@@ -237,7 +223,7 @@ double Functional::Impl::local_energy_and_gradient(std::vector<double>& gradient
   thread_gradients.assign(n * threads, 0.0);
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
-    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
+    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
       constexpr int dim = CellKernel<Type>::dim;
       const CellKernel<Type>& k = kernel<Type>();
       const double* desired = volumes.data() + block.first_cell;
@@ -371,7 +357,7 @@ void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M, double cur
     ghost_values.assign(p.ghost_entries / shrink, 0.0);
     PetscScalar* const ghost = ghost_values.data();
     for (std::size_t b = 0; b < view.blocks.size(); ++b) {
-      dispatch(view.blocks[b].type, [&]<CellType Type>(CellTag<Type>) {
+      visit_cell_type(view.blocks[b].type, [&]<CellType Type>(CellTag<Type>) {
         first_bad =
             std::min(first_bad, coupled ? add_cell_blocks<Type, true>(fill, b, values, ghost)
                                         : add_cell_blocks<Type, false>(fill, b, values, ghost));
@@ -572,7 +558,7 @@ CellFields Functional::cell_fields(Vec x) const {
   fields.min_det.resize(view.num_cells);
   fields.volume_ratio.resize(view.num_cells);
   for (const CellBlock& block : view.blocks) {
-    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
+    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
       const CellKernel<Type>& k = impl_->kernel<Type>();
 #pragma omp parallel for schedule(static)
       for (PetscInt c = 0; c < block.size(); ++c) {
@@ -612,7 +598,7 @@ double mesh_volume(const MeshView& view, const DofMap& dofs, Vec x) {
   dofs.global_to_local(x, local_x);
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
-    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
+    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
       const CellKernel<Type>& k = std::get<CellKernel<Type>>(kernels);
       for (PetscInt c = 0; c < block.size(); ++c)
         sum += k.measure(cell_coordinates<Type>(block, c, local_x.data()), 1.0).volume;
