@@ -35,7 +35,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "(default: λ)")
       ->group(energy);
   cmd.add_option("--gauss", o.energy.gauss_points,
-                 "Gauss points per direction on quadrilaterals/hexahedra (1-5)")
+                 "Gauss points per direction on quadrilaterals/hexahedra/wedges/pyramids (1-5)")
       ->capture_default_str()
       ->group(energy);
 

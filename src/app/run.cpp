@@ -326,8 +326,8 @@ int run(int argc, char** argv) {
 
   CLI::App cli{
       "neomesh moves the vertices of a 2D/3D mesh (triangles, quadrilaterals, tetrahedra,\n"
-      "hexahedra) so that its cells become well shaped and correctly sized, minimizing a\n"
-      "Neo-Hookean energy; the connectivity never changes.",
+      "hexahedra, wedges, pyramids) so that its cells become well shaped and correctly sized,\n"
+      "minimizing a Neo-Hookean energy; the connectivity never changes.",
       "neomesh"};
   cli.footer(kFooter);
   cli.formatter(std::make_shared<Formatter>());

@@ -4,8 +4,10 @@
 // canonical local order) and its desired volume v. Its optimal cell has volume v; γ_K maps
 // the optimal cell onto K, G = ∇γ_K:
 // - simplex: G = E_K · E_opt⁻¹ (constant), one quadrature point of weight v;
-// - Q1 cell: G(ξ) = ∇τ(ξ) · (2/h), h = v^(1/d), Gauss points ξ_q with weights w_q (h/2)^d.
-// In both cases G = X · D_qᵀ where column i of D_q is ∇φ̂_i, the gradient of basis function
+// - Q1 cell: G(ξ) = ∇τ(ξ) · (2/h), h = v^(1/d), Gauss points ξ_q with weights w_q (h/2)^d;
+// - wedge, pyramid: G(ξ) = ∇τ(ξ) · ∇τ_opt(ξ)⁻¹ with τ, τ_opt the maps of the reference cell
+//   onto K and onto the optimal cell (ReferenceRule's points, weights w_q det ∇τ_opt(ξ_q)).
+// In every case G = X · D_qᵀ where column i of D_q is ∇φ̂_i, the gradient of basis function
 // i with respect to the optimal cell's coordinates at point q (the same chain rule as G).
 //
 // Local dofs are numbered vertex-major, dof = Dim · vertex + component (the DofMap's order);
@@ -23,9 +25,17 @@
 
 namespace neomesh {
 
-// A cell type as a type, for dispatching once per block to code compiled per cell type.
+// Points of the largest rule OptimalCellQuadrature may use for the type.
 template <CellType Type>
-using CellTag = std::integral_constant<CellType, Type>;
+constexpr int max_quadrature_points() {
+  if constexpr (CellTraits<Type>::shape == CellShape::Simplex) {
+    return 1;
+  } else if constexpr (CellTraits<Type>::shape == CellShape::Tensor) {
+    return TensorGaussRule<CellTraits<Type>::dim>::max_points;
+  } else {
+    return ReferenceRule<Type>::max_points;
+  }
+}
 
 // The quadrature rule on the optimal cell of unit volume: per point, the basis gradients
 // D̂_q (Dim × vertices) and the weight ŵ_q (Σ ŵ_q = 1). For desired volume v the optimal
@@ -34,15 +44,15 @@ template <CellType Type>
 struct OptimalCellQuadrature {
   static constexpr int dim = CellTraits<Type>::dim;
   static constexpr int vertices = CellTraits<Type>::vertices;
-  static constexpr int max_points =
-      CellTraits<Type>::simplex ? 1 : TensorGaussRule<dim>::max_points;
+  static constexpr int max_points = max_quadrature_points<Type>();
   using Gradients = typename CellTraits<Type>::Coordinates;
 
   int size = 0;
   std::array<Gradients, max_points> unit_gradients;
   std::array<double, max_points> unit_weights{};
 
-  // `gauss_points` per direction for Q1 cells; simplices need one point (G is constant).
+  // `gauss_points` per direction for Q1 cells, wedges and pyramids (ReferenceRule); simplices
+  // need one point (G is constant).
   explicit OptimalCellQuadrature(int gauss_points) {
     if constexpr (CellTraits<Type>::simplex) {
       // Barycentric gradients on the reference simplex: ∇φ_0 = −Σ e_j, ∇φ_j = e_j; pulled back
@@ -53,6 +63,18 @@ struct OptimalCellQuadrature {
       size = 1;
       unit_gradients[0] = unit_optimal_simplex_edges<dim>().inverse().transpose() * reference;
       unit_weights[0] = 1.0;
+    } else if constexpr (CellTraits<Type>::shape != CellShape::Tensor) {
+      // The reference cell maps affinely onto neither, so pull back point by point:
+      // ∇φ̂ = ∇τ_opt⁻ᵀ ∇_ξ N at ξ_q, weight w_q det ∇τ_opt (they sum to the volume, 1).
+      const ReferenceRule<Type> rule(gauss_points);
+      const Gradients optimal = unit_optimal_cell<Type>();
+      size = rule.size;
+      for (int q = 0; q < size; ++q) {
+        const Gradients reference = shape_gradients<Type>(rule.points[q]);
+        const Matrix<dim> jacobian = optimal * reference.transpose();
+        unit_gradients[q] = jacobian.inverse().transpose() * reference;
+        unit_weights[q] = rule.weights[q] * jacobian.determinant();
+      }
     } else {
       // Unit cube [-1/2,1/2]^d (h = 1): ∇φ̂ = (2/h) ∇_ξ N, weight w_q (h/2)^d.
       const TensorGaussRule<dim> rule(gauss_points);
@@ -83,23 +105,19 @@ class CellKernel {
 
   CellKernel(const NeoHooke<dim>& law, int gauss_points) : law_(law), rule_(gauss_points) {}
 
-  // Whether the Q1 map is orientation-preserving at every corner (simplices: always true
-  // here; their single det G is checked at the quadrature point). Gauss points alone miss a
-  // non-convex quad: with vertex 3 of the unit square at (0.45, 0.45), det J > 0 at all 3×3
-  // Gauss points but < 0 at that corner. In 2D det J is bilinear, so positive corners mean
-  // positive everywhere; in 3D they are necessary, and the Gauss points add to them.
+  // Whether the map is orientation-preserving at every corner frame of the cell-type table
+  // (simplices: always true here; their single det G is checked at the quadrature point).
+  // Gauss points alone miss a non-convex quad: with vertex 3 of the unit square at
+  // (0.45, 0.45), det J > 0 at all 3×3 Gauss points but < 0 at that corner. In 2D det J is
+  // bilinear, so positive corners mean positive everywhere; in 3D they are necessary, and the
+  // Gauss points add to them. A pyramid's det J is (1 − ξ2)² f(ξ0, ξ1): its base corners
+  // check f at the corners of the base, and so the whole edge up to the apex.
   static bool corners_admissible(const Coordinates& x) {
     if constexpr (CellTraits<Type>::simplex) {
       return true;
     } else {
-      for (int i = 0; i < vertices; ++i) {
-        Matrix<dim> edges;  // ∂x/∂ξ_j at corner i, up to the factor 1/2
-        for (int j = 0; j < dim; ++j) {
-          const int neighbour = i ^ (1 << j);
-          edges.col(j) = ((i >> j) & 1) ? x.col(i) - x.col(neighbour) : x.col(neighbour) - x.col(i);
-        }
-        if (!(edges.determinant() > 0.0)) return false;
-      }
+      for (int k = 0; k < facts(Type).num_corners; ++k)
+        if (!(corner_jacobian<Type>(x, k).determinant() > 0.0)) return false;
       return true;
     }
   }
@@ -120,10 +138,10 @@ class CellKernel {
   // The cell energy and its gradient: ∂/∂X_ai = Σ_q v ŵ_q (P(G_q) D_q)_ai, i.e.
   // F′[φ] = ∫ P(G) : ∇φ̂ for φ = e_a φ_i. Returns +∞ (gradient unspecified) if inverted.
   double energy_and_gradient(const Coordinates& x, double volume, Gradient& gradient) const {
+    gradient.setZero();
     if (!corners_admissible(x)) return std::numeric_limits<double>::infinity();
     const double scale = inverse_edge(volume);
     double sum = 0.0;
-    gradient.setZero();
     for (int q = 0; q < rule_.size; ++q) {
       const Gradient basis = scale * rule_.unit_gradients[q];
       const Deformation<dim> d(x * basis.transpose());

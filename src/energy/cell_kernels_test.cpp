@@ -13,14 +13,17 @@ constexpr double kFdTolerance = 1e-6;  // relative error allowed against central
 template <CellType Type>
 using Coordinates = typename CellKernel<Type>::Coordinates;
 
-// The optimal cell of volume v (MATH.md §1), vertex 0 at the origin for simplices and the
-// square/cube [0, h]^d for Q1 cells.
+// The optimal cell of volume v (MATH.md §1, docs/cell-types.md), vertex 0 at the origin for
+// simplices, wedges and pyramids and the square/cube [0, h]^d for Q1 cells.
 template <CellType Type>
 Coordinates<Type> optimal_cell(double volume) {
   constexpr int dim = CellTraits<Type>::dim;
   Coordinates<Type> x;
   const double edge = std::pow(volume, 1.0 / dim);
-  if constexpr (CellTraits<Type>::simplex) {
+  if constexpr (CellTraits<Type>::shape == CellShape::Wedge ||
+                CellTraits<Type>::shape == CellShape::Pyramid) {
+    x = edge * unit_optimal_cell<Type>();
+  } else if constexpr (CellTraits<Type>::simplex) {
     x.col(0).setZero();
     x.template rightCols<dim>() = edge * unit_optimal_simplex_edges<dim>();
   } else {
@@ -53,7 +56,8 @@ double relative_error(const A& analytic, const B& fd) {
 template <typename T>
 class CellKernelTest : public ::testing::Test {};
 using CellTypes = ::testing::Types<CellTag<CellType::Triangle>, CellTag<CellType::Quadrilateral>,
-                                   CellTag<CellType::Tetrahedron>, CellTag<CellType::Hexahedron>>;
+                                   CellTag<CellType::Tetrahedron>, CellTag<CellType::Hexahedron>,
+                                   CellTag<CellType::Wedge>, CellTag<CellType::Pyramid>>;
 TYPED_TEST_SUITE(CellKernelTest, CellTypes);
 
 template <CellType Type>
@@ -188,6 +192,39 @@ TEST(QuadKernel, NonConvexQuadWithPositiveGaussPointsIsInfinite) {
   EXPECT_TRUE(std::isinf(kernel.energy_and_gradient(x, 1.0, g)));
 }
 
+// A pyramid whose apex is pushed through its base is inverted; so is one whose base is folded
+// into a dart, though every Gauss point of a mildly folded base may look fine.
+TEST(PyramidKernel, ApexBelowTheBaseOrFoldedBaseIsInfinite) {
+  const auto kernel = thesis_kernel<CellType::Pyramid>();
+  Coordinates<CellType::Pyramid> x = optimal_cell<CellType::Pyramid>(1.0);
+  Coordinates<CellType::Pyramid> below = x;
+  below(2, 4) = -0.1;
+  EXPECT_TRUE(std::isinf(kernel.energy(below, 1.0)));
+  Coordinates<CellType::Pyramid> dart = x;
+  dart.col(3).head<2>() = 0.45 * x.col(3).head<2>();  // base corner 3 pulled inside
+  EXPECT_TRUE(std::isinf(kernel.energy(dart, 1.0)));
+  EXPECT_TRUE(std::isfinite(kernel.energy(x, 1.0)));
+}
+
+// The wedge's optimal cell is the right prism: stretching it vertically costs energy. Turning
+// the top triangle by 180° about the axis keeps every corner positive (the triangles stay
+// horizontal) but collapses the mid-height section to a point, where a Gauss point lies.
+TEST(WedgeKernel, StretchCostsEnergyAndHalfTurnOfTheTopIsInfinite) {
+  const auto kernel = thesis_kernel<CellType::Wedge>();
+  const Coordinates<CellType::Wedge> x = optimal_cell<CellType::Wedge>(1.0);
+  Coordinates<CellType::Wedge> tall = x;
+  tall.row(2) *= 2.0;
+  EXPECT_GT(kernel.energy(tall, 1.0), 0.1);
+  Coordinates<CellType::Wedge> turned = x;
+  const Vector<3> centre = x.rightCols<3>().rowwise().mean();
+  for (int i = 3; i < 6; ++i) {
+    const Vector<3> r = x.col(i) - centre;
+    turned.col(i) = centre + Vector<3>(-r[0], -r[1], r[2]);
+  }
+  EXPECT_TRUE(kernel.corners_admissible(turned));
+  EXPECT_TRUE(std::isinf(kernel.energy(turned, 1.0)));
+}
+
 // Renumbering the vertices by a symmetry of the optimal cell that keeps the orientation
 // (even permutations of a simplex; rotations of the square/cube in tensor order) leaves
 // the cell energy unchanged.
@@ -200,6 +237,12 @@ std::vector<std::array<int, CellTraits<Type>::vertices>> orientation_preserving_
   } else if constexpr (Type == CellType::Quadrilateral) {
     // Vertex i moves to the position of the 90° rotation of ξ_i: (ξ0, ξ1) → (−ξ1, ξ0).
     return {{1, 3, 0, 2}, {3, 2, 1, 0}, {2, 0, 3, 1}};
+  } else if constexpr (Type == CellType::Wedge) {
+    // Rotations of the triangle by 120°, and the half turn that swaps top and bottom.
+    return {{1, 2, 0, 4, 5, 3}, {2, 0, 1, 5, 3, 4}, {3, 5, 4, 0, 2, 1}};
+  } else if constexpr (Type == CellType::Pyramid) {
+    // Rotations of the base about the axis through the apex, as for the quadrilateral.
+    return {{1, 3, 0, 2, 4}, {3, 2, 1, 0, 4}, {2, 0, 3, 1, 4}};
   } else {
     // Rotations by 90° about z: (ξ0, ξ1, ξ2) → (−ξ1, ξ0, ξ2); by 120° about the diagonal:
     // (ξ0, ξ1, ξ2) → (ξ2, ξ0, ξ1); by 180° about z: (ξ0, ξ1, ξ2) → (−ξ0, −ξ1, ξ2).

@@ -18,22 +18,6 @@ namespace neomesh {
 
 namespace {
 
-// Calls body(CellTag<type>{}) with the cell type as a compile-time constant: the dispatch
-// happens once per block, the loop over the block's cells is compiled per type.
-template <typename Body>
-void dispatch(CellType type, Body&& body) {
-  switch (type) {
-    case CellType::Triangle:
-      return body(CellTag<CellType::Triangle>{});
-    case CellType::Quadrilateral:
-      return body(CellTag<CellType::Quadrilateral>{});
-    case CellType::Tetrahedron:
-      return body(CellTag<CellType::Tetrahedron>{});
-    case CellType::Hexahedron:
-      return body(CellTag<CellType::Hexahedron>{});
-  }
-}
-
 // The coordinates of cell c of `block` from the local coordinate array.
 template <CellType Type>
 typename CellKernel<Type>::Coordinates cell_coordinates(const CellBlock& block, PetscInt c,
@@ -47,11 +31,13 @@ typename CellKernel<Type>::Coordinates cell_coordinates(const CellBlock& block, 
 }
 
 using Kernels = std::tuple<CellKernel<CellType::Triangle>, CellKernel<CellType::Quadrilateral>,
-                           CellKernel<CellType::Tetrahedron>, CellKernel<CellType::Hexahedron>>;
+                           CellKernel<CellType::Tetrahedron>, CellKernel<CellType::Hexahedron>,
+                           CellKernel<CellType::Wedge>, CellKernel<CellType::Pyramid>>;
 
 using UntanglingKernels =
     std::tuple<UntanglingKernel<CellType::Triangle>, UntanglingKernel<CellType::Quadrilateral>,
-               UntanglingKernel<CellType::Tetrahedron>, UntanglingKernel<CellType::Hexahedron>>;
+               UntanglingKernel<CellType::Tetrahedron>, UntanglingKernel<CellType::Hexahedron>,
+               UntanglingKernel<CellType::Wedge>, UntanglingKernel<CellType::Pyramid>>;
 
 UntanglingKernels make_untangling_kernels(const EnergyOptions& options, double epsilon) {
   const RegularizedNeoHooke<2> law2{options.lambda, options.mu, epsilon};
@@ -60,7 +46,9 @@ UntanglingKernels make_untangling_kernels(const EnergyOptions& options, double e
   return UntanglingKernels{UntanglingKernel<CellType::Triangle>(law2, n),
                            UntanglingKernel<CellType::Quadrilateral>(law2, n),
                            UntanglingKernel<CellType::Tetrahedron>(law3, n),
-                           UntanglingKernel<CellType::Hexahedron>(law3, n)};
+                           UntanglingKernel<CellType::Hexahedron>(law3, n),
+                           UntanglingKernel<CellType::Wedge>(law3, n),
+                           UntanglingKernel<CellType::Pyramid>(law3, n)};
 }
 
 Kernels make_kernels(const EnergyOptions& options) {
@@ -69,8 +57,9 @@ Kernels make_kernels(const EnergyOptions& options) {
   const NeoHooke<3> law3{options.lambda, options.mu, kappa};
   const int n = options.gauss_points;
   return Kernels{
-      CellKernel<CellType::Triangle>(law2, n), CellKernel<CellType::Quadrilateral>(law2, n),
-      CellKernel<CellType::Tetrahedron>(law3, n), CellKernel<CellType::Hexahedron>(law3, n)};
+      CellKernel<CellType::Triangle>(law2, n),    CellKernel<CellType::Quadrilateral>(law2, n),
+      CellKernel<CellType::Tetrahedron>(law3, n), CellKernel<CellType::Hexahedron>(law3, n),
+      CellKernel<CellType::Wedge>(law3, n),       CellKernel<CellType::Pyramid>(law3, n)};
 }
 
 double sum_over_ranks(double local, MPI_Comm comm) {
@@ -248,7 +237,7 @@ struct Functional::Impl {
 double Functional::Impl::local_energy() const {
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
-    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
+    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
       with_energy_kernel<Type>([&](const auto& k) {
         const double* desired = volumes.data() + block.first_cell;
         double block_sum = 0.0;
@@ -270,7 +259,7 @@ double Functional::Impl::local_energy_and_gradient(std::vector<double>& gradient
   thread_gradients.assign(n * threads, 0.0);
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
-    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
+    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
       constexpr int dim = CellKernel<Type>::dim;
       with_energy_kernel<Type>([&](const auto& k) {
         const double* desired = volumes.data() + block.first_cell;
@@ -404,7 +393,7 @@ void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M, double cur
     ghost_values.assign(p.ghost_entries / shrink, 0.0);
     PetscScalar* const ghost = ghost_values.data();
     for (std::size_t b = 0; b < view.blocks.size(); ++b) {
-      dispatch(view.blocks[b].type, [&]<CellType Type>(CellTag<Type>) {
+      visit_cell_type(view.blocks[b].type, [&]<CellType Type>(CellTag<Type>) {
         first_bad =
             std::min(first_bad, coupled ? add_cell_blocks<Type, true>(fill, b, values, ghost)
                                         : add_cell_blocks<Type, false>(fill, b, values, ghost));
@@ -614,7 +603,7 @@ CellFields Functional::cell_fields(Vec x) const {
   fields.min_det.resize(view.num_cells);
   fields.volume_ratio.resize(view.num_cells);
   for (const CellBlock& block : view.blocks) {
-    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
+    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
       const CellKernel<Type>& k = impl_->kernel<Type>();
 #pragma omp parallel for schedule(static)
       for (PetscInt c = 0; c < block.size(); ++c) {
@@ -642,7 +631,7 @@ Inversion Functional::inversion(Vec x, int listed) const {
   const MeshView& view = impl_->view;
   Inversion local{0, std::numeric_limits<double>::infinity(), {}};
   for (const CellBlock& block : view.blocks) {
-    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
+    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
       const UntanglingKernel<Type>& k = std::get<UntanglingKernel<Type>>(impl_->untangling_kernels);
       for (PetscInt c = 0; c < block.size(); ++c) {
         const PetscInt cell = block.first_cell + c;
@@ -693,7 +682,7 @@ double mesh_volume(const MeshView& view, const DofMap& dofs, Vec x) {
   dofs.global_to_local(x, local_x);
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
-    dispatch(block.type, [&]<CellType Type>(CellTag<Type>) {
+    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
       const CellKernel<Type>& k = std::get<CellKernel<Type>>(kernels);
       for (PetscInt c = 0; c < block.size(); ++c)
         sum += k.measure(cell_coordinates<Type>(block, c, local_x.data()), 1.0).volume;

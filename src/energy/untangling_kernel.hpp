@@ -8,8 +8,10 @@
 // - simplices: their one point (G is constant);
 // - quadrilaterals: the four corners, weight 1/4 each (det G is bilinear: positive corners
 //   make it positive everywhere);
-// - hexahedra: the eight corners and the Gauss points of the Neo-Hookean rule, half the
+// - hexahedra, wedges, pyramids: the corner frames of the cell-type table (a pyramid's four
+//   base corners and four apex frames) and the Gauss points of the Neo-Hookean rule, half the
 //   weight each (positive corners are necessary in 3D, not sufficient).
+// At a corner frame, G is the frame's Jacobian times that of the optimal cell's frame⁻¹.
 #pragma once
 
 #include <algorithm>
@@ -32,15 +34,19 @@ class UntanglingKernel {
   using Block = Eigen::Matrix<double, dofs, dofs>;
 
   UntanglingKernel(const RegularizedNeoHooke<dim>& law, int gauss_points) : law_(law) {
-    const OptimalCellQuadrature<Type> rule(gauss_points);
-    if constexpr (CellTraits<Type>::simplex) {
-      add(rule.unit_gradients[0], 1.0);
-    } else {
-      const double corner_share = dim == 2 ? 1.0 : 0.5;
-      for (int i = 0; i < vertices; ++i)
-        add(2.0 * q1_gradients<dim>(q1_vertex<dim>(i)), corner_share / vertices);
-      if constexpr (dim == 3)
-        for (int q = 0; q < rule.size; ++q) add(rule.unit_gradients[q], 0.5 * rule.unit_weights[q]);
+    // The corner frames of the cell-type table, then (3D, not simplices) the Gauss points.
+    const bool gauss_too = dim == 3 && !CellTraits<Type>::simplex;
+    const int corners = facts(Type).num_corners;
+    const Coordinates optimal = unit_optimal_coordinates();
+    for (int k = 0; k < corners; ++k) {
+      // J_k = X C_kᵀ (the frame's edges); G = J_k J_k,opt⁻¹ = X (J_k,opt⁻ᵀ C_k)ᵀ.
+      const Gradient edges = corner_edges(k);
+      const Matrix<dim> optimal_jacobian = optimal * edges.transpose();
+      add(optimal_jacobian.inverse().transpose() * edges, (gauss_too ? 0.5 : 1.0) / corners);
+    }
+    if (gauss_too) {
+      const OptimalCellQuadrature<Type> rule(gauss_points);
+      for (int q = 0; q < rule.size; ++q) add(rule.unit_gradients[q], 0.5 * rule.unit_weights[q]);
     }
   }
 
@@ -110,7 +116,33 @@ class UntanglingKernel {
 
  private:
   static constexpr int max_samples =
-      CellTraits<Type>::simplex ? 1 : vertices + (dim == 3 ? TensorGaussRule<3>::max_points : 0);
+      CellTraits<Type>::simplex ? 1 : 8 + (dim == 3 ? max_quadrature_points<Type>() : 0);
+
+  // C_k: the corner frame k as a map of the vertices, J_k = X C_kᵀ (corner_jacobian).
+  static Gradient corner_edges(int k) {
+    const CornerFrame& frame = facts(Type).corners[k];
+    Gradient c = Gradient::Zero();
+    for (int j = 0; j < dim; ++j) {
+      const double sign = ((frame.flip >> j) & 1) ? -1.0 : 1.0;
+      c(j, frame.ends[j]) += sign;
+      c(j, frame.vertex) -= sign;
+    }
+    return c;
+  }
+
+  // The optimal cell of unit volume (any placement: only its corner Jacobians are used).
+  static Coordinates unit_optimal_coordinates() {
+    Coordinates y;
+    if constexpr (CellTraits<Type>::simplex) {
+      y.col(0).setZero();
+      y.template rightCols<dim>() = unit_optimal_simplex_edges<dim>();
+    } else if constexpr (CellTraits<Type>::shape == CellShape::Tensor) {
+      for (int i = 0; i < vertices; ++i) y.col(i) = 0.5 * q1_vertex<dim>(i);
+    } else {
+      y = unit_optimal_cell<Type>();
+    }
+    return y;
+  }
 
   void add(const Gradient& unit_gradients, double weight) {
     gradients_[size_] = unit_gradients;

@@ -18,7 +18,8 @@ using Coordinates = typename UntanglingKernel<Type>::Coordinates;
 template <typename T>
 class UntanglingKernelTest : public ::testing::Test {};
 using CellTypes = ::testing::Types<CellTag<CellType::Triangle>, CellTag<CellType::Quadrilateral>,
-                                   CellTag<CellType::Tetrahedron>, CellTag<CellType::Hexahedron>>;
+                                   CellTag<CellType::Tetrahedron>, CellTag<CellType::Hexahedron>,
+                                   CellTag<CellType::Wedge>, CellTag<CellType::Pyramid>>;
 TYPED_TEST_SUITE(UntanglingKernelTest, CellTypes);
 
 template <CellType Type>
@@ -26,8 +27,9 @@ UntanglingKernel<Type> kernel_with(double epsilon) {
   return UntanglingKernel<Type>({1.0, 10.0, epsilon}, 3);
 }
 
-// The unit cell of the type (edge 1, vertex 0 at the origin) with every vertex moved by up to
-// `amplitude` in each coordinate: with amplitude 0.6 most such cells are tangled.
+// The unit cell of the type (edge 1, vertex 0 at the origin; the optimal wedge/pyramid) with every
+// vertex moved by up to `amplitude` in each coordinate: with amplitude 0.6 most such cells are
+// tangled.
 template <CellType Type>
 Coordinates<Type> shaken_cell(double amplitude, std::mt19937& rng) {
   constexpr int dim = CellTraits<Type>::dim;
@@ -36,9 +38,11 @@ Coordinates<Type> shaken_cell(double amplitude, std::mt19937& rng) {
   if constexpr (CellTraits<Type>::simplex) {
     x.col(0).setZero();
     x.template rightCols<dim>() = Matrix<dim>::Identity();
-  } else {
+  } else if constexpr (CellTraits<Type>::shape == CellShape::Tensor) {
     for (int i = 0; i < CellTraits<Type>::vertices; ++i)
       x.col(i) = 0.5 * (q1_vertex<dim>(i) + Vector<dim>::Ones());
+  } else {
+    x = unit_optimal_cell<Type>();
   }
   for (int i = 0; i < x.size(); ++i) x.data()[i] += u(rng);
   return x;
@@ -125,9 +129,11 @@ TYPED_TEST(UntanglingKernelTest, OptimalCellIsStationaryAsEpsilonVanishes) {
   if constexpr (CellTraits<Type>::simplex) {
     x.col(0).setZero();
     x.template rightCols<dim>() = unit_optimal_simplex_edges<dim>();
-  } else {
+  } else if constexpr (CellTraits<Type>::shape == CellShape::Tensor) {
     for (int i = 0; i < CellTraits<Type>::vertices; ++i)
       x.col(i) = 0.5 * (q1_vertex<dim>(i) + Vector<dim>::Ones());
+  } else {
+    x = unit_optimal_cell<Type>();
   }
   for (double epsilon : {1e-2, 1e-4}) {
     typename UntanglingKernel<Type>::Gradient g;

@@ -1,7 +1,6 @@
 #include "geometry/quality.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -22,6 +21,11 @@ constexpr double kDegenerateVolume = 1e-14;
 
 struct Measures {
   double volume, min_corner_det, min_gauss_det, scaled_jacobian, min_angle, max_angle, edge_ratio;
+
+  void record_angle(double angle) {
+    min_angle = std::min(min_angle, angle);
+    max_angle = std::max(max_angle, angle);
+  }
 };
 
 template <int Dim>
@@ -30,18 +34,20 @@ double angle_between(const Vector<Dim>& a, const Vector<Dim>& b) {
   return std::acos(std::clamp(c, -1.0, 1.0)) * kDegrees;
 }
 
+// Longest over shortest edge; every edge lies on a facet (2D: is one), so the facets' cycles
+// visit them all.
 template <CellType Type>
 double edge_ratio(const typename CellTraits<Type>::Coordinates& x) {
-  constexpr int n = CellTraits<Type>::vertices;
   double shortest = kInfinity, longest = 0.0;
-  for (int a = 0; a < n; ++a)
-    for (int b = a + 1; b < n; ++b) {
-      // Q1 edges join vertices that differ in one reference coordinate (one bit).
-      if (!CellTraits<Type>::simplex && std::popcount(static_cast<unsigned>(a ^ b)) != 1) continue;
+  for (int f = 0; f < facts(Type).num_facets; ++f) {
+    const FacetVertices& facet = facts(Type).facets[f];
+    for (int i = 0; i < facet.size; ++i) {
+      const int a = facet.vertices[i], b = facet.vertices[(i + 1) % facet.size];
       const double length = (x.col(b) - x.col(a)).norm();
       shortest = std::min(shortest, length);
       longest = std::max(longest, length);
     }
+  }
   return shortest > 0.0 ? longest / shortest : kInfinity;
 }
 
@@ -66,13 +72,10 @@ Measures measure_simplex(const typename CellTraits<Type>::Coordinates& x) {
       if (j != i) product *= (x.col(j) - x.col(i)).norm();
     m.scaled_jacobian = std::min(m.scaled_jacobian, det / product / ideal);
   }
-  auto record = [&m](double angle) {
-    m.min_angle = std::min(m.min_angle, angle);
-    m.max_angle = std::max(m.max_angle, angle);
-  };
   if constexpr (d == 2) {
     for (int i = 0; i < 3; ++i)
-      record(angle_between<2>(x.col((i + 1) % 3) - x.col(i), x.col((i + 2) % 3) - x.col(i)));
+      m.record_angle(
+          angle_between<2>(x.col((i + 1) % 3) - x.col(i), x.col((i + 2) % 3) - x.col(i)));
   } else {
     // Dihedral angle at edge (a, b): between the normals of its faces towards c and d.
     for (int a = 0; a < 4; ++a)
@@ -81,8 +84,8 @@ Measures measure_simplex(const typename CellTraits<Type>::Coordinates& x) {
         for (int c = 0; c < 4; ++c)
           if (c != a && c != b) others[k++] = c;
         const Vector<3> e = x.col(b) - x.col(a);
-        record(angle_between<3>(e.cross(Vector<3>(x.col(others[0]) - x.col(a))),
-                                e.cross(Vector<3>(x.col(others[1]) - x.col(a)))));
+        m.record_angle(angle_between<3>(e.cross(Vector<3>(x.col(others[0]) - x.col(a))),
+                                        e.cross(Vector<3>(x.col(others[1]) - x.col(a)))));
       }
   }
   m.edge_ratio = edge_ratio<Type>(x);
@@ -97,13 +100,9 @@ Measures measure_q1(const typename CellTraits<Type>::Coordinates& x) {
   m.max_angle = 0.0;
   for (int c = 0; c < n; ++c) {
     // Edges along the reference axes, pointing the way the axes do (so the unit cell has J = I).
-    Matrix<d> edges;
+    const Matrix<d> edges = corner_jacobian<Type>(x, c);
     double product = 1.0;
-    for (int j = 0; j < d; ++j) {
-      const double sign = ((c >> j) & 1) ? -1.0 : 1.0;
-      edges.col(j) = sign * (x.col(c ^ (1 << j)) - x.col(c));
-      product *= edges.col(j).norm();
-    }
+    for (int j = 0; j < d; ++j) product *= edges.col(j).norm();
     const double det = edges.determinant();
     m.min_corner_det = std::min(m.min_corner_det, det);
     m.scaled_jacobian = std::min(m.scaled_jacobian, det / product);
@@ -114,8 +113,7 @@ Measures measure_q1(const typename CellTraits<Type>::Coordinates& x) {
         double angle =
             angle_between<d>(x.col(c ^ (1 << j)) - x.col(c), x.col(c ^ (1 << k)) - x.col(c));
         if (d == 2 && det <= 0.0) angle = 360.0 - angle;
-        m.min_angle = std::min(m.min_angle, angle);
-        m.max_angle = std::max(m.max_angle, angle);
+        m.record_angle(angle);
       }
   }
   // 2 Gauss points per direction integrate det J exactly (degree ≤ 1 in 2D, ≤ 2 per axis in 3D).
@@ -131,6 +129,48 @@ Measures measure_q1(const typename CellTraits<Type>::Coordinates& x) {
   return m;
 }
 
+// Wedges and pyramids: corner frames of the cell-type table, the reference map's det J at the
+// quadrature points, and the interior angles of the faces.
+template <CellType Type>
+Measures measure_wedge_or_pyramid(const typename CellTraits<Type>::Coordinates& x) {
+  const CellFacts& cell = facts(Type);
+  Measures m{};
+  m.min_corner_det = m.min_gauss_det = m.scaled_jacobian = m.min_angle = kInfinity;
+  m.max_angle = 0.0;
+  for (int k = 0; k < cell.num_corners; ++k) {
+    const Matrix<3> edges = corner_jacobian<Type>(x, k);
+    const double det = edges.determinant();
+    m.min_corner_det = std::min(m.min_corner_det, det);
+    m.scaled_jacobian = std::min(
+        m.scaled_jacobian, det / (edges.col(0).norm() * edges.col(1).norm() * edges.col(2).norm()) /
+                               cell.ideal_corner_sine);
+  }
+  for (int f = 0; f < cell.num_facets; ++f) {
+    const FacetVertices& facet = cell.facets[f];
+    for (int i = 0; i < facet.size; ++i) {
+      const auto corner = x.col(facet.vertices[i]);
+      m.record_angle(
+          angle_between<3>(x.col(facet.vertices[(i + 1) % facet.size]) - corner,
+                           x.col(facet.vertices[(i + facet.size - 1) % facet.size]) - corner));
+    }
+  }
+  // det J relative to the unit reference cell: the wedge over the unit right triangle with
+  // height 1 (ζ = 2t − 1 halves it), the pyramid over the unit square with apex height 1 (its
+  // det J = (1 − ξ2)²/32 det[∂B/∂u, ∂B/∂v, apex − B] with u, v ∈ [0, 1]).
+  static const ReferenceRule<Type> volume_rule(2), det_rule(3);
+  for (int q = 0; q < volume_rule.size; ++q)
+    m.volume += volume_rule.weights[q] *
+                (x * shape_gradients<Type>(volume_rule.points[q]).transpose()).determinant();
+  for (int q = 0; q < det_rule.size; ++q) {
+    const Vector<3>& xi = det_rule.points[q];
+    const double scale = Type == CellType::Wedge ? 2.0 : 32.0 / ((1.0 - xi[2]) * (1.0 - xi[2]));
+    const double det = (x * shape_gradients<Type>(xi).transpose()).determinant();
+    m.min_gauss_det = std::min(m.min_gauss_det, scale * det);
+  }
+  m.edge_ratio = edge_ratio<Type>(x);
+  return m;
+}
+
 template <CellType Type>
 void measure_block(const CellBlock& block, std::span<const double> coords, CellQuality& out) {
   using Traits = CellTraits<Type>;
@@ -140,10 +180,12 @@ void measure_block(const CellBlock& block, std::span<const double> coords, CellQ
     for (int i = 0; i < Traits::vertices; ++i)
       for (int k = 0; k < Traits::dim; ++k) x(k, i) = coords[Traits::dim * cell[i] + k];
     Measures m;
-    if constexpr (Traits::simplex) {
+    if constexpr (Traits::shape == CellShape::Simplex) {
       m = measure_simplex<Type>(x);
-    } else {
+    } else if constexpr (Traits::shape == CellShape::Tensor) {
       m = measure_q1<Type>(x);
+    } else {
+      m = measure_wedge_or_pyramid<Type>(x);
     }
     const std::size_t i = block.first_cell + c;
     out.type[i] = Type;
@@ -181,22 +223,9 @@ CellQuality cell_quality(const MeshView& view, std::span<const double> coords) {
                       &q.min_angle, &q.max_angle, &q.edge_ratio})
     field->resize(view.num_cells);
   q.type.resize(view.num_cells);
-  for (const CellBlock& block : view.blocks) {
-    switch (block.type) {
-      case CellType::Triangle:
-        measure_block<CellType::Triangle>(block, coords, q);
-        break;
-      case CellType::Quadrilateral:
-        measure_block<CellType::Quadrilateral>(block, coords, q);
-        break;
-      case CellType::Tetrahedron:
-        measure_block<CellType::Tetrahedron>(block, coords, q);
-        break;
-      case CellType::Hexahedron:
-        measure_block<CellType::Hexahedron>(block, coords, q);
-        break;
-    }
-  }
+  for (const CellBlock& block : view.blocks)
+    visit_cell_type(block.type,
+                    [&]<CellType Type>(CellTag<Type>) { measure_block<Type>(block, coords, q); });
   return q;
 }
 
@@ -213,7 +242,7 @@ std::vector<std::pair<std::string_view, MetricStats>> QualitySummary::metrics() 
 QualitySummary summarize(const CellQuality& quality, MPI_Comm comm) {
   QualitySummary s;
   for (CellType t : quality.type) ++s.cells_by_type[static_cast<int>(t)];
-  MPI_Allreduce(MPI_IN_PLACE, s.cells_by_type.data(), 4, MPI_INT64_T, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, s.cells_by_type.data(), kNumCellTypes, MPI_INT64_T, MPI_SUM, comm);
   for (std::int64_t n : s.cells_by_type) s.cells += n;
 
   s.volume = reduce(quality.volume, s.cells, comm);
@@ -240,22 +269,12 @@ QualitySummary summarize(const CellQuality& quality, MPI_Comm comm) {
 }
 
 std::string_view plural_name(CellType type) {
-  switch (type) {
-    case CellType::Triangle:
-      return "triangles";
-    case CellType::Quadrilateral:
-      return "quadrilaterals";
-    case CellType::Tetrahedron:
-      return "tetrahedra";
-    case CellType::Hexahedron:
-      return "hexahedra";
-  }
-  return "cells";
+  return facts(type).plural;
 }
 
 std::string format_table(const QualitySummary& s) {
   std::string out = fmt::format("cells: {}", s.cells);
-  for (int t = 0; t < 4; ++t)
+  for (int t = 0; t < kNumCellTypes; ++t)
     if (s.cells_by_type[t] > 0)
       out += fmt::format(", {} {}", s.cells_by_type[t], plural_name(static_cast<CellType>(t)));
   out += fmt::format("\n{:<18}{:>14}{:>14}{:>14}\n", "metric", "min", "mean", "max");
@@ -268,7 +287,7 @@ std::string format_table(const QualitySummary& s) {
 
 nlohmann::json to_json(const QualitySummary& s) {
   nlohmann::json cells = {{"total", s.cells}};
-  for (int t = 0; t < 4; ++t)
+  for (int t = 0; t < kNumCellTypes; ++t)
     if (s.cells_by_type[t] > 0)
       cells[std::string(name(static_cast<CellType>(t)))] = s.cells_by_type[t];
   nlohmann::json metrics = nlohmann::json::object();

@@ -1,18 +1,21 @@
 // Cell quality metrics: what a user looks at before and after smoothing.
 //
 // Conventions (the same for every cell type, so that 1 and 90° read alike everywhere):
-// - Jacobians are taken with respect to the unit reference cell: at a Q1 corner, the
-//   columns are the corner's edge vectors along the reference axes (so the unit square has
-//   det 1 at every corner); at a Gauss point, 2^d times the Jacobian from [-1,1]^d; for a
+// - Jacobians are taken with respect to the unit reference cell: at a corner, the columns
+//   are the corner's edge vectors (the corner frames of the cell-type table: along the
+//   reference axes for Q1 cells, so the unit square has det 1 at every corner; for a pyramid
+//   also the apex with three consecutive base vertices); at a Gauss point, 2^d times the
+//   Jacobian from [-1,1]^d (wedges and pyramids: see measure_wedge_or_pyramid); for a
 //   simplex, the edge matrix [x1-x0, x2-x0(, x3-x0)].
 // - Scaled Jacobian: minimum over the corners of det J / (product of the lengths of the
-//   corner's d edges); for simplices divided by its value on the equilateral triangle
-//   (√3/2) or the regular tetrahedron (√2/2). 1 for the ideal cell, ≤ 0 for inverted ones.
+//   corner's d edges), divided by its value on the optimal cell where that is not 1: the
+//   equilateral triangle and the wedge (√3/2), the regular tetrahedron and the pyramid with
+//   equilateral side faces (√2/2). 1 for the ideal cell, ≤ 0 for inverted ones.
 // - Angles, in degrees: triangles and quads, the interior angle at each corner (a quad
 //   corner with det J ≤ 0 counts as reflex, 360° minus the angle between its edges);
 //   hexahedra, the angles between the edges at each corner (ideal 90°); tetrahedra, the six
 //   dihedral angles (ideal arccos(1/3) ≈ 70.53°), which reveal slivers where face angles
-//   do not.
+//   do not; wedges and pyramids, the interior angles of their faces (ideal 60° and 90°).
 // - Edge ratio: longest over shortest edge; +∞ for a zero-length edge.
 #pragma once
 
@@ -56,7 +59,7 @@ struct MetricStats {
 // The quality of a whole (possibly distributed) mesh.
 struct QualitySummary {
   std::int64_t cells = 0;
-  std::array<std::int64_t, 4> cells_by_type{};  // indexed by CellType
+  std::array<std::int64_t, kNumCellTypes> cells_by_type{};  // indexed by CellType
   MetricStats volume, min_corner_det, min_gauss_det, scaled_jacobian, min_angle, max_angle,
       edge_ratio;
   std::int64_t inverted = 0;    // det J ≤ 0 at a corner or Gauss point

@@ -40,6 +40,45 @@ TEST(CellQuality, UnitSquareIsIdeal) {
   EXPECT_DOUBLE_EQ(q.edge_ratio[0], 1.0);
 }
 
+namespace {
+
+// The optimal wedge and pyramid of edge 1: face angles of 60° and 90°, equal edges.
+void expect_optimal(const CellQuality& q, double volume) {
+  EXPECT_NEAR(q.volume[0], volume, 1e-15);
+  EXPECT_NEAR(q.scaled_jacobian[0], 1.0, 1e-15);
+  EXPECT_NEAR(q.min_angle[0], 60.0, 1e-12);
+  EXPECT_NEAR(q.max_angle[0], 90.0, 1e-12);
+  EXPECT_NEAR(q.edge_ratio[0], 1.0, 1e-15);
+}
+
+}  // namespace
+
+TEST(CellQuality, RightPrismOnEquilateralTriangleIsIdeal) {
+  const double h = std::sqrt(3.0) / 2;
+  expect_optimal(
+      one_cell(CellType::Wedge, {0, 0, 0, 1, 0, 0, 0.5, h, 0, 0, 0, 1, 1, 0, 1, 0.5, h, 1}), h / 2);
+  // The unit reference wedge (right triangle, height 1) has det J = 1 everywhere.
+  const CellQuality unit =
+      one_cell(CellType::Wedge, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1});
+  EXPECT_NEAR(unit.min_corner_det[0], 1.0, 1e-15);
+  EXPECT_NEAR(unit.min_gauss_det[0], 1.0, 1e-14);
+}
+
+TEST(CellQuality, SquarePyramidWithEquilateralSidesIsIdeal) {
+  const double apex = 1 / std::sqrt(2.0);
+  expect_optimal(one_cell(CellType::Pyramid, {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0.5, 0.5, apex}),
+                 apex / 3);
+  // Apex above a base corner at height 1: the unit reference pyramid, det J = 1 wherever the
+  // rule looks; pushed below the base it is inverted.
+  const CellQuality unit =
+      one_cell(CellType::Pyramid, {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1});
+  EXPECT_NEAR(unit.min_gauss_det[0], 1.0, 1e-13);
+  const CellQuality below =
+      one_cell(CellType::Pyramid, {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0.5, 0.5, -0.2});
+  EXPECT_LT(below.scaled_jacobian[0], 0.0);
+  EXPECT_LT(below.min_gauss_det[0], 0.0);
+}
+
 TEST(CellQuality, EquilateralTriangleIsIdeal) {
   const double h = std::sqrt(3.0) / 2;
   const CellQuality q = one_cell(CellType::Triangle, {0, 0, 1, 0, 0.5, h});

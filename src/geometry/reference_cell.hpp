@@ -1,9 +1,12 @@
-// Reference and optimal cells, Gauss quadrature and Q1 shape-function gradients.
+// Reference and optimal cells, quadrature, shape-function gradients and corner Jacobians.
 //
-// Conventions (MATH.md §1): Q1 cells map from [-1,1]^d with vertices in tensor order
-// (cell_type.hpp); simplices use their edge matrix E = [x1-x0, x2-x0(, x3-x0)]. The optimal
-// cell of desired volume v is the square/cube of edge v^(1/d), the equilateral triangle
-// or the regular tetrahedron scaled to volume v.
+// Conventions (MATH.md §1, docs/cell-types.md): Q1 cells map from [-1,1]^d with vertices in
+// tensor order (cell_type.hpp); simplices use their edge matrix E = [x1-x0, x2-x0(, x3-x0)];
+// wedges map from triangle × [-1,1] and pyramids from [-1,1]^3 with the top face collapsed
+// onto the apex. The optimal cell of desired volume v is the square/cube of edge v^(1/d),
+// the equilateral triangle or the regular tetrahedron, the right prism on an equilateral
+// triangle with height equal to its edge, or the square pyramid with equilateral side faces,
+// scaled to volume v.
 #pragma once
 
 #include <array>
@@ -26,8 +29,24 @@ struct CellTraits {
   static constexpr int dim = dimension(Type);
   static constexpr int vertices = num_vertices(Type);
   static constexpr bool simplex = is_simplex(Type);
+  static constexpr CellShape shape = facts(Type).shape;
   using Coordinates = Eigen::Matrix<double, dim, vertices>;  // one column per vertex
 };
+
+// The Jacobian at corner frame k of the cell-type table (CornerFrame): its columns are the
+// frame's edges, so det > 0 on a valid cell and, for Q1 cells, the unit square/cube has J = I.
+template <CellType Type>
+Matrix<CellTraits<Type>::dim> corner_jacobian(const typename CellTraits<Type>::Coordinates& x,
+                                              int k) {
+  constexpr int dim = CellTraits<Type>::dim;
+  const CornerFrame& frame = facts(Type).corners[k];
+  Matrix<dim> edges;
+  for (int j = 0; j < dim; ++j) {
+    const double sign = ((frame.flip >> j) & 1) ? -1.0 : 1.0;
+    edges.col(j) = sign * (x.col(frame.ends[j]) - x.col(frame.vertex));
+  }
+  return edges;
+}
 
 // Gauss–Legendre rule on [-1, 1] with n = 1..5 points (exact for degree 2n-1).
 struct GaussRule1D {
@@ -101,6 +120,131 @@ Matrix<Dim> unit_optimal_simplex_edges() {
     e *= std::cbrt(12.0 / std::sqrt(2.0));
   }
   return e;
+}
+
+// Gradients of the wedge's shape functions at (r, s, ζ), r, s ≥ 0, r + s ≤ 1, ζ ∈ [-1, 1],
+// one column per vertex: N_i = λ_i (1 − ζ)/2, N_{i+3} = λ_i (1 + ζ)/2 with the barycentric
+// λ = (1 − r − s, r, s).
+inline Eigen::Matrix<double, 3, 6> wedge_gradients(const Vector<3>& xi) {
+  const double lambda[3] = {1.0 - xi[0] - xi[1], xi[0], xi[1]};
+  const double dlambda[2][3] = {{-1.0, 1.0, 0.0}, {-1.0, 0.0, 1.0}};
+  Eigen::Matrix<double, 3, 6> grad;
+  for (int i = 0; i < 3; ++i)
+    for (int level = 0; level < 2; ++level) {
+      const double z = level ? 0.5 * (1.0 + xi[2]) : 0.5 * (1.0 - xi[2]);
+      const int v = i + 3 * level;
+      grad(0, v) = dlambda[0][i] * z;
+      grad(1, v) = dlambda[1][i] * z;
+      grad(2, v) = (level ? 0.5 : -0.5) * lambda[i];
+    }
+  return grad;
+}
+
+// Gradients of the pyramid's shape functions at ξ ∈ [-1,1]^3, one column per vertex: the
+// trilinear map of the cube with its top face collapsed onto the apex (Duffy), N_i =
+// B_i(ξ0, ξ1) (1 − ξ2)/2 for the base (tensor order, B_i bilinear) and N_4 = (1 + ξ2)/2.
+// On the cell they are the rational pyramid functions; at the apex (ξ2 = 1) the map is
+// singular, which quadrature points never reach.
+inline Eigen::Matrix<double, 3, 5> pyramid_gradients(const Vector<3>& xi) {
+  const Vector<2> base(xi[0], xi[1]);
+  const Eigen::Matrix<double, 2, 4> b = q1_gradients<2>(base);
+  Eigen::Matrix<double, 3, 5> grad;
+  for (int i = 0; i < 4; ++i) {
+    double value = 1.0;  // B_i
+    for (int j = 0; j < 2; ++j) value *= 0.5 * (1.0 + (((i >> j) & 1) ? 1.0 : -1.0) * base[j]);
+    grad(0, i) = b(0, i) * 0.5 * (1.0 - xi[2]);
+    grad(1, i) = b(1, i) * 0.5 * (1.0 - xi[2]);
+    grad(2, i) = -0.5 * value;
+  }
+  grad.col(4) << 0.0, 0.0, 0.5;
+  return grad;
+}
+
+// Quadrature on the reference cell of a wedge or pyramid, in the coordinates of
+// wedge_gradients / pyramid_gradients (weights sum to the reference measure, 1 for the wedge's
+// triangle × [-1,1] and 8 for the pyramid's cube: the map's Jacobian does the rest).
+// - wedge: a symmetric triangle rule (1 point of degree 1, 3 of degree 2 or Radon's 7 of
+//   degree 5 for n = 1, 2, ≥ 3) times n Gauss points in ζ;
+// - pyramid: n³ Gauss points on the cube: a conical (Duffy) product rule. det J carries the
+//   factor (1 − ξ2)², so n ≥ 2 integrates the volume exactly; no point lies at the apex.
+template <CellType Type>
+struct ReferenceRule {
+  static_assert(Type == CellType::Wedge || Type == CellType::Pyramid);
+  static constexpr int max_points = Type == CellType::Wedge ? 7 * 5 : 125;
+  int size = 0;
+  std::array<Vector<3>, max_points> points;
+  std::array<double, max_points> weights{};
+
+  explicit ReferenceRule(int n) {
+    const GaussRule1D g = gauss_legendre(n);
+    if constexpr (Type == CellType::Pyramid) {
+      const TensorGaussRule<3> cube(n);
+      size = cube.size;
+      for (int q = 0; q < size; ++q) {
+        points[q] = cube.points[q];
+        weights[q] = cube.weights[q];
+      }
+    } else {
+      const auto triangle = triangle_rule(n);
+      for (const auto& [r, s, w] : triangle)
+        for (int k = 0; k < g.size; ++k) {
+          if (w == 0.0) continue;
+          points[size] = Vector<3>(r, s, g.points[k]);
+          weights[size++] = w * g.weights[k];
+        }
+    }
+  }
+
+ private:
+  // Points (r, s) and weights (summing to 1/2) of the triangle rule; unused entries weigh 0.
+  static std::array<std::array<double, 3>, 7> triangle_rule(int n) {
+    if (n <= 1) return {{{1.0 / 3.0, 1.0 / 3.0, 0.5}}};
+    if (n == 2)
+      return {{{1.0 / 6.0, 1.0 / 6.0, 1.0 / 6.0},
+               {2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0},
+               {1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0}}};
+    const double r15 = std::sqrt(15.0);
+    const double a = (6.0 - r15) / 21.0, b = (6.0 + r15) / 21.0;
+    const double wa = (155.0 - r15) / 2400.0, wb = (155.0 + r15) / 2400.0;
+    return {{{1.0 / 3.0, 1.0 / 3.0, 9.0 / 80.0},
+             {a, a, wa},
+             {1.0 - 2.0 * a, a, wa},
+             {a, 1.0 - 2.0 * a, wa},
+             {b, b, wb},
+             {1.0 - 2.0 * b, b, wb},
+             {b, 1.0 - 2.0 * b, wb}}};
+  }
+};
+
+// Shape-function gradients of a wedge or pyramid at reference point ξ.
+template <CellType Type>
+Eigen::Matrix<double, 3, CellTraits<Type>::vertices> shape_gradients(const Vector<3>& xi) {
+  if constexpr (Type == CellType::Wedge) {
+    return wedge_gradients(xi);
+  } else {
+    return pyramid_gradients(xi);
+  }
+}
+
+// The optimal wedge or pyramid of unit volume (one column per vertex, canonical order): the
+// right prism over the equilateral triangle of edge a with height a, or the pyramid over the
+// square of edge a whose four side faces are equilateral triangles (apex height a/√2).
+template <CellType Type>
+typename CellTraits<Type>::Coordinates unit_optimal_cell() {
+  typename CellTraits<Type>::Coordinates y;
+  if constexpr (Type == CellType::Wedge) {
+    const double a = std::cbrt(4.0 / std::sqrt(3.0));  // volume √3/4 a³ = 1
+    for (int level = 0; level < 2; ++level) {
+      y.col(3 * level) << 0.0, 0.0, level * a;
+      y.col(3 * level + 1) << a, 0.0, level * a;
+      y.col(3 * level + 2) << 0.5 * a, 0.5 * std::sqrt(3.0) * a, level * a;
+    }
+  } else {
+    const double a = std::cbrt(3.0 * std::sqrt(2.0));  // volume a³/(3√2) = 1
+    for (int i = 0; i < 4; ++i) y.col(i) << (i & 1) * a, ((i >> 1) & 1) * a, 0.0;
+    y.col(4) << 0.5 * a, 0.5 * a, a / std::sqrt(2.0);
+  }
+  return y;
 }
 
 }  // namespace neomesh

@@ -1,12 +1,14 @@
 // Local vertex orders of the file formats and of DMPlex, relative to neomesh's canonical
-// order (cell_type.hpp). `kPlexFromCanonical[t][i]` is the canonical index of the vertex
-// DMPlex lists at position i (cone and closure order); `kGmshFromCanonical` likewise for
-// Gmsh and VTK, which agree for the four cell types.
+// order, read from the cell-type table (cell_type.hpp), and DMPlex's polytope of each type.
 //
-// Found by reading cells whose geometry is known: DMPlex lists quadrilaterals counter-
-// clockwise, tetrahedra negatively oriented and hexahedra with the bottom face clockwise
-// seen from the top face; Gmsh/VTK list quadrilaterals and both hexahedron faces
-// counter-clockwise and tetrahedra positively oriented.
+// Found by reading cells whose geometry is known, and for the wedge and pyramid from
+// DMPlexInvertCell and DMPlexGetRawFaces_Internal: DMPlex lists quadrilaterals counter-
+// clockwise, tetrahedra negatively oriented, hexahedra with the bottom face clockwise seen
+// from the top face, wedges with the bottom triangle clockwise seen from the top (the top
+// vertex above bottom position i at cone position 3, 5, 4 for i = 0, 1, 2) and pyramids with
+// the base clockwise seen from the apex; Gmsh/VTK list quadrilaterals and both hexahedron
+// faces counter-clockwise, tetrahedra positively oriented, and wedge bottoms and pyramid bases
+// counter-clockwise seen from the top/apex.
 #pragma once
 
 #include <array>
@@ -17,59 +19,37 @@
 
 namespace neomesh {
 
-using VertexOrder = std::array<int, 8>;
-
-constexpr VertexOrder kPlexFromCanonical[4] = {{0, 1, 2},                  // triangle
-                                               {0, 1, 3, 2},               // quadrilateral
-                                               {1, 0, 2, 3},               // tetrahedron
-                                               {0, 2, 3, 1, 4, 5, 7, 6}};  // hexahedron
-constexpr VertexOrder kCanonicalFromPlex[4] = {
-    {0, 1, 2}, {0, 1, 3, 2}, {1, 0, 2, 3}, {0, 3, 1, 2, 4, 5, 7, 6}};
-constexpr VertexOrder kGmshFromCanonical[4] = {
-    {0, 1, 2}, {0, 1, 3, 2}, {0, 1, 2, 3}, {0, 1, 3, 2, 4, 5, 7, 6}};
+using VertexOrder = std::array<std::uint8_t, 8>;
 
 constexpr const VertexOrder& plex_from_canonical(CellType t) {
-  return kPlexFromCanonical[static_cast<int>(t)];
-}
-constexpr const VertexOrder& canonical_from_plex(CellType t) {
-  return kCanonicalFromPlex[static_cast<int>(t)];
+  return facts(t).plex_order;
 }
 constexpr const VertexOrder& gmsh_from_canonical(CellType t) {
-  return kGmshFromCanonical[static_cast<int>(t)];
+  return facts(t).gmsh_order;
 }
 
-// The facets of a cell as DMPlexInterpolate makes them (DMPlexGetRawFaces_Internal): positions
-// in the DMPlex cone. A facet keeps the vertex order of the first cell that has it, and its
-// closure lists its vertices in that order.
-struct FacetShape {
-  int count;  // facets per cell
-  int size;   // vertices per facet
-  std::array<std::array<int, 4>, 6> vertices;
-};
-constexpr FacetShape kPlexFacets[4] = {
-    {3, 2, {{{0, 1}, {1, 2}, {2, 0}}}},                      // triangle
-    {4, 2, {{{0, 1}, {1, 2}, {2, 3}, {3, 0}}}},              // quadrilateral
-    {4, 3, {{{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {2, 1, 3}}}},  // tetrahedron
-    {6,
-     4,  // hexahedron
-     {{{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 3, 5, 4}, {2, 1, 7, 6}, {3, 2, 6, 5}, {0, 4, 7, 1}}}}};
-
-constexpr const FacetShape& plex_facets(CellType t) {
-  return kPlexFacets[static_cast<int>(t)];
+namespace detail {
+constexpr std::array<VertexOrder, kNumCellTypes> inverse_plex_orders() {
+  std::array<VertexOrder, kNumCellTypes> out{};
+  for (int t = 0; t < kNumCellTypes; ++t)
+    for (int i = 0; i < kCellFacts[t].vertices; ++i)
+      out[t][kCellFacts[t].plex_order[i]] = static_cast<std::uint8_t>(i);
+  return out;
 }
+inline constexpr std::array<VertexOrder, kNumCellTypes> kCanonicalFromPlex = inverse_plex_orders();
+}  // namespace detail
+
+// Position in the DMPlex cone of canonical vertex i.
+constexpr const VertexOrder& canonical_from_plex(CellType t) {
+  return detail::kCanonicalFromPlex[static_cast<int>(t)];
+}
+
+inline constexpr std::array<DMPolytopeType, kNumCellTypes> kPlexPolytope = {
+    DM_POLYTOPE_TRIANGLE,   DM_POLYTOPE_QUADRILATERAL, DM_POLYTOPE_TETRAHEDRON,
+    DM_POLYTOPE_HEXAHEDRON, DM_POLYTOPE_TRI_PRISM,     DM_POLYTOPE_PYRAMID};
 
 constexpr DMPolytopeType plex_polytope(CellType t) {
-  switch (t) {
-    case CellType::Triangle:
-      return DM_POLYTOPE_TRIANGLE;
-    case CellType::Quadrilateral:
-      return DM_POLYTOPE_QUADRILATERAL;
-    case CellType::Tetrahedron:
-      return DM_POLYTOPE_TETRAHEDRON;
-    case CellType::Hexahedron:
-      return DM_POLYTOPE_HEXAHEDRON;
-  }
-  return DM_POLYTOPE_UNKNOWN;
+  return kPlexPolytope[static_cast<int>(t)];
 }
 
 }  // namespace neomesh

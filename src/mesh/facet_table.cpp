@@ -2,20 +2,7 @@
 
 #include <algorithm>
 
-#include "mesh/cell_order.hpp"
-
 namespace neomesh {
-
-namespace {
-
-// The cell's vertices in DMPlex cone order.
-void plex_cone(const InputMesh& mesh, PetscInt c, PetscInt cone[8]) {
-  const CellType type = mesh.cell_types[c];
-  const PetscInt* canonical = mesh.cell_vertices.data() + mesh.cell_offsets[c];
-  for (int i = 0; i < num_vertices(type); ++i) cone[i] = canonical[plex_from_canonical(type)[i]];
-}
-
-}  // namespace
 
 FacetTable::Key FacetTable::key(const PetscInt* vertices, int n) {
   Key k{-1, -1, -1, -1};
@@ -37,18 +24,19 @@ PetscInt FacetTable::lookup(const Key& k) const {
 FacetTable::FacetTable(const InputMesh& mesh) : mesh_(mesh) {
   head_.assign(mesh.num_vertices(), -1);
   std::size_t estimate = 0;  // every interior facet is seen twice
-  for (CellType t : mesh.cell_types) estimate += plex_facets(t).count;
+  for (CellType t : mesh.cell_types) estimate += facts(t).num_facets;
   keys_.reserve(estimate / 2 + 1);
   cells_.reserve(estimate / 2 + 1);
   local_.reserve(estimate / 2 + 1);
   next_.reserve(estimate / 2 + 1);
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
-    PetscInt cone[8], facet[4];
-    plex_cone(mesh, c, cone);
-    const FacetShape& shape = plex_facets(mesh.cell_types[c]);
-    for (int i = 0; i < shape.count; ++i) {
-      for (int j = 0; j < shape.size; ++j) facet[j] = cone[shape.vertices[i][j]];
-      const Key k = key(facet, shape.size);
+    const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
+    const CellFacts& cell_facts = facts(mesh.cell_types[c]);
+    for (int i = 0; i < cell_facts.num_facets; ++i) {
+      const FacetVertices& local = cell_facts.facets[i];
+      PetscInt facet[4];
+      for (int j = 0; j < local.size; ++j) facet[j] = cell[local.vertices[j]];
+      const Key k = key(facet, local.size);
       const PetscInt f = lookup(k);
       if (f >= 0) {
         if (cells_[f][1] < 0) cells_[f][1] = c;
@@ -65,11 +53,10 @@ FacetTable::FacetTable(const InputMesh& mesh) : mesh_(mesh) {
 
 int FacetTable::vertices(PetscInt f, PetscInt out[4]) const {
   const PetscInt c = cells_[f][0];
-  PetscInt cone[8];
-  plex_cone(mesh_, c, cone);
-  const FacetShape& shape = plex_facets(mesh_.cell_types[c]);
-  for (int j = 0; j < shape.size; ++j) out[j] = cone[shape.vertices[local_[f]][j]];
-  return shape.size;
+  const PetscInt* cell = mesh_.cell_vertices.data() + mesh_.cell_offsets[c];
+  const FacetVertices& local = facts(mesh_.cell_types[c]).facets[local_[f]];
+  for (int j = 0; j < local.size; ++j) out[j] = cell[local.vertices[j]];
+  return local.size;
 }
 
 PetscInt FacetTable::find(const PetscInt* vertices, int n) const {

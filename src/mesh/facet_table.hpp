@@ -27,7 +27,7 @@ class FacetTable {
   bool on_boundary(PetscInt f) const { return cells_[f][1] < 0; }
 
   // The facet's vertices in the order of DMPlex's facet closure, the order in which the first
-  // cell (in cell order) that has the facet lists them (kPlexFacets). Returns their number.
+  // cell (in cell order) that has the facet lists them (CellFacts::facets). Returns their number.
   int vertices(PetscInt f, PetscInt out[4]) const;
 
   // The facet with these vertices (in any order), or -1.

@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "mesh/generate.hpp"
 #include "mesh/input_topology.hpp"
+#include "mesh/plex_builder.hpp"
 
 namespace neomesh {
 namespace {
@@ -55,6 +56,56 @@ TEST(FacetTable, SixTetsOfACubeHaveTwelveBoundaryTriangles) {
   for (PetscInt f = 0; f < table.size(); ++f) boundary += table.on_boundary(f);
   EXPECT_EQ(boundary, 12);
   EXPECT_EQ(table.size(), 18);
+}
+
+// One cell of `type` with its vertices at `coords` (canonical order).
+InputMesh single_cell(CellType type, std::vector<double> coords) {
+  InputMesh mesh;
+  mesh.dim = dimension(type);
+  mesh.coords = std::move(coords);
+  PetscInt v[8];
+  for (int i = 0; i < num_vertices(type); ++i) v[i] = i;
+  mesh.add_cell(type, v, 0);
+  return mesh;
+}
+
+// The facet table claims DMPlexInterpolate's facets and their vertex order: check it against
+// PETSc for every 3D type (the cone orders of cell_order.hpp included).
+TEST(FacetTable, AgreesWithDMPlexInterpolateOnEverySolidCell) {
+  const std::vector<std::pair<CellType, std::vector<double>>> cells = {
+      {CellType::Tetrahedron, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}},
+      {CellType::Hexahedron,
+       {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1}},
+      {CellType::Wedge, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1}},
+      {CellType::Pyramid, {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0.5, 0.5, 1}}};
+  for (const auto& [type, coords] : cells) {
+    SCOPED_TRACE(std::string(name(type)));
+    const InputMesh mesh = single_cell(type, coords);
+    const FacetTable table(mesh);
+    ASSERT_EQ(table.size(), facts(type).num_facets);
+    OwnedDM dm = build_plex(PETSC_COMM_SELF, mesh), interpolated;
+    NM_PETSC(DMPlexInterpolate(dm, interpolated.out()));
+    PetscInt faces, vStart, vEnd;
+    const PetscInt* cone;
+    NM_PETSC(DMPlexGetConeSize(interpolated, 0, &faces));
+    NM_PETSC(DMPlexGetCone(interpolated, 0, &cone));
+    NM_PETSC(DMPlexGetDepthStratum(interpolated, 0, &vStart, &vEnd));
+    ASSERT_EQ(faces, table.size());
+    for (PetscInt k = 0; k < faces; ++k) {
+      PetscInt n = 0, *closure = nullptr;
+      NM_PETSC(DMPlexGetTransitiveClosure(interpolated, cone[k], PETSC_TRUE, &n, &closure));
+      std::vector<PetscInt> plex;
+      for (PetscInt i = 0; i < n; ++i)
+        if (closure[2 * i] >= vStart && closure[2 * i] < vEnd)
+          plex.push_back(closure[2 * i] - vStart);
+      NM_PETSC(DMPlexRestoreTransitiveClosure(interpolated, cone[k], PETSC_TRUE, &n, &closure));
+      const PetscInt f = table.find(plex.data(), static_cast<int>(plex.size()));
+      ASSERT_GE(f, 0);
+      PetscInt ours[4];
+      ASSERT_EQ(table.vertices(f, ours), static_cast<int>(plex.size()));
+      EXPECT_EQ(std::vector<PetscInt>(ours, ours + plex.size()), plex) << "facet " << k;
+    }
+  }
 }
 
 TEST(InputTopology, VertexSetsBecomeFacetsAndIsolatedPoints) {

@@ -137,21 +137,6 @@ void split_into_simplices(MeshData& mesh) {
   }
 }
 
-// Local vertices of each facet of a cell, canonical order.
-std::vector<std::vector<int>> facets(CellType type) {
-  switch (type) {
-    case CellType::Triangle:
-      return {{0, 1}, {1, 2}, {0, 2}};
-    case CellType::Quadrilateral:
-      return {{0, 1}, {2, 3}, {0, 2}, {1, 3}};
-    case CellType::Tetrahedron:
-      return {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
-    case CellType::Hexahedron:
-      return {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 4, 5}, {2, 3, 6, 7}, {0, 2, 4, 6}, {1, 3, 5, 7}};
-  }
-  return {};
-}
-
 }  // namespace
 
 MeshData square_midpoint(int cells_per_direction) {
@@ -275,11 +260,12 @@ std::vector<std::uint8_t> boundary_vertices(const MeshData& mesh) {
   };
   std::unordered_set<Facet, FacetHash> open;
   const int nv = num_vertices(mesh.cell_type);
-  const auto local_facets = facets(mesh.cell_type);
+  const CellFacts& cell = facts(mesh.cell_type);
   for (std::int64_t c = 0; c < mesh.num_cells(); ++c)
-    for (const auto& local : local_facets) {
+    for (int f = 0; f < cell.num_facets; ++f) {
+      const FacetVertices& local = cell.facets[f];
       Facet facet{-1, -1, -1, -1};
-      for (std::size_t i = 0; i < local.size(); ++i) facet[i] = mesh.cells[c * nv + local[i]];
+      for (int i = 0; i < local.size; ++i) facet[i] = mesh.cells[c * nv + local.vertices[i]];
       std::sort(facet.begin(), facet.end());
       if (auto [it, inserted] = open.insert(facet); !inserted) open.erase(it);
     }

@@ -367,7 +367,11 @@ class GmshParser {
 
   ElementType type_of(long long gmsh_type) {
     ElementType t;
-    if (!element_type(gmsh_type, t)) invalid("element type {} is not supported", gmsh_type);
+    if (!element_type(gmsh_type, t))
+      fail(
+          "{}: has elements of Gmsh type {}, which neomesh does not read (it reads points, "
+          "lines, triangles, quadrilaterals, tetrahedra, hexahedra, wedges and pyramids)",
+          file_, gmsh_type);
     return t;
   }
 
@@ -443,10 +447,10 @@ constexpr const char* kPolytopeName[kNumPolytopes] = {
     "tetrahedron", "hexahedron",    "triangular_prism", "pyramid",
     "triangle",    "quadrilateral", "segment",          "point"};
 
-// neomesh's cell type of each polytope (none for prisms, pyramids, lines and points).
+// neomesh's cell type of each polytope (none for lines and points).
 constexpr std::optional<CellType> kCellType[kNumPolytopes] = {
-    CellType::Tetrahedron, CellType::Hexahedron,    std::nullopt, std::nullopt,
-    CellType::Triangle,    CellType::Quadrilateral, std::nullopt, std::nullopt};
+    CellType::Tetrahedron, CellType::Hexahedron,    CellType::Wedge, CellType::Pyramid,
+    CellType::Triangle,    CellType::Quadrilateral, std::nullopt,    std::nullopt};
 
 // Vertices are the nodes some element has as a corner, numbered in the order of $Nodes.
 std::vector<PetscInt> number_vertices(const Contents& c, InputMesh& mesh) {
@@ -472,7 +476,7 @@ void add_cells(const Contents& c, const std::string& file, const std::vector<Pet
     if (!kCellType[p])
       fail(
           "{}: cell {} (0-based) is a {}; neomesh supports triangles, quadrilaterals, "
-          "tetrahedra and hexahedra",
+          "tetrahedra, hexahedra, wedges and pyramids",
           file, index, kPolytopeName[p]);
     const CellType type = *kCellType[p];
     const int n = kPolytopeCorners[p];
@@ -518,7 +522,7 @@ int cell_dimension(const Contents& c, const std::string& file) {
   if (dim < 2)
     fail(
         "{}: has no 2D or 3D cells (only {}D elements); neomesh needs triangles, "
-        "quadrilaterals, tetrahedra or hexahedra",
+        "quadrilaterals, tetrahedra, hexahedra, wedges or pyramids",
         file, dim);
   for (int p = 0; p < kNumPolytopes; ++p)
     if (kPolytopeDim[p] == dim && !c.elements[p].tags.empty())

@@ -14,7 +14,8 @@
 namespace neomesh {
 
 // Not collective (call it on rank 0). Throws Error naming the file for anything that is not a
-// valid Gmsh file or that neomesh cannot use (lines only, prisms, second-order elements).
+// valid Gmsh file or that neomesh cannot use (lines only, second-order elements, element types it
+// does not read).
 InputMesh read_gmsh(const std::filesystem::path& path);
 
 }  // namespace neomesh

@@ -76,16 +76,17 @@ void build_cells(const Impl& m, const std::vector<PetscInt>& original, MeshView&
   PetscInt cStart, cEnd, vStart;
   NM_PETSC(DMPlexGetHeightStratum(m.dm, 0, &cStart, &cEnd));
   NM_PETSC(DMPlexGetDepthStratum(m.dm, 0, &vStart, nullptr));
-  // A cell's type follows from its number of vertices (faster than the "celltype" label).
+  // A cell's type follows from its dimension and number of vertices (faster than the
+  // "celltype" label).
   std::vector<CellType> type(cEnd - cStart);
   for (PetscInt c = cStart; c < cEnd; ++c) {
     PetscInt n;
     NM_PETSC(DMPlexGetConeSize(m.dm, c, &n));
-    type[c - cStart] = m.dim == 2 ? (n == 3 ? CellType::Triangle : CellType::Quadrilateral)
-                                  : (n == 4 ? CellType::Tetrahedron : CellType::Hexahedron);
+    const int t = cell_type_index(m.dim, static_cast<int>(n));
+    if (t < 0) fail("{}: cell {} has {} vertices in {}D", m.source, c, n, m.dim);
+    type[c - cStart] = static_cast<CellType>(t);
   }
-  for (CellType t :
-       {CellType::Triangle, CellType::Quadrilateral, CellType::Tetrahedron, CellType::Hexahedron}) {
+  for (CellType t : kAllCellTypes) {
     CellBlock block{t, view.num_cells, {}};
     for (PetscInt c = cStart; c < cEnd; ++c) {
       if (type[c - cStart] != t) continue;

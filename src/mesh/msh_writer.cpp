@@ -10,20 +10,6 @@ namespace neomesh {
 
 namespace {
 
-// Gmsh element type numbers.
-int gmsh_cell_type(CellType t) {
-  switch (t) {
-    case CellType::Triangle:
-      return 2;
-    case CellType::Quadrilateral:
-      return 3;
-    case CellType::Tetrahedron:
-      return 4;
-    case CellType::Hexahedron:
-      return 5;
-  }
-  return 0;
-}
 int gmsh_facet_type(int dim, PetscInt num_vertices) {
   if (num_vertices == 1) return 15;  // point
   if (dim == 2) return 1;            // line
@@ -106,7 +92,7 @@ std::vector<Block> element_blocks(const GatheredMesh& g, const Groups& groups, E
     const CellType t = mesh.cell_types[c];
     const int tag = mesh.cell_tags[c] != 0 ? mesh.cell_tags[c] : groups.untagged_cells;
     entities.add(mesh.dim, tag);
-    auto& block = blocks[{mesh.dim, tag, gmsh_cell_type(t)}];
+    auto& block = blocks[{mesh.dim, tag, facts(t).gmsh}];
     std::vector<PetscInt> vertices(num_vertices(t));
     const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
     for (int i = 0; i < num_vertices(t); ++i) vertices[i] = cell[gmsh_from_canonical(t)[i]];

@@ -15,8 +15,7 @@ void set_cell_types(DM dm, const InputMesh& mesh) {
   DMLabel label;
   NM_PETSC(DMCreateLabel(dm, "celltype"));
   NM_PETSC(DMPlexGetCellTypeLabel(dm, &label));
-  for (CellType t :
-       {CellType::Triangle, CellType::Quadrilateral, CellType::Tetrahedron, CellType::Hexahedron}) {
+  for (CellType t : kAllCellTypes) {
     std::vector<PetscInt> cells;
     for (PetscInt c = 0; c < nc; ++c)
       if (mesh.cell_types[c] == t) cells.push_back(c);

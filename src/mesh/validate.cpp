@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "mesh/cell_order.hpp"
+#include "mesh/cell_type.hpp"
 #include "mesh/collective_error.hpp"
 
 namespace neomesh {
@@ -38,24 +38,20 @@ double scaled_det(const double (*e)[3], int dim) {
 
 namespace {
 
-// The smallest and largest scaled corner Jacobian of a cell (see min_scaled_corner_jacobian).
+// The smallest and largest scaled corner Jacobian of a cell (see min_scaled_corner_jacobian),
+// over the corner frames of the cell-type table.
 std::pair<double, double> scaled_corner_jacobians(CellType type, const double* x) {
-  const int dim = dimension(type);
+  const CellFacts& cell = facts(type);
+  const int dim = cell.dim;
   double e[3][3] = {};
-  if (is_simplex(type)) {  // one Jacobian, the edge matrix [x1-x0, x2-x0(, x3-x0)]
-    for (int i = 0; i < dim; ++i)
-      for (int d = 0; d < dim; ++d) e[i][d] = x[(i + 1) * dim + d] - x[d];
-    const double q = scaled_det(e, dim);
-    return {q, q};
-  }
-  // Tensor order: the neighbour of vertex v along direction j is v ^ (1 << j), and the edge
-  // points along +ξ_j when bit j of v is 0.
   double worst = INFINITY, best = -INFINITY;
-  for (int v = 0; v < num_vertices(type); ++v) {
+  for (int k = 0; k < cell.num_corners; ++k) {
+    const CornerFrame& frame = cell.corners[k];
+    const double* origin = x + frame.vertex * dim;
     for (int j = 0; j < dim; ++j) {
-      const int w = v ^ (1 << j);
-      const double sign = (v >> j) & 1 ? -1.0 : 1.0;
-      for (int d = 0; d < dim; ++d) e[j][d] = sign * (x[w * dim + d] - x[v * dim + d]);
+      const double* end = x + frame.ends[j] * dim;
+      const double sign = (frame.flip >> j) & 1 ? -1.0 : 1.0;
+      for (int d = 0; d < dim; ++d) e[j][d] = sign * (end[d] - origin[d]);
     }
     const double q = scaled_det(e, dim);
     worst = std::min(worst, q);
@@ -76,15 +72,13 @@ bool cell_coordinates(const InputMesh& mesh, PetscInt c, double* x) {
   return true;
 }
 
-// Mirrors a cell's local order: the reference cell reflected in ξ_0 (tensor order: vertex i
-// trades places with i ^ 1) or two vertices swapped (simplices), which negates every corner
+// Mirrors a cell's local order by the table's renumbering (for simplices two vertices
+// swapped, for tensor order the reference cell reflected in ξ_0), which negates every corner
 // Jacobian.
 void mirror(CellType type, PetscInt* cell) {
-  if (is_simplex(type)) {
-    std::swap(cell[1], cell[2]);
-    return;
-  }
-  for (int i = 0; i < num_vertices(type); i += 2) std::swap(cell[i], cell[i + 1]);
+  PetscInt in[8];
+  std::copy_n(cell, num_vertices(type), in);
+  for (int i = 0; i < num_vertices(type); ++i) cell[i] = in[facts(type).mirror[i]];
 }
 
 // One facet of a cell: its sorted vertices (then -1), the cell, and which way the cell runs
@@ -128,7 +122,7 @@ std::vector<PetscInt> orient_mirrored_cells(InputMesh& mesh) {
 }
 
 std::string find_fold(const InputMesh& mesh, const std::vector<PetscInt>& mirrored) {
-  // DMPlex's facets of a cell (kPlexFacets, on its cone) all run the same way around the cell,
+  // A cell's facets (CellFacts::facets, DMPlex's) all run the same way around the cell,
   // and cones of positively oriented cells all have the same orientation: two cells on opposite
   // sides of a facet run around it in opposite directions.
   struct KeyHash {
@@ -142,12 +136,11 @@ std::string find_fold(const InputMesh& mesh, const std::vector<PetscInt>& mirror
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
     const CellType type = mesh.cell_types[c];
     const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
-    const FacetShape& shape = plex_facets(type);
-    for (int f = 0; f < shape.count; ++f) {
+    for (int f = 0; f < facts(type).num_facets; ++f) {
+      const FacetVertices& local = facts(type).facets[f];
       PetscInt v[4] = {};
-      for (int j = 0; j < shape.size; ++j)
-        v[j] = cell[plex_from_canonical(type)[shape.vertices[f][j]]];
-      const FacetSide side = facet_side(v, shape.size, c);
+      for (int j = 0; j < local.size; ++j) v[j] = cell[local.vertices[j]];
+      const FacetSide side = facet_side(v, local.size, c);
       const auto [it, inserted] = first_side.try_emplace(side.key, c, side.forward);
       if (inserted || it->second.second != side.forward) continue;
       // Name the cell that was mirrored (it is the one that folds over), else the later one.

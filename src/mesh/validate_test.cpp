@@ -51,7 +51,7 @@ INSTANTIATE_TEST_SUITE_P(
             "bad_inverted.msh",
             "cell 0 (0-based; element 13 of the file), a triangle, is inverted (it folds over"},
         BadInput{"bad_repeated_vertex.msh", "cell 0 (0-based) has a repeated vertex"},
-        BadInput{"bad_prism.msh", "cell 0 (0-based) is a triangular_prism"},
+        BadInput{"bad_element_type.msh", "has elements of Gmsh type 92"},
         BadInput{"bad_second_order.msh", "second-order"},
         BadInput{"bad_lines_only.msh", "no 2D or 3D cells"},
         BadInput{"bad_mixed_dim.msh", "2D and 3D cells mixed"},

@@ -7,20 +7,6 @@ namespace neomesh {
 
 namespace {
 
-constexpr int vtk_type(CellType t) {
-  switch (t) {
-    case CellType::Triangle:
-      return 5;  // VTK_TRIANGLE
-    case CellType::Quadrilateral:
-      return 9;  // VTK_QUAD
-    case CellType::Tetrahedron:
-      return 10;  // VTK_TETRA
-    case CellType::Hexahedron:
-      return 12;  // VTK_HEXAHEDRON
-  }
-  return 0;
-}
-
 void write_field(std::ostream& f, const Field& field) {
   fmt::print(
       f, "<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
@@ -74,7 +60,7 @@ void write_vtu(const GatheredMesh& gathered, std::ostream& f) {
   fmt::print(f, "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) fmt::print(f, "{}\n", mesh.cell_offsets[c + 1]);
   fmt::print(f, "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-  for (CellType t : mesh.cell_types) fmt::print(f, "{}\n", vtk_type(t));
+  for (CellType t : mesh.cell_types) fmt::print(f, "{}\n", facts(t).vtk);
   fmt::print(f, "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
 }
 

@@ -1,4 +1,4 @@
-// A square extruded in one layer: prisms (unsupported by neomesh).
+// A square extruded in one layer: 14 wedges (prisms).
 lc = 0.5;
 Point(1) = {0, 0, 0, lc};
 Point(2) = {1, 0, 0, lc};

@@ -1,0 +1,129 @@
+"""Wedges and pyramids end to end (docs/cell-types.md): Gmsh meshes of
+- the unit square in triangles extruded in three layers (wedges),
+- a triangle square next to a quadrilateral square, extruded (wedges and hexahedra),
+- a hexahedral cube glued to a tetrahedral cube (Gmsh puts pyramids between them),
+with their interior vertices jittered: `neomesh smooth` keeps every cell, raises the minimum
+scaled Jacobian and leaves no inverted cell; the .msh output and its .vtu conversion have the
+input's cells by type; 2 MPI ranks give the serial result. Prints the figures. Needs gmsh."""
+import json
+import os
+import random
+import subprocess
+import sys
+import tempfile
+
+import meshio
+
+NEOMESH = os.path.abspath(os.environ["NEOMESH"]) if "NEOMESH" in os.environ else "neomesh"
+SOURCE = os.environ.get("NEOMESH_SOURCE",
+                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+MPIEXEC = os.environ.get("NEOMESH_MPIEXEC")
+GEO = os.path.join(SOURCE, "tests", "data", "geo")
+failures = []
+
+# (name, .geo, jitter as a fraction of the mesh size, expected cells by type, compare with 2
+# ranks)
+CASES = [
+    ("wedges", "extruded_prisms.geo", 0.3, {"wedge": 126}, False),
+    ("wedges+hexahedra", "extruded_prisms_hexes.geo", 0.3, {"wedge": 126, "hexahedron": 48},
+     True),
+    ("hexahedra+pyramids+tetrahedra", "hex_tet_pyramids.geo", 0.2,
+     {"hexahedron": 27, "pyramid": 9, "tetrahedron": 248}, True),
+]
+MESH_SIZE = 0.25
+
+
+def check(condition, message):
+    print(("ok   " if condition else "FAIL ") + message)
+    if not condition:
+        failures.append(message)
+
+
+def run(args, cwd):
+    proc = subprocess.run(args, cwd=cwd, capture_output=True, text=True, timeout=120)
+    if proc.returncode != 0:
+        sys.exit(f"{' '.join(args)}: exit {proc.returncode}\n{proc.stdout}\n{proc.stderr}")
+    return proc
+
+
+def jitter(path, amplitude, seed):
+    """Moves every node off the boundary of the mesh's bounding box by up to `amplitude` in
+    each coordinate (Gmsh 2.2 ASCII: `tag x y z` lines in $Nodes)."""
+    with open(path) as f:
+        lines = f.read().split("\n")
+    start = lines.index("$Nodes") + 2
+    end = lines.index("$EndNodes")
+    nodes = [line.split() for line in lines[start:end]]
+    xyz = [[float(v) for v in n[1:4]] for n in nodes]
+    low = [min(p[d] for p in xyz) for d in range(3)]
+    high = [max(p[d] for p in xyz) for d in range(3)]
+    rng = random.Random(seed)
+    for i, p in enumerate(xyz):
+        if any(abs(p[d] - low[d]) < 1e-9 or abs(p[d] - high[d]) < 1e-9 for d in range(3)):
+            continue
+        q = [p[d] + rng.uniform(-amplitude, amplitude) for d in range(3)]
+        lines[start + i] = " ".join([nodes[i][0]] + [repr(v) for v in q])
+    with open(path, "w") as f:
+        f.write("\n".join(lines))
+
+
+def smooth(cwd, mesh, out, launcher=()):
+    report = out + ".json"
+    run([*launcher, NEOMESH, "smooth", mesh, "-o", out, "--report", report, "--quiet"], cwd)
+    with open(os.path.join(cwd, report)) as f:
+        return json.load(f)
+
+
+def cells_by_type(mesh):
+    """meshio's blocks of 3D cells, counted by neomesh's type names."""
+    names = {"tetra": "tetrahedron", "hexahedron": "hexahedron", "wedge": "wedge",
+             "pyramid": "pyramid"}
+    counts = {}
+    for block in mesh.cells:
+        if block.type in names:
+            counts[names[block.type]] = counts.get(names[block.type], 0) + len(block.data)
+    return counts
+
+
+def case(tmp, name, geo, amplitude, expected, parallel_too):
+    stem = name.replace("+", "_")
+    mesh = stem + ".msh"
+    run(["gmsh", "-3", os.path.join(GEO, geo), "-format", "msh22", "-o", mesh], tmp)
+    jitter(os.path.join(tmp, mesh), amplitude * MESH_SIZE, seed=7)
+    report = smooth(tmp, mesh, stem + "-out.msh")
+    before, after = report["quality_before"], report["quality_after"]
+    sj_before = before["metrics"]["scaled_jacobian"]["min"]
+    sj_after = after["metrics"]["scaled_jacobian"]["min"]
+    print(f"{name}: cells {after['cells']}, min scaled Jacobian {sj_before:.4f} -> "
+          f"{sj_after:.4f}, {report['result']['iterations']} iterations")
+    counts = {k: v for k, v in after["cells"].items() if k != "total"}
+    check(counts == expected, f"{name}: cells by type {counts}, expected {expected}")
+    check(sj_after > sj_before + 0.05, f"{name}: the minimum scaled Jacobian rose")
+    check(after["inverted"] == 0 and after["degenerate"] == 0, f"{name}: no inverted cell")
+    run([NEOMESH, "convert", stem + "-out.msh", "-o", stem + "-out.vtu"], tmp)
+    for out in (stem + "-out.msh", stem + "-out.vtu"):
+        written = cells_by_type(meshio.read(os.path.join(tmp, out)))
+        check(written == expected, f"{name}: {out} has the cells by type {written}")
+    if not MPIEXEC or not parallel_too:
+        return
+    parallel = smooth(tmp, mesh, stem + "-2.msh",
+                      [MPIEXEC, "--allow-run-as-root", "--oversubscribe", "-n", "2"])
+    serial_points = meshio.read(os.path.join(tmp, stem + "-out.msh")).points
+    parallel_points = meshio.read(os.path.join(tmp, stem + "-2.msh")).points
+    worst = max(abs(a - b) for p, q in zip(serial_points, parallel_points) for a, b in zip(p, q))
+    its = (report["result"]["iterations"], parallel["result"]["iterations"])
+    print(f"{name}: 2 ranks: {its[1]} iterations, largest distance to serial {worst:.1e}")
+    check(worst <= 1e-6 and abs(its[0] - its[1]) <= 1,
+          f"{name}: 2 ranks give the serial result")
+
+
+def main():
+    with tempfile.TemporaryDirectory() as tmp:
+        for args in CASES:
+            case(tmp, *args)
+    if failures:
+        sys.exit(f"{len(failures)} check(s) failed")
+
+
+if __name__ == "__main__":
+    main()
