@@ -1,8 +1,8 @@
 #include "core/petsc.hpp"
 
 #include <cstdlib>
-
 #include <filesystem>
+#include <string>
 
 namespace neomesh {
 
@@ -53,11 +53,28 @@ int mpi_size(MPI_Comm comm) {
 // (docs/benchmarks.md, "Start-up"). One process needs neither, so unless the user set them,
 // a singleton skips the daemon and uses the plain point-to-point layer. Under mpiexec nothing
 // changes.
+//
+// Isolated singletons all put their session directory at jf.0 under the same top directory,
+// and one that ends removes it while another starts in it ("A call to mkdir was unable to
+// create the desired directory ... orte_session_dir failed": 2 of 316 tests under ctest -j2
+// next to other test runs). So each singleton gets a top directory of its own, removed at
+// exit.
 void configure_singleton_mpi() {
   for (const char* launched : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
     if (std::getenv(launched)) return;
   setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
   setenv("OMPI_MCA_pml", "ob1", 0);
+  if (std::getenv("OMPI_MCA_orte_tmpdir_base")) return;
+  static std::string session_base;
+  const char* tmp = std::getenv("TMPDIR");
+  std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/neomesh-mpi-XXXXXX";
+  if (!mkdtemp(pattern.data())) return;  // Open MPI's default then
+  session_base = pattern;
+  setenv("OMPI_MCA_orte_tmpdir_base", session_base.c_str(), 1);
+  std::atexit([] {
+    std::error_code ignored;
+    std::filesystem::remove_all(session_base, ignored);
+  });
 }
 
 }  // namespace neomesh
