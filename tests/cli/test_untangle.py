@@ -1,5 +1,6 @@
 """neomesh smooth untangles a mesh with inverted cells before smoothing it (docs/untangling.md):
-jittered boxes of quads and hexes come out with no inverted cell, the table names the phases,
+jittered boxes of quads and hexes, bumped boxes, and jittered Gmsh meshes of wedges, hexahedra,
+pyramids and tets come out with no inverted cell, the table names the phases,
 the report counts the inverted cells before and after; --no-untangle refuses such a mesh, and a
 mesh whose boundary folds over ends with one error line naming the cells, and no output."""
 import json
@@ -12,6 +13,9 @@ import meshio
 import numpy
 
 NEOMESH = os.environ.get("NEOMESH", "neomesh")
+SOURCE = os.environ.get("NEOMESH_SOURCE",
+                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+DATA = os.path.join(SOURCE, "tests", "data")
 
 
 def run(cmd, expect=0):
@@ -35,6 +39,39 @@ def bumped_box(tmp, name, cells):
     m = meshio.read(mesh)
     bottom = numpy.isclose(m.points[:, 1], -1.0)
     m.points[bottom, 1] += 0.8 * (1.0 - m.points[bottom, 0] ** 2)
+    meshio.write(mesh, m, file_format="gmsh22", binary=False)
+    return mesh
+
+
+# Faces of meshio's 3D cell types (local vertex numbers), to find the boundary vertices.
+FACES = {"tetra": [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)],
+         "hexahedron": [(0, 1, 2, 3), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6),
+                        (3, 0, 4, 7)],
+         "wedge": [(0, 1, 2), (3, 4, 5), (0, 1, 4, 3), (1, 2, 5, 4), (2, 0, 3, 5)],
+         "pyramid": [(0, 1, 2, 3), (0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)]}
+
+
+def tangled_gmsh_mesh(tmp, name, geo, amplitude):
+    """A 3D mesh Gmsh makes from tests/data/geo/GEO, its interior vertices moved by up to
+    `amplitude` times their shortest edge per coordinate (seeded)."""
+    mesh = os.path.join(tmp, name + ".msh")
+    run(["gmsh", "-3", os.path.join(DATA, "geo", geo), "-format", "msh41", "-o", mesh])
+    m = meshio.read(mesh)
+    faces, shortest = {}, numpy.full(len(m.points), numpy.inf)
+    for block in m.cells:
+        for cell in block.data if block.type in FACES else []:
+            for face in FACES[block.type]:
+                key = tuple(sorted(cell[list(face)]))
+                faces[key] = faces.get(key, 0) + 1
+            for a in cell:
+                for b in cell:
+                    if a != b:
+                        shortest[a] = min(shortest[a], numpy.linalg.norm(m.points[a] - m.points[b]))
+    boundary = {v for face, count in faces.items() if count == 1 for v in face}
+    random = numpy.random.default_rng(5)
+    for v in range(len(m.points)):
+        if v not in boundary and numpy.isfinite(shortest[v]):
+            m.points[v] += amplitude * shortest[v] * random.uniform(-1, 1, 3)
     meshio.write(mesh, m, file_format="gmsh22", binary=False)
     return mesh
 
@@ -106,6 +143,11 @@ def main():
         untangles(tmp, "bump-fixed", mesh=bump, options=["--boundary", "fixed"],
                   inverted_before=10)
         untangles(tmp, "bump-sliding", mesh=bump, inverted_before=10)
+        # Wedges and hexahedra (an extruded triangle/quad mesh); hexahedra, pyramids and tets.
+        for name, geo in (("wedges-hexes", "extruded_prisms_hexes.geo"),
+                          ("hexes-pyramids-tets", "hex_tet_pyramids.geo")):
+            untangles(tmp, name, mesh=tangled_gmsh_mesh(tmp, name, geo, 0.9),
+                      inverted_before=20)
 
         tangled = os.path.join(tmp, "quads.msh")
         refuses(tmp, ["--no-untangle"], tangled, "is inverted")
