@@ -1,4 +1,4 @@
-// `neomesh generate`: writes one of the thesis' test meshes (docs/CASES.md).
+// `neomesh generate`: writes one of the thesis' test meshes (docs/cases.md).
 #include <array>
 #include <functional>
 #include <memory>

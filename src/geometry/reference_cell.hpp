@@ -1,6 +1,6 @@
 // Reference and optimal cells, Gauss quadrature and Q1 shape-function gradients.
 //
-// Conventions (MATH.md §1): Q1 cells map from [-1,1]^d with vertices in tensor order
+// Conventions (docs/method.md §1): Q1 cells map from [-1,1]^d with vertices in tensor order
 // (cell_type.hpp); simplices use their edge matrix E = [x1-x0, x2-x0(, x3-x0)]. The optimal
 // cell of desired volume v is the square/cube of edge v^(1/d), the equilateral triangle
 // or the regular tetrahedron scaled to volume v.
