@@ -41,7 +41,7 @@ class Case:
 
 def cases():
     out = []
-    # The thesis' levels: t = 3 … 10 is 16² … 2048² quads (docs/CASES.md); uniform desired
+    # The thesis' levels: t = 3 … 10 is 16² … 2048² quads (docs/cases.md); uniform desired
     # volumes (the thesis' problem, optimum = uniform grid), practical stopping criterion.
     for t in range(3, 11):
         n = 2 ** (t + 1)

@@ -1,4 +1,4 @@
-// The Picard iteration of thesis §6 (option ii, MATH.md §5): the desired volumes stay fixed
+// The Picard iteration of thesis §6 (option ii, docs/method.md §5): the desired volumes stay fixed
 // while the quasi-Newton method iterates; they are recomputed from the current mesh's
 // centroids when the method has (nearly) settled or every `update_every` iterations, and the
 // method restarts (new F and g, new Riesz Laplacian, k_min antigradient steps again). The

@@ -1,4 +1,4 @@
-// The chapter-6 cases of the thesis (CASES.md): [-1,1]^d adapted to the circle/sphere of
+// The chapter-6 cases of the thesis (docs/cases.md): [-1,1]^d adapted to the circle/sphere of
 // radius 0.7 around the origin. The 3D case at 32³ is in picard_longtest.cpp.
 #include "adapt/picard.hpp"
 

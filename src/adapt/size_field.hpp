@@ -1,4 +1,4 @@
-// Size fields for r-adaptivity (thesis §6, MATH.md §5): a desired *relative* volume per cell
+// Size fields for r-adaptivity (thesis §6, docs/method.md §5): a desired *relative* volume per cell
 // from the position of its centroid,
 //   v_K = floor + d(c_K)^p,
 // where d is the distance to a target surface (circle/sphere, plane, the surface of an

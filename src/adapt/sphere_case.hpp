@@ -1,4 +1,4 @@
-// Test helper for the chapter-6 cases of the thesis (CASES.md): [-1,1]^d adapted to the
+// Test helper for the chapter-6 cases of the thesis (docs/cases.md): [-1,1]^d adapted to the
 // circle/sphere of radius 0.7 around the origin, with the numbers the issue judges them by.
 // Used by picard_test.cpp and picard_longtest.cpp.
 #pragma once

@@ -1,4 +1,4 @@
-// `neomesh generate`: writes one of the thesis' test meshes (docs/CASES.md).
+// `neomesh generate`: writes one of the thesis' test meshes (docs/cases.md).
 #include <array>
 #include <functional>
 #include <memory>
@@ -134,7 +134,7 @@ Subcommand add_generate(CLI::App& app) {
   auto options = std::make_shared<GenerateOptions>();
   CLI::App* cmd = app.add_subcommand(
       "generate",
-      "Write one of the thesis' test meshes (docs/CASES.md) to a .msh or .vtu file.\n"
+      "Write one of the thesis' test meshes (docs/cases.md) to a .msh or .vtu file.\n"
       "Meaning of --level per case:\n"
       "  square-midpoint, cube-midpoint: thesis level t = 2^(t+1) cells per direction\n"
       "    (level 3 = 16x16 quads, Table 5.1; 3D level 3 = 16^3 hexes)\n"

@@ -1,4 +1,4 @@
-// What the boundary vertices may do during the optimization (docs/boundary.md, MATH.md §7).
+// What the boundary vertices may do during the optimization (docs/boundary.md, docs/method.md §7).
 //
 // Fixed (the thesis' H¹₀ setting): every boundary vertex stays where it is.
 // Slide: boundary vertices move along the boundary of the input domain. The boundary is split

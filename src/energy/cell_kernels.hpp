@@ -1,4 +1,4 @@
-// energy/cell_kernels.hpp — the energy of one cell and its derivatives (MATH.md §1–3).
+// energy/cell_kernels.hpp — the energy of one cell and its derivatives (docs/method.md §1–3).
 //
 // A cell K is given by its vertex coordinates X (Dim × vertices, one column per vertex, in
 // canonical local order) and its desired volume v. Its optimal cell has volume v; γ_K maps

@@ -13,8 +13,8 @@ constexpr double kFdTolerance = 1e-6;  // relative error allowed against central
 template <CellType Type>
 using Coordinates = typename CellKernel<Type>::Coordinates;
 
-// The optimal cell of volume v (MATH.md §1, docs/cell-types.md), vertex 0 at the origin for
-// simplices, wedges and pyramids and the square/cube [0, h]^d for Q1 cells.
+// The optimal cell of volume v (docs/method.md §1, docs/cell-types.md), vertex 0 at the
+// origin for simplices, wedges and pyramids and the square/cube [0, h]^d for Q1 cells.
 template <CellType Type>
 Coordinates<Type> optimal_cell(double volume) {
   constexpr int dim = CellTraits<Type>::dim;

@@ -1,4 +1,4 @@
-// The global mesh functional F(x) = Σ_K ∫_{optimal cell of K} W(∇γ_K) (MATH.md §2) over
+// The global mesh functional F(x) = Σ_K ∫_{optimal cell of K} W(∇γ_K) (docs/method.md §2) over
 // this rank's cells, with its gradient and the quasi-Newton matrix H(α) = B1 + α B2 + B3
 // (§3), plus the Riesz Laplacian L (§4). All vectors are global PETSc Vecs laid out by a
 // DofMap; every method is collective.
@@ -30,7 +30,7 @@ struct EnergyOptions {
   int gauss_points = 3;  // per direction for Q1 cells; 3 reproduces the thesis
 };
 
-// Which matrix represents the H¹₀ inner product for the Riesz representative (MATH.md §4).
+// Which matrix represents the H¹₀ inner product for the Riesz representative (docs/method.md §4).
 enum class RieszLaplacian {
   OptimalCells,  // ∫ over the optimal cells = B3/μ; the thesis' choice; built once per volumes
   CurrentMesh,   // stiffness matrix of the current mesh; depends on x

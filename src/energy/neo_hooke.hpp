@@ -1,4 +1,4 @@
-// energy/neo_hooke.hpp — the Neo-Hookean material law, and nothing else (MATH.md §2–3).
+// energy/neo_hooke.hpp — the Neo-Hookean material law, and nothing else (docs/method.md §2–3).
 //
 // The argument G of every function is the deformation gradient ∇γ_K of the map from the
 // optimal cell onto the actual cell ("optimal → actual"); it is a Dim × Dim matrix.

@@ -1,12 +1,12 @@
 // Reference and optimal cells, quadrature, shape-function gradients and corner Jacobians.
 //
-// Conventions (MATH.md §1, docs/cell-types.md): Q1 cells map from [-1,1]^d with vertices in
-// tensor order (cell_type.hpp); simplices use their edge matrix E = [x1-x0, x2-x0(, x3-x0)];
-// wedges map from triangle × [-1,1] and pyramids from [-1,1]^3 with the top face collapsed
-// onto the apex. The optimal cell of desired volume v is the square/cube of edge v^(1/d),
-// the equilateral triangle or the regular tetrahedron, the right prism on an equilateral
-// triangle with height equal to its edge, or the square pyramid with equilateral side faces,
-// scaled to volume v.
+// Conventions (docs/method.md §1, docs/cell-types.md): Q1 cells map from [-1,1]^d with
+// vertices in tensor order (cell_type.hpp); simplices use their edge matrix
+// E = [x1-x0, x2-x0(, x3-x0)]; wedges map from triangle × [-1,1] and pyramids from [-1,1]^3
+// with the top face collapsed onto the apex. The optimal cell of desired volume v is the
+// square/cube of edge v^(1/d), the equilateral triangle or the regular tetrahedron, the right
+// prism on an equilateral triangle with height equal to its edge, or the square pyramid with
+// equilateral side faces, scaled to volume v.
 #pragma once
 
 #include <array>

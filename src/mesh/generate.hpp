@@ -1,4 +1,4 @@
-// The thesis' test meshes (docs/CASES.md, thesis chapters 5 and 6) as MeshData.
+// The thesis' test meshes (docs/cases.md, thesis chapters 5 and 6) as MeshData.
 //
 // Every generator returns cells in canonical local order (cell_type.hpp), all positively
 // oriented, and names the sides of its boundary as VertexSets with distinct tags:

@@ -1,4 +1,4 @@
-// The two linear solves of each quasi-Newton iteration (MATH.md §4) as PETSc KSPs with
+// The two linear solves of each quasi-Newton iteration (docs/method.md §4) as PETSc KSPs with
 // option prefixes, so that users tune them without recompiling: `-hess_` for the
 // quasi-Newton system H(α) δ̃ = −g, `-riesz_` for the Riesz representative L s = g.
 //

@@ -196,7 +196,7 @@ struct QuasiNewton::Impl {
       new_energy = functional.value(trial);
       rec.armijo_steps = halvings;
       if (!std::isfinite(new_energy)) continue;
-      // Below round-off the test compares noise (MATH.md §4): take the step.
+      // Below round-off the test compares noise (docs/method.md §4): take the step.
       if (sigma * predicted <= options.energy_roundoff) {
         rec.roundoff_step = true;
         return true;
@@ -264,7 +264,7 @@ struct QuasiNewton::Impl {
     evaluate_gradient(x);
     rec.energy = energy;
 
-    // α for the next iteration (MATH.md §4, "α indexing").
+    // α for the next iteration (docs/method.md §4, "α indexing").
     if (antigradient_left > 0) --antigradient_left;
     if (rec.delta_failed)
       alpha = 0.1 * alpha;

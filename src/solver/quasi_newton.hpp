@@ -1,4 +1,4 @@
-// The quasi-Newton method of thesis §5.1 (MATH.md §4): the Riesz representative s of the
+// The quasi-Newton method of thesis §5.1 (docs/method.md §4): the Riesz representative s of the
 // gradient, a quasi-Newton direction δ̃ from H(α) δ̃ = −g accepted by the angle test,
 // Armijo backtracking that rejects non-finite energies, k_min initial antigradient steps
 // and the α heuristic; stopping on the Newton defect or on a practical criterion.
@@ -33,14 +33,14 @@ struct QuasiNewtonOptions {
   int max_iterations = 200;
   double defect_atol = 1e-10;  // stop when ‖g‖ ≤ defect_atol
   double defect_rtol = 1e-10;  // ... or ‖g‖ ≤ defect_rtol · ‖g_0‖
-  // Practical criterion (MATH.md §6): stop when the relative energy decrease is below
+  // Practical criterion (docs/method.md §6): stop when the relative energy decrease is below
   // energy_rtol and no vertex moved more than move_rtol times its local cell size.
   bool practical = true;
   double energy_rtol = 1e-9;
   double move_rtol = 1e-6;
   double armijo_beta = 1e-2;  // sufficient decrease (thesis (2.5.4))
   int max_halvings = 40;      // σ ≥ 0.5^40 ≈ 1e-12, then give up
-  // ‖g_{-1}‖ for the first α update; 10 reproduces the thesis' tables (MATH.md §4).
+  // ‖g_{-1}‖ for the first α update; 10 reproduces the thesis' tables (docs/method.md §4).
   double initial_previous_defect = 10.0;
   LinearSolverKind linear_solver = LinearSolverKind::Amg;
   double hessian_rtol = 1e-4;           // loose δ̃ solve: 4 digits ...
@@ -58,7 +58,7 @@ struct QuasiNewtonOptions {
   double hessian_pc_reuse = 1.5;
   HessianPreconditioner hessian_pc = HessianPreconditioner::Laplacian;
   RieszLaplacian riesz = RieszLaplacian::OptimalCells;
-  // Absolute round-off level of F (MATH.md §4): when the predicted decrease σ·(−gᵀδ) is
+  // Absolute round-off level of F (docs/method.md §4): when the predicted decrease σ·(−gᵀδ) is
   // below it, the Armijo test is decided by noise, so the step is taken as it is. About
   // 1e-15 (λ+μ) d |Ω|; see energy_roundoff().
   double energy_roundoff = 0.0;

@@ -1,4 +1,4 @@
-// The chapter-5 cases of the thesis (CASES.md) as tests of the quasi-Newton method.
+// The chapter-5 cases of the thesis (docs/cases.md) as tests of the quasi-Newton method.
 #include "solver/quasi_newton.hpp"
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // A thesis test case as a serial problem: a generated mesh, uniform desired volumes, fixed
-// (or sliding) boundary vertices and the thesis' parameters (CASES.md: λ = 1, μ = 10,
+// (or sliding) boundary vertices and the thesis' parameters (docs/cases.md: λ = 1, μ = 10,
 // α₀ = 0.3, η = 0.6). Used by the solver tests and benchmarks.
 #pragma once
 
