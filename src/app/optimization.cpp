@@ -119,11 +119,11 @@ struct OptimizationRun::Impl {
     const CellFields energy = functional->cell_fields(x);
     MeshFields fields;
     fields.cell = {
-        {"energy", energy.energy},         {"det_G_min", energy.min_det},
-        {"Q", energy.volume_ratio},        {"desired_volume", functional->desired_volumes()},
-        {"volume", quality.volume},        {"scaled_jacobian", quality.scaled_jacobian},
-        {"min_angle", quality.min_angle},  {"max_angle", quality.max_angle},
-        {"edge_ratio", quality.edge_ratio}};
+        {"energy", energy.energy},          {"det_G_min", energy.min_det},
+        {"Q", energy.volume_ratio},         {"desired_volume", functional->desired_volumes()},
+        {"volume", quality.volume},         {"scaled_jacobian", quality.scaled_jacobian},
+        {"min_angle", quality.min_angle},   {"max_angle", quality.max_angle},
+        {"edge_ratio", quality.edge_ratio}, {"inverse_mean_ratio", quality.inverse_mean_ratio}};
     return fields;
   }
 };
@@ -287,9 +287,16 @@ nlohmann::json OptimizationRun::untangle(bool progress_only) {
 }
 
 namespace {
-const std::vector<std::string> kPictureFields = {"Q",         "energy",         "scaled_jacobian",
-                                                 "min_angle", "max_angle",      "edge_ratio",
-                                                 "volume",    "desired_volume", "det_G_min"};
+const std::vector<std::string> kPictureFields = {"Q",
+                                                 "energy",
+                                                 "scaled_jacobian",
+                                                 "min_angle",
+                                                 "max_angle",
+                                                 "edge_ratio",
+                                                 "inverse_mean_ratio",
+                                                 "volume",
+                                                 "desired_volume",
+                                                 "det_G_min"};
 }
 
 void add_run_output_options(CLI::App& cmd, RunOutputs& o, const std::string& picture_field) {

@@ -38,11 +38,12 @@ struct FieldInfo {
   const char* legend;  // shown above the colour bar
 };
 
-constexpr std::array<FieldInfo, 7> kFields = {{
+constexpr std::array<FieldInfo, 8> kFields = {{
     {"scaled-jacobian", "scaled Jacobian"},
     {"min-angle", "min angle (deg)"},
     {"max-angle", "max angle (deg)"},
     {"edge-ratio", "edge ratio"},
+    {"inverse-mean-ratio", "inverse mean ratio"},
     {"volume", "cell volume"},
     {"energy", "energy of the cell"},
     {"Q", "Q = volume / desired"},
@@ -69,12 +70,13 @@ std::vector<double> energy_field(const Mesh& mesh, const CellQuality& quality,
 std::vector<double> field_values(const Mesh& mesh, const RenderCommandOptions& o) {
   const MeshView& view = mesh.view();
   const CellQuality quality = cell_quality(view, view.coords);
-  std::vector<double> values = o.field == "scaled-jacobian" ? quality.scaled_jacobian
-                               : o.field == "min-angle"     ? quality.min_angle
-                               : o.field == "max-angle"     ? quality.max_angle
-                               : o.field == "edge-ratio"    ? quality.edge_ratio
-                               : o.field == "volume"        ? quality.volume
-                                                            : energy_field(mesh, quality, o);
+  std::vector<double> values = o.field == "scaled-jacobian"      ? quality.scaled_jacobian
+                               : o.field == "min-angle"          ? quality.min_angle
+                               : o.field == "max-angle"          ? quality.max_angle
+                               : o.field == "edge-ratio"         ? quality.edge_ratio
+                               : o.field == "inverse-mean-ratio" ? quality.inverse_mean_ratio
+                               : o.field == "volume"             ? quality.volume
+                                                                 : energy_field(mesh, quality, o);
   // Inverted cells stand out in red whatever the field (render counts non-finite values).
   for (std::size_t c = 0; c < values.size(); ++c)
     if (!(quality.min_corner_det[c] > 0 && quality.min_gauss_det[c] > 0))

@@ -37,7 +37,7 @@ class UntanglingKernel {
     // The corner frames of the cell-type table, then (3D, not simplices) the Gauss points.
     const bool gauss_too = dim == 3 && !CellTraits<Type>::simplex;
     const int corners = facts(Type).num_corners;
-    const Coordinates optimal = unit_optimal_coordinates();
+    const Coordinates optimal = unit_optimal_cell<Type>();
     for (int k = 0; k < corners; ++k) {
       // J_k = X C_kᵀ (the frame's edges); G = J_k J_k,opt⁻¹ = X (J_k,opt⁻ᵀ C_k)ᵀ.
       const Gradient edges = corner_edges(k);
@@ -128,20 +128,6 @@ class UntanglingKernel {
       c(j, frame.vertex) -= sign;
     }
     return c;
-  }
-
-  // The optimal cell of unit volume (any placement: only its corner Jacobians are used).
-  static Coordinates unit_optimal_coordinates() {
-    Coordinates y;
-    if constexpr (CellTraits<Type>::simplex) {
-      y.col(0).setZero();
-      y.template rightCols<dim>() = unit_optimal_simplex_edges<dim>();
-    } else if constexpr (CellTraits<Type>::shape == CellShape::Tensor) {
-      for (int i = 0; i < vertices; ++i) y.col(i) = 0.5 * q1_vertex<dim>(i);
-    } else {
-      y = unit_optimal_cell<Type>();
-    }
-    return y;
   }
 
   void add(const Gradient& unit_gradients, double weight) {

@@ -171,6 +171,31 @@ Measures measure_wedge_or_pyramid(const typename CellTraits<Type>::Coordinates& 
   return m;
 }
 
+// Inverse mean ratio, the shape metric of Mesquite and of MFEM's TMOP (Knupp 2001): at each
+// corner frame T = J W⁻¹, J the corner's Jacobian and W the optimal cell's at that corner,
+// and |T|²_F / (d det(T)^(2/d)) ≥ 1, with 1 only where T is a scaled rotation; the mean over
+// the cell's corner frames (a simplex has one). +∞ where det T ≤ 0.
+template <CellType Type>
+double inverse_mean_ratio(const typename CellTraits<Type>::Coordinates& x) {
+  constexpr int d = CellTraits<Type>::dim;
+  static const std::array<Matrix<d>, 8> ideal_inverse = [] {
+    std::array<Matrix<d>, 8> inverses;
+    const auto optimal = unit_optimal_cell<Type>();
+    for (int k = 0; k < facts(Type).num_corners; ++k)
+      inverses[k] = corner_jacobian<Type>(optimal, k).inverse();
+    return inverses;
+  }();
+  const int corners = facts(Type).num_corners;
+  double sum = 0.0;
+  for (int k = 0; k < corners; ++k) {
+    const Matrix<d> t = corner_jacobian<Type>(x, k) * ideal_inverse[k];
+    const double det = t.determinant();
+    if (!(det > 0.0)) return kInfinity;
+    sum += t.squaredNorm() / (d * std::pow(det, 2.0 / d));
+  }
+  return sum / corners;
+}
+
 template <CellType Type>
 void measure_block(const CellBlock& block, std::span<const double> coords, CellQuality& out) {
   using Traits = CellTraits<Type>;
@@ -196,6 +221,7 @@ void measure_block(const CellBlock& block, std::span<const double> coords, CellQ
     out.min_angle[i] = m.min_angle;
     out.max_angle[i] = m.max_angle;
     out.edge_ratio[i] = m.edge_ratio;
+    out.inverse_mean_ratio[i] = inverse_mean_ratio<Type>(x);
   }
 }
 
@@ -220,7 +246,7 @@ CellQuality cell_quality(const MeshView& view, std::span<const double> coords) {
          view.num_vertices, view.dim);
   CellQuality q;
   for (auto* field : {&q.volume, &q.min_corner_det, &q.min_gauss_det, &q.scaled_jacobian,
-                      &q.min_angle, &q.max_angle, &q.edge_ratio})
+                      &q.min_angle, &q.max_angle, &q.edge_ratio, &q.inverse_mean_ratio})
     field->resize(view.num_cells);
   q.type.resize(view.num_cells);
   for (const CellBlock& block : view.blocks)
@@ -236,7 +262,8 @@ std::vector<std::pair<std::string_view, MetricStats>> QualitySummary::metrics() 
           {"scaled_jacobian", scaled_jacobian},
           {"min_angle", min_angle},
           {"max_angle", max_angle},
-          {"edge_ratio", edge_ratio}};
+          {"edge_ratio", edge_ratio},
+          {"inverse_mean_ratio", inverse_mean_ratio}};
 }
 
 QualitySummary summarize(const CellQuality& quality, MPI_Comm comm) {
@@ -252,6 +279,7 @@ QualitySummary summarize(const CellQuality& quality, MPI_Comm comm) {
   s.min_angle = reduce(quality.min_angle, s.cells, comm);
   s.max_angle = reduce(quality.max_angle, s.cells, comm);
   s.edge_ratio = reduce(quality.edge_ratio, s.cells, comm);
+  s.inverse_mean_ratio = reduce(quality.inverse_mean_ratio, s.cells, comm);
 
   double abs_volume = 0.0;
   for (double v : quality.volume) abs_volume += std::abs(v);

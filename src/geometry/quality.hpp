@@ -17,6 +17,10 @@
 //   dihedral angles (ideal arccos(1/3) ≈ 70.53°), which reveal slivers where face angles
 //   do not; wedges and pyramids, the interior angles of their faces (ideal 60° and 90°).
 // - Edge ratio: longest over shortest edge; +∞ for a zero-length edge.
+// - Inverse mean ratio (IMR, Mesquite's and TMOP's shape metric): |T|²_F / (d det(T)^(2/d))
+//   with T = J W⁻¹ the corner Jacobian relative to the optimal cell's, averaged over the
+//   corners; 1 for the ideal shape (any size), larger for worse, +∞ for an inverted corner.
+//   Its mean over the cells is what Mesquite reports as the mesh's quality.
 #pragma once
 
 #include <array>
@@ -44,6 +48,7 @@ struct CellQuality {
   std::vector<double> scaled_jacobian;  // see above
   std::vector<double> min_angle, max_angle;
   std::vector<double> edge_ratio;
+  std::vector<double> inverse_mean_ratio;  // see above
 
   std::size_t size() const { return volume.size(); }
 };
@@ -61,7 +66,7 @@ struct QualitySummary {
   std::int64_t cells = 0;
   std::array<std::int64_t, kNumCellTypes> cells_by_type{};  // indexed by CellType
   MetricStats volume, min_corner_det, min_gauss_det, scaled_jacobian, min_angle, max_angle,
-      edge_ratio;
+      edge_ratio, inverse_mean_ratio;
   std::int64_t inverted = 0;    // det J ≤ 0 at a corner or Gauss point
   std::int64_t degenerate = 0;  // |volume| < 1e-14 · mean |volume|, or an edge of length 0
 

@@ -38,6 +38,22 @@ TEST(CellQuality, UnitSquareIsIdeal) {
   EXPECT_DOUBLE_EQ(q.min_angle[0], 90.0);
   EXPECT_DOUBLE_EQ(q.max_angle[0], 90.0);
   EXPECT_DOUBLE_EQ(q.edge_ratio[0], 1.0);
+  EXPECT_DOUBLE_EQ(q.inverse_mean_ratio[0], 1.0);
+}
+
+// The inverse mean ratio measures shape only: any size, the same; stretching by 2 gives
+// |diag(2, 1)|² / (2 det) = 5/4 at every corner; a mirrored cell has none (+∞).
+TEST(CellQuality, InverseMeanRatioIsShapeOnly) {
+  EXPECT_NEAR(one_cell(CellType::Quadrilateral, {0, 0, 3, 0, 0, 3, 3, 3}).inverse_mean_ratio[0],
+              1.0, 1e-15);
+  EXPECT_NEAR(one_cell(CellType::Quadrilateral, {0, 0, 2, 0, 0, 1, 2, 1}).inverse_mean_ratio[0],
+              1.25, 1e-15);
+  EXPECT_TRUE(std::isinf(
+      one_cell(CellType::Quadrilateral, {1, 0, 0, 0, 1, 1, 0, 1}).inverse_mean_ratio[0]));
+  // A right isosceles triangle: (a² + b² + c²) / (4√3 area) = 2/√3 = 1.15470, the mean IMR
+  // Mesquite reaches on triangles split from squares.
+  EXPECT_NEAR(one_cell(CellType::Triangle, {0, 0, 1, 0, 0, 1}).inverse_mean_ratio[0],
+              2 / std::sqrt(3.0), 1e-15);
 }
 
 namespace {
@@ -49,6 +65,7 @@ void expect_optimal(const CellQuality& q, double volume) {
   EXPECT_NEAR(q.min_angle[0], 60.0, 1e-12);
   EXPECT_NEAR(q.max_angle[0], 90.0, 1e-12);
   EXPECT_NEAR(q.edge_ratio[0], 1.0, 1e-15);
+  EXPECT_NEAR(q.inverse_mean_ratio[0], 1.0, 1e-14);
 }
 
 }  // namespace
@@ -88,6 +105,7 @@ TEST(CellQuality, EquilateralTriangleIsIdeal) {
   EXPECT_NEAR(q.min_angle[0], 60.0, 1e-12);
   EXPECT_NEAR(q.max_angle[0], 60.0, 1e-12);
   EXPECT_NEAR(q.edge_ratio[0], 1.0, 1e-15);
+  EXPECT_NEAR(q.inverse_mean_ratio[0], 1.0, 1e-15);
 }
 
 TEST(CellQuality, RightTriangleHasAnglesOf45And90) {
@@ -148,6 +166,7 @@ TEST(CellQuality, RegularTetrahedronIsIdeal) {
   EXPECT_NEAR(q.min_angle[0], std::acos(1.0 / 3) * 180 / M_PI, 1e-10);
   EXPECT_NEAR(q.max_angle[0], std::acos(1.0 / 3) * 180 / M_PI, 1e-10);
   EXPECT_NEAR(q.edge_ratio[0], 1.0, 1e-14);
+  EXPECT_NEAR(q.inverse_mean_ratio[0], 1.0, 1e-14);
 }
 
 TEST(CellQuality, UnitCubeIsIdeal) {
@@ -162,6 +181,7 @@ TEST(CellQuality, UnitCubeIsIdeal) {
   EXPECT_DOUBLE_EQ(q.min_angle[0], 90.0);
   EXPECT_DOUBLE_EQ(q.max_angle[0], 90.0);
   EXPECT_DOUBLE_EQ(q.edge_ratio[0], 1.0);
+  EXPECT_DOUBLE_EQ(q.inverse_mean_ratio[0], 1.0);
 }
 
 TEST(QualitySummary, SquareMidpointLevel3) {

@@ -226,13 +226,21 @@ Eigen::Matrix<double, 3, CellTraits<Type>::vertices> shape_gradients(const Vecto
   }
 }
 
-// The optimal wedge or pyramid of unit volume (one column per vertex, canonical order): the
-// right prism over the equilateral triangle of edge a with height a, or the pyramid over the
-// square of edge a whose four side faces are equilateral triangles (apex height a/√2).
+// The optimal cell of unit volume (one column per vertex, canonical order): the equilateral
+// triangle or regular tetrahedron with vertex 0 at the origin, the unit square/cube centred at
+// the origin, the right prism over the equilateral triangle of edge a with height a, or the
+// pyramid over the square of edge a whose four side faces are equilateral triangles (apex
+// height a/√2).
 template <CellType Type>
 typename CellTraits<Type>::Coordinates unit_optimal_cell() {
+  constexpr int dim = CellTraits<Type>::dim;
   typename CellTraits<Type>::Coordinates y;
-  if constexpr (Type == CellType::Wedge) {
+  if constexpr (CellTraits<Type>::shape == CellShape::Simplex) {
+    y.col(0).setZero();
+    y.template rightCols<dim>() = unit_optimal_simplex_edges<dim>();
+  } else if constexpr (CellTraits<Type>::shape == CellShape::Tensor) {
+    for (int i = 0; i < CellTraits<Type>::vertices; ++i) y.col(i) = 0.5 * q1_vertex<dim>(i);
+  } else if constexpr (Type == CellType::Wedge) {
     const double a = std::cbrt(4.0 / std::sqrt(3.0));  // volume √3/4 a³ = 1
     for (int level = 0; level < 2; ++level) {
       y.col(3 * level) << 0.0, 0.0, level * a;
