@@ -18,11 +18,11 @@
 namespace neomesh {
 namespace {
 
-// Cells per direction giving about 2.5·10⁵ (2D) or 10⁵ (3D) cells, for the types `box` makes:
-// 2 n² = 250 632 triangles, n² = 250 000 quadrilaterals, 6 n³ = 105 456 tetrahedra and
-// n³ = 97 336 hexahedra.
+// Cells per direction giving about 2.5·10⁵ (2D) or 10⁵ (3D) cells: 2 n² = 250 632 triangles,
+// n² = 250 000 quadrilaterals, 6 n³ = 105 456 tetrahedra, n³ = 97 336 hexahedra,
+// 2 n³ = 93 312 wedges and 6 n³ = 93 750 pyramids.
 int cells_per_direction(CellType type) {
-  constexpr int kCells[] = {354, 500, 26, 46};
+  constexpr int kCells[kNumCellTypes] = {354, 500, 26, 46, 36, 25};
   return kCells[static_cast<int>(type)];
 }
 
@@ -124,6 +124,8 @@ NEOMESH_ENERGY_BENCH(CellType::Triangle);
 NEOMESH_ENERGY_BENCH(CellType::Quadrilateral);
 NEOMESH_ENERGY_BENCH(CellType::Tetrahedron);
 NEOMESH_ENERGY_BENCH(CellType::Hexahedron);
+NEOMESH_ENERGY_BENCH(CellType::Wedge);
+NEOMESH_ENERGY_BENCH(CellType::Pyramid);
 
 }  // namespace
 }  // namespace neomesh
