@@ -18,16 +18,16 @@
 namespace neomesh {
 namespace {
 
-// Cells per direction giving about 2.5·10⁵ (2D) or 10⁵ (3D) cells, for the types `box` makes:
-// 2 n² = 250 632 triangles, n² = 250 000 quadrilaterals, 6 n³ = 105 456 tetrahedra and
-// n³ = 97 336 hexahedra.
+// Cells per direction giving about 2.5·10⁵ (2D) or 10⁵ (3D) cells: 2 n² = 250 632 triangles,
+// n² = 250 000 quadrilaterals, 6 n³ = 105 456 tetrahedra, n³ = 97 336 hexahedra,
+// 2 n³ = 93 312 wedges and 6 n³ = 93 750 pyramids.
 int cells_per_direction(CellType type) {
-  constexpr int kCells[] = {354, 500, 26, 46};
+  constexpr int kCells[kNumCellTypes] = {354, 500, 26, 46, 36, 25};
   return kCells[static_cast<int>(type)];
 }
 
-// A box whose interior vertices are moved by up to 20% of the cell size, equal desired
-// volumes, boundary fixed; built once per cell type and kept for all benchmarks.
+// A box whose interior vertices are moved by up to 20% of the cell size (pyramids: 8%), equal
+// desired volumes, boundary fixed; built once per cell type and kept for all benchmarks.
 struct Problem {
   MeshData data;
   MeshView view;
@@ -55,7 +55,9 @@ struct Problem {
     const int n = cells_per_direction(type);
     MeshData mesh = box(type, n);
     std::mt19937 rng(1);
-    std::uniform_real_distribution<double> u(-0.2 * 2.0 / n, 0.2 * 2.0 / n);
+    // The pyramids of a split cube are half a cube high: moved by 20% of the cube some invert.
+    const double amplitude = (type == CellType::Pyramid ? 0.08 : 0.2) * 2.0 / n;
+    std::uniform_real_distribution<double> u(-amplitude, amplitude);
     const std::vector<std::uint8_t> boundary = boundary_vertices(mesh);
     for (std::int64_t v = 0; v < mesh.num_vertices(); ++v)
       if (!boundary[v])
@@ -124,6 +126,8 @@ NEOMESH_ENERGY_BENCH(CellType::Triangle);
 NEOMESH_ENERGY_BENCH(CellType::Quadrilateral);
 NEOMESH_ENERGY_BENCH(CellType::Tetrahedron);
 NEOMESH_ENERGY_BENCH(CellType::Hexahedron);
+NEOMESH_ENERGY_BENCH(CellType::Wedge);
+NEOMESH_ENERGY_BENCH(CellType::Pyramid);
 
 }  // namespace
 }  // namespace neomesh

@@ -43,8 +43,8 @@ struct Case {
   std::function<MeshData(int size, const GenerateOptions&)> make;
 };
 
-const std::array<Case, 11>& cases() {
-  static const std::array<Case, 11> all = {{
+const std::array<Case, 13>& cases() {
+  static const std::array<Case, 13> all = {{
       {"square-midpoint", Levels::MovedMidpoint, [](int n, auto&) { return square_midpoint(n); }},
       {"cube-midpoint", Levels::MovedMidpoint, [](int n, auto&) { return cube_midpoint(n); }},
       {"square-random", Levels::Lattice,
@@ -58,6 +58,8 @@ const std::array<Case, 11>& cases() {
       {"box-tri", Levels::Lattice, [](int n, auto&) { return box(CellType::Triangle, n); }},
       {"box-hex", Levels::Lattice, [](int n, auto&) { return box(CellType::Hexahedron, n); }},
       {"box-tet", Levels::Lattice, [](int n, auto&) { return box(CellType::Tetrahedron, n); }},
+      {"box-wedge", Levels::Lattice, [](int n, auto&) { return box(CellType::Wedge, n); }},
+      {"box-pyramid", Levels::Lattice, [](int n, auto&) { return box(CellType::Pyramid, n); }},
   }};
   return all;
 }
@@ -138,8 +140,9 @@ Subcommand add_generate(CLI::App& app) {
       "Meaning of --level per case:\n"
       "  square-midpoint, cube-midpoint: thesis level t = 2^(t+1) cells per direction\n"
       "    (level 3 = 16x16 quads, Table 5.1; 3D level 3 = 16^3 hexes)\n"
-      "  square-random, box-quad, box-tri, box-hex, box-tet: level L = 2^L cells per\n"
-      "    direction (box-tri: 2 triangles per square; box-tet: 6 tets per cube)\n"
+      "  square-random, box-quad, box-tri, box-hex, box-tet, box-wedge, box-pyramid: level\n"
+      "    L = 2^L cells per direction (box-tri: 2 triangles per square; box-tet: 6 tets,\n"
+      "    box-wedge: 2 wedges, box-pyramid: 6 pyramids per cube)\n"
       "  transition, circle-quad, triangle-equilateral, triangle-curved: level = number of\n"
       "    uniform refinements of the coarse mesh (5, 5, 1 and 8 cells), 4x cells each\n"
       "--cells N gives the cells per direction directly (not for refined cases).");

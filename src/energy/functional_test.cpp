@@ -87,9 +87,7 @@ double norm(Vec v) {
 
 class FunctionalTest : public ::testing::TestWithParam<CellType> {};
 
-INSTANTIATE_TEST_SUITE_P(AllCellTypes, FunctionalTest,
-                         ::testing::Values(CellType::Triangle, CellType::Quadrilateral,
-                                           CellType::Tetrahedron, CellType::Hexahedron),
+INSTANTIATE_TEST_SUITE_P(AllCellTypes, FunctionalTest, ::testing::ValuesIn(kAllCellTypes),
                          [](const auto& info) { return std::string(name(info.param)); });
 
 // Tests that need every cell to be its optimal cell on a box: squares and cubes only (a box

@@ -161,16 +161,20 @@ inline Eigen::Matrix<double, 3, 5> pyramid_gradients(const Vector<3>& xi) {
 }
 
 // Quadrature on the reference cell of a wedge or pyramid, in the coordinates of
-// wedge_gradients / pyramid_gradients (weights sum to the reference measure, 1 for the wedge's
-// triangle × [-1,1] and 8 for the pyramid's cube: the map's Jacobian does the rest).
+// wedge_gradients / pyramid_gradients: Σ_q w_q g(ξ_q) det J(ξ_q) approximates ∫_K g.
 // - wedge: a symmetric triangle rule (1 point of degree 1, 3 of degree 2 or Radon's 7 of
 //   degree 5 for n = 1, 2, ≥ 3) times n Gauss points in ζ;
-// - pyramid: n³ Gauss points on the cube: a conical (Duffy) product rule. det J carries the
-//   factor (1 − ξ2)², so n ≥ 2 integrates the volume exactly; no point lies at the apex.
+// - pyramid: the conical (Duffy) product rule with the rays to the apex integrated exactly.
+//   With B the bilinear base map, det J = (1 − ξ2)²/8 · det[∂B/∂ξ0, ∂B/∂ξ1, apex − B], and
+//   the (1 − ξ2)/2 of the first two columns cancels in G = ∇τ ∇τ_opt⁻¹ (and in the basis
+//   gradients on the optimal cell): everything the energy needs is constant along each ray
+//   but for the factor (1 − ξ2)², whose integral over [-1, 1] is 8/3. So n × n Gauss points
+//   on the base, placed at mid-height ξ2 = 0, with weights w_i w_j · 8/3. No point lies at
+//   the apex, where the map is singular.
 template <CellType Type>
 struct ReferenceRule {
   static_assert(Type == CellType::Wedge || Type == CellType::Pyramid);
-  static constexpr int max_points = Type == CellType::Wedge ? 7 * 5 : 125;
+  static constexpr int max_points = Type == CellType::Wedge ? 7 * 5 : 25;
   int size = 0;
   std::array<Vector<3>, max_points> points;
   std::array<double, max_points> weights{};
@@ -178,11 +182,11 @@ struct ReferenceRule {
   explicit ReferenceRule(int n) {
     const GaussRule1D g = gauss_legendre(n);
     if constexpr (Type == CellType::Pyramid) {
-      const TensorGaussRule<3> cube(n);
-      size = cube.size;
+      const TensorGaussRule<2> base(n);
+      size = base.size;
       for (int q = 0; q < size; ++q) {
-        points[q] = cube.points[q];
-        weights[q] = cube.weights[q];
+        points[q] = Vector<3>(base.points[q][0], base.points[q][1], 0.0);
+        weights[q] = base.weights[q] * 8.0 / 3.0;  // ∫ (1 − ξ2)² dξ2 / (1 − 0)²
       }
     } else {
       const auto triangle = triangle_rule(n);

@@ -162,12 +162,51 @@ MeshData square_random(int cells_per_direction, double amplitude, unsigned seed)
   return mesh;
 }
 
+// Splits every hex of a lattice mesh into the two wedges on either side of its vertical
+// diagonal plane through local vertices 0, 3, 4, 7 (the same plane in every cube, so faces
+// match): bottom triangles 0 1 3 and 0 3 2, counter-clockwise seen from above.
+void split_into_wedges(MeshData& mesh) {
+  constexpr int kPieces[2][6] = {{0, 1, 3, 4, 5, 7}, {0, 3, 2, 4, 7, 6}};
+  std::vector<std::int64_t> wedges;
+  for (std::size_t c = 0; c * 8 < mesh.cells.size(); ++c)
+    for (const auto& piece : kPieces)
+      for (int l : piece) wedges.push_back(mesh.cells[c * 8 + l]);
+  mesh.cells = std::move(wedges);
+  mesh.cell_type = CellType::Wedge;
+}
+
+// Splits every hex of a lattice mesh into six pyramids, one on each face with a new vertex at
+// the centre of the hex as their apex. The base of each is the face seen from the apex:
+// the hexahedron's outward facet cycle a b c d reversed, in tensor order a d b c.
+void split_into_pyramids(MeshData& mesh) {
+  const CellFacts& hex = facts(CellType::Hexahedron);
+  std::vector<std::int64_t> pyramids;
+  for (std::size_t c = 0; c * 8 < mesh.cells.size(); ++c) {
+    const std::int64_t* cell = mesh.cells.data() + c * 8;
+    const std::int64_t apex = mesh.num_vertices();
+    for (int d = 0; d < 3; ++d) {
+      double centre = 0.0;
+      for (int i = 0; i < 8; ++i) centre += mesh.coords[3 * cell[i] + d] / 8.0;
+      mesh.coords.push_back(centre);
+    }
+    for (int f = 0; f < hex.num_facets; ++f) {
+      const auto& v = hex.facets[f].vertices;
+      for (int l : {v[0], v[3], v[1], v[2]}) pyramids.push_back(cell[l]);
+      pyramids.push_back(apex);
+    }
+  }
+  mesh.cells = std::move(pyramids);
+  mesh.cell_type = CellType::Pyramid;
+}
+
 MeshData box(CellType type, int cells_per_direction) {
   const int dim = dimension(type), n = cells_per_direction;
   MeshData mesh = lattice_mesh(dim, n, [dim, n](const Index& ijk, double* x) {
     for (int d = 0; d < dim; ++d) x[d] = -1.0 + 2.0 * ijk[d] / n;
   });
   if (is_simplex(type)) split_into_simplices(mesh);
+  if (type == CellType::Wedge) split_into_wedges(mesh);
+  if (type == CellType::Pyramid) split_into_pyramids(mesh);
   return mesh;
 }
 

@@ -57,7 +57,9 @@ MeshData triangle_curved(int refinements);
 
 // [-1,1]^d with n cells per direction: quads, triangles (each square split along the
 // diagonal through its lower left corner), hexes or tets (each cube split into the six
-// tets around its diagonal from (-,-,-) to (+,+,+), so neighbouring cubes' faces match).
+// tets around its diagonal from (-,-,-) to (+,+,+), so neighbouring cubes' faces match),
+// wedges (each cube split in two by its vertical plane through (-,-) and (+,+)) or pyramids
+// (each cube split into six, one on each face, with an extra vertex at the cube's centre).
 MeshData box(CellType type, int cells_per_direction);
 
 // The ring 1/2 ≤ r ≤ 1 (quadrilaterals or triangles) or the cylindrical shell 1/2 ≤ r ≤ 1,

@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "mesh/serial_view.hpp"
+#include "mesh/validate.hpp"
 
 namespace neomesh {
 
@@ -286,6 +287,29 @@ TEST(TriangleCurved, BoundaryFollowsTheCurvesAndTheMeshIsPointSymmetric) {
     EXPECT_GE(find_vertex(m, {1.0 - coord(m, v, 0), 1.0 - coord(m, v, 1)}), 0);
   EXPECT_EQ(part(m, "top").vertices.size(), 17u);
   expect_parts_cover_boundary(m);
+}
+
+// Wedge and pyramid boxes: every cell positive at every corner frame, and faces that match
+// (no interior facet left unpaired, so only the surface counts as boundary).
+TEST(Box, WedgesAndPyramidsArePositiveAndConforming) {
+  const int n = 3;
+  for (const auto& [type, cells] :
+       {std::pair{CellType::Wedge, 54}, std::pair{CellType::Pyramid, 162}}) {
+    const MeshData m = box(type, n);
+    ASSERT_EQ(m.cell_type, type);
+    EXPECT_EQ(m.num_cells(), cells);
+    const int nv = num_vertices(type);
+    for (std::int64_t c = 0; c < m.num_cells(); ++c) {
+      double x[8 * 3];
+      for (int i = 0; i < nv; ++i)
+        for (int d = 0; d < 3; ++d) x[3 * i + d] = coord(m, m.cells[c * nv + i], d);
+      EXPECT_GT(min_scaled_corner_jacobian(type, x), 0.1) << name(type) << " cell " << c;
+    }
+    const auto on_boundary = boundary_vertices(m);
+    EXPECT_EQ(std::count(on_boundary.begin(), on_boundary.end(), 1),
+              (n + 1) * (n + 1) * (n + 1) - (n - 1) * (n - 1) * (n - 1))
+        << name(type);
+  }
 }
 
 TEST(Box, CountsOrientationAndConformingDiagonals) {

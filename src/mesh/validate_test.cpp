@@ -111,6 +111,33 @@ TEST(Validate, MirroredCellsAreReorientedNotInverted) {
   }
 }
 
+// One cell of `type` at `coords` (canonical order).
+InputMesh one_cell(CellType type, std::vector<double> coords) {
+  InputMesh mesh;
+  mesh.dim = 3;
+  mesh.coords = std::move(coords);
+  PetscInt cell[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  mesh.add_cell(type, cell, 0);
+  return mesh;
+}
+
+// A wedge listed with its triangles clockwise and a pyramid with its apex below the base are
+// mirrored, and reoriented; a pyramid with a base corner pulled inside (a dart) is inverted.
+TEST(Validate, MirroredWedgesAndPyramidsAreReorientedFoldedOnesInverted) {
+  InputMesh wedge =
+      one_cell(CellType::Wedge, {0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 1, 1, 1, 0, 1});
+  EXPECT_EQ(orient_mirrored_cells(wedge), std::vector<PetscInt>{0});
+  EXPECT_EQ(find_defect(wedge), "");
+  InputMesh below = one_cell(CellType::Pyramid, {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0.5, 0.5, -1});
+  EXPECT_EQ(orient_mirrored_cells(below), std::vector<PetscInt>{0});
+  EXPECT_EQ(find_defect(below), "");
+  InputMesh dart =
+      one_cell(CellType::Pyramid, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.4, 0.4, 0, 0.5, 0.5, 1});
+  EXPECT_TRUE(orient_mirrored_cells(dart).empty());
+  EXPECT_NE(find_defect(dart).find("a pyramid, is inverted"), std::string::npos)
+      << find_defect(dart);
+}
+
 TEST(Validate, AMirroredTriangleAmongOthersLoads) {
   // square_tri_v22.msh with element 13 listed clockwise.
   Mesh mesh = Mesh::load(data_path("square_tri_v22_mirrored_cell.msh"));
