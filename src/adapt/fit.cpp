@@ -28,7 +28,7 @@ bool valid(const Functional& functional, const MeshView& view, const DofMap& dof
 }
 
 // Sweeps that spread the interface's move over the vertices around it (one ring each).
-constexpr int kSpreadSweeps = 8;
+constexpr int kSpreadSweeps = 16;
 
 // Moves the interface vertices of x onto their levels of the constraint's stage, and the free
 // vertices around them part of the way along: Jacobi sweeps of the mean move over each

@@ -197,6 +197,7 @@ void adapt_in_time(const AdaptOptions& o, SizeField& field, OptimizationRun& run
       last.min_updates = 0;  // the volumes where the fit starts will do
       const FitResult f = fit(run, *phi, target_volumes, last, o);
       const int adapted = static_cast<int>(result.run.history.size());
+      result.update_iterations.push_back(adapted);  // the fit starts from new volumes
       result.run.history.insert(result.run.history.end(), f.picard.run.history.begin(),
                                 f.picard.run.history.end());
       for (int k : f.picard.update_iterations) result.update_iterations.push_back(k + adapted);
