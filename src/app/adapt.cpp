@@ -189,8 +189,12 @@ void adapt_in_time(const AdaptOptions& o, SizeField& field, OptimizationRun& run
     // With --fit: adapt with the interface free, then fit: the small cells are already at the
     // new interface when its vertices are pulled onto it.
     if (phi) run.constrain({});
+    QuasiNewtonOptions method = o.method.solver;
+    // With --fit a warm step's adaptation only has to move the small cells along: the fit
+    // goes on optimizing.
+    if (i > 0 && phi) method.max_iterations = FitOptions().stage_iterations;
     PicardResult result = picard(run.functional(), run.view(), run.x(), target_volumes, set_volumes,
-                                 picard_options, o.method.solver);
+                                 picard_options, method);
     if (phi) {
       phi->set_time(times[i]);
       PicardOptions last = o.picard;
