@@ -4,7 +4,9 @@
 // from the thesis (`--thesis`).
 #include <filesystem>
 #include <memory>
+#include <optional>
 
+#include "adapt/fit.hpp"
 #include "adapt/picard.hpp"
 #include "adapt/size_field.hpp"
 #include "adapt/volume_ratio.hpp"
@@ -27,6 +29,7 @@ struct AdaptOptions {
   int step_updates = 1;  // Picard updates before a time step after the first may stop
   std::vector<double> circle, sphere, plane, box;
   bool force = false;
+  bool fit = false;
   SizeFieldOptions sizes;
   PicardOptions picard;
   MethodOptions method;
@@ -55,6 +58,76 @@ SizeField make_size_field(const AdaptOptions& o) {
   }
   if (!o.levelset.empty()) return SizeField::level_set(o.levelset);
   return SizeField::read_cell_values(o.sizes_file);
+}
+
+// The surface --fit fits the mesh to, as a level set φ (< 0 inside) in x, y, z and t.
+LevelSetFunction fit_level_set(const AdaptOptions& o, int dim) {
+  const auto& c = o.circle.empty() ? o.sphere : o.circle;
+  if (!o.levelset.empty()) return LevelSetFunction(o.levelset, dim, true);
+  if (!c.empty()) {
+    const int n = static_cast<int>(c.size()) - 1;
+    std::string sum;
+    for (int j = 0; j < n; ++j)
+      sum += fmt::format("{}({}-({:.17g}))^2", j ? "+" : "", "xyz"[j], c[j]);
+    return LevelSetFunction(fmt::format("sqrt({})-({:.17g})", sum, c[n]), dim, true);
+  }
+  if (!o.plane.empty()) {
+    const std::size_t n = o.plane.size() / 2;
+    std::string sum;
+    for (std::size_t j = 0; j < n; ++j)
+      sum += fmt::format("{}(({}-({:.17g}))*({:.17g}))", j ? "+" : "", "xyz"[j], o.plane[j],
+                         o.plane[n + j]);
+    return LevelSetFunction(sum, dim, true);
+  }
+  fail("--fit fits the mesh to a level set: give --levelset, --circle, --sphere or --plane");
+}
+
+// What the outputs show of a fit: the cell field "inside" (1 on the side φ < 0), the vertex
+// fields "interface" (1 on the fitted vertices) and "phi", and the facet group "interface"
+// (.msh).
+MeshFields fit_outputs(const OptimizationRun& run, const FitResult& fit,
+                       const LevelSetFunction& phi) {
+  const MeshView& view = run.view();
+  MeshFields out;
+  out.cell.push_back(
+      {"inside", std::vector<double>(fit.interface.inside.begin(), fit.interface.inside.end())});
+  std::vector<double> on(view.num_vertices, 0.0), values(view.num_vertices);
+  for (PetscInt u : fit.interface.vertices) on[u] = 1.0;
+  std::vector<double> local(static_cast<std::size_t>(run.dofs().num_local_dofs()));
+  run.dofs().global_to_local(run.x(), local);
+  for (PetscInt u = 0; u < view.num_vertices; ++u) {
+    Point p = Point::Zero();
+    for (int j = 0; j < view.dim; ++j) p[j] = local[u * view.dim + j];
+    values[u] = phi.value(p);
+  }
+  out.vertex = {{"interface", std::move(on)}, {"phi", std::move(values)}};
+  out.facet_groups.push_back({"interface", fit.interface.offsets, fit.interface.facet_vertices});
+  return out;
+}
+
+// Fits the run's mesh to φ = 0 (the time set in phi) and makes the outputs show it.
+FitResult fit(OptimizationRun& run, const LevelSetFunction& phi,
+              const std::function<std::vector<double>(Vec)>& target_volumes,
+              const PicardOptions& last_stage, const AdaptOptions& o,
+              const PicardObserver& observe = {}) {
+  const FitHooks hooks{
+      .constrain = [&run](SlidingVertices extra) -> const Functional& {
+        return run.constrain(std::move(extra));
+      },
+      .target_volumes = target_volumes,
+      .set_volumes = [&run](const std::vector<double>& v) { run.set_desired_volumes(v); }};
+  FitResult result = fit_interface(run.view(), run.dofs(), run.x(), phi, hooks, last_stage,
+                                   o.method.solver, {}, observe);
+  run.set_extra_outputs(fit_outputs(run, result, phi));
+  return result;
+}
+
+std::string describe(const FitResult& f) {
+  return fmt::format(
+      "fit: {} interface facets, {} vertices within {:.1e} of the zero set, {} stages ({} undone, "
+      "{} cells moved across)",
+      f.interface.num_facets(), f.interface.vertices.size(), f.max_distance, f.stages, f.retries,
+      f.interface.cells_flipped);
 }
 
 // The thesis' scheme (§6.1): the raw field, shape-dominated energy (λ = 1, μ = 10), fixed
@@ -97,21 +170,49 @@ void check(const AdaptOptions& o) {
 // from the mesh and desired volumes of the one before; one mesh file, summary line (and
 // picture) per step, and a ParaView collection for an .pvd output.
 void adapt_in_time(const AdaptOptions& o, SizeField& field, OptimizationRun& run,
-                   const std::vector<double>& times) {
+                   const std::vector<double>& times, LevelSetFunction* phi) {
   const std::filesystem::path output = o.output;
   const auto target_volumes =
       size_field_volumes(field, o.sizes, run.view(), run.dofs(), run.mesh_volume());
   const auto set_volumes = [&run](const std::vector<double>& v) { run.set_desired_volumes(v); };
   std::vector<std::filesystem::path> members;
-  nlohmann::json steps = nlohmann::json::array();
+  nlohmann::json steps = nlohmann::json::array(), steps_fit = nlohmann::json::array();
   const double start = MPI_Wtime();
   for (std::size_t i = 0; i < times.size(); ++i) {
     field.set_time(times[i]);
     PicardOptions picard_options = o.picard;
     if (i > 0) picard_options.min_updates = o.step_updates;
+    // With --fit the fit's start recomputes the desired volumes: one of the step's updates.
+    if (i > 0 && phi) picard_options.min_updates = std::max(0, o.step_updates - 1);
     const double step_start = MPI_Wtime();
-    const PicardResult result = picard(run.functional(), run.view(), run.x(), target_volumes,
-                                       set_volumes, picard_options, o.method.solver);
+    std::string fitted;
+    // With --fit: adapt with the interface free, then fit: the small cells are already at the
+    // new interface when its vertices are pulled onto it.
+    if (phi) run.constrain({});
+    QuasiNewtonOptions method = o.method.solver;
+    // With --fit a warm step's adaptation only has to move the small cells along: the fit
+    // goes on optimizing.
+    if (i > 0 && phi) method.max_iterations = FitOptions().stage_iterations;
+    PicardResult result = picard(run.functional(), run.view(), run.x(), target_volumes, set_volumes,
+                                 picard_options, method);
+    if (phi) {
+      phi->set_time(times[i]);
+      PicardOptions last = o.picard;
+      last.min_updates = 0;  // the volumes where the fit starts will do
+      const FitResult f = fit(run, *phi, target_volumes, last, o);
+      const int adapted = static_cast<int>(result.run.history.size());
+      result.update_iterations.push_back(adapted);  // the fit starts from new volumes
+      result.run.history.insert(result.run.history.end(), f.picard.run.history.begin(),
+                                f.picard.run.history.end());
+      for (int k : f.picard.update_iterations) result.update_iterations.push_back(k + adapted);
+      result.run.reason = f.picard.run.reason;
+      fitted = "; " + describe(f);
+      steps_fit.push_back({{"max_distance", f.max_distance},
+                           {"iterations", f.picard.run.history.size()},
+                           {"facets", f.interface.num_facets()},
+                           {"stages", f.stages},
+                           {"undone", f.retries}});
+    }
     const double seconds = MPI_Wtime() - step_start;
     members.push_back(series_member(output, static_cast<int>(i)));
     const QualitySummary quality = run.snapshot(members.back());
@@ -120,9 +221,10 @@ void adapt_in_time(const AdaptOptions& o, SizeField& field, OptimizationRun& run
     const double min_sj = quality.scaled_jacobian.min;
     always(
         "step {}/{}, t = {:.4g}: {} iterations, {} updates, {}; Q in [0.5, 2] for {:.1f}% of "
-        "the cells; min scaled Jacobian {:.3f}; {:.2f} s; wrote {}\n",
+        "the cells; min scaled Jacobian {:.3f}{}; {:.2f} s; wrote {}\n",
         i + 1, times.size(), times[i], result.run.history.size(), result.update_iterations.size(),
-        describe(result.run.reason), 100 * q.within, min_sj, seconds, members.back().string());
+        describe(result.run.reason), 100 * q.within, min_sj, fitted, seconds,
+        members.back().string());
     if (!o.outputs.picture_after.empty())
       run.draw(numbered_path("--picture", o.outputs.picture_after, static_cast<int>(i)),
                o.outputs.picture_field, fmt::format("{}, t = {:.4g}", o.input, times[i]));
@@ -135,6 +237,7 @@ void adapt_in_time(const AdaptOptions& o, SizeField& field, OptimizationRun& run
                      {"min_scaled_jacobian", min_sj},
                      {"inverted", quality.inverted},
                      {"seconds", seconds}});
+    if (phi) steps.back()["fit"] = steps_fit.back();
   }
   if (output.extension() == ".pvd") {
     on_root(run.dofs().comm(), [&] { write_pvd(output, times, members); });
@@ -172,12 +275,26 @@ void adapt(AdaptOptions& o) {
           "pattern");
   }
 
+  if (o.fit && o.levelset.empty() && o.circle.empty() && o.sphere.empty() && o.plane.empty())
+    fail("--fit fits the mesh to a level set: give --levelset, --circle, --sphere or --plane");
+  if (o.fit && mpi_size(PETSC_COMM_WORLD) > 1)
+    fail("--fit runs on one process for now (the interface is found within each process' cells)");
+
   OptimizationRun run(o.input, o.method);
+  std::optional<LevelSetFunction> phi;
+  if (o.fit) {
+    phi.emplace(fit_level_set(o, run.view().dim));
+    // Every time's interface must exist and lie inside the domain: fail before any output.
+    for (double t : times.empty() ? std::vector<double>{0.0} : times) {
+      phi->set_time(t);
+      find_interface(run.view(), run.view().coords, *phi);
+    }
+  }
   if (!times.empty()) {
     check_run_outputs(o.outputs, run.view().dim);
     say("size field: {}\n", field.description());
     run.print_problem();
-    adapt_in_time(o, field, run, times);
+    adapt_in_time(o, field, run, times, phi ? &*phi : nullptr);
     return;
   }
   check_run_outputs(o.outputs, run.view().dim);  // pictures of a 3D mesh: before the run
@@ -194,10 +311,33 @@ void adapt(AdaptOptions& o) {
                            say("  -- desired volumes updated after iteration {} (update {})\n", k,
                                update);
                          }};
-  const PicardResult result = picard(
+  PicardResult result = picard(
       run.functional(), run.view(), run.x(), target_volumes,
       [&run](const std::vector<double>& v) { run.set_desired_volumes(v); }, o.picard,
       o.method.solver, observe);
+  nlohmann::json fit_report;
+  if (phi) {
+    say("fitting the mesh to {} = 0 ...\n", phi->expression());
+    PicardOptions last = o.picard;
+    last.min_updates = 1;  // the volumes follow the fitted cells once
+    const FitResult f = fit(run, *phi, target_volumes, last, o, observe);
+    const int before = static_cast<int>(result.run.history.size());
+    result.run.history.insert(result.run.history.end(), f.picard.run.history.begin(),
+                              f.picard.run.history.end());
+    for (int k : f.picard.update_iterations) result.update_iterations.push_back(k + before);
+    result.run.reason = f.picard.run.reason;
+    result.run.final_energy = f.picard.run.final_energy;
+    result.run.final_defect = f.picard.run.final_defect;
+    always("{}; {} iterations\n", describe(f), f.picard.run.history.size());
+    fit_report = {{"level_set", phi->expression()},
+                  {"facets", f.interface.num_facets()},
+                  {"vertices", f.interface.vertices.size()},
+                  {"max_distance", f.max_distance},
+                  {"stages", f.stages},
+                  {"undone", f.retries},
+                  {"cells_moved_across", f.interface.cells_flipped},
+                  {"iterations", f.picard.run.history.size()}};
+  }
 
   const VolumeRatioStats q =
       volume_ratio_stats(run.functional().cell_fields(run.x()).volume_ratio, run.dofs().comm());
@@ -220,7 +360,8 @@ void adapt(AdaptOptions& o) {
                 {"update_step_norm", o.picard.update_step_norm},
                 {"relaxation", o.picard.relaxation},
                 {"update_iterations", result.update_iterations}}},
-              {"volume_ratio", to_json(q)}});
+              {"volume_ratio", to_json(q)},
+              {"fit", fit_report}});
 }
 
 }  // namespace
@@ -304,7 +445,7 @@ Subcommand add_adapt(CLI::App& app) {
       ->capture_default_str()
       ->group(picard);
 
-  const char* time = "A geometry that moves";
+  const char* time = "A geometry that moves, and fitting the mesh to it";
   cmd->add_option("--time", o->time,
                   "START:END:STEPS: adapt at STEPS times from START to END (t in --levelset), each "
                   "step starting from the one before; -o OUT.pvd writes OUT-0000.vtu ... and "
@@ -316,6 +457,12 @@ Subcommand add_adapt(CLI::App& app) {
       ->capture_default_str()
       ->group(time);
 
+  cmd->add_flag("--fit", o->fit,
+                "fit a chain of edges (2D) / surface of faces (3D) to the zero set of the level "
+                "set (--levelset, --circle, --sphere, --plane): its vertices end on it exactly, "
+                "written as the facet group 'interface' (.msh) and the fields inside, interface "
+                "and phi (.vtu); with --time at every step; one process only")
+      ->group(time);
   add_run_output_options(*cmd, o->outputs, "Q");
   add_method_options(*cmd, o->method);
   return {cmd, [o] { adapt(*o); }};

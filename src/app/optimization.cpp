@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "app/checks.hpp"
+#include "boundary/interface.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -76,6 +77,7 @@ struct OptimizationRun::Impl {
   std::unique_ptr<Functional> functional;
   OwnedVec cell_size;
   bool untangled = false;  // untangle() ran: the table names the phases
+  MeshFields extra_outputs;
 
   Impl(const std::filesystem::path& input, MethodOptions& m, InvertedCells inverted)
       : method(m), mesh(load(input, inverted)), x(mesh.coordinates()) {
@@ -124,6 +126,9 @@ struct OptimizationRun::Impl {
         {"volume", quality.volume},         {"scaled_jacobian", quality.scaled_jacobian},
         {"min_angle", quality.min_angle},   {"max_angle", quality.max_angle},
         {"edge_ratio", quality.edge_ratio}, {"inverse_mean_ratio", quality.inverse_mean_ratio}};
+    fields.cell.insert(fields.cell.end(), extra_outputs.cell.begin(), extra_outputs.cell.end());
+    fields.vertex = extra_outputs.vertex;
+    fields.facet_groups = extra_outputs.facet_groups;
     return fields;
   }
 };
@@ -150,6 +155,18 @@ double OptimizationRun::mesh_volume() const {
 }
 const Functional& OptimizationRun::functional() const {
   return *impl_->functional;
+}
+const Functional& OptimizationRun::constrain(SlidingVertices extra) {
+  Impl& r = *impl_;
+  const std::vector<double> volumes = r.functional->desired_volumes();
+  r.functional =
+      std::make_unique<Functional>(view(), dofs(), r.method.energy, r.boundary->fixed_dofs(),
+                                   join(r.boundary->sliding_vertices(), std::move(extra)));
+  if (!volumes.empty()) r.functional->set_desired_volumes(volumes);
+  return *r.functional;
+}
+void OptimizationRun::set_extra_outputs(MeshFields extra) {
+  impl_->extra_outputs = std::move(extra);
 }
 Vec OptimizationRun::cell_size() const {
   return impl_->cell_size;

@@ -17,6 +17,7 @@
 #include "energy/functional.hpp"
 #include "geometry/quality.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/mesh_io.hpp"
 #include "solver/quasi_newton.hpp"
 
 namespace neomesh::app {
@@ -61,6 +62,11 @@ class OptimizationRun {
   // (Re)sets the desired cell volumes (absolute, summing to mesh_volume()).
   void set_desired_volumes(std::vector<double> volumes);
   const Functional& functional() const;
+  // Rebuilds the functional with `extra` vertices sliding besides the boundary's (an
+  // interface fitted to a level set; none: the boundary's alone), keeping the desired volumes.
+  const Functional& constrain(SlidingVertices extra);
+  // Fields and facet groups every later output carries besides the run's own.
+  void set_extra_outputs(MeshFields extra);
   Vec cell_size() const;  // local cell size per dof, for the practical criterion
 
   void print_problem() const;

@@ -92,76 +92,19 @@ class Cylinder final : public Surface {
   double radius_;
 };
 
-// The zero set of φ: closest points by Newton steps along ∇φ (the foot of the gradient
-// flow, which is the closest point to first order), ∇φ by central differences.
+// The zero set of φ.
 class LevelSet final : public Surface {
  public:
-  LevelSet(const std::string& expression, int dim) : expression_(expression), dim_(dim) {
-    try {
-      parser_.DefineVar("x", &x_[0]);
-      parser_.DefineVar("y", &x_[1]);
-      parser_.DefineVar("z", &x_[2]);
-      parser_.SetExpr(expression);
-      parser_.Eval();
-    } catch (const mu::Parser::exception_type& e) {
-      fail("level set '{}': {}", expression, e.GetMsg());
-    }
+  LevelSet(const std::string& expression, int dim) : phi_(expression, dim) {}
+  Point closest_point(const Point& p) const override { return phi_.to_level(p); }
+  Point normal(const Point& q) const override { return phi_.gradient(q).normalized(); }
+  Matrix3 shape_operator(const Point& q) const override { return phi_.shape_operator(q); }
+  std::string describe() const override {
+    return fmt::format("level set {} = 0", phi_.expression());
   }
-  Point closest_point(const Point& p) const override {
-    Point q = p;
-    for (int it = 0; it < 50; ++it) {
-      const double phi = value(q);
-      const Point g = gradient(q);
-      const double g2 = g.squaredNorm();
-      if (!(g2 > 0.0)) break;
-      const Point step = (phi / g2) * g;
-      q -= step;
-      if (step.norm() <= 1e-15 * (1.0 + q.norm())) break;
-    }
-    return q;
-  }
-  Point normal(const Point& q) const override { return gradient(q).normalized(); }
-  // ∇(∇φ/|∇φ|) = P ∇²φ P / |∇φ| on the surface, ∇²φ by central differences of ∇φ.
-  Matrix3 shape_operator(const Point& q) const override {
-    const Point g = gradient(q);
-    const double norm = g.norm();
-    if (!(norm > 0)) return Matrix3::Zero();
-    Matrix3 hessian = Matrix3::Zero();
-    const double h = 1e-4 * (1.0 + q.norm());
-    for (int i = 0; i < dim_; ++i) {
-      Point a = q, b = q;
-      a[i] += h;
-      b[i] -= h;
-      hessian.col(i) = (gradient(a) - gradient(b)) / (2 * h);
-    }
-    const Point n = g / norm;
-    const Matrix3 p = Matrix3::Identity() - n * n.transpose();
-    const Matrix3 s = p * (0.5 * (hessian + hessian.transpose())) * p / norm;
-    return s;
-  }
-  std::string describe() const override { return fmt::format("level set {} = 0", expression_); }
 
  private:
-  double value(const Point& p) const {
-    for (int i = 0; i < 3; ++i) x_[i] = i < dim_ ? p[i] : 0.0;
-    return parser_.Eval();
-  }
-  Point gradient(const Point& p) const {
-    Point g = Point::Zero();
-    const double h = 1e-6 * (1.0 + p.norm());
-    for (int i = 0; i < dim_; ++i) {
-      Point a = p, b = p;
-      a[i] += h;
-      b[i] -= h;
-      g[i] = (value(a) - value(b)) / (2 * h);
-    }
-    return g;
-  }
-
-  std::string expression_;
-  int dim_;
-  mutable double x_[3] = {0, 0, 0};
-  mutable mu::Parser parser_;
+  LevelSetFunction phi_;
 };
 
 class Line final : public Curve {
@@ -239,6 +182,94 @@ std::vector<double> parse_numbers(std::string_view spec, std::string_view list, 
 }
 
 }  // namespace
+
+// The parser keeps the addresses of its variables: both live together on the heap.
+struct LevelSetFunction::Impl {
+  std::string expression;
+  int dim;
+  double x[4] = {0, 0, 0, 0};  // x, y, z, t
+  mu::Parser parser;
+};
+
+LevelSetFunction::LevelSetFunction(const std::string& expression, int dim, bool with_time)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->expression = expression;
+  impl_->dim = dim;
+  try {
+    impl_->parser.DefineVar("x", &impl_->x[0]);
+    impl_->parser.DefineVar("y", &impl_->x[1]);
+    impl_->parser.DefineVar("z", &impl_->x[2]);
+    if (with_time) impl_->parser.DefineVar("t", &impl_->x[3]);
+    impl_->parser.SetExpr(expression);
+    impl_->parser.Eval();
+  } catch (const mu::Parser::exception_type& e) {
+    fail("level set '{}': {}", expression, e.GetMsg());
+  }
+}
+LevelSetFunction::~LevelSetFunction() = default;
+LevelSetFunction::LevelSetFunction(LevelSetFunction&&) noexcept = default;
+
+void LevelSetFunction::set_time(double t) {
+  impl_->x[3] = t;
+}
+
+const std::string& LevelSetFunction::expression() const {
+  return impl_->expression;
+}
+
+double LevelSetFunction::value(const Point& p) const {
+  for (int i = 0; i < 3; ++i) impl_->x[i] = i < impl_->dim ? p[i] : 0.0;
+  try {
+    return impl_->parser.Eval();
+  } catch (const mu::Parser::exception_type& e) {
+    fail("level set '{}': {}", impl_->expression, e.GetMsg());
+  }
+}
+
+Point LevelSetFunction::gradient(const Point& p) const {
+  Point g = Point::Zero();
+  const double h = 1e-6 * (1.0 + p.norm());
+  for (int i = 0; i < impl_->dim; ++i) {
+    Point a = p, b = p;
+    a[i] += h;
+    b[i] -= h;
+    g[i] = (value(a) - value(b)) / (2 * h);
+  }
+  return g;
+}
+
+// Newton steps along ∇φ: the foot of the gradient flow, the closest point to first order.
+Point LevelSetFunction::to_level(const Point& p, double level) const {
+  Point q = p;
+  for (int it = 0; it < 50; ++it) {
+    const double phi = value(q) - level;
+    const Point g = gradient(q);
+    const double g2 = g.squaredNorm();
+    if (!(g2 > 0.0)) break;
+    const Point step = (phi / g2) * g;
+    q -= step;
+    if (step.norm() <= 1e-15 * (1.0 + q.norm())) break;
+  }
+  return q;
+}
+
+// ∇(∇φ/|∇φ|) = P ∇²φ P / |∇φ|, ∇²φ by central differences of ∇φ.
+Matrix3 LevelSetFunction::shape_operator(const Point& q) const {
+  const Point g = gradient(q);
+  const double norm = g.norm();
+  if (!(norm > 0)) return Matrix3::Zero();
+  Matrix3 hessian = Matrix3::Zero();
+  const double h = 1e-4 * (1.0 + q.norm());
+  for (int i = 0; i < impl_->dim; ++i) {
+    Point a = q, b = q;
+    a[i] += h;
+    b[i] -= h;
+    hessian.col(i) = (gradient(a) - gradient(b)) / (2 * h);
+  }
+  const Point n = g / norm;
+  const Matrix3 p = Matrix3::Identity() - n * n.transpose();
+  return p * (0.5 * (hessian + hessian.transpose())) * p / norm;
+}
 
 std::unique_ptr<Surface> make_plane(const Point& point, const Point& normal) {
   return std::make_unique<Plane>(point, normal);

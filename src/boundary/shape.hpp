@@ -48,6 +48,31 @@ class Curve {
   virtual bool is_straight() const { return false; }
 };
 
+// φ(x, y, z) — and the time t, if asked for — from a muparser expression (z = 0 in 2D), with
+// its derivatives by central differences. Its zero set is the level-set shape; `adapt --fit`
+// pulls vertices onto it through the levels φ = c (boundary/interface.hpp).
+class LevelSetFunction {
+ public:
+  // Throws Error naming the expression if it does not parse or uses other variables.
+  LevelSetFunction(const std::string& expression, int dim, bool with_time = false);
+  ~LevelSetFunction();
+  LevelSetFunction(LevelSetFunction&&) noexcept;
+
+  void set_time(double t);
+  double value(const Point& p) const;
+  Point gradient(const Point& p) const;
+  // The point of {φ = level} that Newton steps along ∇φ reach from p: the closest point to
+  // first order.
+  Point to_level(const Point& p, double level = 0.0) const;
+  // The shape operator of the level set through q: P ∇²φ P / |∇φ| with P = I − n nᵀ.
+  Matrix3 shape_operator(const Point& q) const;
+  const std::string& expression() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 // x·n = n·point.
 std::unique_ptr<Surface> make_plane(const Point& point, const Point& normal);
 // |x − centre| = radius: a circle in 2D (z = 0), a sphere in 3D.

@@ -72,6 +72,47 @@ Packet pack(const Mesh& mesh, const MeshFields& fields) {
   return out;
 }
 
+// The facet group on rank 0 as facets of `mesh` (input vertex numbers) in a physical group of
+// its own: the input's group of the same name and dimension if there is one (its facets are
+// replaced), else a new tag.
+void add_facet_group(const Mesh& mesh, const FacetGroup& group, InputMesh& out) {
+  const auto& m = MeshAccess::impl(mesh);
+  std::vector<PetscInt> sizes, vertices;
+  for (std::size_t f = 0; f + 1 < group.offsets.size(); ++f) {
+    sizes.push_back(group.offsets[f + 1] - group.offsets[f]);
+    for (PetscInt k = group.offsets[f]; k < group.offsets[f + 1]; ++k)
+      vertices.push_back(m.view->input_vertex[group.vertices[k]]);
+  }
+  const auto all_sizes = gatherv(mesh.comm(), sizes, MPIU_INT);
+  const auto all_vertices = gatherv(mesh.comm(), vertices, MPIU_INT);
+  if (mpi_rank(mesh.comm()) != 0) return;
+  const int dim = m.dim - 1;
+  int tag = 0, largest = 0;
+  for (const PhysicalGroup& g : out.groups)
+    if (g.dim == dim) {
+      largest = std::max(largest, g.tag);
+      if (g.name == group.name) tag = g.tag;
+    }
+  TaggedEntities kept;
+  for (PetscInt k = 0; k < out.facets.size(); ++k)
+    if (out.facets.tags[k] != tag || tag == 0)
+      kept.add(out.facets.vertices.data() + out.facets.offsets[k],
+               out.facets.offsets[k + 1] - out.facets.offsets[k], out.facets.tags[k]);
+  if (tag == 0) {
+    tag = largest + 1;
+    out.groups.push_back({dim, tag, group.name});
+    std::sort(out.groups.begin(), out.groups.end(), [](const auto& a, const auto& b) {
+      return std::pair(a.dim, a.tag) < std::pair(b.dim, b.tag);
+    });
+  }
+  std::size_t at = 0;
+  for (PetscInt size : all_sizes) {
+    kept.add(all_vertices.data() + at, size, tag);
+    at += size;
+  }
+  out.facets = std::move(kept);
+}
+
 }  // namespace
 
 GatheredMesh gather_mesh(const Mesh& mesh, const MeshFields& fields) {
@@ -95,6 +136,8 @@ GatheredMesh gather_mesh(const Mesh& mesh, const MeshFields& fields) {
   out.mesh.groups = m.groups;
   out.has_cell_groups =
       std::any_of(m.groups.begin(), m.groups.end(), [&](const auto& g) { return g.dim == m.dim; });
+  out.mesh.facets = m.facets;
+  for (const FacetGroup& group : fields.facet_groups) add_facet_group(mesh, group, out.mesh);
   if (mpi_rank(mesh.comm()) != 0) return out;
 
   const PetscInt nc = m.global_num_cells, nv = m.global_num_vertices;
@@ -124,7 +167,6 @@ GatheredMesh gather_mesh(const Mesh& mesh, const MeshFields& fields) {
     }
   }
   for (PetscInt c = 0; c < nc; ++c) out.mesh.add_cell(types[c], cells[c].data(), m.cell_tags[c]);
-  out.mesh.facets = m.facets;
   out.mesh.points = m.points;
   return out;
 }

@@ -19,9 +19,18 @@ struct Field {
   int components = 1;
 };
 
+// Facets (edges in 2D, faces in 3D) that a .msh output lists as the physical group `name`
+// (replacing an input group of that name); other formats leave them out.
+struct FacetGroup {
+  std::string name;
+  std::vector<PetscInt> offsets = {0};
+  std::vector<PetscInt> vertices;  // per facet, local vertices (MeshView order)
+};
+
 struct MeshFields {
   std::vector<Field> cell;
   std::vector<Field> vertex;
+  std::vector<FacetGroup> facet_groups;
 };
 
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const MeshFields& fields = {});
