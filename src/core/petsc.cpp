@@ -1,8 +1,13 @@
 #include "core/petsc.hpp"
 
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace neomesh {
 
@@ -57,8 +62,25 @@ int mpi_size(MPI_Comm comm) {
 // Isolated singletons all put their session directory at jf.0 under the same top directory,
 // and one that ends removes it while another starts in it ("A call to mkdir was unable to
 // create the desired directory ... orte_session_dir failed": 2 of 316 tests under ctest -j2
-// next to other test runs). So each singleton gets a top directory of its own, removed at
-// exit.
+// next to other test runs). So each singleton gets a top directory of its own,
+// neomesh-mpi-<pid>-XXXXXX, removed at exit; a run killed by a signal cannot remove its own,
+// so every singleton also removes those of processes that no longer exist.
+namespace {
+
+void remove_stale_session_directories(const std::filesystem::path& tmp) {
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(tmp, error)) {
+    const std::string name = entry.path().filename().string();
+    constexpr std::string_view prefix = "neomesh-mpi-";
+    if (!name.starts_with(prefix)) continue;
+    const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+    if (pid > 0 && kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
+      std::filesystem::remove_all(entry.path(), error);
+  }
+}
+
+}  // namespace
+
 void configure_singleton_mpi() {
   for (const char* launched : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
     if (std::getenv(launched)) return;
@@ -67,7 +89,9 @@ void configure_singleton_mpi() {
   if (std::getenv("OMPI_MCA_orte_tmpdir_base")) return;
   static std::string session_base;
   const char* tmp = std::getenv("TMPDIR");
-  std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/neomesh-mpi-XXXXXX";
+  const std::string tmp_dir = tmp && *tmp ? tmp : "/tmp";
+  remove_stale_session_directories(tmp_dir);
+  std::string pattern = tmp_dir + "/neomesh-mpi-" + std::to_string(getpid()) + "-XXXXXX";
   if (!mkdtemp(pattern.data())) return;  // Open MPI's default then
   session_base = pattern;
   setenv("OMPI_MCA_orte_tmpdir_base", session_base.c_str(), 1);
