@@ -39,9 +39,14 @@ Matrix<Dim> cofactor(const Matrix<Dim>& G) {
   return C;
 }
 
+// χ_ε(D) = (D + √(ε² + D²)) / 2. For D < 0, D + √(…) cancels: the equal ε² / (2 (√(…) − D)).
+inline double regularized_det(double D, double epsilon) {
+  const double r = std::hypot(epsilon, D);
+  return D >= 0.0 ? 0.5 * (D + r) : 0.5 * epsilon * epsilon / (r - D);
+}
+
 // φ and its derivatives at one D: what the kernel needs per sample point.
 struct RegularizedDeterminant {
-  double chi;    // χ_ε(D)
   double phi;    // λ/2 (log χ)² − μ log χ
   double dphi;   // φ′(D)
   double d2phi;  // φ″(D)
@@ -51,16 +56,13 @@ template <int Dim>
 struct RegularizedNeoHooke {
   double lambda, mu, epsilon;
 
-  // χ, φ, φ′, φ″ at D. With r = √(ε² + D²): χ′ = χ / r, χ″ = χ (r − D) / r³, and
+  // φ, φ′, φ″ at D. With r = √(ε² + D²): χ′ = χ / r, χ″ = χ (r − D) / r³, and
   // φ′ = (λ log χ − μ) / r, φ″ = (λ + μ − λ log χ) / r² + (λ log χ − μ)(r − D) / r³.
   RegularizedDeterminant at(double D) const {
     const double r = std::hypot(epsilon, D);
-    // For D < 0, D + r cancels: use the equal ε² / (2 (r − D)).
-    const double chi = D >= 0.0 ? 0.5 * (D + r) : 0.5 * epsilon * epsilon / (r - D);
-    const double log_chi = std::log(chi);
+    const double log_chi = std::log(regularized_det(D, epsilon));
     const double b = lambda * log_chi - mu;
     return RegularizedDeterminant{
-        .chi = chi,
         .phi = 0.5 * lambda * log_chi * log_chi - mu * log_chi,
         .dphi = b / r,
         .d2phi = (lambda - b) / (r * r) + b * (r - D) / (r * r * r),

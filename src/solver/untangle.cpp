@@ -5,15 +5,11 @@
 
 #include <mpi.h>
 
+#include "energy/regularized_neo_hooke.hpp"
+
 namespace neomesh {
 
 namespace {
-
-// χ_ε(D) (regularized_neo_hooke.hpp).
-double regularized_det(double det, double epsilon) {
-  const double r = std::hypot(epsilon, det);
-  return det >= 0.0 ? 0.5 * (det + r) : 0.5 * epsilon * epsilon / (r - det);
-}
 
 // The next ε (Garanzha et al. 2021, §3): the worst sample's χ shrinks by the relative energy
 // decrease σ of the last round, at least 10%: ε such that χ_ε(D_min) = (1 − σ) χ_ε_old(D_min).
