@@ -5,8 +5,13 @@
 #include <array>
 #include <random>
 
+#include "core/testing/finite_differences.hpp"
+
 namespace neomesh {
 namespace {
+
+using testing::fd_gradient;
+using testing::fd_jacobian;
 
 constexpr double kFdTolerance = 1e-6;  // relative error allowed against central differences
 
@@ -86,17 +91,11 @@ TYPED_TEST(CellKernelTest, GradientMatchesFiniteDifferencesOfEnergy) {
   for (int trial = 0; trial < 5; ++trial) {
     const double volume = 0.5 + trial;
     Coordinates<Type> x = perturbed_cell<Type>(volume, rng);
-    typename CellKernel<Type>::Gradient g, fd;
+    typename CellKernel<Type>::Gradient g;
     kernel.energy_and_gradient(x, volume, g);
     const double step = 1e-6 * std::pow(volume, 1.0 / CellTraits<Type>::dim);
-    for (int k = 0; k < x.size(); ++k) {
-      const double saved = x.data()[k];
-      x.data()[k] = saved + step;
-      const double plus = kernel.energy(x, volume);
-      x.data()[k] = saved - step;
-      fd.data()[k] = (plus - kernel.energy(x, volume)) / (2 * step);
-      x.data()[k] = saved;
-    }
+    const auto fd =
+        fd_gradient([&](const Coordinates<Type>& y) { return kernel.energy(y, volume); }, x, step);
     EXPECT_LT(relative_error(g, fd), kFdTolerance) << "analytic\n" << g << "\nfd\n" << fd;
   }
 }
@@ -109,21 +108,15 @@ TYPED_TEST(CellKernelTest, HessianMatchesFiniteDifferencesOfGradient) {
   for (int trial = 0; trial < 5; ++trial) {
     const double volume = 0.5 + trial;
     Coordinates<Type> x = perturbed_cell<Type>(volume, rng);
-    typename Kernel::Block h, fd;
+    typename Kernel::Block h;
     ASSERT_TRUE(kernel.hessian(x, volume, 1.0, h));
     const double step = 1e-6 * std::pow(volume, 1.0 / Kernel::dim);
-    typename Kernel::Gradient plus, minus;
-    for (int k = 0; k < x.size(); ++k) {
-      const double saved = x.data()[k];
-      x.data()[k] = saved + step;
-      kernel.energy_and_gradient(x, volume, plus);
-      x.data()[k] = saved - step;
-      kernel.energy_and_gradient(x, volume, minus);
-      x.data()[k] = saved;
-      fd.col(k) = Eigen::Map<const Eigen::Matrix<double, Kernel::dofs, 1>>(
-                      typename Kernel::Gradient(plus - minus).data()) /
-                  (2 * step);
-    }
+    const auto gradient = [&](const Coordinates<Type>& y) {
+      typename Kernel::Gradient g;
+      kernel.energy_and_gradient(y, volume, g);
+      return g;
+    };
+    const typename Kernel::Block fd = fd_jacobian(gradient, x, step);
     EXPECT_LT(relative_error(h, fd), kFdTolerance);
     EXPECT_EQ((h - h.transpose()).norm(), 0.0);  // exactly symmetric
   }
