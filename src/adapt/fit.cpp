@@ -99,7 +99,7 @@ void append(PicardResult& all, const PicardResult& stage) {
 FitResult fit_interface(const MeshView& view, const DofMap& dofs, Vec x,
                         const LevelSetFunction& phi, const FitHooks& hooks,
                         const PicardOptions& last_stage, const QuasiNewtonOptions& method,
-                        const FitOptions& options, const PicardObserver& observe) {
+                        const FitOptions& options, const Observer& observe) {
   FitResult result;
   {
     std::vector<double> local(static_cast<std::size_t>(dofs.num_local_dofs()));

@@ -46,6 +46,6 @@ struct FitHooks {
 FitResult fit_interface(const MeshView& view, const DofMap& dofs, Vec x,
                         const LevelSetFunction& phi, const FitHooks& hooks,
                         const PicardOptions& last_stage, const QuasiNewtonOptions& method,
-                        const FitOptions& options = {}, const PicardObserver& observe = {});
+                        const FitOptions& options = {}, const Observer& observe = {});
 
 }  // namespace neomesh

@@ -17,7 +17,7 @@ PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
                     const std::function<std::vector<double>(Vec x)>& target_volumes,
                     const std::function<void(const std::vector<double>&)>& set_volumes,
                     const PicardOptions& options, const QuasiNewtonOptions& method_options,
-                    const PicardObserver& observe) {
+                    const Observer& observe) {
   std::vector<double> volumes = target_volumes(x);
   set_volumes(volumes);
   // QuasiNewton keeps this Vec; updates overwrite its values.
@@ -41,7 +41,8 @@ PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
     const int k = result.run.history.empty() ? 0 : result.run.history.back().k;
     result.update_iterations.push_back(k);
     since_update = 0;
-    if (observe.update) observe.update(k, static_cast<int>(result.update_iterations.size()));
+    if (observe.volumes_updated)
+      observe.volumes_updated(k, static_cast<int>(result.update_iterations.size()));
   };
   auto updates_left = [&] {
     return static_cast<int>(result.update_iterations.size()) < options.min_updates;

@@ -17,31 +17,18 @@
 #include <functional>
 #include <vector>
 
+#include <neomesh/options.hpp>
+
 #include "adapt/size_field.hpp"
 #include "energy/functional.hpp"
 #include "solver/quasi_newton.hpp"
 
 namespace neomesh {
 
-struct PicardOptions {
-  int min_updates = 6;            // Y: updates before the run may stop (the thesis made 7)
-  int update_every = 8;           // X: iterations after which the volumes are updated anyway
-  double update_move = 1e-3;      // update when the step moved no vertex more than this · h
-  double update_step_norm = 0.0;  // thesis: update when σ‖δ‖ < this (0: not used)
-  // Under-relaxation ω of an update: v ← (1−ω) v_old + ω v(centroids). 1 is the thesis.
-  double relaxation = 1.0;
-};
-
 struct PicardResult {
   QuasiNewtonResult run;  // all iterations, over all sets of desired volumes
   // The iterations (IterationRecord::k) after which the desired volumes were updated.
   std::vector<int> update_iterations;
-};
-
-struct PicardObserver {
-  std::function<void(const IterationRecord&)> iteration;
-  // After iteration k the desired volumes were updated for the `update`-th time.
-  std::function<void(int k, int update)> update;
 };
 
 // Adapts x (a global coordinate Vec laid out by functional.dofs()) to the volumes that
@@ -52,7 +39,7 @@ PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
                     const std::function<std::vector<double>(Vec x)>& target_volumes,
                     const std::function<void(const std::vector<double>&)>& set_volumes,
                     const PicardOptions& options, const QuasiNewtonOptions& method,
-                    const PicardObserver& observe = {});
+                    const Observer& observe = {});
 
 // target_volumes for picard(): the size field's desired volumes at the centroids of x,
 // summing to `total`. Keeps references to its arguments.

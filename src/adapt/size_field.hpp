@@ -16,68 +16,12 @@
 #include <string>
 #include <vector>
 
+#include <neomesh/size_field.hpp>
+
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
 
 namespace neomesh {
-
-struct SizeFieldOptions {
-  double floor = 1e-8;  // added to d^p so that no cell asks for volume 0
-  double power = 1.0;   // p
-  // Largest over smallest desired volume (0: unbounded, the thesis). The smallest volumes
-  // are raised to max/ratio, because no mesh of fixed connectivity can shrink a cell on the
-  // surface to the 1e-8-fold of its neighbours. 32 (edge lengths 1 : 3.2 in 3D) is what the
-  // meshes of docs/adaptivity.md reach with good shapes; 100 squeezed cells to scaled
-  // Jacobians of 0.1.
-  double max_ratio = 32.0;
-  // Passes of averaging log v over neighbouring cells (0: none, the thesis): limits how fast
-  // the desired volume may change from a cell to its neighbour.
-  int smoothing_passes = 1;
-
-  // The thesis' field: v = 1e-8 + d, nothing bounded or smoothed.
-  static SizeFieldOptions thesis() { return {.max_ratio = 0.0, .smoothing_passes = 0}; }
-};
-
-class SizeField {
- public:
-  // Distance to the circle (2 centre coordinates) or sphere (3) of radius `radius` > 0:
-  // d = | |x − centre| − radius |.
-  static SizeField sphere(std::vector<double> centre, double radius);
-  // Distance to the line/plane through `point` with normal `normal` (2 or 3 coordinates).
-  static SizeField plane(std::vector<double> point, std::vector<double> normal);
-  // Distance to the surface of the axis-aligned box [lower, upper] (inside and outside).
-  static SizeField box(std::vector<double> lower, std::vector<double> upper);
-  // d = |φ(x, y, z, t)| for a signed-distance expression φ (muparser syntax; z = 0 in 2D; t is
-  // the time set by set_time, 0 until then).
-  static SizeField level_set(const std::string& expression);
-  // Relative volumes per cell, indexed by the cell's number in the input mesh.
-  static SizeField cell_values(std::vector<double> values);
-  // One value per line, in the input mesh's cell order.
-  static SizeField read_cell_values(const std::filesystem::path& file);
-
-  // Relative desired volume v_K of every local cell of `view` (MeshView order) at the
-  // coordinates `coords` (num_vertices × dim, the view's local vertex order). Throws Error if
-  // the field does not fit the mesh or is not a positive finite number somewhere. Collective
-  // (the per-cell values are checked against the global number of cells).
-  std::vector<double> relative_volumes(const MeshView& view, std::span<const double> coords,
-                                       const SizeFieldOptions& options, MPI_Comm comm) const;
-
-  // The time t of a level-set expression (a geometry that moves); other fields ignore it.
-  void set_time(double t);
-
-  // A one-line description for the run's summary ("distance to the sphere ...").
-  const std::string& description() const { return description_; }
-
- private:
-  using Distance = std::function<double(std::span<const double> point)>;
-  SizeField(std::string description, int dim, Distance distance);
-
-  std::string description_;
-  int dim_ = 0;  // dimension the field needs, 0 for any
-  Distance distance_;
-  std::vector<double> cell_values_;       // for cell_values(); empty otherwise
-  std::function<void(double)> set_time_;  // for level_set(); empty otherwise
-};
 
 // Centroid (vertex mean) of every local cell: num_cells × dim values.
 std::vector<double> cell_centroids(const MeshView& view, std::span<const double> coords);

@@ -10,6 +10,7 @@
 #include "adapt/picard.hpp"
 #include "adapt/size_field.hpp"
 #include "adapt/volume_ratio.hpp"
+#include "api/optimizer_impl.hpp"
 #include "app/checks.hpp"
 #include "app/method_options.hpp"
 #include "app/optimization.hpp"
@@ -24,7 +25,7 @@ namespace neomesh::app {
 
 namespace {
 
-struct AdaptOptions {
+struct AdaptCommand {
   std::string input, output, levelset, sizes_file, time;
   int step_updates = 1;  // Picard updates before a time step after the first may stop
   std::vector<double> circle, sphere, plane, box;
@@ -36,7 +37,7 @@ struct AdaptOptions {
   RunOutputs outputs;
 };
 
-SizeField make_size_field(const AdaptOptions& o) {
+SizeField make_size_field(const AdaptCommand& o) {
   const int given = !o.circle.empty() + !o.sphere.empty() + !o.plane.empty() + !o.box.empty() +
                     !o.levelset.empty() + !o.sizes_file.empty();
   if (given != 1)
@@ -61,7 +62,7 @@ SizeField make_size_field(const AdaptOptions& o) {
 }
 
 // The surface --fit fits the mesh to, as a level set φ (< 0 inside) in x, y, z and t.
-LevelSetFunction fit_level_set(const AdaptOptions& o, int dim) {
+LevelSetFunction fit_level_set(const AdaptCommand& o, int dim) {
   const auto& c = o.circle.empty() ? o.sphere : o.circle;
   if (!o.levelset.empty()) return LevelSetFunction(o.levelset, dim, true);
   if (!c.empty()) {
@@ -85,16 +86,16 @@ LevelSetFunction fit_level_set(const AdaptOptions& o, int dim) {
 // What the outputs show of a fit: the cell field "inside" (1 on the side φ < 0), the vertex
 // fields "interface" (1 on the fitted vertices) and "phi", and the facet group "interface"
 // (.msh).
-MeshFields fit_outputs(const OptimizationRun& run, const FitResult& fit,
+MeshFields fit_outputs(const Optimizer::Impl& impl, const FitResult& fit,
                        const LevelSetFunction& phi) {
-  const MeshView& view = run.view();
+  const MeshView& view = impl.view();
   MeshFields out;
   out.cell.push_back(
       {"inside", std::vector<double>(fit.interface.inside.begin(), fit.interface.inside.end())});
   std::vector<double> on(view.num_vertices, 0.0), values(view.num_vertices);
   for (PetscInt u : fit.interface.vertices) on[u] = 1.0;
-  std::vector<double> local(static_cast<std::size_t>(run.dofs().num_local_dofs()));
-  run.dofs().global_to_local(run.x(), local);
+  std::vector<double> local(static_cast<std::size_t>(impl.dofs().num_local_dofs()));
+  impl.dofs().global_to_local(impl.x, local);
   for (PetscInt u = 0; u < view.num_vertices; ++u) {
     Point p = Point::Zero();
     for (int j = 0; j < view.dim; ++j) p[j] = local[u * view.dim + j];
@@ -105,23 +106,6 @@ MeshFields fit_outputs(const OptimizationRun& run, const FitResult& fit,
   return out;
 }
 
-// Fits the run's mesh to φ = 0 (the time set in phi) and makes the outputs show it.
-FitResult fit(OptimizationRun& run, const LevelSetFunction& phi,
-              const std::function<std::vector<double>(Vec)>& target_volumes,
-              const PicardOptions& last_stage, const AdaptOptions& o,
-              const PicardObserver& observe = {}) {
-  const FitHooks hooks{
-      .constrain = [&run](SlidingVertices extra) -> const Functional& {
-        return run.constrain(std::move(extra));
-      },
-      .target_volumes = target_volumes,
-      .set_volumes = [&run](const std::vector<double>& v) { run.set_desired_volumes(v); }};
-  FitResult result = fit_interface(run.view(), run.dofs(), run.x(), phi, hooks, last_stage,
-                                   o.method.solver, {}, observe);
-  run.set_extra_outputs(fit_outputs(run, result, phi));
-  return result;
-}
-
 std::string describe(const FitResult& f) {
   return fmt::format(
       "fit: {} interface facets, {} vertices within {:.1e} of the zero set, {} stages ({} undone, "
@@ -130,121 +114,115 @@ std::string describe(const FitResult& f) {
       f.interface.cells_flipped);
 }
 
-// The thesis' scheme (§6.1): the raw field, shape-dominated energy (λ = 1, μ = 10), fixed
-// boundary vertices, full updates when σ‖δ‖ < 1e-6 or every 8 iterations, 7 updates.
-void use_thesis_scheme(AdaptOptions& o) {
-  o.sizes.max_ratio = SizeFieldOptions::thesis().max_ratio;
-  o.sizes.smoothing_passes = SizeFieldOptions::thesis().smoothing_passes;
-  o.method.energy.lambda = 1.0;
-  o.method.energy.mu = 10.0;
-  o.method.boundary = "fixed";
-  o.picard = {.min_updates = 7,
-              .update_every = 8,
-              .update_move = 0.0,
-              .update_step_norm = 1e-6,
-              .relaxation = 1.0};
+// After an adapt(): fits the run's mesh to φ = 0 (the time set in phi) with the Optimizer's
+// functional, makes the outputs show it, and appends its iterations to `result` (the mesh is
+// moved to the fitted coordinates, and result's quality_after is theirs).
+FitResult fit(OptimizationRun& run, const SizeField& field, const LevelSetFunction& phi,
+              const AdaptOptions& options, const PicardOptions& last_stage, Result& result,
+              const Observer& observe = {}) {
+  Optimizer::Impl& impl = run.optimizer().impl();
+  const auto target_volumes =
+      size_field_volumes(field, options.sizes, impl.view(), impl.dofs(), impl.mesh_volume);
+  const FitHooks hooks{
+      .constrain = [&impl](SlidingVertices extra) -> const Functional& {
+        return impl.constrain(std::move(extra));
+      },
+      .target_volumes = target_volumes,
+      .set_volumes = [&impl](const std::vector<double>& v) { impl.set_desired_volumes(v); }};
+  FitResult f = fit_interface(impl.view(), impl.dofs(), impl.x, phi, hooks, last_stage,
+                              impl.method(options.solver), {}, observe);
+  result.quality_after = impl.finish();
+  run.set_extra_outputs(fit_outputs(impl, f, phi));
+  const int before = static_cast<int>(result.history.size());
+  result.update_iterations.push_back(before);  // the fit starts from new volumes
+  result.history.insert(result.history.end(), f.picard.run.history.begin(),
+                        f.picard.run.history.end());
+  for (int k : f.picard.update_iterations) result.update_iterations.push_back(k + before);
+  result.reason = f.picard.run.reason;
+  result.final_energy = f.picard.run.final_energy;
+  result.final_defect = f.picard.run.final_defect;
+  return f;
 }
 
-void check(const AdaptOptions& o) {
-  check_option("--power", o.sizes.power, o.sizes.power > 0, "positive");
-  check_option("--floor", o.sizes.floor, o.sizes.floor >= 0, "0 or more");
-  check_option("--max-ratio", o.sizes.max_ratio, o.sizes.max_ratio == 0 || o.sizes.max_ratio > 1,
-               "above 1, or 0 for no bound");
-  check_option("--smooth-sizes", o.sizes.smoothing_passes, o.sizes.smoothing_passes >= 0,
-               "0 or more");
-  check_option("--min-updates", o.picard.min_updates, o.picard.min_updates >= 0, "0 or more");
-  check_option("--step-updates", o.step_updates, o.step_updates >= 0, "0 or more");
-  check_option("--update-every", o.picard.update_every, o.picard.update_every >= 1, "at least 1");
-  check_option("--update-move", o.picard.update_move, o.picard.update_move >= 0, "0 or more");
-  check_option("--update-step", o.picard.update_step_norm, o.picard.update_step_norm >= 0,
-               "0 or more");
-  check_option("--relaxation", o.picard.relaxation,
-               o.picard.relaxation > 0 && o.picard.relaxation <= 1, "in (0, 1]");
-  check_finite("--circle", o.circle);
-  check_finite("--sphere", o.sphere);
-  check_finite("--plane", o.plane);
-  check_finite("--box", o.box);
+// Q = actual / desired volume of the run's cells.
+VolumeRatioStats volume_ratio(OptimizationRun& run) {
+  for (const Field& f : run.optimizer().cell_fields())
+    if (f.name == "Q") return volume_ratio_stats(f.values, run.mesh().comm());
+  return {};
 }
 
 // A geometry that moves: the size field at each time of `times` in turn, every step warm-started
 // from the mesh and desired volumes of the one before; one mesh file, summary line (and
 // picture) per step, and a ParaView collection for an .pvd output.
-void adapt_in_time(const AdaptOptions& o, SizeField& field, OptimizationRun& run,
-                   const std::vector<double>& times, LevelSetFunction* phi) {
+void adapt_in_time(const AdaptCommand& o, const AdaptOptions& options, SizeField& field,
+                   OptimizationRun& run, const std::vector<double>& times, LevelSetFunction* phi) {
   const std::filesystem::path output = o.output;
-  const auto target_volumes =
-      size_field_volumes(field, o.sizes, run.view(), run.dofs(), run.mesh_volume());
-  const auto set_volumes = [&run](const std::vector<double>& v) { run.set_desired_volumes(v); };
   std::vector<std::filesystem::path> members;
-  nlohmann::json steps = nlohmann::json::array(), steps_fit = nlohmann::json::array();
+  nlohmann::json steps = nlohmann::json::array();
+  const RunSettings settings{options.energy, options.solver, options.boundary};
   const double start = MPI_Wtime();
   for (std::size_t i = 0; i < times.size(); ++i) {
     field.set_time(times[i]);
-    PicardOptions picard_options = o.picard;
-    if (i > 0) picard_options.min_updates = o.step_updates;
-    // With --fit the fit's start recomputes the desired volumes: one of the step's updates.
-    if (i > 0 && phi) picard_options.min_updates = std::max(0, o.step_updates - 1);
+    AdaptOptions step = options;
+    if (i > 0 && phi) {
+      // The fit's start recomputes the desired volumes: one of the step's updates; and a warm
+      // step's adaptation only has to move the small cells along: the fit goes on optimizing.
+      step.warm_updates = std::max(0, options.warm_updates - 1);
+      step.solver.max_iterations = FitOptions().stage_iterations;
+    }
     const double step_start = MPI_Wtime();
-    std::string fitted;
     // With --fit: adapt with the interface free, then fit: the small cells are already at the
     // new interface when its vertices are pulled onto it.
-    if (phi) run.constrain({});
-    QuasiNewtonOptions method = o.method.solver;
-    // With --fit a warm step's adaptation only has to move the small cells along: the fit
-    // goes on optimizing.
-    if (i > 0 && phi) method.max_iterations = FitOptions().stage_iterations;
-    PicardResult result = picard(run.functional(), run.view(), run.x(), target_volumes, set_volumes,
-                                 picard_options, method);
+    if (phi && i > 0) run.optimizer().impl().constrain({});
+    // The problem is printed once; then one summary line per step.
+    Observer observe;
+    if (i == 0) observe.started = run.observer(settings, true).started;
+    Result result = run.optimizer().adapt(field, step, observe);
+    std::string fitted;
+    nlohmann::json fit_record;
     if (phi) {
       phi->set_time(times[i]);
-      PicardOptions last = o.picard;
+      PicardOptions last = options.picard;
       last.min_updates = 0;  // the volumes where the fit starts will do
-      const FitResult f = fit(run, *phi, target_volumes, last, o);
-      const int adapted = static_cast<int>(result.run.history.size());
-      result.update_iterations.push_back(adapted);  // the fit starts from new volumes
-      result.run.history.insert(result.run.history.end(), f.picard.run.history.begin(),
-                                f.picard.run.history.end());
-      for (int k : f.picard.update_iterations) result.update_iterations.push_back(k + adapted);
-      result.run.reason = f.picard.run.reason;
+      const FitResult f = fit(run, field, *phi, options, last, result);
       fitted = "; " + describe(f);
-      steps_fit.push_back({{"max_distance", f.max_distance},
-                           {"iterations", f.picard.run.history.size()},
-                           {"facets", f.interface.num_facets()},
-                           {"stages", f.stages},
-                           {"undone", f.retries}});
+      fit_record = {{"max_distance", f.max_distance},
+                    {"iterations", f.picard.run.history.size()},
+                    {"facets", f.interface.num_facets()},
+                    {"stages", f.stages},
+                    {"undone", f.retries}};
     }
     const double seconds = MPI_Wtime() - step_start;
     members.push_back(series_member(output, static_cast<int>(i)));
-    const QualitySummary quality = run.snapshot(members.back());
-    const VolumeRatioStats q =
-        volume_ratio_stats(run.functional().cell_fields(run.x()).volume_ratio, run.dofs().comm());
-    const double min_sj = quality.scaled_jacobian.min;
+    run.snapshot(members.back());
+    const VolumeRatioStats q = volume_ratio(run);
+    const double min_sj = result.quality_after.scaled_jacobian.min;
     always(
         "step {}/{}, t = {:.4g}: {} iterations, {} updates, {}; Q in [0.5, 2] for {:.1f}% of "
         "the cells; min scaled Jacobian {:.3f}{}; {:.2f} s; wrote {}\n",
-        i + 1, times.size(), times[i], result.run.history.size(), result.update_iterations.size(),
-        describe(result.run.reason), 100 * q.within, min_sj, fitted, seconds,
-        members.back().string());
+        i + 1, times.size(), times[i], result.history.size(), result.update_iterations.size(),
+        describe(result.reason), 100 * q.within, min_sj, fitted, seconds, members.back().string());
     if (!o.outputs.picture_after.empty())
       run.draw(numbered_path("--picture", o.outputs.picture_after, static_cast<int>(i)),
                o.outputs.picture_field, fmt::format("{}, t = {:.4g}", o.input, times[i]));
     steps.push_back({{"time", times[i]},
                      {"file", members.back().string()},
-                     {"iterations", result.run.history.size()},
+                     {"iterations", result.history.size()},
                      {"updates", result.update_iterations.size()},
-                     {"stop", describe(result.run.reason)},
+                     {"stop", describe(result.reason)},
                      {"volume_ratio", to_json(q)},
                      {"min_scaled_jacobian", min_sj},
-                     {"inverted", quality.inverted},
+                     {"inverted", result.quality_after.inverted},
                      {"seconds", seconds}});
-    if (phi) steps.back()["fit"] = steps_fit.back();
+    if (phi) steps.back()["fit"] = fit_record;
   }
+  const MPI_Comm comm = run.mesh().comm();
   if (output.extension() == ".pvd") {
-    on_root(run.dofs().comm(), [&] { write_pvd(output, times, members); });
+    on_root(comm, [&] { write_pvd(output, times, members); });
     always("wrote {}: {} steps ({:.2f} s)\n", output.string(), times.size(), MPI_Wtime() - start);
   }
   if (!o.outputs.report.empty())
-    on_root(run.dofs().comm(), [&] {
+    on_root(comm, [&] {
       const nlohmann::json report = {{"input", o.input},
                                      {"output", o.output},
                                      {"size_field", field.description()},
@@ -254,10 +232,16 @@ void adapt_in_time(const AdaptOptions& o, SizeField& field, OptimizationRun& run
     });
 }
 
-void adapt(AdaptOptions& o) {
-  if (o.method.thesis) use_thesis_scheme(o);
-  finalize(o.method);
-  check(o);
+void adapt(AdaptCommand& o) {
+  AdaptOptions options;
+  options.sizes = o.sizes;
+  options.picard = o.picard;
+  options.warm_updates = o.step_updates;
+  options = resolve(o.method, options);
+  check_finite("--circle", o.circle);
+  check_finite("--sphere", o.sphere);
+  check_finite("--plane", o.plane);
+  check_finite("--box", o.box);
   SizeField field = make_size_field(o);
   const std::vector<double> times =
       o.time.empty() ? std::vector<double>{} : parse_time_steps(o.time);
@@ -280,54 +264,36 @@ void adapt(AdaptOptions& o) {
   if (o.fit && mpi_size(PETSC_COMM_WORLD) > 1)
     fail("--fit runs on one process for now (the interface is found within each process' cells)");
 
-  OptimizationRun run(o.input, o.method);
+  OptimizationRun run(o.input, InvertedCells::Refuse);
+  const MeshView& view = run.mesh().plex().view();
   std::optional<LevelSetFunction> phi;
   if (o.fit) {
-    phi.emplace(fit_level_set(o, run.view().dim));
+    phi.emplace(fit_level_set(o, view.dim));
     // Every time's interface must exist and lie inside the domain: fail before any output.
     for (double t : times.empty() ? std::vector<double>{0.0} : times) {
       phi->set_time(t);
-      find_interface(run.view(), run.view().coords, *phi);
+      find_interface(view, view.coords, *phi);
     }
   }
+  check_run_outputs(o.outputs, view.dim);  // pictures of a 3D mesh: before the run
+  say("size field: {}\n", field.description());
   if (!times.empty()) {
-    check_run_outputs(o.outputs, run.view().dim);
-    say("size field: {}\n", field.description());
-    run.print_problem();
-    adapt_in_time(o, field, run, times, phi ? &*phi : nullptr);
+    adapt_in_time(o, options, field, run, times, phi ? &*phi : nullptr);
     return;
   }
-  check_run_outputs(o.outputs, run.view().dim);  // pictures of a 3D mesh: before the run
-  say("size field: {}\n", field.description());
-  run.print_problem();
-  const auto target_volumes =
-      size_field_volumes(field, o.sizes, run.view(), run.dofs(), run.mesh_volume());
-  if (!o.outputs.picture_before.empty()) {
-    run.set_desired_volumes(target_volumes(run.x()));
-    run.draw(o.outputs.picture_before, o.outputs.picture_field, "input: " + o.input);
-  }
-  const auto table = run.table_printer(o.outputs.progress_lines);
-  PicardObserver observe{.iteration = table, .update = [](int k, int update) {
-                           say("  -- desired volumes updated after iteration {} (update {})\n", k,
-                               update);
-                         }};
-  PicardResult result = picard(
-      run.functional(), run.view(), run.x(), target_volumes,
-      [&run](const std::vector<double>& v) { run.set_desired_volumes(v); }, o.picard,
-      o.method.solver, observe);
+  const RunSettings settings{options.energy, options.solver, options.boundary};
+  const auto picture_before = [&] {
+    if (!o.outputs.picture_before.empty())
+      run.draw(o.outputs.picture_before, o.outputs.picture_field, "input: " + o.input);
+  };
+  const Observer observe = run.observer(settings, o.outputs.progress_lines, picture_before);
+  Result result = run.optimizer().adapt(field, options, observe);
   nlohmann::json fit_report;
   if (phi) {
     say("fitting the mesh to {} = 0 ...\n", phi->expression());
-    PicardOptions last = o.picard;
+    PicardOptions last = options.picard;
     last.min_updates = 1;  // the volumes follow the fitted cells once
-    const FitResult f = fit(run, *phi, target_volumes, last, o, observe);
-    const int before = static_cast<int>(result.run.history.size());
-    result.run.history.insert(result.run.history.end(), f.picard.run.history.begin(),
-                              f.picard.run.history.end());
-    for (int k : f.picard.update_iterations) result.update_iterations.push_back(k + before);
-    result.run.reason = f.picard.run.reason;
-    result.run.final_energy = f.picard.run.final_energy;
-    result.run.final_defect = f.picard.run.final_defect;
+    const FitResult f = fit(run, field, *phi, options, last, result, observe);
     always("{}; {} iterations\n", describe(f), f.picard.run.history.size());
     fit_report = {{"level_set", phi->expression()},
                   {"facets", f.interface.num_facets()},
@@ -339,26 +305,25 @@ void adapt(AdaptOptions& o) {
                   {"iterations", f.picard.run.history.size()}};
   }
 
-  const VolumeRatioStats q =
-      volume_ratio_stats(run.functional().cell_fields(run.x()).volume_ratio, run.dofs().comm());
+  const VolumeRatioStats q = volume_ratio(run);
   always(
       "adaptation: {} updates of the desired volumes (after iterations {}); Q = actual/desired "
       "volume in [0.5, 2] for {:.1f}% of the cells, min {:.3g}, median {:.3g}, max {:.3g}\n",
       result.update_iterations.size(), fmt::join(result.update_iterations, ", "), 100 * q.within,
       q.min, q.median, q.max);
-  run.finish(result.run, o.output, o.outputs,
+  run.finish(result, settings, o.output, o.outputs,
              {{"size_field", field.description()},
               {"size_options",
-               {{"floor", o.sizes.floor},
-                {"power", o.sizes.power},
-                {"max_ratio", o.sizes.max_ratio},
-                {"smoothing_passes", o.sizes.smoothing_passes}}},
+               {{"floor", options.sizes.floor},
+                {"power", options.sizes.power},
+                {"max_ratio", options.sizes.max_ratio},
+                {"smoothing_passes", options.sizes.smoothing_passes}}},
               {"picard",
-               {{"min_updates", o.picard.min_updates},
-                {"update_every", o.picard.update_every},
-                {"update_move", o.picard.update_move},
-                {"update_step_norm", o.picard.update_step_norm},
-                {"relaxation", o.picard.relaxation},
+               {{"min_updates", options.picard.min_updates},
+                {"update_every", options.picard.update_every},
+                {"update_move", options.picard.update_move},
+                {"update_step_norm", options.picard.update_step_norm},
+                {"relaxation", options.picard.relaxation},
                 {"update_iterations", result.update_iterations}}},
               {"volume_ratio", to_json(q)},
               {"fit", fit_report}});
@@ -367,7 +332,7 @@ void adapt(AdaptOptions& o) {
 }  // namespace
 
 Subcommand add_adapt(CLI::App& app) {
-  auto o = std::make_shared<AdaptOptions>();
+  auto o = std::make_shared<AdaptCommand>();
   // Adaptation wants volumes met, not only shapes: λ = 4 μ, and boundary vertices that slide
   // so that the cells at the boundary can grade too (docs/adaptivity.md).
   o->method.energy.lambda = 4.0;

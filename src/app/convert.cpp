@@ -10,8 +10,8 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "mesh/collective_error.hpp"
-#include "mesh/mesh.hpp"
 #include "mesh/mesh_io.hpp"
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh::app {
 
@@ -36,9 +36,9 @@ void run_convert(const ConvertOptions& o) {
       fail("{}: output is the input file; choose another -o or pass --force", o.output);
   });
   say("reading {} ...\n", o.input);
-  const Mesh mesh = [&] {
+  const PlexMesh mesh = [&] {
     const Activity reading("reading " + o.input);
-    return Mesh::load(o.input);
+    return PlexMesh::load(o.input);
   }();
   const Activity writing("writing " + o.output);
   write_mesh(mesh, o.output);

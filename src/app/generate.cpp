@@ -13,8 +13,8 @@
 #include "geometry/quality.hpp"
 #include "mesh/collective_error.hpp"
 #include "mesh/generate.hpp"
-#include "mesh/mesh.hpp"
 #include "mesh/mesh_io.hpp"
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh::app {
 
@@ -111,7 +111,7 @@ void run_generate(const GenerateOptions& o) {
     fail("generate: --jitter must be in [0, 1) (got {})", o.jitter);
   collectively(PETSC_COMM_WORLD,
                [&] { check_output_file("-o/--output", o.output, OutputKind::Mesh); });
-  // The mesh is built on rank 0; Mesh::from_data distributes it.
+  // The mesh is built on rank 0; PlexMesh::from_data distributes it.
   MeshData data;
   if (is_root_rank()) {
     data = c.make(size, o);
@@ -120,7 +120,7 @@ void run_generate(const GenerateOptions& o) {
   }
   const CellType type = data.cell_type;
   // A large --jitter folds cells over: such meshes are written as they are, to be untangled.
-  const Mesh mesh = Mesh::from_data(data, c.name, PETSC_COMM_WORLD, InvertedCells::Keep);
+  const PlexMesh mesh = PlexMesh::from_data(data, c.name, PETSC_COMM_WORLD, InvertedCells::Keep);
   write_mesh(mesh, o.output);
   say("wrote {}: {} {}, {} vertices\n", o.output, mesh.global_num_cells(), plural_name(type),
       mesh.global_num_vertices());

@@ -1,10 +1,14 @@
 #include "app/method_options.hpp"
 
+#include <functional>
+#include <map>
 #include <string_view>
 #include <utility>
 
 #include "app/checks.hpp"
+#include "boundary/boundary.hpp"
 #include "core/error.hpp"
+#include "solver/linear_solver.hpp"
 
 namespace neomesh::app {
 
@@ -109,7 +113,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
   cmd.add_option("--riesz-rtol", o.riesz_rtol,
                  fmt::format("relative tolerance of the Riesz solve (default: {:g}, with --thesis "
                              "{:g})",
-                             QuasiNewtonOptions{}.riesz_rtol, QuasiNewtonOptions::kThesisRieszRtol))
+                             SolverOptions{}.riesz_rtol, SolverOptions::kThesisRieszRtol))
       ->group(linear);
   const char* boundary = "Boundary (docs/boundary.md)";
   cmd.add_option("--boundary", o.boundary,
@@ -125,7 +129,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "levelset:EXPR (repeatable; default: FEAT3 charts, flat faces, else the input's "
                  "own facets)")
       ->group(boundary);
-  cmd.add_option("--feature-angle", o.boundary_options.feature_angle,
+  cmd.add_option("--feature-angle", o.feature_angle,
                  "with --boundary slide: the boundary has a corner (2D) or ridge (3D) where it "
                  "turns by more than this many degrees; corners stay put, ridge vertices slide "
                  "along the ridge")
@@ -138,53 +142,62 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
       ->group(method);
 }
 
-void finalize(MethodOptions& o) {
-  const auto& e = o.energy;
-  check_option("--lambda", e.lambda, e.lambda > 0, "positive");
-  check_option("--mu", e.mu, e.mu > 0, "positive");
-  if (e.kappa != -1.0) check_option("--kappa", e.kappa, e.kappa > 0, "positive");
-  check_option("--gauss", e.gauss_points, e.gauss_points >= 1 && e.gauss_points <= 5,
-               "between 1 and 5");
-  const auto& q = o.solver;
-  check_option("--alpha0", q.alpha0, q.alpha0 > 0 && q.alpha0 <= 1, "in (0, 1]");
-  check_option("--eta", q.eta, q.eta > 0 && q.eta < 1, "in (0, 1)");
-  check_option("--kmin", q.kmin, q.kmin >= 0, "0 or more");
-  check_option("--max-iter", q.max_iterations, q.max_iterations >= 1, "at least 1");
-  check_option("--tol", q.defect_atol, q.defect_atol >= 0, "0 or more");
-  check_option("--rtol", q.defect_rtol, q.defect_rtol >= 0, "0 or more");
-  check_option("--energy-rtol", q.energy_rtol, q.energy_rtol >= 0, "0 or more");
-  check_option("--move-rtol", q.move_rtol, q.move_rtol >= 0, "0 or more");
-  check_option("--alpha-start-defect", q.initial_previous_defect, q.initial_previous_defect > 0,
-               "positive");
-  check_option("--hess-rtol", q.hessian_rtol, q.hessian_rtol > 0 && q.hessian_rtol < 1,
-               "in (0, 1)");
-  check_option("--hess-pc-reuse", q.hessian_pc_reuse, q.hessian_pc_reuse >= 0, "0 or more");
-  if (o.riesz_rtol)
-    o.solver.riesz_rtol = *o.riesz_rtol;
-  else if (o.thesis)
-    o.solver.riesz_rtol = QuasiNewtonOptions::kThesisRieszRtol;
-  check_option("--riesz-rtol", q.riesz_rtol, q.riesz_rtol > 0 && q.riesz_rtol < 1, "in (0, 1)");
-  o.solver.linear_solver = parse_linear_solver(o.linear_solver);
-  o.solver.riesz =
+std::string option_name(const std::string& field) {
+  static const std::map<std::string, std::string, std::less<>> kNames = {
+      {"energy.lambda", "--lambda"},
+      {"energy.mu", "--mu"},
+      {"energy.kappa", "--kappa"},
+      {"energy.gauss_points", "--gauss"},
+      {"solver.alpha0", "--alpha0"},
+      {"solver.eta", "--eta"},
+      {"solver.kmin", "--kmin"},
+      {"solver.max_iterations", "--max-iter"},
+      {"solver.defect_atol", "--tol"},
+      {"solver.defect_rtol", "--rtol"},
+      {"solver.energy_rtol", "--energy-rtol"},
+      {"solver.move_rtol", "--move-rtol"},
+      {"solver.initial_previous_defect", "--alpha-start-defect"},
+      {"solver.hessian_rtol", "--hess-rtol"},
+      {"solver.hessian_pc_reuse", "--hess-pc-reuse"},
+      {"solver.riesz_rtol", "--riesz-rtol"},
+      {"boundary.feature_angle", "--feature-angle"},
+      {"boundary.shapes", "--shape"},
+      {"sizes.power", "--power"},
+      {"sizes.floor", "--floor"},
+      {"sizes.max_ratio", "--max-ratio"},
+      {"sizes.smoothing_passes", "--smooth-sizes"},
+      {"picard.min_updates", "--min-updates"},
+      {"picard.update_every", "--update-every"},
+      {"picard.update_move", "--update-move"},
+      {"picard.update_step_norm", "--update-step"},
+      {"picard.relaxation", "--relaxation"},
+      {"warm_updates", "--step-updates"}};
+  const auto it = kNames.find(field);
+  return it != kNames.end() ? it->second : field;
+}
+
+void resolve(const MethodOptions& o, EnergyOptions& energy, SolverOptions& solver,
+             BoundaryOptions& boundary) {
+  energy = o.energy;
+  solver = o.solver;
+  solver.linear_solver = parse_linear_solver(o.linear_solver);
+  solver.riesz =
       one_of<RieszLaplacian>("--riesz", o.riesz, {"optimal", RieszLaplacian::OptimalCells},
                              {"current", RieszLaplacian::CurrentMesh});
-  o.solver.hessian_pc = one_of<HessianPreconditioner>(
+  solver.hessian_pc = one_of<HessianPreconditioner>(
       "--hess-pc", o.hess_pc, {"hessian", HessianPreconditioner::Hessian},
       {"laplacian", HessianPreconditioner::Laplacian});
-  o.solver.practical = !(o.no_practical || o.thesis);
-  if (o.thesis) o.boundary = "fixed";  // the thesis' H¹₀ setting
-  o.boundary_options.mode = parse_boundary_mode(o.boundary);
-  const double angle = o.boundary_options.feature_angle;
-  if (!(angle > 0 && angle < 180))
-    fail("--feature-angle must be in (0, 180) degrees (got {})", angle);
-  o.boundary_options.shapes.clear();
+  solver.practical = !o.no_practical;
+  boundary.mode = parse_boundary_mode(o.boundary);
+  boundary.feature_angle = o.feature_angle;
+  boundary.shapes.clear();
   for (const std::string& shape : o.shapes) {
     const auto equals = shape.find('=');
     if (equals == std::string::npos || equals == 0 || equals + 1 == shape.size())
       fail("--shape '{}': expected PART=SHAPE, e.g. hole=circle:0,0,0.5", shape);
-    o.boundary_options.shapes.emplace_back(shape.substr(0, equals), shape.substr(equals + 1));
+    boundary.shapes.emplace_back(shape.substr(0, equals), shape.substr(equals + 1));
   }
-  if (!o.shapes.empty() && o.boundary_options.mode != BoundaryMode::Slide)
+  if (!o.shapes.empty() && (boundary.mode != BoundaryMode::Slide || o.thesis))
     fail("--shape needs --boundary slide (with fixed boundary vertices nothing slides on it)");
 }
 

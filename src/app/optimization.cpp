@@ -5,19 +5,19 @@
 #include <sys/resource.h>
 #include <cstdlib>
 
+#include "api/optimizer_impl.hpp"
 #include "app/checks.hpp"
-#include "boundary/interface.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "geometry/quality.hpp"
 #include "mesh/collective_error.hpp"
-#include "mesh/mesh_io.hpp"
 #include "report/canvas.hpp"
 #include "report/history_plot.hpp"
 #include "report/iteration_table.hpp"
 #include "report/render.hpp"
 #include "report/run_report.hpp"
+#include "solver/linear_solver.hpp"
 
 namespace neomesh::app {
 
@@ -62,123 +62,6 @@ void share_cores(MPI_Comm comm) {
   omp_set_num_threads(std::max(1, omp_get_num_procs() / ranks));
 }
 
-}  // namespace
-
-struct OptimizationRun::Impl {
-  MethodOptions& method;
-  double start = MPI_Wtime();  // before the mesh is read
-  double read_seconds = 0.0, prepare_seconds = 0.0;
-  Mesh mesh;
-  OwnedVec x;
-  std::vector<double> input_volumes;
-  double mesh_volume = 0.0;
-  QualitySummary quality_before;
-  std::unique_ptr<Boundary> boundary;
-  std::unique_ptr<Functional> functional;
-  OwnedVec cell_size;
-  bool untangled = false;  // untangle() ran: the table names the phases
-  MeshFields extra_outputs;
-
-  Impl(const std::filesystem::path& input, MethodOptions& m, InvertedCells inverted)
-      : method(m), mesh(load(input, inverted)), x(mesh.coordinates()) {
-    read_seconds = MPI_Wtime() - start;
-    share_cores(mesh.comm());
-    const MeshView& view = mesh.view();
-    const CellQuality quality = cell_quality(view, view.coords);
-    quality_before = summarize(quality, mesh.comm());
-    if (inverted == InvertedCells::Refuse &&
-        (quality_before.inverted > 0 || quality_before.degenerate > 0))
-      fail("{} has {} inverted and {} degenerate cells; `neomesh smooth` untangles them",
-           input.string(), quality_before.inverted, quality_before.degenerate);
-    input_volumes = quality.volume;
-    double local = 0.0;
-    for (double v : input_volumes) local += v;
-    MPI_Allreduce(&local, &mesh_volume, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
-    boundary = std::make_unique<Boundary>(view, mesh.dofs(), method.boundary_options);
-    functional = std::make_unique<Functional>(view, mesh.dofs(), method.energy,
-                                              boundary->fixed_dofs(), boundary->sliding_vertices());
-    boundary->project(x);  // onto given shapes and charts: they pass within 1e-6 h
-    method.solver.energy_roundoff = energy_roundoff(method.energy, view.dim, mesh_volume);
-    prepare_seconds = MPI_Wtime() - start - read_seconds;
-  }
-
-  static Mesh load(const std::filesystem::path& input, InvertedCells inverted) {
-    const int ranks = mpi_size(PETSC_COMM_WORLD);
-    say("reading {}{} ...\n", input.string(),
-        ranks > 1 ? fmt::format(" and distributing it over {} processes", ranks) : "");
-    const Activity reading("reading " + input.string());
-    return Mesh::load(input, PETSC_COMM_WORLD, inverted);
-  }
-
-  std::pair<CellQuality, QualitySummary> move_mesh_and_check();
-
-  // At the current coordinates (view.coords and x agree before the run and after finish()).
-  MeshFields output_fields() const {
-    return output_fields(cell_quality(mesh.view(), mesh.view().coords));
-  }
-
-  MeshFields output_fields(const CellQuality& quality) const {
-    const CellFields energy = functional->cell_fields(x);
-    MeshFields fields;
-    fields.cell = {
-        {"energy", energy.energy},          {"det_G_min", energy.min_det},
-        {"Q", energy.volume_ratio},         {"desired_volume", functional->desired_volumes()},
-        {"volume", quality.volume},         {"scaled_jacobian", quality.scaled_jacobian},
-        {"min_angle", quality.min_angle},   {"max_angle", quality.max_angle},
-        {"edge_ratio", quality.edge_ratio}, {"inverse_mean_ratio", quality.inverse_mean_ratio}};
-    fields.cell.insert(fields.cell.end(), extra_outputs.cell.begin(), extra_outputs.cell.end());
-    fields.vertex = extra_outputs.vertex;
-    fields.facet_groups = extra_outputs.facet_groups;
-    return fields;
-  }
-};
-
-OptimizationRun::OptimizationRun(const std::filesystem::path& input, MethodOptions& method,
-                                 InvertedCells inverted)
-    : impl_(std::make_unique<Impl>(input, method, inverted)) {}
-OptimizationRun::~OptimizationRun() = default;
-
-const MeshView& OptimizationRun::view() const {
-  return impl_->mesh.view();
-}
-const DofMap& OptimizationRun::dofs() const {
-  return impl_->mesh.dofs();
-}
-Vec OptimizationRun::x() const {
-  return impl_->x;
-}
-const std::vector<double>& OptimizationRun::input_volumes() const {
-  return impl_->input_volumes;
-}
-double OptimizationRun::mesh_volume() const {
-  return impl_->mesh_volume;
-}
-const Functional& OptimizationRun::functional() const {
-  return *impl_->functional;
-}
-const Functional& OptimizationRun::constrain(SlidingVertices extra) {
-  Impl& r = *impl_;
-  const std::vector<double> volumes = r.functional->desired_volumes();
-  r.functional =
-      std::make_unique<Functional>(view(), dofs(), r.method.energy, r.boundary->fixed_dofs(),
-                                   join(r.boundary->sliding_vertices(), std::move(extra)));
-  if (!volumes.empty()) r.functional->set_desired_volumes(volumes);
-  return *r.functional;
-}
-void OptimizationRun::set_extra_outputs(MeshFields extra) {
-  impl_->extra_outputs = std::move(extra);
-}
-Vec OptimizationRun::cell_size() const {
-  return impl_->cell_size;
-}
-
-void OptimizationRun::set_desired_volumes(std::vector<double> volumes) {
-  impl_->functional->set_desired_volumes(volumes);
-  impl_->cell_size = local_cell_size(view(), dofs(), volumes);
-}
-
-namespace {
-
 // "KSP cg, PC hypre boomeramg, rtol 0.0001, at most 10000 iterations": what PETSc will run,
 // after the -hess_/-riesz_ options of the command line.
 std::string describe(const LinearSolver& solver) {
@@ -221,29 +104,24 @@ void print_solver_details(const IterationRecord& rec) {
       rec.k, delta, rec.krylov_s, rec.armijo_steps, rec.max_move);
 }
 
-}  // namespace
-
-void OptimizationRun::print_problem() const {
-  const Mesh& mesh = impl_->mesh;
+// The problem as the Optimizer set it up, and the settings it runs with.
+void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSettings& s) {
   const int ranks = mpi_size(mesh.comm());
-  double free = 0.0;
-  NM_PETSC(VecSum(impl_->functional->free_mask(), &free));
-  say("{}: {} cells, {} vertices, {} free coordinates{}\n", mesh.source(), mesh.global_num_cells(),
-      mesh.global_num_vertices(), static_cast<long>(free),
+  say("{}: {} cells, {} vertices, {} free coordinates{}\n", mesh.name(), mesh.num_cells(),
+      mesh.num_vertices(), problem.free_coordinates,
       ranks > 1 ? fmt::format(" on {} processes", ranks) : "");
   say("lambda {}, mu {}, alpha0 {}, eta {}, kmin {}, linear solver {}, boundary {}\n",
-      impl_->method.energy.lambda, impl_->method.energy.mu, impl_->method.solver.alpha0,
-      impl_->method.solver.eta, impl_->method.solver.kmin, name(impl_->method.solver.linear_solver),
-      name(impl_->method.boundary_options.mode));
-  const BoundarySummary& b = impl_->boundary->summary();
-  if (impl_->method.boundary_options.mode == BoundaryMode::Slide) {
+      s.energy.lambda, s.energy.mu, s.solver.alpha0, s.solver.eta, s.solver.kmin,
+      name(s.solver.linear_solver), name(s.boundary.mode));
+  const BoundarySummary& b = problem.boundary;
+  if (s.boundary.mode == BoundaryMode::Slide) {
     say("sliding boundary: {} patches, {} ridges; {} corners fixed, {} ridge and {} surface "
         "vertices slide\n",
         b.patches, b.ridges, b.corners, b.ridge_vertices, b.surface_vertices);
     for (const std::string& g : b.patch_geometry) detail("  {}\n", g);
   }
   if (verbosity() == Verbosity::Verbose) {
-    const QuasiNewtonOptions& o = impl_->method.solver;
+    const SolverOptions& o = s.solver;
     detail(
         "quasi-Newton system H(alpha) delta~ = -g (options -hess_*): {}, or residual <= {:g} "
         "x defect\n",
@@ -258,49 +136,105 @@ void OptimizationRun::print_problem() const {
   say("assembling the matrices and setting up the linear solvers ...\n");
 }
 
-std::function<void(const IterationRecord&)> OptimizationRun::table_printer(
-    bool progress_only) const {
-  auto header_printed = std::make_shared<bool>(false);
-  // The table of a run that untangled first names each phase (round) above its rows.
-  auto round = std::make_shared<int>(impl_->untangled ? -1 : 0);
-  return [header_printed, round, progress_only](const IterationRecord& rec) {
-    if (rec.untangling_round != *round) {
-      say("{}\n", untangling_phase_line(rec));
-      *round = rec.untangling_round;
-    }
-    if (progress_only) {
-      say("{}\n", progress_line(rec));
-    } else {
-      if (!*header_printed) say("{}\n", iteration_table_header());
-      *header_printed = true;
-      say("{}\n", iteration_table_row(rec));
-    }
-    print_solver_details(rec);
-  };
+}  // namespace
+
+struct OptimizationRun::Impl {
+  double start = MPI_Wtime();  // before the mesh is read
+  double read_seconds = 0.0, prepare_seconds = 0.0;
+  Mesh mesh;
+  Optimizer optimizer;
+  MeshFields extra_outputs;
+
+  Impl(const std::filesystem::path& input, InvertedCells inverted)
+      : mesh(read(input, inverted)), optimizer(mesh) {
+    read_seconds = MPI_Wtime() - start;
+    share_cores(mesh.comm());
+  }
+
+  static Mesh read(const std::filesystem::path& input, InvertedCells inverted) {
+    const int ranks = mpi_size(PETSC_COMM_WORLD);
+    say("reading {}{} ...\n", input.string(),
+        ranks > 1 ? fmt::format(" and distributing it over {} processes", ranks) : "");
+    const Activity reading("reading " + input.string());
+    return Mesh::read(input, PETSC_COMM_WORLD, inverted);
+  }
+
+  // At the mesh's coordinates: its quality, the optimizer's fields and the extra outputs.
+  MeshFields output_fields() const {
+    const MeshView& view = mesh.plex().view();
+    const CellQuality quality = cell_quality(view, view.coords);
+    MeshFields fields;
+    fields.cell = optimizer.cell_fields();
+    const std::vector<Field> metrics = {
+        {"volume", quality.volume},         {"scaled_jacobian", quality.scaled_jacobian},
+        {"min_angle", quality.min_angle},   {"max_angle", quality.max_angle},
+        {"edge_ratio", quality.edge_ratio}, {"inverse_mean_ratio", quality.inverse_mean_ratio}};
+    fields.cell.insert(fields.cell.end(), metrics.begin(), metrics.end());
+    fields.cell.insert(fields.cell.end(), extra_outputs.cell.begin(), extra_outputs.cell.end());
+    fields.vertex = extra_outputs.vertex;
+    fields.facet_groups = extra_outputs.facet_groups;
+    return fields;
+  }
+};
+
+OptimizationRun::OptimizationRun(const std::filesystem::path& input, InvertedCells inverted)
+    : impl_(std::make_unique<Impl>(input, inverted)) {}
+OptimizationRun::~OptimizationRun() = default;
+
+Mesh& OptimizationRun::mesh() {
+  return impl_->mesh;
+}
+Optimizer& OptimizationRun::optimizer() {
+  return impl_->optimizer;
+}
+void OptimizationRun::set_extra_outputs(MeshFields extra) {
+  impl_->extra_outputs = std::move(extra);
 }
 
-nlohmann::json OptimizationRun::untangle(bool progress_only) {
+Observer OptimizationRun::observer(const RunSettings& settings, bool progress_only,
+                                   std::function<void()> before_run) {
+  // The table of a run that untangles first names each phase (round) above its rows.
+  struct Table {
+    bool header_printed = false;
+    int round = 0;
+  };
+  auto table = std::make_shared<Table>();
   Impl& r = *impl_;
-  const Inversion inverted = r.functional->inversion(r.x);
-  if (inverted.count == 0) return {};
-  say("{} cells are inverted: untangling them first\n", inverted.count);
-  r.untangled = true;
-  const UntangleResult result = neomesh::untangle(*r.functional, r.x, r.method.solver, r.cell_size,
-                                                  {}, table_printer(progress_only));
-  if (result.after.count > 0) {
-    std::string cells;
-    for (PetscInt c : result.after.cells)
-      cells += fmt::format("{}{}", cells.empty() ? "" : ", ", c);
-    fail(
-        "{}: the mesh cannot be untangled with its boundary as it is: {} of {} inverted cells are "
-        "still inverted after {} iterations (cells {}{}; 0-based, in input order); nothing was "
-        "written",
-        r.mesh.source(), result.after.count, result.before.count, result.history.size(), cells,
-        result.after.count > static_cast<PetscInt>(result.after.cells.size()) ? ", ..." : "");
-  }
-  say("untangled {} cells in {} iterations ({:.2f} s)\n", result.before.count,
-      result.history.size(), result.seconds);
-  return {{"untangling", to_json(result)}};
+  return {.started =
+              [&r, settings, before_run](const ProblemSummary& problem) {
+                r.prepare_seconds = MPI_Wtime() - r.start - r.read_seconds;
+                print_problem(r.mesh, problem, settings);
+                if (before_run) before_run();
+              },
+          .untangling =
+              [table](std::int64_t inverted) {
+                say("{} cells are inverted: untangling them first\n", inverted);
+                table->round = -1;
+              },
+          .untangled =
+              [](const UntanglingSummary& u) {
+                say("untangled {} cells in {} iterations ({:.2f} s)\n", u.inverted_before,
+                    u.history.size(), u.seconds);
+              },
+          .iteration =
+              [table, progress_only](const IterationRecord& rec) {
+                if (rec.untangling_round != table->round) {
+                  say("{}\n", untangling_phase_line(rec));
+                  table->round = rec.untangling_round;
+                }
+                if (progress_only) {
+                  say("{}\n", progress_line(rec));
+                } else {
+                  if (!table->header_printed) say("{}\n", iteration_table_header());
+                  table->header_printed = true;
+                  say("{}\n", iteration_table_row(rec));
+                }
+                print_solver_details(rec);
+              },
+          .volumes_updated =
+              [](int k, int update) {
+                say("  -- desired volumes updated after iteration {} (update {})\n", k, update);
+              }};
 }
 
 namespace {
@@ -370,92 +304,69 @@ void OptimizationRun::draw(const std::filesystem::path& path, const std::string&
       RenderOptions options;
       options.title = title;
       options.field_name = field;
-      render_mesh(impl_->mesh, f.values, path, options);
+      render_mesh(impl_->mesh.plex(), f.values, path, options);
       always("wrote {}\n", path.string());
       return;
     }
   fail("--picture-field: unknown field '{}'", field);
 }
 
-// The mesh moved to x, its cells' quality, and their summary. The energy is infinite for an
-// inverted cell, so the method cannot produce one; the check guards the promise that no
-// output file ever contains one.
-std::pair<CellQuality, QualitySummary> OptimizationRun::Impl::move_mesh_and_check() {
-  mesh.set_coordinates(x);
-  const MeshView& view = mesh.view();
-  CellQuality quality = cell_quality(view, view.coords);
-  const QualitySummary summary = summarize(quality, mesh.comm());
-  if (summary.inverted > 0 || summary.degenerate > 0)
-    fail(
-        "the optimized mesh has {} inverted and {} degenerate cells; nothing was written "
-        "(please report this with the input mesh)",
-        summary.inverted, summary.degenerate);
-  return {std::move(quality), summary};
-}
-
-QualitySummary OptimizationRun::snapshot(const std::filesystem::path& output) {
-  const auto [quality, summary] = impl_->move_mesh_and_check();
+void OptimizationRun::snapshot(const std::filesystem::path& output) const {
   const Activity writing("writing " + output.string());
-  write_mesh(impl_->mesh, output, impl_->output_fields(quality));
-  return summary;
+  write_mesh(impl_->mesh.plex(), output, impl_->output_fields());
 }
 
-void OptimizationRun::finish(const QuasiNewtonResult& result, const std::filesystem::path& output,
-                             const RunOutputs& outputs, const nlohmann::json& extra) {
+void OptimizationRun::finish(const Result& result, const RunSettings& settings,
+                             const std::filesystem::path& output, const RunOutputs& outputs,
+                             const nlohmann::json& extra) {
   Impl& r = *impl_;
-  const auto [quality, after] = r.move_mesh_and_check();
-
   always("stopped after {} iterations: {}\nF {:.6g} -> {:.6g}, Newton defect {:.3e} -> {:.3e}\n",
          result.history.size(), describe(result.reason), result.initial_energy, result.final_energy,
          result.initial_defect, result.final_defect);
-  say("\nquality before:\n{}\nquality after:\n{}\n", format_table(r.quality_before),
-      format_table(after));
+  say("\nquality before:\n{}\nquality after:\n{}\n", format_table(result.quality_before),
+      format_table(result.quality_after));
 
   // How much the domain changed: zero with fixed boundary vertices; with sliding ones bounded
   // by the input's discretization (vertices stay on its facets or on the given shapes).
-  double volume_after = 0.0;
-  for (double v : quality.volume) volume_after += v;
-  MPI_Allreduce(MPI_IN_PLACE, &volume_after, 1, MPI_DOUBLE, MPI_SUM, r.mesh.comm());
+  const Optimizer::Impl& o = r.optimizer.impl();
+  const double volume_after = result.quality_after.volume.mean * result.quality_after.cells;
   const nlohmann::json boundary_change = {
-      {"max_distance_from_input_boundary", r.boundary->max_distance_from_input(r.x)},
-      {"relative_volume_change", (volume_after - r.mesh_volume) / r.mesh_volume}};
-  if (r.method.boundary_options.mode == BoundaryMode::Slide)
+      {"max_distance_from_input_boundary", o.boundary->max_distance_from_input(o.x)},
+      {"relative_volume_change", (volume_after - o.mesh_volume) / o.mesh_volume}};
+  if (settings.boundary.mode == BoundaryMode::Slide)
     say("boundary: largest distance of a boundary vertex from the input's boundary {:.3g}, "
         "domain volume change {:+.3g}%\n",
         boundary_change["max_distance_from_input_boundary"].get<double>(),
         100 * boundary_change["relative_volume_change"].get<double>());
 
   const double write_start = MPI_Wtime();
-  {
-    const Activity writing("writing " + output.string());
-    write_mesh(r.mesh, output, r.output_fields(quality));
-  }
+  snapshot(output);
   const double write_seconds = MPI_Wtime() - write_start;
   always("wrote {} ({:.2f} s)\n", output.string(), MPI_Wtime() - r.start);
 
   if (!outputs.report.empty()) {
-    double free = 0.0;
-    NM_PETSC(VecSum(r.functional->free_mask(), &free));
     const PeakMemory memory = peak_memory(r.mesh.comm());
     nlohmann::json json = {
-        {"input", r.mesh.source()},
+        {"input", r.mesh.name()},
         {"output", output.string()},
         {"processes", mpi_size(r.mesh.comm())},
-        {"cells", r.mesh.global_num_cells()},
-        {"vertices", r.mesh.global_num_vertices()},
-        {"free_dofs", static_cast<std::int64_t>(free)},
-        {"energy_options", to_json(r.method.energy)},
-        {"solver_options", to_json(r.method.solver)},
-        {"boundary", std::string(name(r.method.boundary_options.mode))},
+        {"cells", r.mesh.num_cells()},
+        {"vertices", r.mesh.num_vertices()},
+        {"free_dofs", o.problem().free_coordinates},
+        {"energy_options", to_json(settings.energy)},
+        {"solver_options", to_json(settings.solver)},
+        {"boundary", std::string(name(settings.boundary.mode))},
         {"boundary_change", boundary_change},
         {"result", to_json(result)},
-        {"quality_before", to_json(r.quality_before)},
-        {"quality_after", to_json(after)},
+        {"quality_before", to_json(result.quality_before)},
+        {"quality_after", to_json(result.quality_after)},
         {"times",
          {{"read", r.read_seconds}, {"prepare", r.prepare_seconds}, {"write", write_seconds}}},
         {"peak_rss_mib", memory.max_rank_mib},
         {"peak_rss_mib_all_ranks", memory.sum_mib},
         {"seconds", MPI_Wtime() - r.start}};
+    if (result.untangling) json["untangling"] = to_json(*result.untangling);
+    if (result.quality_guard) json["quality_guard"] = to_json(*result.quality_guard);
     if (extra.is_object()) json.update(extra);
     on_root(r.mesh.comm(), [&] { write_json(json, outputs.report); });
   }

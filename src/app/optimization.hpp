@@ -1,24 +1,21 @@
-// One optimization run as `smooth` and `adapt` share it: read and check the mesh, build the
-// functional with fixed or sliding boundary vertices, print the iteration table while the method
-// runs, then check, write and report the result. The commands differ only in how they choose the
-// desired volumes and drive the quasi-Newton method.
+// One optimization run as `smooth` and `adapt` share it, around the library's Optimizer
+// (include/neomesh/optimizer.hpp): read the mesh, print what the Optimizer tells while it runs
+// (the problem, the iteration table, the untangling phases), then write the result with its
+// per-cell fields, the JSON report, the history plot and the pictures.
 #pragma once
 
 #include <filesystem>
 #include <functional>
 #include <memory>
-#include <optional>
 #include <string>
-#include <vector>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "app/method_options.hpp"
-#include "energy/functional.hpp"
-#include "geometry/quality.hpp"
-#include "mesh/mesh.hpp"
+#include <neomesh/mesh.hpp>
+#include <neomesh/optimizer.hpp>
+
 #include "mesh/mesh_io.hpp"
-#include "solver/quasi_newton.hpp"
 
 namespace neomesh::app {
 
@@ -45,48 +42,40 @@ void check_run_outputs(const RunOutputs& outputs);
 // mesh of dimension `dim` that cannot be drawn (3D).
 void check_run_outputs(const RunOutputs& outputs, int dim);
 
+// The options a run prints and reports.
+struct RunSettings {
+  EnergyOptions energy;
+  SolverOptions solver;
+  BoundaryOptions boundary;
+};
+
 class OptimizationRun {
  public:
-  // With InvertedCells::Keep, a mesh with inverted cells is read as it is, for untangle().
-  OptimizationRun(const std::filesystem::path& input, MethodOptions& method,
-                  InvertedCells inverted = InvertedCells::Refuse);
+  OptimizationRun(const std::filesystem::path& input, InvertedCells inverted);
   ~OptimizationRun();
 
-  const MeshView& view() const;
-  const DofMap& dofs() const;
-  Vec x() const;  // the coordinates being optimized
-  // Volume of each local cell of the input mesh (MeshView order).
-  const std::vector<double>& input_volumes() const;
-  double mesh_volume() const;
+  Mesh& mesh();
+  Optimizer& optimizer();
 
-  // (Re)sets the desired cell volumes (absolute, summing to mesh_volume()).
-  void set_desired_volumes(std::vector<double> volumes);
-  const Functional& functional() const;
-  // Rebuilds the functional with `extra` vertices sliding besides the boundary's (an
-  // interface fitted to a level set; none: the boundary's alone), keeping the desired volumes.
-  const Functional& constrain(SlidingVertices extra);
+  // What the run prints while the Optimizer works: the problem, the untangling phases, the
+  // iteration table (or progress lines with `progress_only`), the updates of the desired
+  // volumes, and with --verbose the linear solves. `before_run` runs once the problem is set
+  // up (the desired volumes are known), before the first iteration: the picture of the input.
+  Observer observer(const RunSettings& settings, bool progress_only,
+                    std::function<void()> before_run = {});
+
   // Fields and facet groups every later output carries besides the run's own.
   void set_extra_outputs(MeshFields extra);
-  Vec cell_size() const;  // local cell size per dof, for the practical criterion
-
-  void print_problem() const;
   // Draws the mesh at its current coordinates coloured by `field` (an output cell field).
   void draw(const std::filesystem::path& path, const std::string& field,
             const std::string& title) const;
-  // Observer for minimize(): the iteration table (or progress lines with `progress_only`).
-  std::function<void(const IterationRecord&)> table_printer(bool progress_only) const;
-  // If cells are inverted at x(), untangles them (solver/untangle.hpp), printing its table;
-  // returns the report's "untangling" record (empty if nothing was inverted). Throws Error
-  // naming the cells that stay inverted. Needs the desired volumes.
-  nlohmann::json untangle(bool progress_only);
-
-  // Moves the mesh to x(), checks it has no inverted cell and writes `output` with per-cell
-  // fields (one step of a time series); returns its quality.
-  QualitySummary snapshot(const std::filesystem::path& output);
-  // Moves the mesh to x(), checks it has no inverted cell, writes `output` with per-cell
-  // fields, and the optional JSON report (with `extra` merged in), history plot and picture.
-  void finish(const QuasiNewtonResult& result, const std::filesystem::path& output,
-              const RunOutputs& outputs, const nlohmann::json& extra = {});
+  // Writes `output` with per-cell fields (one step of a time series).
+  void snapshot(const std::filesystem::path& output) const;
+  // Prints the outcome and the quality before and after, writes `output` with per-cell fields,
+  // and the optional JSON report (with `extra` merged in), history plot and picture.
+  void finish(const Result& result, const RunSettings& settings,
+              const std::filesystem::path& output, const RunOutputs& outputs,
+              const nlohmann::json& extra = {});
 
  private:
   struct Impl;

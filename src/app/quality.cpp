@@ -9,8 +9,8 @@
 #include "core/log.hpp"
 #include "geometry/quality.hpp"
 #include "mesh/collective_error.hpp"
-#include "mesh/mesh.hpp"
 #include "mesh/mesh_io.hpp"
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh::app {
 
@@ -22,7 +22,7 @@ struct QualityOptions {
   std::string reference;
 };
 
-double total_volume(const Mesh& mesh) {
+double total_volume(const PlexMesh& mesh) {
   double sum = 0.0;
   for (double v : cell_quality(mesh.view(), mesh.view().coords).volume) sum += v;
   MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
@@ -32,10 +32,10 @@ double total_volume(const Mesh& mesh) {
 // How far the mesh's boundary is from the reference's (a mesh before smoothing): the largest
 // distance of a boundary vertex from the reference's boundary facets, and the relative change
 // of the domain's volume.
-nlohmann::json compare_boundary(const Mesh& mesh, const std::string& reference_file) {
-  const Mesh reference = [&] {
+nlohmann::json compare_boundary(const PlexMesh& mesh, const std::string& reference_file) {
+  const PlexMesh reference = [&] {
     const Activity reading("reading " + reference_file);
-    return Mesh::load(reference_file, PETSC_COMM_WORLD, InvertedCells::Keep);
+    return PlexMesh::load(reference_file, PETSC_COMM_WORLD, InvertedCells::Keep);
   }();
   if (reference.dim() != mesh.dim())
     fail("--reference {} is {}D, the mesh {}D", reference_file, reference.dim(), mesh.dim());
@@ -59,9 +59,9 @@ void run_quality(const QualityOptions& o) {
     if (!o.json.empty()) check_output_file("--json", o.json, OutputKind::Json);
   });
   // Inverted and degenerate cells are what this command counts, not a reason to refuse.
-  const Mesh mesh = [&] {
+  const PlexMesh mesh = [&] {
     const Activity reading("reading " + o.input);
-    return Mesh::load(o.input, PETSC_COMM_WORLD, InvertedCells::Keep);
+    return PlexMesh::load(o.input, PETSC_COMM_WORLD, InvertedCells::Keep);
   }();
   const MeshView& view = mesh.view();
   const QualitySummary summary = summarize(cell_quality(view, view.coords), mesh.comm());

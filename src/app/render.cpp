@@ -16,8 +16,8 @@
 #include "energy/functional.hpp"
 #include "geometry/quality.hpp"
 #include "mesh/collective_error.hpp"
-#include "mesh/mesh.hpp"
 #include "mesh/mesh_io.hpp"
+#include "mesh/plex_mesh.hpp"
 #include "report/canvas.hpp"
 #include "report/render.hpp"
 #include "solver/desired_volumes.hpp"
@@ -56,7 +56,7 @@ const FieldInfo& field_info(const std::string& option) {
 }
 
 // Energy and Q compare each cell with its optimal cell, whose volume --sizes decides.
-std::vector<double> energy_field(const Mesh& mesh, const CellQuality& quality,
+std::vector<double> energy_field(const PlexMesh& mesh, const CellQuality& quality,
                                  const RenderCommandOptions& o) {
   const MeshView& view = mesh.view();
   Functional functional(view, mesh.dofs(), EnergyOptions{}, view.on_boundary);
@@ -67,7 +67,7 @@ std::vector<double> energy_field(const Mesh& mesh, const CellQuality& quality,
   return o.field == "energy" ? std::move(fields.energy) : std::move(fields.volume_ratio);
 }
 
-std::vector<double> field_values(const Mesh& mesh, const RenderCommandOptions& o) {
+std::vector<double> field_values(const PlexMesh& mesh, const RenderCommandOptions& o) {
   const MeshView& view = mesh.view();
   const CellQuality quality = cell_quality(view, view.coords);
   std::vector<double> values = o.field == "scaled-jacobian"      ? quality.scaled_jacobian
@@ -94,9 +94,9 @@ void run_render(const RenderCommandOptions& o) {
     check_readable_format(o.input);
   });
   // Inverted cells are drawn in red and counted, not refused.
-  const Mesh mesh = [&] {
+  const PlexMesh mesh = [&] {
     const Activity reading("reading " + o.input);
-    return Mesh::load(o.input, PETSC_COMM_WORLD, InvertedCells::Keep);
+    return PlexMesh::load(o.input, PETSC_COMM_WORLD, InvertedCells::Keep);
   }();
 
   RenderOptions options;

@@ -9,74 +9,57 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "solver/desired_volumes.hpp"
-#include "solver/quality_guard.hpp"
 
 namespace neomesh::app {
 
 namespace {
 
-struct SmoothOptions {
+struct SmoothCommand {
   std::string input, output, sizes = "smoothed";
   bool force = false, no_guard = false, no_untangle = false;
   MethodOptions method;
   RunOutputs outputs;
 };
 
-// The quality guard (solver/quality_guard.hpp): no cell of the output worse than the input's
-// worst. Returns its record for the JSON report; F in `result` is updated if it moved vertices.
-nlohmann::json apply_quality_guard(OptimizationRun& run, Vec input, QuasiNewtonResult& result) {
-  const QualityGuardResult guard =
-      guard_worst_quality(run.view(), run.dofs(), input, run.x(),
-                          [&](Vec x) { run.functional().project_onto_boundary(x); });
+// What the quality guard did, if anything (the report has its record).
+void print_quality_guard(const QualityGuardResult& guard) {
   if (guard.gave_up)
     say("quality guard: pulling cells back toward the input made the worst cell worse; the "
         "optimized mesh is kept (min scaled Jacobian {:.4f}; input {:.4f})\n",
         guard.min_before, guard.input_min);
-  if (guard.vertices_moved > 0) {
-    result.final_energy = run.functional().value(run.x());
+  if (guard.vertices_moved > 0)
     say("quality guard: {} vertices pulled back toward the input so that no cell is worse than "
         "the input's worst (min scaled Jacobian {:.4f} -> {:.4f}; input {:.4f})\n",
         guard.vertices_moved, guard.min_before, guard.min_after, guard.input_min);
-  }
-  return {{"quality_guard",
-           {{"input_min_scaled_jacobian", guard.input_min},
-            {"min_scaled_jacobian_before", guard.min_before},
-            {"min_scaled_jacobian_after", guard.min_after},
-            {"vertices_moved", guard.vertices_moved},
-            {"gave_up", guard.gave_up},
-            {"rounds", guard.rounds}}}};
 }
 
-void smooth(SmoothOptions& o) {
-  finalize(o.method);
-  const SizeMode sizes = parse_size_mode(o.method.thesis ? "uniform" : o.sizes);
+void smooth(SmoothCommand& o) {
+  SmoothOptions options;
+  options.sizes = parse_size_mode(o.sizes);
+  options.untangle = !o.no_untangle;
+  options.quality_guard = !o.no_guard;
+  options = resolve(o.method, options);
   check_output_path(o.input, o.output, o.force);
   // Every output is checked before the run, so that a typo does not cost a long run.
   check_run_outputs(o.outputs);
 
-  OptimizationRun run(o.input, o.method,
-                      o.no_untangle ? InvertedCells::Refuse : InvertedCells::Keep);
-  check_run_outputs(o.outputs, run.view().dim);  // pictures of a 3D mesh: before the run
-  run.set_desired_volumes(desired_volumes(sizes, run.view(), run.dofs(), run.input_volumes()));
-  run.print_problem();
-  if (!o.outputs.picture_before.empty())
-    run.draw(o.outputs.picture_before, o.outputs.picture_field, "input: " + o.input);
-  // The guard's promise is about the input: a tangled input's worst cell is inverted, so any
-  // untangled output keeps it.
-  OwnedVec input;
-  NM_PETSC(VecDuplicate(run.x(), input.out()));
-  NM_PETSC(VecCopy(run.x(), input));
-  nlohmann::json report = run.untangle(o.outputs.progress_lines);
-  QuasiNewtonResult result = minimize(run.functional(), run.x(), o.method.solver, run.cell_size(),
-                                      run.table_printer(o.outputs.progress_lines));
-  if (!(o.no_guard || o.method.thesis)) report.update(apply_quality_guard(run, input, result));
-  run.finish(result, o.output, o.outputs, report);
+  OptimizationRun run(o.input, o.no_untangle ? InvertedCells::Refuse : InvertedCells::Keep);
+  check_run_outputs(o.outputs, run.mesh().dim());  // pictures of a 3D mesh: before the run
+  const RunSettings settings{options.energy, options.solver, options.boundary};
+  const auto picture_before = [&] {
+    if (!o.outputs.picture_before.empty())
+      run.draw(o.outputs.picture_before, o.outputs.picture_field, "input: " + o.input);
+  };
+  const Result result = run.optimizer().smooth(
+      options, run.observer(settings, o.outputs.progress_lines, picture_before));
+  if (result.quality_guard) print_quality_guard(*result.quality_guard);
+  run.finish(result, settings, o.output, o.outputs);
 }
 
 }  // namespace
 
 Subcommand add_smooth(CLI::App& app) {
-  auto o = std::make_shared<SmoothOptions>();
+  auto o = std::make_shared<SmoothCommand>();
   // The worst cells of real meshes touch the boundary, and only sliding vertices can fix them
   // (box_with_hole: min scaled Jacobian 0.024 fixed, 0.151 sliding); the boundary stays on the
   // input's facets, corners and group borders stay put (docs/boundary.md).

@@ -23,38 +23,18 @@
 #include <utility>
 #include <vector>
 
+#include <neomesh/options.hpp>
+#include <neomesh/result.hpp>
+
 #include "energy/functional.hpp"
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
 
 namespace neomesh {
 
-enum class BoundaryMode { Fixed, Slide };
-
 // "fixed" or "slide"; throws Error for anything else.
 BoundaryMode parse_boundary_mode(std::string_view name);
 std::string_view name(BoundaryMode mode);
-
-struct BoundaryOptions {
-  BoundaryOptions() = default;
-  explicit BoundaryOptions(BoundaryMode m) : mode(m) {}
-
-  BoundaryMode mode = BoundaryMode::Fixed;
-  // Corners and ridges: where the boundary turns (2D) or folds (3D) by more than this, in
-  // degrees. 40 keeps the facets of a circle or sphere meshed with ≥ 9 edges per right angle
-  // in one patch and finds every corner of a box.
-  double feature_angle = 40.0;
-  // (part name, shape spec) pairs: boundary part `name` lies on the shape (shape.hpp).
-  std::vector<std::pair<std::string, std::string>> shapes;
-};
-
-// What a slide found on the whole boundary (the same on every rank).
-struct BoundarySummary {
-  PetscInt corners = 0, ridge_vertices = 0, surface_vertices = 0;
-  int patches = 0, ridges = 0;
-  // Per patch: "part 'hole': circle ...", "unnamed: the input's boundary", ...
-  std::vector<std::string> patch_geometry;
-};
 
 class Boundary {
  public:

@@ -7,7 +7,7 @@
 
 #include "boundary/boundary.hpp"
 #include "mesh/generate.hpp"
-#include "mesh/mesh.hpp"
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
 namespace {
@@ -16,8 +16,8 @@ void expect_box_mask_on_every_rank(CellType type, int n) {
   MeshData empty;  // what ranks other than 0 pass
   empty.dim = dimension(type);
   const MeshData data = box(type, n);
-  Mesh mesh =
-      Mesh::from_data(mpi_rank(PETSC_COMM_WORLD) == 0 ? data : empty, "box", PETSC_COMM_WORLD);
+  PlexMesh mesh =
+      PlexMesh::from_data(mpi_rank(PETSC_COMM_WORLD) == 0 ? data : empty, "box", PETSC_COMM_WORLD);
   const MeshView& view = mesh.view();
   ASSERT_GT(view.num_cells, 0) << "the test needs cells on every rank";
   const std::vector<std::uint8_t> slide =

@@ -1,6 +1,6 @@
-// neomesh::Error — the one exception type users see. Its message is a complete sentence
-// a user can act on ("in.msh: cell 1843 is inverted (det J = -0.02)"); the command line
-// prints it as `neomesh: error: <message>` and exits 1.
+// neomesh::Error (include/neomesh/error.hpp) is the one exception type users see; the command
+// line prints it as `neomesh: error: <message>` and exits 1. Here: the helpers that build and
+// describe errors.
 #pragma once
 
 #include <cstddef>
@@ -11,12 +11,9 @@
 
 #include <fmt/format.h>
 
-namespace neomesh {
+#include <neomesh/error.hpp>
 
-class Error : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace neomesh {
 
 // An Error that every rank of a communicator throws with the same message (see
 // mesh/collective_error.hpp): whoever catches it knows that no rank is left waiting in a

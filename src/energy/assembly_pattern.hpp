@@ -57,7 +57,7 @@ std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(const Asse
                                                                       int dim);
 
 // Collective. Throws Error if the DofMap does not number each rank's vertices consecutively
-// from its first owned dof, with a vertex's dofs next to each other (as Mesh does).
+// from its first owned dof, with a vertex's dofs next to each other (as PlexMesh does).
 AssemblyPattern make_assembly_pattern(const MeshView& view, const DofMap& dofs);
 
 }  // namespace neomesh

@@ -15,6 +15,8 @@
 #include <span>
 #include <vector>
 
+#include <neomesh/options.hpp>
+
 #include "core/petsc.hpp"
 #include "energy/neo_hooke.hpp"
 #include "energy/sliding_vertices.hpp"
@@ -22,19 +24,6 @@
 #include "mesh/mesh_view.hpp"
 
 namespace neomesh {
-
-struct EnergyOptions {
-  double lambda = 1.0;
-  double mu = 10.0;
-  double kappa = -1.0;   // < 0 means κ = λ (enough for convexity, thesis §4.3)
-  int gauss_points = 3;  // per direction for Q1 cells; 3 reproduces the thesis
-};
-
-// Which matrix represents the H¹₀ inner product for the Riesz representative (docs/method.md §4).
-enum class RieszLaplacian {
-  OptimalCells,  // ∫ over the optimal cells = B3/μ; the thesis' choice; built once per volumes
-  CurrentMesh,   // stiffness matrix of the current mesh; depends on x
-};
 
 struct CellFields {
   std::vector<double> energy;        // ∫ W over the cell's optimal cell

@@ -11,16 +11,16 @@
 #include "energy/functional.hpp"
 #include "mesh/collective_error.hpp"
 #include "mesh/generate.hpp"
-#include "mesh/mesh.hpp"
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
 namespace {
 
 // The mesh given on rank 0, distributed over `comm`.
-Mesh distribute(const MeshData& data, MPI_Comm comm) {
+PlexMesh distribute(const MeshData& data, MPI_Comm comm) {
   MeshData empty;  // what ranks other than 0 pass
   empty.dim = data.dim;
-  return Mesh::from_data(mpi_rank(comm) == 0 ? data : empty, "test", comm);
+  return PlexMesh::from_data(mpi_rank(comm) == 0 ? data : empty, "test", comm);
 }
 
 struct Numbers {
@@ -30,7 +30,7 @@ struct Numbers {
 // F, ‖F′‖ (free dofs), ‖H(0.5)‖_F and ‖L‖_F with boundary vertices fixed and equal
 // desired volumes, on `comm`.
 Numbers evaluate(const MeshData& data, MPI_Comm comm) {
-  Mesh mesh = distribute(data, comm);
+  PlexMesh mesh = distribute(data, comm);
   const MeshView& view = mesh.view();
   Functional functional(view, mesh.dofs(), EnergyOptions{}, view.on_boundary);
   OwnedVec x = mesh.coordinates();
@@ -52,7 +52,7 @@ Numbers evaluate(const MeshData& data, MPI_Comm comm) {
 // A mesh on `comm` with the functional of `evaluate` and its matrices H(0.5), L on the
 // optimal cells and L on the current mesh.
 struct Assembled {
-  Mesh mesh;
+  PlexMesh mesh;
   std::unique_ptr<Functional> functional;
   OwnedMat hessian, optimal_laplacian, current_laplacian;
 
@@ -209,7 +209,7 @@ INSTANTIATE_TEST_SUITE_P(
 // forever for rank 0), naming the cell.
 TEST(DistributedFunctionalErrors, InvertedCellFailsOnEveryRank) {
   ASSERT_EQ(mpi_size(), 2);
-  const Mesh mesh = distribute(box(CellType::Quadrilateral, 8), PETSC_COMM_WORLD);
+  const PlexMesh mesh = distribute(box(CellType::Quadrilateral, 8), PETSC_COMM_WORLD);
   const MeshView& view = mesh.view();
   Functional functional(view, mesh.dofs(), EnergyOptions{}, view.on_boundary);
   functional.set_desired_volumes(std::vector<double>(view.num_cells, 1.0 / 16));

@@ -34,6 +34,8 @@
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 
+#include <neomesh/quality.hpp>
+
 #include "mesh/cell_type.hpp"
 #include "mesh/mesh_view.hpp"
 
@@ -56,23 +58,6 @@ struct CellQuality {
 // `coords` holds view.num_vertices × view.dim values in the view's local vertex order (e.g.
 // view.coords, or the current coordinates of a run).
 CellQuality cell_quality(const MeshView& view, std::span<const double> coords);
-
-struct MetricStats {
-  double min = 0.0, mean = 0.0, max = 0.0;
-};
-
-// The quality of a whole (possibly distributed) mesh.
-struct QualitySummary {
-  std::int64_t cells = 0;
-  std::array<std::int64_t, kNumCellTypes> cells_by_type{};  // indexed by CellType
-  MetricStats volume, min_corner_det, min_gauss_det, scaled_jacobian, min_angle, max_angle,
-      edge_ratio, inverse_mean_ratio;
-  std::int64_t inverted = 0;    // det J ≤ 0 at a corner or Gauss point
-  std::int64_t degenerate = 0;  // |volume| < 1e-14 · mean |volume|, or an edge of length 0
-
-  // The metrics with their names (as in the table and the JSON), in display order.
-  std::vector<std::pair<std::string_view, MetricStats>> metrics() const;
-};
 
 // Collective over `comm`: every rank passes the quality of its own cells.
 QualitySummary summarize(const CellQuality& quality, MPI_Comm comm);

@@ -19,17 +19,9 @@
 #include <string_view>
 #include <type_traits>
 
-namespace neomesh {
+#include <neomesh/cell_type.hpp>
 
-enum class CellType : std::uint8_t {
-  Triangle,
-  Quadrilateral,
-  Tetrahedron,
-  Hexahedron,
-  Wedge,
-  Pyramid
-};
-constexpr int kNumCellTypes = 6;
+namespace neomesh {
 
 // How a cell is mapped from its reference cell (reference_cell.hpp): affinely (simplex),
 // multilinearly from [-1,1]^d (tensor), as triangle × interval (wedge) or as the cube with

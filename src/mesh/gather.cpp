@@ -32,7 +32,7 @@ struct Packet {
   std::vector<double> reals;
 };
 
-void check_sizes(const Mesh& mesh, const MeshFields& fields) {
+void check_sizes(const PlexMesh& mesh, const MeshFields& fields) {
   const MeshView& view = mesh.view();
   for (const Field& f : fields.cell)
     if (f.values.size() != static_cast<std::size_t>(view.num_cells * f.components))
@@ -43,7 +43,7 @@ void check_sizes(const Mesh& mesh, const MeshFields& fields) {
            view.num_vertices);
 }
 
-Packet pack(const Mesh& mesh, const MeshFields& fields) {
+Packet pack(const PlexMesh& mesh, const MeshFields& fields) {
   const auto& m = MeshAccess::impl(mesh);
   const MeshView& view = mesh.view();
   Packet out;
@@ -75,7 +75,7 @@ Packet pack(const Mesh& mesh, const MeshFields& fields) {
 // The facet group on rank 0 as facets of `mesh` (input vertex numbers) in a physical group of
 // its own: the input's group of the same name and dimension if there is one (its facets are
 // replaced), else a new tag.
-void add_facet_group(const Mesh& mesh, const FacetGroup& group, InputMesh& out) {
+void add_facet_group(const PlexMesh& mesh, const FacetGroup& group, InputMesh& out) {
   const auto& m = MeshAccess::impl(mesh);
   std::vector<PetscInt> sizes, vertices;
   for (std::size_t f = 0; f + 1 < group.offsets.size(); ++f) {
@@ -115,7 +115,7 @@ void add_facet_group(const Mesh& mesh, const FacetGroup& group, InputMesh& out) 
 
 }  // namespace
 
-GatheredMesh gather_mesh(const Mesh& mesh, const MeshFields& fields) {
+GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
   std::string error;
   try {
     check_sizes(mesh, fields);

@@ -15,6 +15,6 @@ struct GatheredMesh {
 
 // Collective; the result is complete on rank 0 and empty elsewhere. Throws Error if a
 // field's size does not match the mesh.
-GatheredMesh gather_mesh(const Mesh& mesh, const MeshFields& fields);
+GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields);
 
 }  // namespace neomesh

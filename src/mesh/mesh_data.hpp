@@ -1,5 +1,5 @@
 // MeshData: a whole mesh as plain arrays on one process. The generators and the FEAT3
-// reader produce it; Mesh::from_data turns it into a (distributable) DMPlex.
+// reader produce it; PlexMesh::from_data turns it into a (distributable) DMPlex.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// What a Mesh holds, for the files of the mesh layer (readers, writers); other layers use
+// What a PlexMesh holds, for the files of the mesh layer (readers, writers); other layers use
 // mesh.hpp only.
 #pragma once
 
@@ -7,11 +7,11 @@
 #include <vector>
 
 #include "mesh/input_mesh.hpp"
-#include "mesh/mesh.hpp"
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
 
-struct Mesh::Impl {
+struct PlexMesh::Impl {
   MPI_Comm comm = MPI_COMM_NULL;
   OwnedDM dm;  // distributed cells and vertices (plex_builder.hpp)
   int dim = 2;
@@ -27,11 +27,11 @@ struct Mesh::Impl {
   std::unique_ptr<DofMap> dofs;
 };
 
-// The mesh layer's way in: Impl by name, and Mesh's private constructor.
+// The mesh layer's way in: Impl by name, and PlexMesh's private constructor.
 struct MeshAccess {
-  using Impl = Mesh::Impl;
-  static const Impl& impl(const Mesh& mesh) { return *mesh.impl_; }
-  static Mesh create(std::unique_ptr<Impl> impl) { return Mesh(std::move(impl)); }
+  using Impl = PlexMesh::Impl;
+  static const Impl& impl(const PlexMesh& mesh) { return *mesh.impl_; }
+  static PlexMesh create(std::unique_ptr<Impl> impl) { return PlexMesh(std::move(impl)); }
 };
 
 }  // namespace neomesh

@@ -21,7 +21,7 @@ void check_writable_format(const std::filesystem::path& path) {
          ext.string());
 }
 
-void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const MeshFields& fields) {
+void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path, const MeshFields& fields) {
   check_writable_format(path);
   const GatheredMesh gathered = gather_mesh(mesh, fields);
   on_root(mesh.comm(), [&] {

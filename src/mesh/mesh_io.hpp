@@ -8,16 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "mesh/mesh.hpp"
+#include <neomesh/mesh.hpp>
+
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
 
 // A named field with one value per local cell (MeshView order) or per local vertex.
-struct Field {
-  std::string name;
-  std::vector<double> values;
-  int components = 1;
-};
 
 // Facets (edges in 2D, faces in 3D) that a .msh output lists as the physical group `name`
 // (replacing an input group of that name); other formats leave them out.
@@ -33,7 +30,8 @@ struct MeshFields {
   std::vector<FacetGroup> facet_groups;
 };
 
-void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const MeshFields& fields = {});
+void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path,
+                const MeshFields& fields = {});
 
 // Throws Error unless `path` has an extension neomesh can read (.msh, .xml) / write.
 void check_readable_format(const std::filesystem::path& path);

@@ -23,7 +23,7 @@ std::string python_with_meshio() {
   return "";
 }
 
-void expect_same_mesh(const Mesh& a, const Mesh& b) {
+void expect_same_mesh(const PlexMesh& a, const PlexMesh& b) {
   const MeshView &va = a.view(), &vb = b.view();
   ASSERT_EQ(va.num_vertices, vb.num_vertices);
   ASSERT_EQ(va.blocks.size(), vb.blocks.size());
@@ -47,10 +47,10 @@ void expect_same_mesh(const Mesh& a, const Mesh& b) {
 class MshRoundTrip : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(MshRoundTrip, KeepsCoordinatesConnectivityAndGroups) {
-  Mesh in = Mesh::load(data_path(GetParam()));
+  PlexMesh in = PlexMesh::load(data_path(GetParam()));
   const auto out = scratch_dir("MshRoundTrip") / "out.msh";
   write_mesh(in, out);
-  Mesh back = Mesh::load(out);
+  PlexMesh back = PlexMesh::load(out);
   expect_same_mesh(in, back);
   EXPECT_GT(testing::min_view_jacobian(back.view()), 0.0);
 }
@@ -68,7 +68,7 @@ INSTANTIATE_TEST_SUITE_P(Files, MshRoundTrip,
 TEST(WriteVtu, MeshioReadsCellsAndFields) {
   const std::string python = python_with_meshio();
   if (python.empty()) GTEST_SKIP() << "no python3 with meshio";
-  Mesh mesh = Mesh::load(data_path("mixed_tri_quad_v41.msh"));
+  PlexMesh mesh = PlexMesh::load(data_path("mixed_tri_quad_v41.msh"));
   const MeshView& view = mesh.view();
   MeshFields fields;
   Field cell_index{"input_cell", {}, 1};
@@ -96,24 +96,24 @@ TEST(WriteVtu, MeshioReadsCellsAndFields) {
 
 TEST(WriteMsh, GmshReadsIt) {
   if (std::system("gmsh --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "no gmsh";
-  Mesh mesh = Mesh::load(data_path("cube_hex_v41.msh"));
+  PlexMesh mesh = PlexMesh::load(data_path("cube_hex_v41.msh"));
   const auto dir = scratch_dir("WriteMshGmsh");
   write_mesh(mesh, dir / "out.msh");
   const std::string command = fmt::format(
       "cd {} && gmsh -0 out.msh -format msh22 -o again.msh >/dev/null 2>&1", dir.string());
   ASSERT_EQ(std::system(command.c_str()), 0);
-  Mesh again = Mesh::load(dir / "again.msh");
+  PlexMesh again = PlexMesh::load(dir / "again.msh");
   EXPECT_EQ(again.global_num_cells(), 8);
   EXPECT_EQ(again.view().parts.size(), 2u);
 }
 
 TEST(WriteMesh, RejectsUnknownExtension) {
-  Mesh mesh = Mesh::load(data_path("feat_square_tri.xml"));
+  PlexMesh mesh = PlexMesh::load(data_path("feat_square_tri.xml"));
   EXPECT_THROW(write_mesh(mesh, scratch_dir("WriteMeshExt") / "out.stl"), Error);
 }
 
 TEST(WriteMesh, MissingDirectoryIsAClearErrorAndLeavesNoFile) {
-  Mesh mesh = Mesh::load(data_path("feat_square_tri.xml"));
+  PlexMesh mesh = PlexMesh::load(data_path("feat_square_tri.xml"));
   const auto dir = scratch_dir("WriteMeshDir");
   try {
     write_mesh(mesh, dir / "missing" / "out.vtu");
@@ -125,7 +125,7 @@ TEST(WriteMesh, MissingDirectoryIsAClearErrorAndLeavesNoFile) {
 }
 
 TEST(WriteMesh, WrongFieldSizeThrowsAndLeavesNoFile) {
-  Mesh mesh = Mesh::load(data_path("feat_square_tri.xml"));
+  PlexMesh mesh = PlexMesh::load(data_path("feat_square_tri.xml"));
   const auto dir = scratch_dir("WriteMeshField");
   MeshFields fields;
   fields.cell.push_back({"bad", {1.0}, 1});

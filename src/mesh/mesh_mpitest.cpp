@@ -7,9 +7,9 @@
 #include <sstream>
 
 #include "core/testing/test_data.hpp"
-#include "mesh/mesh.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_test_util.hpp"
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
 namespace {
@@ -42,8 +42,8 @@ class Distributed : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(Distributed, SplitsTheSerialMesh) {
   ASSERT_EQ(mpi_size(), 2);
-  Mesh serial = Mesh::load(data_path(GetParam()), PETSC_COMM_SELF);
-  Mesh mesh = Mesh::load(data_path(GetParam()));
+  PlexMesh serial = PlexMesh::load(data_path(GetParam()), PETSC_COMM_SELF);
+  PlexMesh mesh = PlexMesh::load(data_path(GetParam()));
   const MeshView& view = mesh.view();
   EXPECT_EQ(mesh.global_num_cells(), serial.global_num_cells());
   EXPECT_EQ(mesh.global_num_vertices(), serial.global_num_vertices());
@@ -81,8 +81,8 @@ TEST_P(Distributed, SplitsTheSerialMesh) {
 }
 
 TEST_P(Distributed, DofMapSumsOverRanks) {
-  Mesh serial = Mesh::load(data_path(GetParam()), PETSC_COMM_SELF);
-  Mesh mesh = Mesh::load(data_path(GetParam()));
+  PlexMesh serial = PlexMesh::load(data_path(GetParam()), PETSC_COMM_SELF);
+  PlexMesh mesh = PlexMesh::load(data_path(GetParam()));
   const MeshView& view = mesh.view();
   const DofMap& dofs = mesh.dofs();
   // Each local cell adds 1 to every dof of its vertices.
@@ -100,7 +100,7 @@ TEST_P(Distributed, DofMapSumsOverRanks) {
 }
 
 TEST_P(Distributed, CoordinatesRoundTripIncludingGhosts) {
-  Mesh mesh = Mesh::load(data_path(GetParam()));
+  PlexMesh mesh = PlexMesh::load(data_path(GetParam()));
   const std::vector<double> before = mesh.view().coords;
   OwnedVec x = mesh.coordinates();
   NM_PETSC(VecScale(x, 3.0));
@@ -116,13 +116,13 @@ TEST_P(Distributed, WritesTheSameFileAsSerial) {
     std::filesystem::create_directories(dir);
   }
   MPI_Barrier(PETSC_COMM_WORLD);
-  Mesh mesh = Mesh::load(data_path(GetParam()));
+  PlexMesh mesh = PlexMesh::load(data_path(GetParam()));
   MeshFields fields;
   fields.cell.push_back({"input_cell", {}, 1});
   for (PetscInt c : mesh.view().global_cell) fields.cell[0].values.push_back(c);
   for (const char* ext : {".msh", ".vtu"}) write_mesh(mesh, dir / (std::string("p") + ext), fields);
   if (mpi_rank() == 0) {
-    Mesh serial = Mesh::load(data_path(GetParam()), PETSC_COMM_SELF);
+    PlexMesh serial = PlexMesh::load(data_path(GetParam()), PETSC_COMM_SELF);
     MeshFields serial_fields;
     serial_fields.cell.push_back({"input_cell", {}, 1});
     for (PetscInt c : serial.view().global_cell) serial_fields.cell[0].values.push_back(c);
@@ -144,9 +144,9 @@ INSTANTIATE_TEST_SUITE_P(Files, Distributed,
                          });
 
 TEST(DistributedErrors, BadFileThrowsOnEveryRank) {
-  EXPECT_THROW(Mesh::load(data_path("bad_inverted.msh")), Error);
-  EXPECT_THROW(Mesh::load(data_path("bad_mixed_dim.msh")), Error);
-  EXPECT_THROW(Mesh::load(data_path("bad_truncated.msh")), Error);
+  EXPECT_THROW(PlexMesh::load(data_path("bad_inverted.msh")), Error);
+  EXPECT_THROW(PlexMesh::load(data_path("bad_mixed_dim.msh")), Error);
+  EXPECT_THROW(PlexMesh::load(data_path("bad_truncated.msh")), Error);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "mesh/mesh.hpp"
+#include "mesh/plex_mesh.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,7 +25,7 @@ class LoadGmsh : public ::testing::TestWithParam<Expected> {};
 
 TEST_P(LoadGmsh, GivesCountsAndPositiveOrientation) {
   const Expected e = GetParam();
-  Mesh mesh = Mesh::load(data_path(e.file));
+  PlexMesh mesh = PlexMesh::load(data_path(e.file));
   const MeshView& view = mesh.view();
   EXPECT_EQ(mesh.dim(), e.dim);
   EXPECT_EQ(mesh.global_num_cells(), e.cells);
@@ -65,7 +65,7 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 TEST(LoadGmsh, KeepsNamedBoundaryParts) {
-  Mesh mesh = Mesh::load(data_path("square_quad_v41.msh"));
+  PlexMesh mesh = PlexMesh::load(data_path("square_quad_v41.msh"));
   const MeshView& view = mesh.view();
   ASSERT_EQ(view.parts.size(), 4u);
   EXPECT_EQ(view.parts[0].name, "bottom");
@@ -86,7 +86,7 @@ TEST(LoadGmsh, KeepsNamedBoundaryParts) {
 }
 
 TEST(LoadGmsh, MixedTrianglesAndQuadsGiveTwoBlocks) {
-  Mesh mesh = Mesh::load(data_path("mixed_tri_quad_v41.msh"));
+  PlexMesh mesh = PlexMesh::load(data_path("mixed_tri_quad_v41.msh"));
   const MeshView& view = mesh.view();
   ASSERT_EQ(view.blocks.size(), 2u);
   EXPECT_EQ(view.blocks[0].type, CellType::Triangle);
@@ -98,7 +98,7 @@ TEST(LoadGmsh, MixedTrianglesAndQuadsGiveTwoBlocks) {
 }
 
 TEST(LoadFeat, BoundaryPartsAreNamedVertexSets) {
-  Mesh mesh = Mesh::load(data_path("feat_square_quad.xml"));
+  PlexMesh mesh = PlexMesh::load(data_path("feat_square_quad.xml"));
   const MeshView& view = mesh.view();
   ASSERT_EQ(view.parts.size(), 4u);
   EXPECT_EQ(view.parts[0].name, "bnd:bottom");
@@ -115,7 +115,7 @@ TEST(LoadFeat, BoundaryPartsAreNamedVertexSets) {
 }
 
 TEST(FromData, GeneratedCubeIsPositiveWithSixParts) {
-  Mesh mesh = Mesh::from_data(cube_midpoint(4), "cube_midpoint");
+  PlexMesh mesh = PlexMesh::from_data(cube_midpoint(4), "cube_midpoint");
   const MeshView& view = mesh.view();
   EXPECT_EQ(mesh.global_num_cells(), 64);
   EXPECT_EQ(view.parts.size(), 6u);
@@ -123,7 +123,7 @@ TEST(FromData, GeneratedCubeIsPositiveWithSixParts) {
 }
 
 TEST(Coordinates, RoundTripThroughGlobalVector) {
-  Mesh mesh = Mesh::load(data_path("square_tri_v41.msh"));
+  PlexMesh mesh = PlexMesh::load(data_path("square_tri_v41.msh"));
   OwnedVec x = mesh.coordinates();
   {
     VecWriteView values(x);

@@ -8,7 +8,7 @@
 #include "core/error.hpp"
 #include "core/testing/test_data.hpp"
 
-#include "mesh/mesh.hpp"
+#include "mesh/plex_mesh.hpp"
 #include "mesh/validate.hpp"
 
 namespace neomesh::testing {

@@ -5,8 +5,8 @@
 
 #include "core/error.hpp"
 #include "core/testing/test_data.hpp"
-#include "mesh/mesh.hpp"
 #include "mesh/mesh_test_util.hpp"
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
 namespace {
@@ -16,7 +16,7 @@ using testing::data_path;
 // The message of the Error that loading `path` throws ("" if it loads).
 std::string load_error(const std::filesystem::path& path) {
   try {
-    Mesh::load(path);
+    PlexMesh::load(path);
   } catch (const Error& e) {
     return e.what();
   }
@@ -140,14 +140,14 @@ TEST(Validate, MirroredWedgesAndPyramidsAreReorientedFoldedOnesInverted) {
 
 TEST(Validate, AMirroredTriangleAmongOthersLoads) {
   // square_tri_v22.msh with element 13 listed clockwise.
-  Mesh mesh = Mesh::load(data_path("square_tri_v22_mirrored_cell.msh"));
+  PlexMesh mesh = PlexMesh::load(data_path("square_tri_v22_mirrored_cell.msh"));
   EXPECT_EQ(mesh.global_num_cells(), 26);
   EXPECT_GT(testing::min_view_jacobian(mesh.view()), 0.0);
 }
 
 TEST(Validate, AMirroredFeatRingAndHexMeshLoadPositive) {
   for (const char* file : {"feat_ring_quad_mirrored.xml", "feat_cube_hex_jitter_mirrored.xml"}) {
-    Mesh mesh = Mesh::load(data_path(file));
+    PlexMesh mesh = PlexMesh::load(data_path(file));
     EXPECT_GT(testing::min_view_jacobian(mesh.view()), 0.0) << file;
   }
 }

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/quasi_newton.hpp"
+#include <neomesh/result.hpp>
 
 namespace neomesh {
 

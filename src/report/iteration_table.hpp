@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "solver/quasi_newton.hpp"
+#include <neomesh/result.hpp>
 
 namespace neomesh {
 

@@ -316,7 +316,7 @@ void render_mesh(const MeshView& view, std::span<const double> coords,
   canvas.finish();
 }
 
-void render_mesh(const Mesh& mesh, std::span<const double> cell_values,
+void render_mesh(const PlexMesh& mesh, std::span<const double> cell_values,
                  const std::filesystem::path& out, const RenderOptions& options) {
   if (mesh.dim() != 2) throw Error(kOnly2D);
   picture_format(out);  // an unknown extension fails before the gather

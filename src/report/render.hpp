@@ -7,8 +7,8 @@
 #include <span>
 #include <string>
 
-#include "mesh/mesh.hpp"
 #include "mesh/mesh_view.hpp"
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
 
@@ -33,7 +33,7 @@ void render_mesh(const MeshView& view, std::span<const double> coords,
 
 // The same for a whole, possibly distributed mesh at its current coordinates: collective;
 // rank 0 gathers the cells and `cell_values` (one per local cell, MeshView order) and draws.
-void render_mesh(const Mesh& mesh, std::span<const double> cell_values,
+void render_mesh(const PlexMesh& mesh, std::span<const double> cell_values,
                  const std::filesystem::path& out, const RenderOptions& options = {});
 
 }  // namespace neomesh

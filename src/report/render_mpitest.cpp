@@ -27,7 +27,7 @@ TEST(RenderMeshParallel, GathersToTheSerialPicture) {
   int rank = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   const MeshData data = box(CellType::Quadrilateral, 6);
-  const Mesh mesh = Mesh::from_data(rank == 0 ? data : MeshData{}, "box-quad");
+  const PlexMesh mesh = PlexMesh::from_data(rank == 0 ? data : MeshData{}, "box-quad");
   const MeshView& view = mesh.view();
   std::vector<double> values;
   for (PetscInt c = 0; c < view.num_cells; ++c) values.push_back(value_of(view.global_cell[c]));

@@ -11,7 +11,7 @@
 #include "core/error.hpp"
 #include "core/testing/test_data.hpp"
 #include "mesh/generate.hpp"
-#include "mesh/mesh.hpp"
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
 namespace {
@@ -149,7 +149,7 @@ TEST(RenderMesh, ConstantFieldAndManySmallCellsStillDraw) {
 
 TEST(RenderMesh, WholeMeshOfTriangles) {
   const auto dir = testing::scratch_dir("render_whole_mesh");
-  const Mesh mesh = Mesh::from_data(box(CellType::Triangle, 8), "box-tri");
+  const PlexMesh mesh = PlexMesh::from_data(box(CellType::Triangle, 8), "box-tri");
   render_mesh(mesh, ramp(mesh.view().num_cells), dir / "box.png");
   const Png png = read_png(dir / "box.png");
   EXPECT_EQ(png.width, 1200);
@@ -160,7 +160,7 @@ TEST(RenderMesh, ThreeDimensionalMeshIsRefused) {
   MeshView view;
   view.dim = 3;
   EXPECT_THROW(render_mesh(view, {}, {}, "never.png"), Error);
-  const Mesh cube = Mesh::from_data(box(CellType::Hexahedron, 1), "box-hex");
+  const PlexMesh cube = PlexMesh::from_data(box(CellType::Hexahedron, 1), "box-hex");
   EXPECT_THROW(render_mesh(cube, std::vector<double>(1, 1.0), "never.png"), Error);
 }
 

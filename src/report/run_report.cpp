@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/log.hpp"
+#include "solver/linear_solver.hpp"
 
 namespace neomesh {
 
@@ -39,13 +40,13 @@ nlohmann::json to_json(const IterationRecord& r) {
   return row;
 }
 
-nlohmann::json to_json(const UntangleResult& result) {
+nlohmann::json to_json(const UntanglingSummary& result) {
   nlohmann::json history = nlohmann::json::array();
   for (const IterationRecord& rec : result.history) history.push_back(to_json(rec));
-  return {{"inverted_before", result.before.count},
-          {"inverted_after", result.after.count},
-          {"min_det_before", result.before.min_det},
-          {"min_det_after", result.after.min_det},
+  return {{"inverted_before", result.inverted_before},
+          {"inverted_after", result.inverted_after},
+          {"min_det_before", result.min_det_before},
+          {"min_det_after", result.min_det_after},
           {"iterations", result.history.size()},
           {"rounds", result.rounds},
           {"seconds", result.seconds},
@@ -63,7 +64,7 @@ nlohmann::json to_json(const PhaseTimes& t) {
           {"line_search", t.line_search}};
 }
 
-nlohmann::json to_json(const QuasiNewtonOptions& o) {
+nlohmann::json to_json(const SolverOptions& o) {
   return {
       {"alpha0", o.alpha0},
       {"eta", o.eta},
@@ -83,8 +84,7 @@ nlohmann::json to_json(const QuasiNewtonOptions& o) {
       {"riesz_rtol", o.riesz_rtol},
       {"hessian_pc_reuse", o.hessian_pc_reuse},
       {"hessian_pc", o.hessian_pc == HessianPreconditioner::Laplacian ? "laplacian" : "hessian"},
-      {"riesz_laplacian",
-       o.riesz == RieszLaplacian::OptimalCells ? "optimal-cells" : "current-mesh"}};
+      {"riesz_laplacian", o.riesz == RieszLaplacian::OptimalCells ? "optimal" : "current"}};
 }
 
 nlohmann::json to_json(const EnergyOptions& o) {
@@ -94,7 +94,7 @@ nlohmann::json to_json(const EnergyOptions& o) {
           {"gauss_points", o.gauss_points}};
 }
 
-nlohmann::json to_json(const QuasiNewtonResult& r) {
+nlohmann::json to_json(const Result& r) {
   nlohmann::json history = nlohmann::json::array();
   for (const auto& rec : r.history) history.push_back(to_json(rec));
   return {{"iterations", r.history.size()},
@@ -105,6 +105,15 @@ nlohmann::json to_json(const QuasiNewtonResult& r) {
           {"final_defect", number(r.final_defect)},
           {"times", to_json(r.times)},
           {"history", history}};
+}
+
+nlohmann::json to_json(const QualityGuardResult& guard) {
+  return {{"input_min_scaled_jacobian", guard.input_min},
+          {"min_scaled_jacobian_before", guard.min_before},
+          {"min_scaled_jacobian_after", guard.min_after},
+          {"vertices_moved", guard.vertices_moved},
+          {"gave_up", guard.gave_up},
+          {"rounds", guard.rounds}};
 }
 
 void write_json(const nlohmann::json& report, const std::filesystem::path& path) {

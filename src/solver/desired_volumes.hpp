@@ -12,12 +12,12 @@
 #include <string_view>
 #include <vector>
 
+#include <neomesh/options.hpp>
+
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
 
 namespace neomesh {
-
-enum class SizeMode { Uniform, Input, Smoothed };
 
 SizeMode parse_size_mode(std::string_view name);
 

@@ -11,11 +11,11 @@
 #include <string>
 #include <string_view>
 
+#include <neomesh/options.hpp>
+
 #include "core/petsc.hpp"
 
 namespace neomesh {
-
-enum class LinearSolverKind { Amg, Jacobi, Direct };
 
 LinearSolverKind parse_linear_solver(std::string_view name);
 std::string_view name(LinearSolverKind kind);

@@ -12,19 +12,12 @@
 
 #include <functional>
 
+#include <neomesh/result.hpp>
+
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
 
 namespace neomesh {
-
-struct QualityGuardResult {
-  double input_min = 0.0;       // minimum scaled Jacobian of the input: the threshold
-  double min_before = 0.0;      // ... of the optimized mesh before the guard
-  double min_after = 0.0;       // ... after it (≥ input_min)
-  PetscInt vertices_moved = 0;  // vertices the guard pulled back (global count)
-  int rounds = 0;
-  bool gave_up = false;  // pulling back made the worst cell worse: x is the optimized mesh
-};
 
 // `input` and `x` are global coordinate Vecs laid out by `dofs`; x is changed in place, and
 // `project` (if given) puts sliding boundary vertices back onto the boundary after each round.

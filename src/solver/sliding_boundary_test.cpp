@@ -96,8 +96,8 @@ RingOutcome smooth_ring(CellType type, int n, int m,
   BoundaryOptions options(BoundaryMode::Slide);
   options.shapes = shapes;
   ThesisProblem p(ring(type, n, m, 3.0), {}, options);
-  const QuasiNewtonResult result = p.minimize(
-      QuasiNewtonOptions{.energy_roundoff = energy_roundoff(p.energy, p.view.dim, p.volume)});
+  const QuasiNewtonResult result =
+      p.minimize(QuasiNewtonOptions{{}, energy_roundoff(p.energy, p.view.dim, p.volume)});
   EXPECT_NE(result.reason, StopReason::LineSearchFailed);
   EXPECT_NE(result.reason, StopReason::MaxIterations);
 

@@ -1,4 +1,4 @@
-#include "mesh/mesh.hpp"
+#include "mesh/plex_mesh.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -206,8 +206,8 @@ void build_dofs(Impl& m) {
 }
 
 // The common end of load and from_data: validate on rank 0, build, distribute, view.
-Mesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
-            InvertedCells inverted = InvertedCells::Refuse) {
+PlexMesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
+                InvertedCells inverted = InvertedCells::Refuse) {
   validate(input, source, comm, inverted == InvertedCells::Keep);
   auto m = std::make_unique<Impl>();
   m->comm = comm;
@@ -246,7 +246,7 @@ Mesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
 
 }  // namespace
 
-Mesh Mesh::load(const std::filesystem::path& path, MPI_Comm comm, InvertedCells inverted) {
+PlexMesh PlexMesh::load(const std::filesystem::path& path, MPI_Comm comm, InvertedCells inverted) {
   InputMesh input;
   on_root(comm, [&] {
     check_input_file(path);
@@ -256,43 +256,48 @@ Mesh Mesh::load(const std::filesystem::path& path, MPI_Comm comm, InvertedCells 
   return create(comm, input, path.string(), inverted);
 }
 
-Mesh Mesh::from_data(const MeshData& data, const std::string& source, MPI_Comm comm,
-                     InvertedCells inverted) {
+PlexMesh PlexMesh::from_data(const MeshData& data, const std::string& source, MPI_Comm comm,
+                             InvertedCells inverted) {
   InputMesh input = mpi_rank(comm) == 0 ? input_from_data(data) : InputMesh{};
   return create(comm, input, source, inverted);
 }
 
-Mesh::Mesh(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
-Mesh::Mesh(Mesh&&) noexcept = default;
-Mesh& Mesh::operator=(Mesh&&) noexcept = default;
-Mesh::~Mesh() = default;
+PlexMesh PlexMesh::from_input(InputMesh& input, const std::string& source, MPI_Comm comm,
+                              InvertedCells inverted) {
+  return create(comm, input, source, inverted);
+}
 
-MPI_Comm Mesh::comm() const {
+PlexMesh::PlexMesh(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+PlexMesh::PlexMesh(PlexMesh&&) noexcept = default;
+PlexMesh& PlexMesh::operator=(PlexMesh&&) noexcept = default;
+PlexMesh::~PlexMesh() = default;
+
+MPI_Comm PlexMesh::comm() const {
   return impl_->comm;
 }
-DM Mesh::dm() const {
+DM PlexMesh::dm() const {
   return impl_->dm;
 }
-int Mesh::dim() const {
+int PlexMesh::dim() const {
   return impl_->dim;
 }
-const std::string& Mesh::source() const {
+const std::string& PlexMesh::source() const {
   return impl_->source;
 }
-PetscInt Mesh::global_num_cells() const {
+PetscInt PlexMesh::global_num_cells() const {
   return impl_->global_num_cells;
 }
-PetscInt Mesh::global_num_vertices() const {
+PetscInt PlexMesh::global_num_vertices() const {
   return impl_->global_num_vertices;
 }
-const MeshView& Mesh::view() const {
+const MeshView& PlexMesh::view() const {
   return *impl_->view;
 }
-const DofMap& Mesh::dofs() const {
+const DofMap& PlexMesh::dofs() const {
   return *impl_->dofs;
 }
 
-OwnedVec Mesh::coordinates() const {
+OwnedVec PlexMesh::coordinates() const {
   const DofMap& dofs = *impl_->dofs;
   const MeshView& view = *impl_->view;
   OwnedVec x = dofs.create_global_vector();
@@ -304,7 +309,7 @@ OwnedVec Mesh::coordinates() const {
   return x;
 }
 
-void Mesh::set_coordinates(Vec coords) {
+void PlexMesh::set_coordinates(Vec coords) {
   MeshView& view = *impl_->view;
   impl_->dofs->global_to_local(coords, view.coords);
   Vec current;

@@ -1,4 +1,4 @@
-// Mesh: a DMPlex plus what neomesh needs around it — where it came from (for error
+// PlexMesh: a DMPlex plus what neomesh needs around it — where it came from (for error
 // messages), its physical groups, and the flat views the numerics run on.
 //
 // Serial by default; under `mpiexec -n P` load/from_data read on rank 0 and distribute the
@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <neomesh/mesh.hpp>
+
 #include "core/petsc.hpp"
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_data.hpp"
@@ -18,24 +20,27 @@
 
 namespace neomesh {
 
-// Whether load() refuses inverted and degenerate cells or keeps them: `quality` counts them,
-// `render` draws them in red, `smooth` untangles them.
-enum class InvertedCells { Refuse, Keep };
+struct InputMesh;  // input_mesh.hpp
 
-class Mesh {
+class PlexMesh {
  public:
   // Reads .msh (Gmsh 2.2/4.1, ASCII or binary) or .xml (FEAT3). Validates the mesh (see
   // validate.hpp): throws Error naming the file (and cell) for anything neomesh cannot use.
-  static Mesh load(const std::filesystem::path& path, MPI_Comm comm = PETSC_COMM_WORLD,
-                   InvertedCells inverted = InvertedCells::Refuse);
+  static PlexMesh load(const std::filesystem::path& path, MPI_Comm comm = PETSC_COMM_WORLD,
+                       InvertedCells inverted = InvertedCells::Refuse);
   // Builds a mesh from arrays given on rank 0 (other ranks pass an empty MeshData).
-  static Mesh from_data(const MeshData& data, const std::string& source,
-                        MPI_Comm comm = PETSC_COMM_WORLD,
-                        InvertedCells inverted = InvertedCells::Refuse);
+  static PlexMesh from_data(const MeshData& data, const std::string& source,
+                            MPI_Comm comm = PETSC_COMM_WORLD,
+                            InvertedCells inverted = InvertedCells::Refuse);
 
-  Mesh(Mesh&&) noexcept;
-  Mesh& operator=(Mesh&&) noexcept;
-  ~Mesh();
+  // Builds a mesh from an InputMesh on rank 0 (other ranks pass an empty one).
+  static PlexMesh from_input(InputMesh& input, const std::string& source,
+                             MPI_Comm comm = PETSC_COMM_WORLD,
+                             InvertedCells inverted = InvertedCells::Refuse);
+
+  PlexMesh(PlexMesh&&) noexcept;
+  PlexMesh& operator=(PlexMesh&&) noexcept;
+  ~PlexMesh();
 
   MPI_Comm comm() const;
   DM dm() const;
@@ -57,7 +62,7 @@ class Mesh {
 
  private:
   struct Impl;
-  explicit Mesh(std::unique_ptr<Impl> impl);
+  explicit PlexMesh(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
   friend struct MeshAccess;  // for the writers in this layer
 };

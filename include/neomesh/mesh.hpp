@@ -1,0 +1,90 @@
+// neomesh::Mesh: the mesh a simulation hands to neomesh and gets back with its vertices moved
+// (the connectivity never changes). Read from a file, built from arrays, in the caller's
+// vertex numbering; under MPI the cells are distributed over the communicator's processes.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <mpi.h>
+
+#include <neomesh/cell_type.hpp>
+#include <neomesh/quality.hpp>
+
+typedef struct _p_DM* DM;  // PETSc's handle, as petscdm.h declares it
+
+namespace neomesh {
+
+class PlexMesh;  // the implementation (src/mesh/plex_mesh.hpp)
+
+// Whether a mesh with inverted or degenerate cells is an error (Refuse) or read as it is
+// (Keep: Optimizer::smooth untangles it, quality() counts the inverted cells).
+enum class InvertedCells { Refuse, Keep };
+
+// A per-cell or per-vertex field written with the mesh (.vtu; .msh keeps the mesh only).
+struct Field {
+  std::string name;
+  std::vector<double> values;  // one per local cell (vertex), in this process' order
+  int components = 1;
+};
+
+class Mesh {
+ public:
+  // Reads .msh (Gmsh 2.2/4.1, ASCII or binary) or .xml (FEAT3) on the first process and
+  // distributes it over `comm`. Throws Error naming the file (and cell) for anything neomesh
+  // cannot use: a missing file, a malformed mesh, an unsupported cell type, NaN coordinates.
+  static Mesh read(const std::filesystem::path& path, MPI_Comm comm = MPI_COMM_WORLD,
+                   InvertedCells inverted = InvertedCells::Refuse);
+
+  // Builds a mesh from arrays given on the communicator's first process (the others pass
+  // empty spans) and distributes it. `coordinates`: `dim` values per vertex; `cells`: the
+  // vertices of each cell in Gmsh's order (docs/cell-types.md), 0-based, one CellType per
+  // cell in `types` (types may be mixed, of one dimension). The vertices' positions in
+  // `coordinates` are their numbers (vertex_numbers()). `name` names the mesh in messages.
+  static Mesh from_arrays(MPI_Comm comm, int dim, std::span<const double> coordinates,
+                          std::span<const std::int64_t> cells, std::span<const CellType> types,
+                          const std::string& name = "mesh from arrays",
+                          InvertedCells inverted = InvertedCells::Refuse);
+
+  Mesh(Mesh&&) noexcept;
+  Mesh& operator=(Mesh&&) noexcept;
+  ~Mesh();
+
+  MPI_Comm comm() const;
+  int dim() const;
+  const std::string& name() const;  // file name, or from_arrays' name
+  std::int64_t num_cells() const;   // over all processes
+  std::int64_t num_vertices() const;
+
+  // The vertices this process owns, by their number in the input (the file's order, or the
+  // position in from_arrays' coordinates), ascending; every vertex is owned by one process.
+  std::vector<std::int64_t> vertex_numbers() const;
+  // Their current coordinates, `dim()` values per vertex of vertex_numbers().
+  std::vector<double> coordinates() const;
+  // Moves them (same layout as coordinates()); the next optimization starts there.
+  void set_coordinates(std::span<const double> coordinates);
+
+  // The quality of all cells (collective).
+  QualitySummary quality() const;
+
+  // Writes .msh (Gmsh 4.1, with the input's physical groups) or .vtu (with the cell quality
+  // fields and `cell_fields`) atomically: an error leaves no partial file. Collective.
+  void write(const std::filesystem::path& path, const std::vector<Field>& cell_fields = {}) const;
+
+  // The distributed DMPlex, for a caller that works with PETSc directly (owned by the Mesh).
+  DM dm() const;
+
+  // The implementation, for neomesh's own layers.
+  PlexMesh& plex();
+  const PlexMesh& plex() const;
+
+ private:
+  explicit Mesh(std::unique_ptr<PlexMesh> plex);
+  std::unique_ptr<PlexMesh> plex_;
+};
+
+}  // namespace neomesh

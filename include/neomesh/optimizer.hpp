@@ -1,0 +1,53 @@
+// neomesh::Optimizer: moves the vertices of a Mesh to minimize the Neo-Hookean energy
+// (docs/method.md), either towards ideal cells of given sizes (smooth) or so that cells follow
+// a size field (adapt). It owns what the optimization needs besides the mesh: the functional,
+// the desired volumes and what derives from them, kept from one call to the next — so that a
+// simulation whose geometry moves calls adapt() once per time step and each step starts warm
+// from the one before.
+#pragma once
+
+#include <memory>
+
+#include <neomesh/mesh.hpp>
+#include <neomesh/options.hpp>
+#include <neomesh/result.hpp>
+#include <neomesh/size_field.hpp>
+
+namespace neomesh {
+
+class Optimizer {
+ public:
+  // `mesh` must outlive the Optimizer; its coordinates are where every call starts, and every
+  // call leaves the optimized coordinates in it. Collective over the mesh's communicator.
+  explicit Optimizer(Mesh& mesh);
+  ~Optimizer();
+  Optimizer(Optimizer&&) noexcept;
+  Optimizer& operator=(Optimizer&&) noexcept;
+
+  // Every cell towards an ideal cell of its desired volume (thesis chapter 5); inverted cells
+  // are untangled first unless options.untangle is false. Throws Error if the options are out
+  // of range, if cells stay inverted, or if the boundary cannot be classified. Collective.
+  Result smooth(const SmoothOptions& options = {}, const Observer& observer = {});
+
+  // Cells crowd where `field` is small (thesis chapter 6): the desired volumes are recomputed
+  // from the moving mesh in Picard iterations. The first call starts cold; a later call (the
+  // field moved, e.g. set_time) starts from the mesh and desired volumes the last one left
+  // and may stop after options.warm_updates updates. Collective.
+  Result adapt(const SizeField& field, const AdaptOptions& options = {},
+               const Observer& observer = {});
+  // The next adapt() starts cold (the mesh was changed in another way, say).
+  void forget_warm_start();
+
+  // Per local cell at the mesh's coordinates: "energy", "det_G_min", "Q" (actual over desired
+  // volume) and "desired_volume", for Mesh::write. Empty before the first call.
+  std::vector<Field> cell_fields() const;
+
+  // The implementation, for neomesh's own front end (src/api/optimizer_impl.hpp).
+  struct Impl;
+  Impl& impl();
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace neomesh

@@ -1,0 +1,188 @@
+// The options of an optimization, as plain structs: the energy, the boundary, the quasi-Newton
+// method and its linear solvers, the desired volumes of smoothing and the size field and
+// Picard updates of adaptation. SmoothOptions and AdaptOptions gather them per task, with the
+// defaults neomesh recommends, thesis() presets that reproduce the dissertation's tables
+// (docs/method.md §9 lists every difference), and validate(), which throws OptionError naming
+// the field.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace neomesh {
+
+// The Neo-Hookean energy (docs/method.md §2).
+struct EnergyOptions {
+  double lambda = 1.0;
+  double mu = 10.0;
+  double kappa = -1.0;   // < 0 means κ = λ (enough for convexity, thesis §4.3)
+  int gauss_points = 3;  // per direction for Q1 cells; 3 reproduces the thesis
+
+  void validate() const;
+};
+
+// What the boundary vertices may do (docs/boundary.md): stay put (the thesis' H¹₀ setting), or
+// slide along the input's boundary, corners and ridges kept.
+enum class BoundaryMode { Fixed, Slide };
+
+struct BoundaryOptions {
+  BoundaryOptions() = default;
+  explicit BoundaryOptions(BoundaryMode m) : mode(m) {}
+
+  BoundaryMode mode = BoundaryMode::Fixed;
+  // Corners and ridges: where the boundary turns (2D) or folds (3D) by more than this, in
+  // degrees. 40 keeps the facets of a circle or sphere meshed with ≥ 9 edges per right angle
+  // in one patch and finds every corner of a box.
+  double feature_angle = 40.0;
+  // (part name, shape spec) pairs: boundary part `name` lies on the shape, e.g. ("hole",
+  // "circle:0,0,0.5"); docs/boundary.md lists the shapes.
+  std::vector<std::pair<std::string, std::string>> shapes;
+
+  void validate() const;
+};
+
+// Which matrix represents the H¹₀ inner product for the Riesz representative (docs/method.md §4).
+enum class RieszLaplacian {
+  OptimalCells,  // ∫ over the optimal cells = B3/μ; the thesis' choice; built once per volumes
+  CurrentMesh,   // stiffness matrix of the current mesh; depends on x
+};
+
+// The linear solvers' defaults (PETSc options -hess_* and -riesz_* still win):
+//   Amg     CG + hypre BoomerAMG (mesh-independent iteration counts; the default)
+//   Jacobi  CG + Jacobi (the thesis' PCG)
+//   Direct  Cholesky (MUMPS, works in parallel; the thesis used UMFPACK)
+enum class LinearSolverKind { Amg, Jacobi, Direct };
+
+// What preconditions the δ̃ solve with LinearSolverKind::Amg: the Riesz solve's AMG hierarchy
+// of L = B3/μ, which is built anyway and changes only with the desired volumes, or a
+// hierarchy of H(α) itself, rebuilt when it has gone stale. H(α) = B1 + α B2 + μ L is
+// spectrally close to μ L: CG needs more iterations with L's hierarchy, but its V-cycles are
+// cheaper (L is block-diagonal) and no hierarchy of H is built or stored (docs/benchmarks.md).
+enum class HessianPreconditioner { Hessian, Laplacian };
+
+// The quasi-Newton method of thesis §5.1 (docs/method.md §4).
+struct SolverOptions {
+  double alpha0 = 0.3;  // initial α of H(α) = B1 + α B2 + B3
+  double eta = 0.6;     // angle test: accept δ̃ if η_k ≥ η
+  int kmin = 2;         // initial antigradient steps (thesis §5.5 recommends 2)
+  int max_iterations = 200;
+  double defect_atol = 1e-10;  // stop when ‖g‖ ≤ defect_atol
+  double defect_rtol = 1e-10;  // ... or ‖g‖ ≤ defect_rtol · ‖g_0‖
+  // Practical criterion (docs/method.md §6): stop when the relative energy decrease is below
+  // energy_rtol and no vertex moved more than move_rtol times its local cell size.
+  bool practical = true;
+  double energy_rtol = 1e-9;
+  double move_rtol = 1e-6;
+  double armijo_beta = 1e-2;  // sufficient decrease (thesis (2.5.4))
+  int max_halvings = 40;      // σ ≥ 0.5^40 ≈ 1e-12, then give up
+  // ‖g_{-1}‖ for the first α update; 10 reproduces the thesis' tables (docs/method.md §4).
+  double initial_previous_defect = 10.0;
+  LinearSolverKind linear_solver = LinearSolverKind::Amg;
+  double hessian_rtol = 1e-4;           // loose δ̃ solve: 4 digits ...
+  double hessian_defect_factor = 1e-3;  // ... or residual ≤ 1e-3 ‖g‖ (thesis §5.2)
+  // s only steers: it is the antigradient direction of the first k_min steps and enters the
+  // angle test's cosine, so three digits do (same Newton iterations on every case measured,
+  // half the Krylov iterations of 1e-8; docs/benchmarks.md). The thesis solves to 1e-8.
+  double riesz_rtol = 1e-3;
+  static constexpr double kThesisRieszRtol = 1e-8;
+  // With Amg and hessian_pc = Hessian: keep the AMG hierarchy of an earlier H(α) while the δ̃
+  // solve needs at most this many times the Krylov iterations it needed when the hierarchy was
+  // built (0: rebuild always).
+  double hessian_pc_reuse = 1.5;
+  HessianPreconditioner hessian_pc = HessianPreconditioner::Laplacian;
+  RieszLaplacian riesz = RieszLaplacian::OptimalCells;
+
+  // Throws OptionError ("solver.eta must be in (0, 1) (got 2)") for a field out of range.
+  void validate() const;
+};
+
+// Desired cell volumes for smoothing. Real meshes are graded — fine near a cylinder, coarse far
+// away — so making every cell the same size would wreck them:
+//   Uniform   every cell gets |Ω| / N (the thesis' setting and its test cases)
+//   Input     every cell keeps its own input volume
+//   Smoothed  the input volumes averaged over neighbouring cells a few times: the grading
+//             stays while noise from badly shaped cells is removed (the default)
+enum class SizeMode { Uniform, Input, Smoothed };
+
+// How a size field becomes desired volumes (docs/adaptivity.md): v_K = floor + d(c_K)^p, made
+// consistent.
+struct SizeFieldOptions {
+  double floor = 1e-8;  // added to d^p so that no cell asks for volume 0
+  double power = 1.0;   // p
+  // Largest over smallest desired volume (0: unbounded, the thesis). The smallest volumes
+  // are raised to max/ratio, because no mesh of fixed connectivity can shrink a cell on the
+  // surface to the 1e-8-fold of its neighbours. 32 (edge lengths 1 : 3.2 in 3D) is what the
+  // meshes of docs/adaptivity.md reach with good shapes; 100 squeezed cells to scaled
+  // Jacobians of 0.1.
+  double max_ratio = 32.0;
+  // Passes of averaging log v over neighbouring cells (0: none, the thesis): limits how fast
+  // the desired volume may change from a cell to its neighbour.
+  int smoothing_passes = 1;
+
+  // The thesis' field: v = 1e-8 + d, nothing bounded or smoothed.
+  static SizeFieldOptions thesis() { return {.max_ratio = 0.0, .smoothing_passes = 0}; }
+  void validate() const;
+};
+
+// The Picard iteration of adaptation (thesis §6, docs/method.md §5): when the desired volumes
+// are recomputed from the moving mesh.
+struct PicardOptions {
+  int min_updates = 6;            // updates before the run may stop (the thesis made 7)
+  int update_every = 8;           // iterations after which the volumes are updated anyway
+  double update_move = 1e-3;      // update when the step moved no vertex more than this · h
+  double update_step_norm = 0.0;  // thesis: update when σ‖δ‖ < this (0: not used)
+  // Under-relaxation ω of an update: v ← (1−ω) v_old + ω v(centroids). 1 is the thesis.
+  double relaxation = 1.0;
+
+  // The thesis' scheme: full updates when σ‖δ‖ < 1e-6 or every 8 iterations, 7 updates.
+  static PicardOptions thesis() {
+    return {.min_updates = 7,
+            .update_every = 8,
+            .update_move = 0.0,
+            .update_step_norm = 1e-6,
+            .relaxation = 1.0};
+  }
+  void validate() const;
+};
+
+// Optimizer::smooth: every cell towards an ideal cell of its desired volume (thesis chapter 5).
+struct SmoothOptions {
+  EnergyOptions energy;  // λ = 1, μ = 10: shape dominates
+  // The worst cells of real meshes touch the boundary, and only sliding vertices can fix them.
+  BoundaryOptions boundary{BoundaryMode::Slide};
+  SolverOptions solver;
+  SizeMode sizes = SizeMode::Smoothed;
+  // Inverted cells are untangled first (docs/untangling.md); false: they are an error.
+  bool untangle = true;
+  // No cell of the result worse than the input's worst (vertices pulled back; solver docs).
+  bool quality_guard = true;
+
+  // `base` with the thesis' conventions: uniform desired volumes, fixed boundary vertices, no
+  // practical stopping criterion, the Riesz solve to 1e-8, no quality guard.
+  static SmoothOptions thesis(SmoothOptions base);
+  static SmoothOptions thesis() { return thesis(SmoothOptions{}); }
+  void validate() const;
+};
+
+// Optimizer::adapt: cells crowd where a size field is small (thesis chapter 6).
+struct AdaptOptions {
+  // Adaptation wants volumes met, not only shapes: λ = 4 μ, and boundary vertices that slide
+  // so that the cells at the boundary can grade too (docs/adaptivity.md).
+  EnergyOptions energy{.lambda = 4.0, .mu = 1.0};
+  BoundaryOptions boundary{BoundaryMode::Slide};
+  SolverOptions solver;
+  SizeFieldOptions sizes;
+  PicardOptions picard;
+  // A warm start (adapt() after an earlier adapt() on the same Optimizer, e.g. the next time
+  // step): Picard updates before it may stop, instead of picard.min_updates.
+  int warm_updates = 1;
+
+  // `base` with the thesis' scheme (§6.1): the raw field, λ = 1, μ = 10, fixed boundary
+  // vertices, the thesis' Picard updates and stopping rule, the Riesz solve to 1e-8.
+  static AdaptOptions thesis(AdaptOptions base);
+  static AdaptOptions thesis() { return thesis(AdaptOptions{}); }
+  void validate() const;
+};
+
+}  // namespace neomesh

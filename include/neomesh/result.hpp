@@ -1,0 +1,119 @@
+// What an optimization reports: one record per quasi-Newton iteration (the rows of the thesis'
+// iteration tables, handed to an Observer as they happen), why it stopped, and the whole run.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <neomesh/quality.hpp>
+
+namespace neomesh {
+
+// One row of the thesis' iteration table (Tables 5.9 ff.).
+struct IterationRecord {
+  int k = 0;                    // 1-based, as the thesis prints it
+  int armijo_steps = 0;         // halvings: σ = 0.5^armijo_steps
+  double defect = 0.0;          // ‖g_k‖ over free dofs at the start of the iteration
+  double direction_norm = 0.0;  // ‖δ‖ before scaling by σ
+  double energy = 0.0;          // F after the step
+  double eta = 1.0;             // η_k of the angle test (1 for antigradient steps)
+  double alpha = 0.0;           // α used in this iteration
+  int krylov_delta = 0;         // Krylov iterations for δ̃ (0: not solved)
+  double residual_delta = 0.0;
+  bool delta_solved = false;
+  bool delta_failed = false;      // the δ̃ solve did not converge (α is then cut to 0.1 α)
+  bool delta_truncated = false;   // CG stopped at negative curvature; its iterate was used
+  bool hessian_pc_built = false;  // amg: the H(α) hierarchy was built for this solve
+  int krylov_s = 0;               // Krylov iterations for s
+  bool used_s = false;            // the step went along −s
+  bool roundoff_step = false;     // Armijo skipped: predicted decrease below round-off
+  double max_move = 0.0;          // largest vertex move / local cell size
+  double seconds = 0.0;           // wall time since start
+  // Untangling (docs/untangling.md) sets these; 0 and −1 in the Neo-Hookean phase.
+  int untangling_round = 0;    // ≥ 1: the round (value of ε) this iteration belongs to
+  double epsilon = 0.0;        // ε of the untangling energy
+  std::int64_t inverted = -1;  // cells inverted after the step
+};
+
+enum class StopReason {
+  DefectAbsolute,  // ‖g‖ ≤ defect_atol
+  DefectRelative,  // ‖g‖ ≤ defect_rtol ‖g_0‖
+  Practical,       // energy and vertices stopped changing
+  MaxIterations,
+  LineSearchFailed,  // no step size in max_halvings halvings gave a finite, decreasing F
+};
+// "Newton defect below the absolute tolerance", ...
+std::string describe(StopReason reason);
+
+// Wall time per phase, seconds. setup: matrix patterns; *_setup: preconditioner (AMG
+// hierarchy or factorization) of H(α) and of L, the latter including L's assembly.
+struct PhaseTimes {
+  double setup = 0, gradient = 0, hessian_assembly = 0, hessian_setup = 0, hessian_solve = 0,
+         riesz_setup = 0, riesz_solve = 0, line_search = 0;
+};
+
+// What sliding found on the whole boundary (docs/boundary.md).
+struct BoundarySummary {
+  std::int64_t corners = 0, ridge_vertices = 0, surface_vertices = 0;
+  int patches = 0, ridges = 0;
+  // Per patch: "part 'hole': circle ...", "unnamed: the input's boundary", ...
+  std::vector<std::string> patch_geometry;
+};
+
+// The problem an optimization solves, once it is set up.
+struct ProblemSummary {
+  std::int64_t free_coordinates = 0;  // over all processes
+  BoundarySummary boundary;           // empty with fixed boundary vertices
+};
+
+// Untangling before smoothing (docs/untangling.md).
+struct UntanglingSummary {
+  std::int64_t inverted_before = 0, inverted_after = 0;
+  double min_det_before = 0.0, min_det_after = 0.0;  // smallest det G at a sample point
+  std::vector<IterationRecord> history;              // its iterations (rows with a round)
+  int rounds = 0;
+  double seconds = 0.0;
+};
+
+// The quality guard of smoothing: vertices pulled back toward the input so that no cell is
+// worse than the input's worst.
+struct QualityGuardResult {
+  double input_min = 0.0;           // minimum scaled Jacobian of the input: the threshold
+  double min_before = 0.0;          // ... of the optimized mesh before the guard
+  double min_after = 0.0;           // ... after it (≥ input_min)
+  std::int64_t vertices_moved = 0;  // vertices the guard pulled back (global count)
+  int rounds = 0;
+  bool gave_up = false;  // pulling back made the worst cell worse: the optimum was kept
+};
+
+struct Result {
+  std::vector<IterationRecord> history;  // the iterations on the Neo-Hookean energy
+  StopReason reason = StopReason::MaxIterations;
+  double initial_energy = 0.0, final_energy = 0.0;
+  double initial_defect = 0.0, final_defect = 0.0;
+  PhaseTimes times;
+  QualitySummary quality_before, quality_after;
+  std::optional<UntanglingSummary> untangling;      // smooth, if cells were inverted
+  std::optional<QualityGuardResult> quality_guard;  // smooth, unless switched off
+  std::vector<int> update_iterations;  // adapt: iterations after which volumes were updated
+  double seconds = 0.0;
+};
+
+// What the Optimizer tells while it runs; every member may be empty.
+struct Observer {
+  // The problem is set up; the first iteration assembles the matrices and builds the
+  // preconditioners (on a large mesh the longest wait before the first iteration).
+  std::function<void(const ProblemSummary&)> started;
+  // Smoothing: this many cells are inverted and are untangled first ...
+  std::function<void(std::int64_t inverted)> untangling;
+  // ... and this is how it went (then the Neo-Hookean iterations follow).
+  std::function<void(const UntanglingSummary&)> untangled;
+  std::function<void(const IterationRecord&)> iteration;
+  // Adaptation: after iteration k the desired volumes were updated for the `update`-th time.
+  std::function<void(int k, int update)> volumes_updated;
+};
+
+}  // namespace neomesh

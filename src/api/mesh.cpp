@@ -1,0 +1,169 @@
+#include <neomesh/mesh.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "core/error.hpp"
+#include "geometry/quality.hpp"
+#include "mesh/collective_error.hpp"
+#include "mesh/input_mesh.hpp"
+#include "mesh/mesh_io.hpp"
+#include "mesh/plex_mesh.hpp"
+
+namespace neomesh {
+
+namespace {
+
+// The arrays of from_arrays as an InputMesh (Gmsh order → canonical order), checking what
+// the validation of the mesh layer cannot see: sizes, cell types of one dimension, indices.
+InputMesh input_from_arrays(int dim, std::span<const double> coordinates,
+                            std::span<const std::int64_t> cells, std::span<const CellType> types,
+                            const std::string& name) {
+  if (dim != 2 && dim != 3)
+    fail("{}: dimension {} (neomesh optimizes 2D and 3D meshes)", name, dim);
+  if (coordinates.size() % dim != 0)
+    fail("{}: {} coordinates are not a whole number of {}D vertices", name, coordinates.size(),
+         dim);
+  InputMesh input;
+  input.dim = dim;
+  input.coords.assign(coordinates.begin(), coordinates.end());
+  const auto num_vertices = static_cast<std::int64_t>(coordinates.size()) / dim;
+  std::size_t next = 0;
+  for (std::size_t c = 0; c < types.size(); ++c) {
+    const CellFacts& facts = neomesh::facts(types[c]);
+    if (facts.dim != dim) fail("{}: cell {} is a {} in a {}D mesh", name, c, facts.name, dim);
+    if (next + facts.vertices > cells.size())
+      fail("{}: the cell array ends within cell {} ({} vertex numbers for {} cells)", name, c,
+           cells.size(), types.size());
+    PetscInt canonical[8];
+    for (int i = 0; i < facts.vertices; ++i) {
+      const std::int64_t v = cells[next + i];
+      if (v < 0 || v >= num_vertices)
+        fail("{}: cell {} names vertex {}, but there are {} vertices (0-based)", name, c, v,
+             num_vertices);
+      canonical[facts.gmsh_order[i]] = static_cast<PetscInt>(v);
+    }
+    next += facts.vertices;
+    input.add_cell(types[c], canonical, 0);
+  }
+  if (next != cells.size())
+    fail("{}: {} vertex numbers for {} cells that have {}", name, cells.size(), types.size(), next);
+  return input;
+}
+
+}  // namespace
+
+Mesh Mesh::read(const std::filesystem::path& path, MPI_Comm comm, InvertedCells inverted) {
+  return Mesh(std::make_unique<PlexMesh>(PlexMesh::load(path, comm, inverted)));
+}
+
+Mesh Mesh::from_arrays(MPI_Comm comm, int dim, std::span<const double> coordinates,
+                       std::span<const std::int64_t> cells, std::span<const CellType> types,
+                       const std::string& name, InvertedCells inverted) {
+  InputMesh input;
+  collectively(comm, [&] {
+    if (mpi_rank(comm) == 0) input = input_from_arrays(dim, coordinates, cells, types, name);
+  });
+  return Mesh(std::make_unique<PlexMesh>(PlexMesh::from_input(input, name, comm, inverted)));
+}
+
+Mesh::Mesh(std::unique_ptr<PlexMesh> plex) : plex_(std::move(plex)) {}
+Mesh::Mesh(Mesh&&) noexcept = default;
+Mesh& Mesh::operator=(Mesh&&) noexcept = default;
+Mesh::~Mesh() = default;
+
+MPI_Comm Mesh::comm() const {
+  return plex_->comm();
+}
+int Mesh::dim() const {
+  return plex_->dim();
+}
+const std::string& Mesh::name() const {
+  return plex_->source();
+}
+std::int64_t Mesh::num_cells() const {
+  return plex_->global_num_cells();
+}
+std::int64_t Mesh::num_vertices() const {
+  return plex_->global_num_vertices();
+}
+DM Mesh::dm() const {
+  return plex_->dm();
+}
+PlexMesh& Mesh::plex() {
+  return *plex_;
+}
+const PlexMesh& Mesh::plex() const {
+  return *plex_;
+}
+
+namespace {
+
+// This rank's owned local vertices, ordered by their input number.
+std::vector<PetscInt> owned_by_number(const MeshView& view) {
+  std::vector<PetscInt> owned;
+  for (PetscInt u = 0; u < view.num_vertices; ++u)
+    if (view.owned[u]) owned.push_back(u);
+  std::sort(owned.begin(), owned.end(), [&view](PetscInt a, PetscInt b) {
+    return view.input_vertex[a] < view.input_vertex[b];
+  });
+  return owned;
+}
+
+}  // namespace
+
+std::vector<std::int64_t> Mesh::vertex_numbers() const {
+  const MeshView& view = plex_->view();
+  std::vector<std::int64_t> numbers;
+  for (PetscInt u : owned_by_number(view)) numbers.push_back(view.input_vertex[u]);
+  return numbers;
+}
+
+std::vector<double> Mesh::coordinates() const {
+  const MeshView& view = plex_->view();
+  std::vector<double> out;
+  for (PetscInt u : owned_by_number(view))
+    for (int j = 0; j < view.dim; ++j) out.push_back(view.coords[u * view.dim + j]);
+  return out;
+}
+
+void Mesh::set_coordinates(std::span<const double> coordinates) {
+  const MeshView& view = plex_->view();
+  const std::vector<PetscInt> owned = owned_by_number(view);
+  collectively(comm(), [&] {
+    if (coordinates.size() != owned.size() * view.dim)
+      fail("{}: {} coordinates given for {} vertices of this process ({} each)", name(),
+           coordinates.size(), owned.size(), view.dim);
+    for (double c : coordinates)
+      if (!std::isfinite(c)) fail("{}: a coordinate given is not a finite number", name());
+  });
+  // The owned vertices' new coordinates go into a global Vec; the mesh spreads them to ghosts.
+  OwnedVec x = plex_->coordinates();
+  const std::vector<PetscInt>& global_dof = plex_->dofs().global_dof();
+  for (std::size_t i = 0; i < owned.size(); ++i)
+    for (int j = 0; j < view.dim; ++j)
+      NM_PETSC(VecSetValue(x, global_dof[owned[i] * view.dim + j], coordinates[i * view.dim + j],
+                           INSERT_VALUES));
+  NM_PETSC(VecAssemblyBegin(x));
+  NM_PETSC(VecAssemblyEnd(x));
+  plex_->set_coordinates(x);
+}
+
+QualitySummary Mesh::quality() const {
+  const MeshView& view = plex_->view();
+  return summarize(cell_quality(view, view.coords), comm());
+}
+
+void Mesh::write(const std::filesystem::path& path, const std::vector<Field>& cell_fields) const {
+  const MeshView& view = plex_->view();
+  const CellQuality q = cell_quality(view, view.coords);
+  MeshFields fields;
+  fields.cell = {{"volume", q.volume},         {"scaled_jacobian", q.scaled_jacobian},
+                 {"min_angle", q.min_angle},   {"max_angle", q.max_angle},
+                 {"edge_ratio", q.edge_ratio}, {"inverse_mean_ratio", q.inverse_mean_ratio}};
+  fields.cell.insert(fields.cell.end(), cell_fields.begin(), cell_fields.end());
+  write_mesh(*plex_, path, fields);
+}
+
+}  // namespace neomesh

@@ -1,0 +1,120 @@
+#include <neomesh/options.hpp>
+
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+
+#include <neomesh/error.hpp>
+
+namespace neomesh {
+
+namespace {
+
+// Throws OptionError for `field` unless `value` is finite and `ok`: "<field> must be <range>
+// (got <value>)". inf and nan are refused so that they never reach the method (an infinite λ
+// would make every cell look inverted).
+template <typename T>
+void require(bool ok, const char* field, T value, const char* range) {
+  if (!std::isfinite(static_cast<double>(value)))
+    throw OptionError(field, fmt::format("must be a finite number, {} (got {})", range, value));
+  if (!ok) throw OptionError(field, fmt::format("must be {} (got {})", range, value));
+}
+
+}  // namespace
+
+void EnergyOptions::validate() const {
+  require(lambda > 0, "energy.lambda", lambda, "positive");
+  require(mu > 0, "energy.mu", mu, "positive");
+  require(kappa == -1.0 || kappa > 0, "energy.kappa", kappa, "positive (or -1 for kappa = lambda)");
+  require(gauss_points >= 1 && gauss_points <= 5, "energy.gauss_points", gauss_points,
+          "between 1 and 5");
+}
+
+void BoundaryOptions::validate() const {
+  require(feature_angle > 0 && feature_angle < 180, "boundary.feature_angle", feature_angle,
+          "in (0, 180) degrees");
+  if (!shapes.empty() && mode != BoundaryMode::Slide)
+    throw OptionError("boundary.shapes",
+                      "need sliding boundary vertices (with fixed ones nothing slides on them)");
+  for (const auto& [part, shape] : shapes)
+    if (part.empty() || shape.empty())
+      throw OptionError("boundary.shapes",
+                        fmt::format("need a part name and a shape (got '{}' = '{}')", part, shape));
+}
+
+void SolverOptions::validate() const {
+  require(alpha0 > 0 && alpha0 <= 1, "solver.alpha0", alpha0, "in (0, 1]");
+  require(eta > 0 && eta < 1, "solver.eta", eta, "in (0, 1)");
+  require(kmin >= 0, "solver.kmin", kmin, "0 or more");
+  require(max_iterations >= 1, "solver.max_iterations", max_iterations, "at least 1");
+  require(defect_atol >= 0, "solver.defect_atol", defect_atol, "0 or more");
+  require(defect_rtol >= 0, "solver.defect_rtol", defect_rtol, "0 or more");
+  require(energy_rtol >= 0, "solver.energy_rtol", energy_rtol, "0 or more");
+  require(move_rtol >= 0, "solver.move_rtol", move_rtol, "0 or more");
+  require(armijo_beta > 0 && armijo_beta < 1, "solver.armijo_beta", armijo_beta, "in (0, 1)");
+  require(max_halvings >= 1, "solver.max_halvings", max_halvings, "at least 1");
+  require(initial_previous_defect > 0, "solver.initial_previous_defect", initial_previous_defect,
+          "positive");
+  require(hessian_rtol > 0 && hessian_rtol < 1, "solver.hessian_rtol", hessian_rtol, "in (0, 1)");
+  require(hessian_defect_factor > 0, "solver.hessian_defect_factor", hessian_defect_factor,
+          "positive");
+  require(riesz_rtol > 0 && riesz_rtol < 1, "solver.riesz_rtol", riesz_rtol, "in (0, 1)");
+  require(hessian_pc_reuse >= 0, "solver.hessian_pc_reuse", hessian_pc_reuse, "0 or more");
+}
+
+void SizeFieldOptions::validate() const {
+  require(power > 0, "sizes.power", power, "positive");
+  require(floor >= 0, "sizes.floor", floor, "0 or more");
+  require(max_ratio == 0 || max_ratio > 1, "sizes.max_ratio", max_ratio,
+          "above 1, or 0 for no bound");
+  require(smoothing_passes >= 0, "sizes.smoothing_passes", smoothing_passes, "0 or more");
+}
+
+void PicardOptions::validate() const {
+  require(min_updates >= 0, "picard.min_updates", min_updates, "0 or more");
+  require(update_every >= 1, "picard.update_every", update_every, "at least 1");
+  require(update_move >= 0, "picard.update_move", update_move, "0 or more");
+  require(update_step_norm >= 0, "picard.update_step_norm", update_step_norm, "0 or more");
+  require(relaxation > 0 && relaxation <= 1, "picard.relaxation", relaxation, "in (0, 1]");
+}
+
+SmoothOptions SmoothOptions::thesis(SmoothOptions o) {
+  o.sizes = SizeMode::Uniform;
+  o.boundary.mode = BoundaryMode::Fixed;  // the thesis' H¹₀ setting
+  o.boundary.shapes.clear();
+  o.solver.practical = false;  // iterate to the defect tolerance
+  o.solver.riesz_rtol = SolverOptions::kThesisRieszRtol;
+  o.quality_guard = false;
+  return o;
+}
+
+void SmoothOptions::validate() const {
+  energy.validate();
+  boundary.validate();
+  solver.validate();
+}
+
+AdaptOptions AdaptOptions::thesis(AdaptOptions o) {
+  o.sizes.max_ratio = SizeFieldOptions::thesis().max_ratio;
+  o.sizes.smoothing_passes = SizeFieldOptions::thesis().smoothing_passes;
+  o.energy.lambda = 1.0;
+  o.energy.mu = 10.0;
+  o.boundary.mode = BoundaryMode::Fixed;
+  o.boundary.shapes.clear();
+  o.picard = PicardOptions::thesis();
+  o.solver.practical = false;
+  o.solver.riesz_rtol = SolverOptions::kThesisRieszRtol;
+  return o;
+}
+
+void AdaptOptions::validate() const {
+  energy.validate();
+  boundary.validate();
+  solver.validate();
+  sizes.validate();
+  picard.validate();
+  require(warm_updates >= 0, "warm_updates", warm_updates, "0 or more");
+}
+
+}  // namespace neomesh
