@@ -27,7 +27,7 @@ namespace neomesh::app {
 namespace {
 
 struct RenderCommandOptions {
-  std::string input, output, field = "scaled-jacobian", sizes = "smoothed", title;
+  std::string input, output, field = "scaled_jacobian", sizes = "smoothed", title;
   int width = 1200;
   std::vector<double> range;
   bool log_scale = false;
@@ -39,11 +39,11 @@ struct FieldInfo {
 };
 
 constexpr std::array<FieldInfo, 8> kFields = {{
-    {"scaled-jacobian", "scaled Jacobian"},
-    {"min-angle", "min angle (deg)"},
-    {"max-angle", "max angle (deg)"},
-    {"edge-ratio", "edge ratio"},
-    {"inverse-mean-ratio", "inverse mean ratio"},
+    {"scaled_jacobian", "scaled Jacobian"},
+    {"min_angle", "min angle (deg)"},
+    {"max_angle", "max angle (deg)"},
+    {"edge_ratio", "edge ratio"},
+    {"inverse_mean_ratio", "inverse mean ratio"},
     {"volume", "cell volume"},
     {"energy", "energy of the cell"},
     {"Q", "Q = volume / desired"},
@@ -70,11 +70,11 @@ std::vector<double> energy_field(const PlexMesh& mesh, const CellQuality& qualit
 std::vector<double> field_values(const PlexMesh& mesh, const RenderCommandOptions& o) {
   const MeshView& view = mesh.view();
   const CellQuality quality = cell_quality(view, view.coords);
-  std::vector<double> values = o.field == "scaled-jacobian"      ? quality.scaled_jacobian
-                               : o.field == "min-angle"          ? quality.min_angle
-                               : o.field == "max-angle"          ? quality.max_angle
-                               : o.field == "edge-ratio"         ? quality.edge_ratio
-                               : o.field == "inverse-mean-ratio" ? quality.inverse_mean_ratio
+  std::vector<double> values = o.field == "scaled_jacobian"      ? quality.scaled_jacobian
+                               : o.field == "min_angle"          ? quality.min_angle
+                               : o.field == "max_angle"          ? quality.max_angle
+                               : o.field == "edge_ratio"         ? quality.edge_ratio
+                               : o.field == "inverse_mean_ratio" ? quality.inverse_mean_ratio
                                : o.field == "volume"             ? quality.volume
                                                                  : energy_field(mesh, quality, o);
   // Inverted cells stand out in red whatever the field (render counts non-finite values).
