@@ -10,7 +10,7 @@ packages=(
   libeigen3-dev libcli11-dev libfmt-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcairo2-dev libmuparser-dev libpugixml-dev
-  python3 python3-numpy python3-meshio gmsh   # tests: independent reader, example meshes
+  python3 python3-numpy python3-meshio python3-pytest gmsh  # tests: reader, runner, meshes
 )
 missing=()
 for p in "${packages[@]}"; do

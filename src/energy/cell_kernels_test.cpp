@@ -12,6 +12,7 @@ namespace {
 
 using testing::fd_gradient;
 using testing::fd_jacobian;
+using testing::relative_error;
 
 constexpr double kFdTolerance = 1e-6;  // relative error allowed against central differences
 
@@ -51,11 +52,6 @@ Coordinates<Type> perturbed_cell(double volume, std::mt19937& rng) {
   const double edge = std::pow(volume, 1.0 / dim);
   for (int i = 0; i < x.size(); ++i) x.data()[i] += 0.15 * edge * u(rng);
   return x;
-}
-
-template <typename A, typename B>
-double relative_error(const A& analytic, const B& fd) {
-  return (analytic - fd).norm() / analytic.norm();
 }
 
 template <typename T>

@@ -52,20 +52,10 @@ struct Problem {
   }
 };
 
-// Moves each interior vertex by up to `amplitude` in each coordinate.
-void perturb_interior(MeshData& mesh, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-amplitude, amplitude);
-  const std::vector<std::uint8_t> boundary = boundary_vertices(mesh);
-  for (std::int64_t v = 0; v < mesh.num_vertices(); ++v)
-    if (!boundary[v])
-      for (int d = 0; d < mesh.dim; ++d) mesh.coords[v * mesh.dim + d] += u(rng);
-}
-
 // A box [-1,1]^d with n cells per direction, interior vertices moved by up to 20% of h.
 MeshData perturbed_box(CellType type, int n, unsigned seed) {
   MeshData mesh = box(type, n);
-  perturb_interior(mesh, 0.2 * 2.0 / n, seed);
+  jitter(mesh, 2.0 / n, 0.2, seed);
   return mesh;
 }
 

@@ -11,6 +11,7 @@ namespace {
 
 using testing::fd_gradient;
 using testing::fd_jacobian;
+using testing::relative_error;
 
 template <CellType Type>
 using Coordinates = typename UntanglingKernel<Type>::Coordinates;
@@ -46,10 +47,6 @@ Coordinates<Type> shaken_cell(double amplitude, std::mt19937& rng) {
   }
   for (int i = 0; i < x.size(); ++i) x.data()[i] += u(rng);
   return x;
-}
-
-double relative_error(const auto& analytic, const auto& fd) {
-  return (analytic - fd).norm() / analytic.norm();
 }
 
 // Valid, tangled and mirrored cells, a wide and a narrow ε.

@@ -1,10 +1,8 @@
 // Under `mpiexec -n 2`: a distributed mesh is the serial mesh, split.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <map>
 #include <numeric>
-#include <sstream>
 
 #include "core/testing/test_data.hpp"
 #include "mesh/mesh_io.hpp"
@@ -15,6 +13,7 @@ namespace neomesh {
 namespace {
 
 using testing::data_path;
+using testing::read_file;
 
 using Point = std::array<double, 3>;
 
@@ -30,12 +29,6 @@ std::map<Point, int> incidence(const MeshView& view) {
   for (const CellBlock& block : view.blocks)
     for (PetscInt v : block.vertices) ++count[point(view, v)];
   return count;
-}
-
-std::string read_file(const std::filesystem::path& path) {
-  std::ostringstream s;
-  s << std::ifstream(path).rdbuf();
-  return s.str();
 }
 
 class Distributed : public ::testing::TestWithParam<const char*> {};
@@ -110,12 +103,7 @@ TEST_P(Distributed, CoordinatesRoundTripIncludingGhosts) {
 }
 
 TEST_P(Distributed, WritesTheSameFileAsSerial) {
-  const auto dir = std::filesystem::temp_directory_path() / "neomesh-mpitest-write";
-  if (mpi_rank() == 0) {
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-  }
-  MPI_Barrier(PETSC_COMM_WORLD);
+  const auto dir = testing::shared_scratch_dir("Distributed.WritesTheSameFileAsSerial");
   PlexMesh mesh = PlexMesh::load(data_path(GetParam()));
   MeshFields fields;
   fields.cell.push_back({"input_cell", {}, 1});

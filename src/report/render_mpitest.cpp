@@ -1,6 +1,4 @@
 // Under `mpiexec -n 2`: a distributed mesh draws exactly like the same mesh on one process.
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -12,11 +10,6 @@
 
 namespace neomesh {
 namespace {
-
-std::string contents(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // A value per cell that depends only on its input number, so both pictures agree.
 double value_of(PetscInt input_cell) {
@@ -32,9 +25,7 @@ TEST(RenderMeshParallel, GathersToTheSerialPicture) {
   std::vector<double> values;
   for (PetscInt c = 0; c < view.num_cells; ++c) values.push_back(value_of(view.global_cell[c]));
 
-  const auto dir = std::filesystem::temp_directory_path() / "neomesh-test-render_parallel";
-  if (rank == 0) std::filesystem::create_directories(dir);
-  MPI_Barrier(PETSC_COMM_WORLD);
+  const auto dir = testing::shared_scratch_dir("render_parallel");
   render_mesh(mesh, values, dir / "parallel.png");
   if (rank != 0) return;
 
@@ -42,7 +33,7 @@ TEST(RenderMeshParallel, GathersToTheSerialPicture) {
   std::vector<double> serial_values;
   for (PetscInt c = 0; c < serial.num_cells; ++c) serial_values.push_back(value_of(c));
   render_mesh(serial, serial.coords, serial_values, dir / "serial.png");
-  EXPECT_EQ(contents(dir / "parallel.png"), contents(dir / "serial.png"));
+  EXPECT_EQ(testing::read_file(dir / "parallel.png"), testing::read_file(dir / "serial.png"));
 }
 
 }  // namespace

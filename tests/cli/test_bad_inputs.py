@@ -12,14 +12,12 @@ import os
 import random
 import shutil
 import subprocess
-import sys
 import tempfile
 
-NEOMESH = os.path.abspath(os.environ["NEOMESH"]) if "NEOMESH" in os.environ else "neomesh"
-MPIEXEC = os.environ.get("NEOMESH_MPIEXEC")
-SOURCE = os.environ.get("NEOMESH_SOURCE",
-                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-DATA = os.path.abspath(os.path.join(SOURCE, "tests", "data"))
+import pytest
+
+from conftest import DATA, MPIEXEC, NEOMESH, mpiexec, needs_mpi
+
 GOOD = os.path.join(DATA, "square_tri_v41.msh")  # 26 triangles
 CUBE = os.path.join(DATA, "cube_tet_v41.msh")
 LONG = "x" * 30000
@@ -219,8 +217,7 @@ def run_case(case, base, ranks=1):
     prepare(directory)
     before = listing(directory)
     args = [a.replace("{data}", DATA) for a in args]
-    launcher = [] if ranks == 1 else [MPIEXEC, "--allow-run-as-root", "--oversubscribe",
-                                      "-n", str(ranks)]
+    launcher = mpiexec(ranks)
     try:
         proc = subprocess.run([*launcher, NEOMESH, *args], cwd=directory, capture_output=True,
                               text=True, timeout=60)
@@ -248,31 +245,29 @@ def run_case(case, base, ranks=1):
     return name, ranks, args, message, problems
 
 
-def main():
+def test_every_mpi_case_is_a_case():
     names = {case[0] for case in CASES}
     assert set(MPI_CASES) <= names, set(MPI_CASES) - names
+
+
+@pytest.fixture(scope="module")
+def results(module_tmp):
+    """Every run's (message, problems), by (name, ranks)."""
     runs = [(case, 1) for case in CASES]
     if MPIEXEC:
         runs += [(case, 2) for case in CASES if case[0] in MPI_CASES]
-    else:
-        print("NEOMESH_MPIEXEC is not set: the 2-rank cases are skipped")
-    with tempfile.TemporaryDirectory() as base:
-        # Each run mostly waits for MPI start-up: run the cases side by side.
-        with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
-            results = list(pool.map(lambda run: run_case(run[0], base, run[1]), runs))
-    failed = 0
-    for name, ranks, args, message, problems in results:
-        status = "FAIL" if problems else "ok  "
-        label = name if ranks == 1 else f"{name} (-n {ranks})"
-        print(f"{status} {label:36} {message[:160]}")
-        for p in problems:
-            shown = " ".join(a if len(a) < 100 else a[:20] + "..." for a in args)
-            print(f"       {p}  (neomesh {shown})")
-        failed += bool(problems)
-    if failed:
-        sys.exit(f"{failed} of {len(runs)} bad-input runs failed")
-    print(f"all {len(runs)} bad-input runs give one clear error line and no output")
+    # Each run mostly waits for MPI start-up: run the cases side by side.
+    with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
+        found = list(pool.map(lambda run: run_case(run[0], module_tmp, run[1]), runs))
+    return {(name, ranks): (args, message, problems)
+            for name, ranks, args, message, problems in found}
 
 
-if __name__ == "__main__":
-    main()
+@pytest.mark.parametrize("name, ranks", [
+    *(pytest.param(case[0], 1, id=case[0]) for case in CASES),
+    *(pytest.param(name, 2, id=f"{name} (-n 2)", marks=needs_mpi) for name in MPI_CASES),
+])
+def test_bad_input(results, name, ranks):
+    args, message, problems = results[(name, ranks)]
+    shown = " ".join(a if len(a) < 100 else a[:20] + "..." for a in args)
+    assert not problems, f"neomesh {shown}: {message[:160]}\n" + "\n".join(problems)

@@ -9,14 +9,10 @@ import os
 import re
 import shlex
 import shutil
-import subprocess
-import sys
-import tempfile
 
-NEOMESH = os.path.abspath(os.environ["NEOMESH"]) if "NEOMESH" in os.environ else "neomesh"
-SOURCE = os.environ.get("NEOMESH_SOURCE",
-                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-EXAMPLES = os.path.join(SOURCE, "examples")
+import pytest
+
+from conftest import EXAMPLES, NEOMESH, run
 
 
 def blocks():
@@ -26,17 +22,9 @@ def blocks():
             for block in re.findall(r"```sh\n(.*?)```", text, re.S)]
 
 
-def run(args, cwd):
-    proc = subprocess.run(args, cwd=cwd, capture_output=True, text=True, timeout=120)
-    if proc.returncode != 0:
-        raise RuntimeError(f"{' '.join(args)}: exit {proc.returncode}\n{proc.stdout}\n"
-                           f"{proc.stderr}")
-    return proc.stdout
-
-
 def quality(path, cwd):
     report = path + ".quality.json"
-    run([NEOMESH, "quality", path, "--json", report], cwd)
+    run([NEOMESH, "quality", path, "--json", report], cwd, timeout=120)
     with open(os.path.join(cwd, report)) as f:
         return json.load(f)
 
@@ -54,12 +42,11 @@ def run_block(lines, cwd):
         args = shlex.split(line)
         if args[0] == "neomesh":
             args[0] = NEOMESH
-        elif args[0] != "gmsh":
-            raise RuntimeError(f"unexpected command in examples/README.md: {line}")
-        stdout = run(args, cwd)
+        else:
+            assert args[0] == "gmsh", f"unexpected command in examples/README.md: {line}"
+        stdout = run(args, cwd, timeout=120).stdout
         out = output_of(args)
-        if out and not os.path.isfile(os.path.join(cwd, out)):
-            raise RuntimeError(f"{line}: {out} was not written")
+        assert not out or os.path.isfile(os.path.join(cwd, out)), f"{line}: {out} was not written"
         if args[0] == NEOMESH and args[1] in ("smooth", "adapt") and out.endswith(".msh"):
             before, after = quality(args[2], cwd), quality(out, cwd)
             sj = (before["metrics"]["scaled_jacobian"], after["metrics"]["scaled_jacobian"])
@@ -67,33 +54,39 @@ def run_block(lines, cwd):
             notes.append(f"{args[1]} {args[2]}: {after['cells']['total']} cells, min scaled "
                          f"Jacobian {sj[0]['min']:.3f} -> {sj[1]['min']:.3f}, mean "
                          f"{sj[0]['mean']:.3f} -> {sj[1]['mean']:.3f}, {iterations} iterations")
-            if after["inverted"] or after["degenerate"]:
-                raise RuntimeError(f"{line}: the output has inverted or degenerate cells")
-            if args[1] == "smooth" and sj[1]["min"] < sj[0]["min"] - 1e-9:
-                raise RuntimeError(f"{line}: smoothing lowered the minimum scaled Jacobian "
-                                   f"({sj[0]['min']} -> {sj[1]['min']})")
+            assert not after["inverted"] and not after["degenerate"], \
+                f"{line}: the output has inverted or degenerate cells"
+            assert args[1] != "smooth" or sj[1]["min"] >= sj[0]["min"] - 1e-9, \
+                (f"{line}: smoothing lowered the minimum scaled Jacobian "
+                 f"({sj[0]['min']} -> {sj[1]['min']})")
     return notes
 
 
-def main():
-    if shutil.which("gmsh") is None:
-        sys.exit("gmsh is not installed (scripts/setup.sh installs it)")
-    with tempfile.TemporaryDirectory() as tmp:
-        cwd = os.path.join(tmp, "examples")
-        shutil.copytree(EXAMPLES, cwd)
-        with concurrent.futures.ThreadPoolExecutor(max_workers=3) as pool:
-            futures = [pool.submit(run_block, b, cwd) for b in blocks()]
-            failures = []
-            for f in futures:
-                try:
-                    for note in f.result():
-                        print(note)
-                except RuntimeError as e:
-                    failures.append(str(e))
-    if failures:
-        sys.exit("\n".join(failures))
-    print(f"all {sum(len(b) for b in blocks())} example commands ran")
+BLOCKS = blocks()
 
 
-if __name__ == "__main__":
-    main()
+def test_gmsh_is_installed():
+    assert shutil.which("gmsh"), "gmsh is not installed (scripts/setup.sh installs it)"
+
+
+@pytest.fixture(scope="module")
+def ran(module_tmp):
+    """The runs of the blocks, side by side in one scratch copy of examples/ (a block's
+    commands run in order): one future a block, whose result is the block's notes."""
+    cwd = os.path.join(module_tmp, "examples")
+    shutil.copytree(EXAMPLES, cwd)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=3) as pool:
+        futures = [pool.submit(run_block, b, cwd) for b in BLOCKS]
+        concurrent.futures.wait(futures)
+    return futures
+
+
+@pytest.mark.parametrize("index", range(len(BLOCKS)),
+                         ids=[f"{i}: {b[0][:50]}" for i, b in enumerate(BLOCKS)])
+def test_example_block(ran, index):
+    for note in ran[index].result():
+        print(note)
+
+
+def test_there_are_examples():
+    assert sum(len(b) for b in BLOCKS) > 0, "examples/README.md has no ```sh block"

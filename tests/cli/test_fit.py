@@ -5,25 +5,17 @@ required: fitted quads and hexahedra where the interface turns cannot reach it
 (docs/adaptivity.md). tests/cli/test_fit_in_time.py: the same with --time."""
 import os
 import sys
-import tempfile
 
-SOURCE = os.environ.get("NEOMESH_SOURCE",
-                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+import pytest
+
+from conftest import NEOMESH, SOURCE
+
 sys.path.insert(0, os.path.join(SOURCE, "bench"))
 import adapt_moving  # noqa: E402
 
-NEOMESH = os.path.abspath(os.environ["NEOMESH"]) if "NEOMESH" in os.environ else "neomesh"
 
-
-def main():
-    failures = []
-    with tempfile.TemporaryDirectory() as tmp:
-        for cell, cells in [("quad", 16), ("tri", 16), ("hex", 6)]:
-            figures, found = adapt_moving.run_fit(NEOMESH, cell, cells, tmp)
-            print(f"fit {cell} {cells}: {figures}")
-            failures += found
-    adapt_moving.report(failures, lambda key: key == "scaled_jacobian")
-
-
-if __name__ == "__main__":
-    main()
+@pytest.mark.parametrize("cell, cells", [("quad", 16), ("tri", 16), ("hex", 6)])
+def test_fit(tmp, cell, cells):
+    figures, failures = adapt_moving.run_fit(NEOMESH, cell, cells, tmp)
+    print(f"fit {cell} {cells}: {figures}")
+    adapt_moving.report(failures, lambda key: key == "scaled_jacobian")  # exits on a failure

@@ -1,11 +1,10 @@
 """`neomesh --help`, `--version` and every subcommand's --help: exit 0, every option group
 shown, every option with a one-line meaning, and a default where the option has one."""
-import os
 import re
-import subprocess
-import sys
 
-NEOMESH = os.path.abspath(os.environ["NEOMESH"]) if "NEOMESH" in os.environ else "neomesh"
+import pytest
+
+from conftest import neomesh
 
 # Subcommand -> option groups its help must show.
 GROUPS = {
@@ -27,48 +26,41 @@ DEFAULTS = {
 }
 
 
-def run(*args):
-    proc = subprocess.run([NEOMESH, *args], capture_output=True, text=True, timeout=60)
-    if proc.returncode != 0:
-        sys.exit(f"neomesh {' '.join(args)}: exit {proc.returncode}\n{proc.stderr}")
-    return proc.stdout
+def help_of(*args):
+    return neomesh(*args, timeout=60).stdout
 
 
-def check(condition, message):
-    if not condition:
-        sys.exit(message)
+def test_version():
+    version = help_of("--version")
+    assert re.fullmatch(r"neomesh \d+\.\d+\.\d+\n", version), f"--version: {version!r}"
 
 
-def main():
-    version = run("--version")
-    check(re.fullmatch(r"neomesh \d+\.\d+\.\d+\n", version), f"--version: {version!r}")
-
-    top = run("--help")
+def test_top_level_help():
+    top = help_of("--help")
     for word in ["Usage: neomesh", "--quiet", "--verbose", "--config", "--version",
                  "-hess_ksp_monitor", "[smooth]", "mpiexec", *GROUPS]:
-        check(word in top, f"neomesh --help does not mention {word}:\n{top}")
-
-    for command, groups in GROUPS.items():
-        text = run(command, "--help")
-        check(f"Usage: neomesh {command}" in text, f"{command} --help: no usage line:\n{text}")
-        for group in groups:
-            check(group in text, f"{command} --help does not show the group {group}:\n{text}")
-        # Every option has a meaning: its line, or the next one, carries text.
-        lines = text.splitlines()
-        for i, line in enumerate(lines):
-            match = re.match(r"\s+(-\S+)", line)
-            if not match:
-                continue
-            rest = re.sub(r"^\s+\S+(\s+[A-Z:{][^ ]*)*(\s+(REQUIRED|Excludes: \S+))*", "", line)
-            meaning = rest.strip() or (lines[i + 1].strip() if i + 1 < len(lines) else "")
-            check(meaning, f"{command} --help: {match.group(1)} has no meaning:\n{line}")
-        for option in DEFAULTS.get(command, []):
-            check(re.search(rf"{re.escape(option)} \S+=\S+", text),
-                  f"{command} --help: {option} shows no default:\n{text}")
-    # -h is the short form everywhere.
-    check("Usage: neomesh smooth" in run("smooth", "-h"), "smooth -h")
-    print("help and version OK")
+        assert word in top, f"neomesh --help does not mention {word}:\n{top}"
 
 
-if __name__ == "__main__":
-    main()
+@pytest.mark.parametrize("command", GROUPS)
+def test_subcommand_help(command):
+    text = help_of(command, "--help")
+    assert f"Usage: neomesh {command}" in text, f"{command} --help: no usage line:\n{text}"
+    for group in GROUPS[command]:
+        assert group in text, f"{command} --help does not show the group {group}:\n{text}"
+    # Every option has a meaning: its line, or the next one, carries text.
+    lines = text.splitlines()
+    for i, line in enumerate(lines):
+        match = re.match(r"\s+(-\S+)", line)
+        if not match:
+            continue
+        rest = re.sub(r"^\s+\S+(\s+[A-Z:{][^ ]*)*(\s+(REQUIRED|Excludes: \S+))*", "", line)
+        meaning = rest.strip() or (lines[i + 1].strip() if i + 1 < len(lines) else "")
+        assert meaning, f"{command} --help: {match.group(1)} has no meaning:\n{line}"
+    for option in DEFAULTS.get(command, []):
+        assert re.search(rf"{re.escape(option)} \S+=\S+", text), \
+            f"{command} --help: {option} shows no default:\n{text}"
+
+
+def test_h_is_the_short_form():
+    assert "Usage: neomesh smooth" in help_of("smooth", "-h"), "smooth -h"

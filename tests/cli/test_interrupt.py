@@ -13,18 +13,13 @@ serially and, with NEOMESH_MPIEXEC, under `mpiexec -n 2` (the signal goes to mpi
 """
 import os
 import signal
+import stat
 import subprocess
-import sys
-import tempfile
 import time
 
-NEOMESH = os.path.abspath(os.environ["NEOMESH"]) if "NEOMESH" in os.environ else "neomesh"
-MPIEXEC = os.environ.get("NEOMESH_MPIEXEC")
+import pytest
 
-
-def check(condition, message):
-    if not condition:
-        sys.exit(message)
+from conftest import NEOMESH, RANKS, mpiexec, neomesh
 
 
 def rank_zero(launcher_pid):
@@ -42,7 +37,7 @@ def rank_zero(launcher_pid):
         if parent == launcher_pid and (b"OMPI_COMM_WORLD_RANK=0" in environment
                                        or b"PMI_RANK=0" in environment):
             return int(entry)
-    sys.exit(f"no rank 0 among the children of mpiexec (pid {launcher_pid})")
+    pytest.fail(f"no rank 0 among the children of mpiexec (pid {launcher_pid})")
 
 
 def wait_until_blocked_on_fifo(pid, timeout=60.0):
@@ -58,7 +53,7 @@ def wait_until_blocked_on_fifo(pid, timeout=60.0):
         except OSError:
             return  # no /proc: fall back on the time it already took
         time.sleep(0.05)
-    sys.exit(f"neomesh (pid {pid}) did not reach the write within {timeout:.0f} s")
+    pytest.fail(f"neomesh (pid {pid}) did not reach the write within {timeout:.0f} s")
 
 
 def interrupt_while_writing(tmp, mesh, blocked, ranks):
@@ -69,9 +64,7 @@ def interrupt_while_writing(tmp, mesh, blocked, ranks):
     # Open MPI's mpiexec forwards the signal, then SIGKILLs the ranks 1 s later; under CI's
     # load that came once before rank 0 had printed its message (stderr empty). 10 s makes the
     # test check neomesh's handler rather than the machine's load.
-    launcher = [] if ranks == 1 else [MPIEXEC, "--allow-run-as-root", "--oversubscribe",
-                                      "--mca", "odls_base_sigkill_timeout", "10",
-                                      "-n", str(ranks)]
+    launcher = mpiexec(ranks, "--mca", "odls_base_sigkill_timeout", "10")
     proc = subprocess.Popen(
         [*launcher, NEOMESH, "smooth", mesh, "-o", out, "--no-table", "--no-practical",
          "--tol", "0", "--rtol", "0", "--max-iter", "3", "--report", report],
@@ -89,47 +82,52 @@ def interrupt_while_writing(tmp, mesh, blocked, ranks):
             if line.startswith("stopped after"):
                 break
         wait_until_blocked_on_fifo(writer)
-        check(proc.poll() is None, f"neomesh ended before the interrupt: {proc.returncode}")
+        assert proc.poll() is None, f"neomesh ended before the interrupt: {proc.returncode}"
+        # There is a temporary file to remove: neomesh's clean-up, not the test, must do it.
+        assert stat.S_ISFIFO(os.stat(fifo).st_mode), f"{fifo} is not the test's FIFO"
         proc.send_signal(signal.SIGINT)
         _, err = proc.communicate(timeout=30)
     except subprocess.TimeoutExpired:
-        proc.kill()
-        sys.exit("neomesh did not stop within 30 s of SIGINT")
-    check(proc.returncode != 0, f"exit code 0 after SIGINT; stderr {err!r}")
-    check(not os.path.exists(fifo), f"the temporary file was not removed: {fifo}")
+        pytest.fail("neomesh did not stop within 30 s of SIGINT")
+    finally:
+        if proc.poll() is None:  # a failed check: no neomesh left blocked on the FIFO
+            proc.kill()
+            proc.communicate()
+    assert proc.returncode != 0, f"exit code 0 after SIGINT; stderr {err!r}"
+    assert not os.path.exists(fifo), f"the temporary file was not removed: {fifo}"
     return err
 
 
-def main():
-    runs = [1] + ([2] if MPIEXEC else [])
-    for ranks in runs:
-        with tempfile.TemporaryDirectory() as tmp:
-            mesh = os.path.join(tmp, "random.msh")
-            subprocess.run([NEOMESH, "generate", "square-random", "--level", "6", "-o", mesh],
-                           check=True, capture_output=True, timeout=60)
-            out = os.path.join(tmp, "out.vtu")
-            with open(out, "w") as f:
-                f.write("the old output\n")
-
-            err = interrupt_while_writing(tmp, mesh, "out.vtu", ranks)
-            check("interrupted; no output file was written" in err,
-                  f"{ranks} rank(s), interrupted in the mesh write: stderr {err!r}")
-            with open(out) as f:
-                check(f.read() == "the old output\n", "the old output file was changed")
-            check(sorted(os.listdir(tmp)) == ["out.vtu", "random.msh"],
-                  f"files left behind: {sorted(os.listdir(tmp))}")
-
-            err = interrupt_while_writing(tmp, mesh, "report.json", ranks)
-            check("interrupted; written completely before the interrupt: " in err
-                  and "out.vtu; no other output file was written" in err,
-                  f"{ranks} rank(s), interrupted in the report write: stderr {err!r}")
-            with open(out) as f:
-                check("<VTKFile" in f.read(), "out.vtu is not the new output")
-            check(sorted(os.listdir(tmp)) == ["out.vtu", "random.msh"],
-                  f"files left behind: {sorted(os.listdir(tmp))}")
-        print(f"Ctrl-C on {ranks} rank(s): true message, old output kept or new one complete, "
-              "temporary file removed")
+@pytest.fixture
+def inputs(tmp):
+    """A mesh to smooth, and an existing out.vtu holding "the old output\n"."""
+    neomesh("generate", "square-random", "--level", "6", "-o", os.path.join(tmp, "random.msh"),
+            timeout=60)
+    with open(os.path.join(tmp, "out.vtu"), "w") as f:
+        f.write("the old output\n")
+    return tmp
 
 
-if __name__ == "__main__":
-    main()
+@pytest.mark.parametrize("ranks", RANKS)
+def test_interrupted_in_the_mesh_write(inputs, ranks):
+    tmp = inputs
+    err = interrupt_while_writing(tmp, os.path.join(tmp, "random.msh"), "out.vtu", ranks)
+    assert "interrupted; no output file was written" in err, \
+        f"{ranks} rank(s), interrupted in the mesh write: stderr {err!r}"
+    with open(os.path.join(tmp, "out.vtu")) as f:
+        assert f.read() == "the old output\n", "the old output file was changed"
+    assert sorted(os.listdir(tmp)) == ["out.vtu", "random.msh"], \
+        f"files left behind: {sorted(os.listdir(tmp))}"
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+def test_interrupted_in_the_report_write(inputs, ranks):
+    tmp = inputs
+    err = interrupt_while_writing(tmp, os.path.join(tmp, "random.msh"), "report.json", ranks)
+    assert "interrupted; written completely before the interrupt: " in err \
+        and "out.vtu; no other output file was written" in err, \
+        f"{ranks} rank(s), interrupted in the report write: stderr {err!r}"
+    with open(os.path.join(tmp, "out.vtu")) as f:
+        assert "<VTKFile" in f.read(), "out.vtu is not the new output"
+    assert sorted(os.listdir(tmp)) == ["out.vtu", "random.msh"], \
+        f"files left behind: {sorted(os.listdir(tmp))}"

@@ -5,14 +5,11 @@ NEOMESH=path/to/neomesh."""
 import json
 import math
 import os
-import subprocess
-import sys
-import tempfile
 
-NEOMESH = os.environ.get("NEOMESH", "neomesh")
-SOURCE = os.environ.get("NEOMESH_SOURCE",
-                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-DATA = os.path.join(SOURCE, "tests", "data")
+import pytest
+
+from conftest import DATA, neomesh
+
 PAIRS = [("feat_ring_quad.xml", "feat_ring_quad_mirrored.xml"),
          ("feat_cube_hex_jitter.xml", "feat_cube_hex_jitter_mirrored.xml")]
 
@@ -20,10 +17,7 @@ PAIRS = [("feat_ring_quad.xml", "feat_ring_quad_mirrored.xml"),
 def smooth(name, tmp):
     report = os.path.join(tmp, name + ".json")
     out = os.path.join(tmp, name + ".msh")
-    proc = subprocess.run([NEOMESH, "smooth", os.path.join(DATA, name), "-o", out, "--quiet",
-                           "--report", report], capture_output=True, text=True, timeout=300)
-    if proc.returncode != 0:
-        sys.exit(f"smooth {name}: exit {proc.returncode}\n{proc.stdout}\n{proc.stderr}")
+    neomesh("smooth", os.path.join(DATA, name), "-o", out, "--quiet", "--report", report)
     with open(report) as f:
         return json.load(f)
 
@@ -39,20 +33,11 @@ def differences(a, b, path=""):
     return []
 
 
-def main():
-    with tempfile.TemporaryDirectory() as tmp:
-        for twin, mirrored in PAIRS:
-            a, b = smooth(twin, tmp), smooth(mirrored, tmp)
-            for key in ("quality_before", "quality_after"):
-                diff = differences(a[key], b[key])
-                if diff:
-                    sys.exit(f"{mirrored} vs {twin}, {key}:\n" + "\n".join(diff[:10]))
-            after = a["quality_after"]
-            text = json.dumps(after)
-            if '"inverted": 0' not in text:
-                sys.exit(f"{twin}: inverted cells after smoothing: {text}")
-    print("ok")
-
-
-if __name__ == "__main__":
-    main()
+@pytest.mark.parametrize("twin, mirrored", PAIRS, ids=[m for _, m in PAIRS])
+def test_mirrored_mesh_smooths_as_its_twin(tmp, twin, mirrored):
+    a, b = smooth(twin, tmp), smooth(mirrored, tmp)
+    for key in ("quality_before", "quality_after"):
+        diff = differences(a[key], b[key])
+        assert not diff, f"{mirrored} vs {twin}, {key}:\n" + "\n".join(diff[:10])
+    text = json.dumps(a["quality_after"])
+    assert '"inverted": 0' in text, f"{twin}: inverted cells after smoothing: {text}"

@@ -3,19 +3,12 @@ same number of iterations ±1, and an output file with the input's vertices and 
 .msh writer keeps the input numbering), for a 2D and a 3D case and a tangled 2D case."""
 import json
 import os
-import subprocess
-import sys
-import tempfile
 
-NEOMESH = os.environ.get("NEOMESH", "neomesh")
-MPIEXEC = os.environ.get("NEOMESH_MPIEXEC")
+import pytest
 
+from conftest import neomesh, needs_mpi
 
-def run(cmd):
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
-    if proc.returncode != 0:
-        sys.exit(f"{' '.join(cmd)}: exit {proc.returncode}\nstdout:\n{proc.stdout}\n"
-                 f"stderr:\n{proc.stderr}")
+pytestmark = needs_mpi  # nothing to compare without NEOMESH_MPIEXEC
 
 
 def read_msh(path):
@@ -40,49 +33,39 @@ def read_msh(path):
     return nodes, sorted(cells)
 
 
-def check(condition, message):
-    if not condition:
-        sys.exit(message)
-
-
 def compare(tmp, name, generate, options):
     mesh = os.path.join(tmp, f"{name}.msh")
-    run([NEOMESH, "generate", *generate, "-o", mesh])
+    neomesh("generate", *generate, "-o", mesh, timeout=120)
     results = {}
     for ranks in (1, 2):
         out = os.path.join(tmp, f"{name}-{ranks}.msh")
         report = os.path.join(tmp, f"{name}-{ranks}.json")
-        launcher = [] if ranks == 1 else [MPIEXEC, "--allow-run-as-root", "--oversubscribe",
-                                          "-n", str(ranks)]
-        run([*launcher, NEOMESH, "smooth", mesh, "-o", out, "--report", report, "--quiet",
-             *options])
+        neomesh("smooth", mesh, "-o", out, "--report", report, "--quiet", *options,
+                ranks=ranks, timeout=120)
         with open(report) as f:
             results[ranks] = (read_msh(out), json.load(f))
     (serial, serial_cells), serial_report = results[1]
     (parallel, parallel_cells), parallel_report = results[2]
     _, input_cells = read_msh(mesh)
-    check(serial_cells == input_cells, f"{name}: the serial output changed the cells")
-    check(parallel_cells == input_cells, f"{name}: the 2-rank output changed the cells")
-    check(serial.keys() == parallel.keys(), f"{name}: the outputs have different vertices")
+    assert serial_cells == input_cells, f"{name}: the serial output changed the cells"
+    assert parallel_cells == input_cells, f"{name}: the 2-rank output changed the cells"
+    assert serial.keys() == parallel.keys(), f"{name}: the outputs have different vertices"
     worst = max(abs(a - b) for v in serial for a, b in zip(serial[v], parallel[v]))
-    check(worst <= 1e-8, f"{name}: 2 ranks moved a vertex {worst:.2e} away from the serial run")
+    assert worst <= 1e-8, f"{name}: 2 ranks moved a vertex {worst:.2e} away from the serial run"
     its = [r["result"]["iterations"] for r in (serial_report, parallel_report)]
-    check(abs(its[0] - its[1]) <= 1, f"{name}: {its[0]} iterations serially, {its[1]} on 2 ranks")
-    check(parallel_report["processes"] == 2, f"{name}: the report says {parallel_report}")
+    assert abs(its[0] - its[1]) <= 1, f"{name}: {its[0]} iterations serially, {its[1]} on 2 ranks"
+    assert parallel_report["processes"] == 2, f"{name}: the report says {parallel_report}"
 
 
-def main():
-    if not MPIEXEC:
-        print("NEOMESH_MPIEXEC is not set: nothing to compare")
-        return
-    with tempfile.TemporaryDirectory() as tmp:
-        # Iterate to a tight defect: the practical criterion stops where 1e-8 is not yet met.
-        tight = ["--no-practical", "--tol", "1e-11"]
-        compare(tmp, "square", ["square-midpoint", "--level", "4"], ["--sizes", "uniform", *tight])
-        compare(tmp, "cube", ["cube-midpoint", "--level", "2"], tight)
-        # Untangled first (docs/untangling.md), then smoothed to the same optimum.
-        compare(tmp, "tangled", ["box-quad", "--cells", "16", "--jitter", "0.6"], tight)
+# Iterate to a tight defect: the practical criterion stops where 1e-8 is not yet met.
+TIGHT = ["--no-practical", "--tol", "1e-11"]
 
 
-if __name__ == "__main__":
-    main()
+@pytest.mark.parametrize("name, generate, options", [
+    ("square", ["square-midpoint", "--level", "4"], ["--sizes", "uniform", *TIGHT]),
+    ("cube", ["cube-midpoint", "--level", "2"], TIGHT),
+    # Untangled first (docs/untangling.md), then smoothed to the same optimum.
+    ("tangled", ["box-quad", "--cells", "16", "--jitter", "0.6"], TIGHT),
+], ids=["square", "cube", "tangled"])
+def test_two_ranks_give_the_serial_result(tmp, name, generate, options):
+    compare(tmp, name, generate, options)

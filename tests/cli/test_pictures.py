@@ -2,56 +2,50 @@
 the run's desired volumes, which a mesh file does not keep)."""
 import os
 import struct
-import subprocess
-import sys
-import tempfile
 
-NEOMESH = os.environ.get("NEOMESH", "neomesh")
+import pytest
 
-
-def run(*args, expect=0):
-    proc = subprocess.run([NEOMESH, *args], capture_output=True, text=True, timeout=120)
-    if proc.returncode != expect:
-        sys.exit(f"neomesh {' '.join(args)}: exit {proc.returncode}, expected {expect}\n"
-                 f"{proc.stdout}\n{proc.stderr}")
-    return proc
+from conftest import neomesh
 
 
 def png_size(path):
     with open(path, "rb") as f:
         header = f.read(24)
-    if header[:8] != b"\x89PNG\r\n\x1a\n":
-        sys.exit(f"{path} is not a PNG")
+    assert header[:8] == b"\x89PNG\r\n\x1a\n", f"{path} is not a PNG"
     return struct.unpack(">II", header[16:24])
 
 
-with tempfile.TemporaryDirectory() as tmp:
-    box = os.path.join(tmp, "box.msh")
-    run("generate", "box-quad", "--level", "4", "-o", box)
-    before, after = os.path.join(tmp, "before.png"), os.path.join(tmp, "after.svg")
-    run("adapt", box, "-o", os.path.join(tmp, "a.msh"), "--circle", "0,0,0.7", "-q",
-        "--picture-before", before, "--picture", after)
-    width, height = png_size(before)
-    if width != 1200 or height < 600:
-        sys.exit(f"unexpected picture size {width}x{height}")
-    with open(after) as f:
-        if "<svg" not in f.read(400):
-            sys.exit("the SVG picture has no <svg> element")
+@pytest.fixture(scope="module")
+def box(module_tmp):
+    box = os.path.join(module_tmp, "box.msh")
+    neomesh("generate", "box-quad", "--level", "4", "-o", box, timeout=120)
+    return box
 
+
+def test_adapt_pictures_before_and_after(box, tmp):
+    before, after = os.path.join(tmp, "before.png"), os.path.join(tmp, "after.svg")
+    neomesh("adapt", box, "-o", os.path.join(tmp, "a.msh"), "--circle", "0,0,0.7", "-q",
+            "--picture-before", before, "--picture", after, timeout=120)
+    width, height = png_size(before)
+    assert width == 1200 and height >= 600, f"unexpected picture size {width}x{height}"
+    with open(after) as f:
+        assert "<svg" in f.read(400), "the SVG picture has no <svg> element"
+
+
+def test_smooth_picture_of_the_energy(box, tmp):
     smoothed = os.path.join(tmp, "s.png")
-    run("smooth", box, "-o", os.path.join(tmp, "s.msh"), "-q", "--picture", smoothed,
-        "--picture-field", "energy")
+    neomesh("smooth", box, "-o", os.path.join(tmp, "s.msh"), "-q", "--picture", smoothed,
+            "--picture-field", "energy", timeout=120)
     png_size(smoothed)
 
-    # A field that does not exist, and an unknown picture format: errors before the run,
-    # and no output at all.
+
+# A field that does not exist, and an unknown picture format: errors before the run,
+# and no output at all.
+@pytest.mark.parametrize("option, word", [(["--picture-field", "beauty"], "picture-field"),
+                                          (["--picture", "p.jpg"], ".jpg")],
+                         ids=["unknown field", "unknown format"])
+def test_bad_picture_option(box, tmp, option, word):
     out = os.path.join(tmp, "never.msh")
-    proc = subprocess.run([NEOMESH, "smooth", box, "-o", out, "--picture-field", "beauty"],
-                          capture_output=True, text=True)
-    if proc.returncode == 0 or "picture-field" not in proc.stderr or os.path.exists(out):
-        sys.exit(f"bad --picture-field was accepted: {proc.returncode} {proc.stderr}")
-    proc = subprocess.run([NEOMESH, "smooth", box, "-o", out, "--picture", "p.jpg"],
-                          capture_output=True, text=True)
-    if proc.returncode == 0 or ".jpg" not in proc.stderr or os.path.exists(out):
-        sys.exit(f"bad --picture format was accepted: {proc.returncode} {proc.stderr}")
-print("1 passed, 0 failed")
+    proc = neomesh("smooth", box, "-o", out, *option, cwd=tmp, expect=None)
+    assert proc.returncode != 0 and word in proc.stderr and not os.path.exists(out), \
+        f"bad {option[0]} was accepted: {proc.returncode} {proc.stderr}"

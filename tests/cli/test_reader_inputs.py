@@ -6,24 +6,21 @@ NEOMESH=path/to/neomesh (NEOMESH_MPIEXEC for the 2-rank cases)."""
 import concurrent.futures
 import os
 import subprocess
-import sys
-import tempfile
 
-NEOMESH = os.path.abspath(os.environ["NEOMESH"]) if "NEOMESH" in os.environ else "neomesh"
-SOURCE = os.environ.get("NEOMESH_SOURCE",
-                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-REGRESSIONS = os.path.abspath(os.path.join(SOURCE, "tests", "data", "fuzz-regressions"))
+import pytest
+
+from conftest import DATA, MPIEXEC, NEOMESH, mpiexec, needs_mpi
+
+REGRESSIONS = os.path.join(DATA, "fuzz-regressions")
 MPI_CASES = ["nodes_twice_second_smaller.msh", "bin_v41_ends_after_entities.msh",
              "node_tag_wraps_at_2pow32.msh", "feat_deep_nesting.xml", "fifo.msh"]
 RAW = ["stoi", "bad_alloc", "max_size()", "basic_string", "std::", "terminate called",
        "MPI_ABORT", "Sanitizer", "Segmentation"]
 
 
-def run(path, directory, ranks):
-    command = [NEOMESH, "convert", path, "-o", os.path.join(directory, "out.vtu")]
-    if ranks > 1:
-        command = [os.environ["NEOMESH_MPIEXEC"], "--allow-run-as-root", "--oversubscribe",
-                   "-n", str(ranks)] + command
+def run_case(path, directory, ranks):
+    command = [*mpiexec(ranks), NEOMESH, "convert", path, "-o",
+               os.path.join(directory, "out.vtu")]
     try:
         proc = subprocess.run(command, capture_output=True, text=True, timeout=60,
                               cwd=directory)
@@ -42,28 +39,38 @@ def run(path, directory, ranks):
     return [f"{path} ({ranks} ranks): {e}\n{proc.stderr[:2000]}" for e in errors]
 
 
-def main():
-    with tempfile.TemporaryDirectory() as tmp:
-        fifo = os.path.join(tmp, "fifo.msh")
-        os.mkfifo(fifo)  # nobody writes: opening it for reading would block
-        inputs = sorted(os.path.join(REGRESSIONS, f) for f in os.listdir(REGRESSIONS)
-                        if f.endswith((".msh", ".xml"))) + [fifo, "/dev/zero"]
-        cases = [(path, 1) for path in inputs]
-        if os.environ.get("NEOMESH_MPIEXEC"):
-            cases += [(path, 2) for path in inputs if os.path.basename(path) in MPI_CASES]
-        failures = []
-        with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
-            jobs = []
-            for i, (path, ranks) in enumerate(cases):
-                directory = os.path.join(tmp, f"case{i}")
-                os.mkdir(directory)
-                jobs.append(pool.submit(run, path, directory, ranks))
-            for job in jobs:
-                failures += job.result()
-        if failures:
-            sys.exit(f"{len(failures)} failures:\n" + "\n".join(failures))
-        print(f"{len(cases)} cases ok")
+# The inputs: the regression files, a FIFO (made in the test's directory) and /dev/zero.
+INPUTS = sorted(os.path.join(REGRESSIONS, f) for f in os.listdir(REGRESSIONS)
+                if f.endswith((".msh", ".xml"))) + ["{tmp}/fifo.msh", "/dev/zero"]
+CASES = [pytest.param(path, 1, id=os.path.basename(path)) for path in INPUTS] + \
+        [pytest.param(path, 2, id=f"{os.path.basename(path)} (-n 2)", marks=needs_mpi)
+         for path in INPUTS if os.path.basename(path) in MPI_CASES]
 
 
-if __name__ == "__main__":
-    main()
+def test_every_mpi_case_is_an_input():
+    assert set(MPI_CASES) <= {os.path.basename(path) for path in INPUTS}
+
+
+@pytest.fixture(scope="module")
+def failures(module_tmp):
+    """Each case's failures, by (input, ranks): the cases run two at a time, each in a
+    directory of its own."""
+    fifo = os.path.join(module_tmp, "fifo.msh")
+    os.mkfifo(fifo)  # nobody writes: opening it for reading would block
+    cases = [(path, 1) for path in INPUTS]
+    if MPIEXEC:
+        cases += [(path, 2) for path in INPUTS if os.path.basename(path) in MPI_CASES]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+        jobs = {}
+        for i, (path, ranks) in enumerate(cases):
+            directory = os.path.join(module_tmp, f"case{i}")
+            os.mkdir(directory)
+            jobs[(path, ranks)] = pool.submit(run_case, path.format(tmp=module_tmp), directory,
+                                              ranks)
+        return {case: job.result() for case, job in jobs.items()}
+
+
+@pytest.mark.parametrize("path, ranks", CASES)
+def test_one_error_line_and_nothing_written(failures, path, ranks):
+    found = failures[(path, ranks)]
+    assert not found, "\n".join(found)

@@ -10,41 +10,20 @@ Prints the figures. Needs gmsh (scripts/setup.sh installs it)."""
 import json
 import math
 import os
-import subprocess
-import sys
-import tempfile
 
-import meshio
+import pytest
 
-NEOMESH = os.path.abspath(os.environ["NEOMESH"]) if "NEOMESH" in os.environ else "neomesh"
-SOURCE = os.environ.get("NEOMESH_SOURCE",
-                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-MPIEXEC = os.environ.get("NEOMESH_MPIEXEC")
-EXAMPLES = os.path.join(SOURCE, "examples")
-DATA = os.path.join(SOURCE, "tests", "data")
+from conftest import DATA, EXAMPLES, NEOMESH, expect_one_error_line, mpiexec, needs_mpi, \
+    read_mesh, run
 
 HOLES = [(1.0, 1.0, 0.4), (2.4, 0.7, 0.3), (3.2, 1.4, 0.35)]  # examples/plate_with_holes.geo
 HOLES_LEVEL_SET = "levelset:min(min({}, {}), {})".format(
     *(f"sqrt((x-{cx})^2+(y-{cy})^2)-{r}" for cx, cy, r in HOLES))
-failures = []
-
-
-def check(condition, message):
-    print(("ok   " if condition else "FAIL ") + message)
-    if not condition:
-        failures.append(message)
-
-
-def run(args, cwd, expect_ok=True):
-    proc = subprocess.run(args, cwd=cwd, capture_output=True, text=True, timeout=300)
-    if expect_ok and proc.returncode != 0:
-        sys.exit(f"{' '.join(args)}: exit {proc.returncode}\n{proc.stdout}\n{proc.stderr}")
-    return proc
 
 
 def read_msh(path):
     """Vertex coordinates by position (neomesh writes the input's vertices in input order)."""
-    return dict(enumerate(tuple(float(v) for v in p) for p in meshio.read(path).points))
+    return dict(enumerate(tuple(float(v) for v in p) for p in read_mesh(path).points))
 
 
 def smooth(cwd, mesh, out, *options):
@@ -77,11 +56,18 @@ def hole_vertices(nodes, holes, dim):
     return out
 
 
-def plate(tmp, quads):
-    kind = "quads" if quads else "triangles"
+def plate_mesh(tmp, kind):
+    """Gmsh's mesh of examples/plate_with_holes.geo in quads or triangles, in `tmp`."""
     mesh = os.path.join(tmp, f"plate-{kind}.msh")
     run(["gmsh", "-2", os.path.join(EXAMPLES, "plate_with_holes.geo"), "-setnumber", "quads",
-         str(int(quads)), "-format", "msh41", "-o", mesh], tmp)
+         str(int(kind == "quads")), "-format", "msh41", "-o", mesh], tmp)
+    return mesh
+
+
+@pytest.mark.parametrize("quads", [True, False], ids=["quads", "triangles"])
+def test_plate(tmp, quads):
+    kind = "quads" if quads else "triangles"
+    mesh = plate_mesh(tmp, kind)
     fixed = smooth(tmp, mesh, f"fixed-{kind}.msh", "--boundary", "fixed")
     slide = smooth(tmp, mesh, f"slide-{kind}.msh", "--boundary", "slide")
     shape = smooth(tmp, mesh, f"shape-{kind}.msh", "--boundary", "slide", "--shape",
@@ -93,33 +79,33 @@ def plate(tmp, quads):
           f"/ {shape['boundary_change']['relative_volume_change']:+.2e}")
     # The worst quads sit on the holes; the worst triangle of Gmsh's frontal mesh does not.
     margin = 0.03 if quads else 0.0
-    check(min_sj(slide) >= min_sj(fixed) + margin,
-          f"plate {kind}: sliding ends above the fixed boundary ({min_sj(slide):.3f} vs "
-          f"{min_sj(fixed):.3f})")
+    assert min_sj(slide) >= min_sj(fixed) + margin, \
+        (f"plate {kind}: sliding ends above the fixed boundary ({min_sj(slide):.3f} vs "
+         f"{min_sj(fixed):.3f})")
     # `quality --reference` measures what the run reported: on the input's facets, volume +.
     run([NEOMESH, "quality", f"slide-{kind}.msh", "--reference", mesh, "--json", "q.json"], tmp)
     with open(os.path.join(tmp, "q.json")) as f:
         change = json.load(f)["boundary_change"]
-    check(change["max_distance_from_reference_boundary"] <= 1e-12 and
-          abs(change["relative_volume_change"] -
-              slide["boundary_change"]["relative_volume_change"]) <= 1e-12,
-          f"plate {kind}: quality --reference agrees with the run's report ({change})")
+    assert change["max_distance_from_reference_boundary"] <= 1e-12 and \
+        abs(change["relative_volume_change"] -
+            slide["boundary_change"]["relative_volume_change"]) <= 1e-12, \
+        f"plate {kind}: quality --reference agrees with the run's report ({change})"
     before = read_msh(mesh)
     box = [(0, 0, 0), (4, 0, 0), (4, 2, 0), (0, 2, 0)]
     h = 0.1  # edge length on the holes (h/2 of the .geo's 0.2)
     sagitta = max(r * (1 - math.cos(math.asin(min(1.0, 1.5 * h / (2 * r))))) for *_, r in HOLES)
     on_holes = hole_vertices(before, HOLES, 2)
-    check(len(on_holes) > 50, f"plate {kind}: {len(on_holes)} vertices on the holes")
+    assert len(on_holes) > 50, f"plate {kind}: {len(on_holes)} vertices on the holes"
     for name, out, tolerance in ((f"slide-{kind}.msh", "polygon", sagitta),
                                  (f"shape-{kind}.msh", "circles", 1e-10)):
         after = read_msh(os.path.join(tmp, name))
-        check(corners_kept(before, after, box), f"plate {kind} ({out}): the box corners stay")
+        assert corners_kept(before, after, box), f"plate {kind} ({out}): the box corners stay"
         worst = max(abs(math.dist(after[t][:2], c) - r) for t, c, r in on_holes)
-        check(worst <= tolerance,
-              f"plate {kind}: hole vertices within {worst:.1e} of their circles (<= {tolerance:.1e}, on the {out})")
+        assert worst <= tolerance, \
+            f"plate {kind}: hole vertices within {worst:.1e} of their circles (<= {tolerance:.1e}, on the {out})"
 
 
-def box_with_hole(tmp):
+def test_box_with_hole(tmp):
     mesh = os.path.join(tmp, "box.msh")
     run(["gmsh", "-3", os.path.join(EXAMPLES, "box_with_hole.geo"), "-format", "msh41", "-o",
          mesh], tmp)
@@ -130,21 +116,21 @@ def box_with_hole(tmp):
     print(f"box with hole: min scaled Jacobian input {fixed['quality_before']['metrics']['scaled_jacobian']['min']:.3f}, "
           f"fixed {min_sj(fixed):.3f} ({fixed['seconds']:.2f} s), slide {min_sj(slide):.3f} "
           f"({slide['seconds']:.2f} s), on the sphere {min_sj(shape):.3f} ({shape['seconds']:.2f} s)")
-    check(min_sj(slide) >= min_sj(fixed) + 0.05,
-          f"box with hole: sliding ends clearly above the fixed boundary ({min_sj(slide):.3f} vs {min_sj(fixed):.3f})")
+    assert min_sj(slide) >= min_sj(fixed) + 0.05, \
+        f"box with hole: sliding ends clearly above the fixed boundary ({min_sj(slide):.3f} vs {min_sj(fixed):.3f})"
     before = read_msh(mesh)
     corners = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
     on_sphere = hole_vertices(before, [(0.5, 0.5, 0.5, 0.25)], 3)
-    check(len(on_sphere) > 50, f"box with hole: {len(on_sphere)} vertices on the sphere")
+    assert len(on_sphere) > 50, f"box with hole: {len(on_sphere)} vertices on the sphere"
     for name, tolerance in (("box-slide.msh", 0.25 * (1 - math.cos(0.6 / 2))),
                             ("box-shape.msh", 1e-10)):
         after = read_msh(os.path.join(tmp, name))
-        check(corners_kept(before, after, corners), f"box with hole ({name}): the corners stay")
+        assert corners_kept(before, after, corners), f"box with hole ({name}): the corners stay"
         worst = max(abs(math.dist(after[t], c) - r) for t, c, r in on_sphere)
-        check(worst <= tolerance, f"box with hole ({name}): sphere vertices within {worst:.1e} of it")
+        assert worst <= tolerance, f"box with hole ({name}): sphere vertices within {worst:.1e} of it"
 
 
-def feat_charts(tmp):
+def test_feat_charts(tmp):
     out = os.path.join(tmp, "ring.msh")
     report = smooth(tmp, os.path.join(DATA, "feat_ring_quad.xml"), out, "--boundary", "slide")
     after = read_msh(out)
@@ -153,69 +139,46 @@ def feat_charts(tmp):
     worst = max(min(abs(r - 0.5), abs(r - 1.0)) for r in on)
     print(f"FEAT3 ring with circle charts: {len(on)} boundary vertices, min scaled Jacobian "
           f"{report['quality_before']['metrics']['scaled_jacobian']['min']:.3f} -> {min_sj(report):.3f}")
-    check(len(on) == 32 and worst <= 1e-12, f"FEAT3 ring: vertices on the charts to {worst:.1e}")
+    assert len(on) == 32 and worst <= 1e-12, f"FEAT3 ring: vertices on the charts to {worst:.1e}"
 
 
-def mpi_matches_serial(tmp):
-    if not MPIEXEC:
-        print("NEOMESH_MPIEXEC is not set: no MPI comparison")
-        return
-    mesh = os.path.join(tmp, "plate-quads.msh")  # made by plate()
+@needs_mpi
+def test_mpi_matches_serial(tmp):
+    mesh = plate_mesh(tmp, "quads")
     options = ["--boundary", "slide", "--shape", "holes=" + HOLES_LEVEL_SET, "--no-practical",
                "--tol", "1e-11"]
     results = []
     for ranks in (1, 2):
         out = os.path.join(tmp, f"mpi-{ranks}.msh")
-        launcher = [] if ranks == 1 else [MPIEXEC, "--allow-run-as-root", "--oversubscribe",
-                                          "-n", "2"]
-        run([*launcher, NEOMESH, "smooth", mesh, "-o", out, "--quiet", *options], tmp)
+        run([*mpiexec(ranks), NEOMESH, "smooth", mesh, "-o", out, "--quiet", *options], tmp)
         results.append(read_msh(out))
     worst = max(abs(a - b) for t in results[0] for a, b in zip(results[0][t], results[1][t]))
-    check(worst <= 1e-8, f"plate quads sliding on the holes: 2 ranks within {worst:.1e} of serial")
+    assert worst <= 1e-8, f"plate quads sliding on the holes: 2 ranks within {worst:.1e} of serial"
 
 
-def bad_inputs(tmp):
-    good = os.path.join(DATA, "feat_ring_quad.xml")
+GOOD = os.path.join(DATA, "feat_ring_quad.xml")
+
+
+@pytest.mark.parametrize("options, mesh, words", [
+    pytest.param(["--boundary", "slide", "--shape", "hole=circle:0,0,0.5"], GOOD,
+                 ["hole", "bnd:inner"], id="unknown part"),
+    pytest.param(["--boundary", "slide", "--shape", "bnd:inner=circle:0,0,0.45"], GOOD,
+                 ["bnd:inner", "from it"], id="shape off the part's vertices"),
+    pytest.param(["--boundary", "slide", "--shape", "bnd:inner=circle:0,0"], GOOD,
+                 ["circle:cx,cy,r"], id="malformed shape"),
+    pytest.param(["--boundary", "slide", "--shape", "circle:0,0,1"], GOOD, ["PART=SHAPE"],
+                 id="shape without ="),
+    pytest.param(["--boundary", "fixed", "--shape", "bnd:inner=circle:0,0,0.5"], GOOD,
+                 ["--boundary slide"], id="shape with fixed boundary"),
+    pytest.param(["--boundary", "slide", "--feature-angle", "200"], GOOD, ["--feature-angle"],
+                 id="feature angle out of range"),
+    pytest.param(["--boundary", "slide"], "{tmp}/bad_chart.xml", ["nosuchchart"],
+                 id="part on an unknown chart"),
+])
+def test_bad_input(tmp, options, mesh, words):
     with open(os.path.join(tmp, "bad_chart.xml"), "w") as f:
-        with open(good) as g:
+        with open(GOOD) as g:
             f.write(g.read().replace('chart="inner"', 'chart="nosuchchart"'))
-    cases = [
-        ("unknown part", ["--boundary", "slide", "--shape", "hole=circle:0,0,0.5"], good,
-         ["hole", "bnd:inner"]),
-        ("shape off the part's vertices",
-         ["--boundary", "slide", "--shape", "bnd:inner=circle:0,0,0.45"], good,
-         ["bnd:inner", "from it"]),
-        ("malformed shape", ["--boundary", "slide", "--shape", "bnd:inner=circle:0,0"], good,
-         ["circle:cx,cy,r"]),
-        ("shape without =", ["--boundary", "slide", "--shape", "circle:0,0,1"], good,
-         ["PART=SHAPE"]),
-        ("shape with fixed boundary", ["--boundary", "fixed", "--shape", "bnd:inner=circle:0,0,0.5"],
-         good, ["--boundary slide"]),
-        ("feature angle out of range", ["--boundary", "slide", "--feature-angle", "200"], good,
-         ["--feature-angle"]),
-        ("part on an unknown chart", ["--boundary", "slide"], os.path.join(tmp, "bad_chart.xml"),
-         ["nosuchchart"]),
-    ]
-    for name, options, mesh, words in cases:
-        out = os.path.join(tmp, "bad-out.msh")
-        proc = run([NEOMESH, "smooth", mesh, "-o", out, *options], tmp, expect_ok=False)
-        lines = proc.stderr.strip().splitlines()
-        ok = (proc.returncode == 1 and len(lines) == 1 and lines[0].startswith("neomesh: error:")
-              and all(w in lines[0] for w in words) and not os.path.exists(out))
-        check(ok, f"bad input ({name}): {lines[0] if lines else proc.returncode}")
-
-
-def main():
-    with tempfile.TemporaryDirectory() as tmp:
-        plate(tmp, quads=True)
-        plate(tmp, quads=False)
-        box_with_hole(tmp)
-        feat_charts(tmp)
-        mpi_matches_serial(tmp)
-        bad_inputs(tmp)
-    if failures:
-        sys.exit(f"{len(failures)} checks failed")
-
-
-if __name__ == "__main__":
-    main()
+    out = os.path.join(tmp, "bad-out.msh")
+    proc = run([NEOMESH, "smooth", mesh.format(tmp=tmp), "-o", out, *options], tmp, expect=None)
+    expect_one_error_line(proc, words, unwritten=[out])

@@ -5,41 +5,21 @@ the report counts the inverted cells before and after; --no-untangle refuses suc
 mesh whose boundary folds over ends with one error line naming the cells, and no output."""
 import json
 import os
-import subprocess
-import sys
-import tempfile
 
-import meshio
 import numpy
+import pytest
 
-NEOMESH = os.environ.get("NEOMESH", "neomesh")
-SOURCE = os.environ.get("NEOMESH_SOURCE",
-                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-DATA = os.path.join(SOURCE, "tests", "data")
-
-
-def run(cmd, expect=0):
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
-    if proc.returncode != expect:
-        sys.exit(f"{' '.join(cmd)}: exit {proc.returncode}, expected {expect}\n"
-                 f"stdout:\n{proc.stdout}\nstderr:\n{proc.stderr}")
-    return proc
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit(message)
-
+from conftest import DATA, NEOMESH, read_mesh, run
 
 def bumped_box(tmp, name, cells):
     """box-quad whose bottom side was pushed up by a bump of height 0.8 (a moving boundary):
     it runs through the cells above it, which must move far up, round after round."""
     mesh = os.path.join(tmp, name + ".msh")
-    run([NEOMESH, "generate", "box-quad", "--cells", str(cells), "-o", mesh])
-    m = meshio.read(mesh)
+    run([NEOMESH, "generate", "box-quad", "--cells", str(cells), "-o", mesh], timeout=120)
+    m = read_mesh(mesh)
     bottom = numpy.isclose(m.points[:, 1], -1.0)
     m.points[bottom, 1] += 0.8 * (1.0 - m.points[bottom, 0] ** 2)
-    meshio.write(mesh, m, file_format="gmsh22", binary=False)
+    m.write(mesh, file_format="gmsh22", binary=False)
     return mesh
 
 
@@ -55,8 +35,9 @@ def tangled_gmsh_mesh(tmp, name, geo, amplitude):
     """A 3D mesh Gmsh makes from tests/data/geo/GEO, its interior vertices moved by up to
     `amplitude` times their shortest edge per coordinate (seeded)."""
     mesh = os.path.join(tmp, name + ".msh")
-    run(["gmsh", "-3", os.path.join(DATA, "geo", geo), "-format", "msh41", "-o", mesh])
-    m = meshio.read(mesh)
+    run(["gmsh", "-3", os.path.join(DATA, "geo", geo), "-format", "msh41", "-o", mesh],
+        timeout=120)
+    m = read_mesh(mesh)
     faces, shortest = {}, numpy.full(len(m.points), numpy.inf)
     for block in m.cells:
         for cell in block.data if block.type in FACES else []:
@@ -72,7 +53,7 @@ def tangled_gmsh_mesh(tmp, name, geo, amplitude):
     for v in range(len(m.points)):
         if v not in boundary and numpy.isfinite(shortest[v]):
             m.points[v] += amplitude * shortest[v] * random.uniform(-1, 1, 3)
-    meshio.write(mesh, m, file_format="gmsh22", binary=False)
+    m.write(mesh, file_format="gmsh22", binary=False)
     return mesh
 
 
@@ -80,24 +61,24 @@ def untangles(tmp, name, generate=None, mesh=None, options=(), inverted_before=1
     out, report = (os.path.join(tmp, name + ext) for ext in ("-out.vtu", ".json"))
     if generate:
         mesh = os.path.join(tmp, name + ".msh")
-        run([NEOMESH, "generate", *generate, "-o", mesh])
-    proc = run([NEOMESH, "smooth", mesh, "-o", out, "--report", report, *options])
+        run([NEOMESH, "generate", *generate, "-o", mesh], timeout=120)
+    proc = run([NEOMESH, "smooth", mesh, "-o", out, "--report", report, *options], timeout=120)
     with open(report) as f:
         r = json.load(f)
     u = r["untangling"]
-    check(u["inverted_before"] >= inverted_before,
-          f"{name}: only {u['inverted_before']} cells were inverted")
-    check(u["inverted_after"] == 0, f"{name}: {u['inverted_after']} cells still inverted")
-    check(r["quality_before"]["inverted"] > 0 and r["quality_after"]["inverted"] == 0,
-          f"{name}: quality tables {r['quality_before']} / {r['quality_after']}")
+    assert u["inverted_before"] >= inverted_before, \
+        f"{name}: only {u['inverted_before']} cells were inverted"
+    assert u["inverted_after"] == 0, f"{name}: {u['inverted_after']} cells still inverted"
+    assert r["quality_before"]["inverted"] > 0 and r["quality_after"]["inverted"] == 0, \
+        f"{name}: quality tables {r['quality_before']} / {r['quality_after']}"
     worst = r["quality_after"]["metrics"]["scaled_jacobian"]["min"]
-    check(worst > 0.1, f"{name}: min scaled Jacobian after {worst}")
-    check(all(row["untangling_round"] >= 1 for row in u["history"]),
-          f"{name}: untangling rows without a round")
+    assert worst > 0.1, f"{name}: min scaled Jacobian after {worst}"
+    assert all(row["untangling_round"] >= 1 for row in u["history"]), \
+        f"{name}: untangling rows without a round"
     text = proc.stdout
     for line in (f"{u['inverted_before']} cells are inverted: untangling them first",
                  "untangling, round 1", "optimizing the Neo-Hookean energy:"):
-        check(line in text, f"{name}: '{line}' not in the output:\n{text}")
+        assert line in text, f"{name}: '{line}' not in the output:\n{text}"
     print(f"{name}: {u['inverted_before']} inverted -> 0 in {u['iterations']} iterations "
           f"({u['rounds']} rounds, {u['seconds']:.2f} s); then {r['result']['iterations']} "
           f"iterations; min scaled Jacobian {worst:.3f}")
@@ -127,39 +108,50 @@ $EndElements
 
 def refuses(tmp, args, mesh, expected):
     out = os.path.join(tmp, "refused.msh")
-    proc = run([NEOMESH, "smooth", mesh, "-o", out, *args], expect=1)
+    proc = run([NEOMESH, "smooth", mesh, "-o", out, *args], expect=1, timeout=120)
     errors = [line for line in proc.stderr.splitlines() if line.strip()]
-    check(len(errors) == 1 and errors[0].startswith("neomesh: error:"),
-          f"expected one error line, got:\n{proc.stderr}")
-    check(expected in errors[0], f"'{expected}' not in: {errors[0]}")
-    check(not os.path.exists(out), "an output file was left behind")
+    assert len(errors) == 1 and errors[0].startswith("neomesh: error:"), \
+        f"expected one error line, got:\n{proc.stderr}"
+    assert expected in errors[0], f"'{expected}' not in: {errors[0]}"
+    assert not os.path.exists(out), "an output file was left behind"
 
 
-def main():
-    with tempfile.TemporaryDirectory() as tmp:
-        untangles(tmp, "quads", ["box-quad", "--cells", "40", "--jitter", "0.6"])
-        untangles(tmp, "hexes", ["box-hex", "--cells", "8", "--jitter", "0.6"])
-        bump = bumped_box(tmp, "bump", 16)
-        untangles(tmp, "bump-fixed", mesh=bump, options=["--boundary", "fixed"],
-                  inverted_before=10)
-        untangles(tmp, "bump-sliding", mesh=bump, inverted_before=10)
-        # Wedges and hexahedra (an extruded triangle/quad mesh); hexahedra, pyramids and tets.
-        for name, geo in (("wedges-hexes", "extruded_prisms_hexes.geo"),
-                          ("hexes-pyramids-tets", "hex_tet_pyramids.geo")):
-            untangles(tmp, name, mesh=tangled_gmsh_mesh(tmp, name, geo, 0.9),
-                      inverted_before=20)
-
-        tangled = os.path.join(tmp, "quads.msh")
-        refuses(tmp, ["--no-untangle"], tangled, "is inverted")
-        folded = os.path.join(tmp, "folded.msh")
-        with open(folded, "w") as f:
-            f.write(FOLDED)
-        for boundary in ("slide", "fixed"):
-            refuses(tmp, ["--boundary", boundary], folded,
-                    "cannot be untangled with its boundary as it is: 2 of 2 inverted cells are "
-                    "still inverted")
-    print("ok")
+JITTERED_QUADS = ["box-quad", "--cells", "40", "--jitter", "0.6"]
 
 
-if __name__ == "__main__":
-    main()
+@pytest.mark.parametrize("name, generate, options, inverted_before", [
+    ("quads", JITTERED_QUADS, (), 100),
+    ("hexes", ["box-hex", "--cells", "8", "--jitter", "0.6"], (), 100),
+], ids=["quads", "hexes"])
+def test_jittered_box_untangles(tmp, name, generate, options, inverted_before):
+    untangles(tmp, name, generate, options=options, inverted_before=inverted_before)
+
+
+@pytest.mark.parametrize("name, options", [("bump-fixed", ["--boundary", "fixed"]),
+                                           ("bump-sliding", [])], ids=["fixed", "sliding"])
+def test_bumped_box_untangles(tmp, name, options):
+    untangles(tmp, name, mesh=bumped_box(tmp, "bump", 16), options=options, inverted_before=10)
+
+
+# Wedges and hexahedra (an extruded triangle/quad mesh); hexahedra, pyramids and tets.
+@pytest.mark.parametrize("name, geo", [("wedges-hexes", "extruded_prisms_hexes.geo"),
+                                       ("hexes-pyramids-tets", "hex_tet_pyramids.geo")],
+                         ids=["wedges-hexes", "hexes-pyramids-tets"])
+def test_tangled_gmsh_mesh_untangles(tmp, name, geo):
+    untangles(tmp, name, mesh=tangled_gmsh_mesh(tmp, name, geo, 0.9), inverted_before=20)
+
+
+def test_no_untangle_refuses_a_tangled_mesh(tmp):
+    tangled = os.path.join(tmp, "quads.msh")
+    run([NEOMESH, "generate", *JITTERED_QUADS, "-o", tangled], timeout=120)
+    refuses(tmp, ["--no-untangle"], tangled, "is inverted")
+
+
+@pytest.mark.parametrize("boundary", ["slide", "fixed"])
+def test_a_folded_boundary_cannot_be_untangled(tmp, boundary):
+    folded = os.path.join(tmp, "folded.msh")
+    with open(folded, "w") as f:
+        f.write(FOLDED)
+    refuses(tmp, ["--boundary", boundary], folded,
+            "cannot be untangled with its boundary as it is: 2 of 2 inverted cells are "
+            "still inverted")

@@ -6,21 +6,16 @@ with their interior vertices jittered: `neomesh smooth` keeps every cell, raises
 scaled Jacobian and leaves no inverted cell, boundary vertices slide on the mixed triangle and
 quadrilateral faces of the boundary; the .msh output and its .vtu conversion have the
 input's cells by type; 2 MPI ranks give the serial result. Prints the figures. Needs gmsh."""
+import functools
 import json
 import os
 import random
-import subprocess
-import sys
-import tempfile
 
-import meshio
+import pytest
 
-NEOMESH = os.path.abspath(os.environ["NEOMESH"]) if "NEOMESH" in os.environ else "neomesh"
-SOURCE = os.environ.get("NEOMESH_SOURCE",
-                        os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-MPIEXEC = os.environ.get("NEOMESH_MPIEXEC")
+from conftest import NEOMESH, SOURCE, mpiexec, needs_mpi, read_mesh, run
+
 GEO = os.path.join(SOURCE, "tests", "data", "geo")
-failures = []
 
 # (name, .geo, jitter as a fraction of the mesh size, expected cells by type, compare with 2
 # ranks)
@@ -32,19 +27,6 @@ CASES = [
      {"hexahedron": 27, "pyramid": 9, "tetrahedron": 248}, True),
 ]
 MESH_SIZE = 0.25
-
-
-def check(condition, message):
-    print(("ok   " if condition else "FAIL ") + message)
-    if not condition:
-        failures.append(message)
-
-
-def run(args, cwd):
-    proc = subprocess.run(args, cwd=cwd, capture_output=True, text=True, timeout=120)
-    if proc.returncode != 0:
-        sys.exit(f"{' '.join(args)}: exit {proc.returncode}\n{proc.stdout}\n{proc.stderr}")
-    return proc
 
 
 def jitter(path, amplitude, seed):
@@ -68,9 +50,10 @@ def jitter(path, amplitude, seed):
         f.write("\n".join(lines))
 
 
-def smooth(cwd, mesh, out, launcher=()):
+def smooth(cwd, mesh, out, ranks=1):
     report = out + ".json"
-    run([*launcher, NEOMESH, "smooth", mesh, "-o", out, "--report", report, "--quiet"], cwd)
+    run([*mpiexec(ranks), NEOMESH, "smooth", mesh, "-o", out, "--report", report, "--quiet"],
+        cwd, timeout=120)
     with open(os.path.join(cwd, report)) as f:
         return json.load(f)
 
@@ -86,47 +69,52 @@ def cells_by_type(mesh):
     return counts
 
 
-def case(tmp, name, geo, amplitude, expected, parallel_too):
-    stem = name.replace("+", "_")
-    mesh = stem + ".msh"
-    run(["gmsh", "-3", os.path.join(GEO, geo), "-format", "msh22", "-o", mesh], tmp)
-    jitter(os.path.join(tmp, mesh), amplitude * MESH_SIZE, seed=7)
-    report = smooth(tmp, mesh, stem + "-out.msh")
+@pytest.fixture(scope="module")
+def smoothed(module_tmp):
+    """The serial smoothing of a case, run once: name -> (stem, input mesh, report)."""
+    @functools.cache
+    def smoothed(name):
+        _, geo, amplitude, _, _ = next(c for c in CASES if c[0] == name)
+        stem = name.replace("+", "_")
+        mesh = stem + ".msh"
+        run(["gmsh", "-3", os.path.join(GEO, geo), "-format", "msh22", "-o", mesh], module_tmp,
+            timeout=120)
+        jitter(os.path.join(module_tmp, mesh), amplitude * MESH_SIZE, seed=7)
+        return stem, mesh, smooth(module_tmp, mesh, stem + "-out.msh")
+    return smoothed
+
+
+@pytest.mark.parametrize("name, expected", [(c[0], c[3]) for c in CASES],
+                         ids=[c[0] for c in CASES])
+def test_smooth_keeps_the_cells_and_untangles(module_tmp, smoothed, name, expected):
+    stem, _, report = smoothed(name)
     before, after = report["quality_before"], report["quality_after"]
     sj_before = before["metrics"]["scaled_jacobian"]["min"]
     sj_after = after["metrics"]["scaled_jacobian"]["min"]
     print(f"{name}: cells {after['cells']}, min scaled Jacobian {sj_before:.4f} -> "
           f"{sj_after:.4f}, {report['result']['iterations']} iterations")
     counts = {k: v for k, v in after["cells"].items() if k != "total"}
-    check(counts == expected, f"{name}: cells by type {counts}, expected {expected}")
-    check(sj_after > sj_before + 0.05, f"{name}: the minimum scaled Jacobian rose")
-    check(after["inverted"] == 0 and after["degenerate"] == 0, f"{name}: no inverted cell")
+    assert counts == expected, f"{name}: cells by type {counts}, expected {expected}"
+    assert sj_after > sj_before + 0.05, f"{name}: the minimum scaled Jacobian rose"
+    assert after["inverted"] == 0 and after["degenerate"] == 0, f"{name}: no inverted cell"
     distance = report["boundary_change"]["max_distance_from_input_boundary"]
-    check(distance < 1e-12, f"{name}: sliding vertices stay on the boundary ({distance:.1e})")
-    run([NEOMESH, "convert", stem + "-out.msh", "-o", stem + "-out.vtu"], tmp)
+    assert distance < 1e-12, \
+        f"{name}: sliding vertices stay on the boundary ({distance:.1e})"
+    run([NEOMESH, "convert", stem + "-out.msh", "-o", stem + "-out.vtu"], module_tmp,
+        timeout=120)
     for out in (stem + "-out.msh", stem + "-out.vtu"):
-        written = cells_by_type(meshio.read(os.path.join(tmp, out)))
-        check(written == expected, f"{name}: {out} has the cells by type {written}")
-    if not MPIEXEC or not parallel_too:
-        return
-    parallel = smooth(tmp, mesh, stem + "-2.msh",
-                      [MPIEXEC, "--allow-run-as-root", "--oversubscribe", "-n", "2"])
-    serial_points = meshio.read(os.path.join(tmp, stem + "-out.msh")).points
-    parallel_points = meshio.read(os.path.join(tmp, stem + "-2.msh")).points
+        written = cells_by_type(read_mesh(os.path.join(module_tmp, out)))
+        assert written == expected, f"{name}: {out} has the cells by type {written}"
+
+
+@needs_mpi
+@pytest.mark.parametrize("name", [c[0] for c in CASES if c[4]])
+def test_two_ranks_give_the_serial_result(module_tmp, smoothed, name):
+    stem, mesh, report = smoothed(name)
+    parallel = smooth(module_tmp, mesh, stem + "-2.msh", ranks=2)
+    serial_points = read_mesh(os.path.join(module_tmp, stem + "-out.msh")).points
+    parallel_points = read_mesh(os.path.join(module_tmp, stem + "-2.msh")).points
     worst = max(abs(a - b) for p, q in zip(serial_points, parallel_points) for a, b in zip(p, q))
     its = (report["result"]["iterations"], parallel["result"]["iterations"])
     print(f"{name}: 2 ranks: {its[1]} iterations, largest distance to serial {worst:.1e}")
-    check(worst <= 1e-6 and abs(its[0] - its[1]) <= 1,
-          f"{name}: 2 ranks give the serial result")
-
-
-def main():
-    with tempfile.TemporaryDirectory() as tmp:
-        for args in CASES:
-            case(tmp, *args)
-    if failures:
-        sys.exit(f"{len(failures)} check(s) failed")
-
-
-if __name__ == "__main__":
-    main()
+    assert worst <= 1e-6 and abs(its[0] - its[1]) <= 1, f"{name}: 2 ranks give the serial result"

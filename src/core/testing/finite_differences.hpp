@@ -40,4 +40,11 @@ Eigen::Matrix<double, Point::SizeAtCompileTime, Point::SizeAtCompileTime> fd_jac
   return J;
 }
 
+// ‖analytic − fd‖ / ‖analytic‖ (Frobenius): how far an analytic derivative is from its
+// finite-difference approximation (or from any reference of the same shape).
+template <typename A, typename B>
+double relative_error(const A& analytic, const B& fd) {
+  return (analytic - fd).norm() / analytic.norm();
+}
+
 }  // namespace neomesh::testing

@@ -3,6 +3,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 namespace neomesh::testing {
@@ -14,5 +16,15 @@ inline std::filesystem::path data_path(const std::string& name) {
 
 // A fresh, empty directory for one test's output files (per process; removed at exit).
 std::filesystem::path scratch_dir(const std::string& test_name);
+
+// The same for a test under `mpiexec`, collective over PETSC_COMM_WORLD: rank 0's scratch_dir,
+// the same path on every rank (rank 0 removes it at exit).
+std::filesystem::path shared_scratch_dir(const std::string& test_name);
+
+// A file's bytes, "" if it cannot be read.
+inline std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 }  // namespace neomesh::testing

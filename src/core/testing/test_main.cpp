@@ -56,4 +56,15 @@ std::filesystem::path scratch_dir(const std::string& test_name) {
   return dir;
 }
 
+std::filesystem::path shared_scratch_dir(const std::string& test_name) {
+  int rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  std::string path = rank == 0 ? scratch_dir(test_name).string() : std::string();
+  int length = static_cast<int>(path.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  path.resize(length);
+  MPI_Bcast(path.data(), length, MPI_CHAR, 0, PETSC_COMM_WORLD);
+  return path;
+}
+
 }  // namespace neomesh::testing

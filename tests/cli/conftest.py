@@ -1,0 +1,107 @@
+"""What the whole-program tests (tests/cli/test_*.py) share: the neomesh executable under test
+and how to run it, the source tree's data, a fresh directory per test, meshio reading.
+
+ctest runs each file as `/usr/bin/python3 -m pytest -q -p no:cacheprovider FILE`
+(tests/CMakeLists.txt) with
+- NEOMESH: the executable (default: `neomesh` on PATH),
+- NEOMESH_SOURCE: the source tree (default: two folders up from here),
+- NEOMESH_MPIEXEC: Open MPI's mpiexec; without it the 2-rank tests are skipped.
+Debian's /usr/bin/python3 because the tests import meshio from python3-meshio, which another
+python3 (a venv's, pyenv's) does not see. The test files import the helpers below
+(`from conftest import ...`) and take the fixtures as arguments. The figures the tests print
+show with pytest's -s, e.g. from the build directory:
+    NEOMESH=$PWD/neomesh python3 -m pytest -s -p no:cacheprovider ../tests/cli/test_untangle.py
+"""
+import contextlib
+import io
+import os
+import shutil
+import subprocess
+import tempfile
+
+import pytest
+
+NEOMESH = os.path.abspath(os.environ["NEOMESH"]) if "NEOMESH" in os.environ else "neomesh"
+SOURCE = os.path.abspath(os.environ.get(
+    "NEOMESH_SOURCE", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")))
+MPIEXEC = os.environ.get("NEOMESH_MPIEXEC") or None
+DATA = os.path.join(SOURCE, "tests", "data")
+EXAMPLES = os.path.join(SOURCE, "examples")
+
+
+def mpiexec(ranks=2, *options):
+    """The launcher of a run on `ranks` processes (as root and on 2 cores, as CI runs it);
+    [] for one rank."""
+    if ranks == 1:
+        return []
+    return [MPIEXEC, "--allow-run-as-root", "--oversubscribe", *options, "-n", str(ranks)]
+
+
+# Marks a test that needs mpiexec (NEOMESH_MPIEXEC); skipped, and said so, without it.
+needs_mpi = pytest.mark.skipif(MPIEXEC is None, reason="NEOMESH_MPIEXEC is not set")
+# The rank counts to run a test with: 1, and 2 where NEOMESH_MPIEXEC is set.
+RANKS = [1, pytest.param(2, marks=needs_mpi)]
+
+
+def describe(proc):
+    command = " ".join(a if len(a) < 100 else a[:20] + "..." for a in proc.args)
+    return (f"{command}: exit {proc.returncode}\nstdout:\n{proc.stdout[-4000:]}\n"
+            f"stderr:\n{proc.stderr[-4000:]}")
+
+
+def run(args, cwd=None, expect=0, timeout=300):
+    """Runs the command `args` (a list) and returns its CompletedProcess (text stdout and
+    stderr); fails the test, showing both, unless it exits with `expect` (None: any code)."""
+    proc = subprocess.run([str(a) for a in args], cwd=cwd, capture_output=True, text=True,
+                          timeout=timeout)
+    assert expect is None or proc.returncode == expect, \
+        f"expected exit {expect}\n{describe(proc)}"
+    return proc
+
+
+def neomesh(*args, cwd=None, expect=0, ranks=1, timeout=300):
+    """`neomesh ARGS...` (under mpiexec for ranks > 1), as run()."""
+    return run([*mpiexec(ranks), NEOMESH, *args], cwd=cwd, expect=expect, timeout=timeout)
+
+
+def expect_one_error_line(proc, words=(), unwritten=()):
+    """The run failed as a user must see it: exit code 1, one line on stderr,
+    `neomesh: error: ...`, holding every one of `words`, and none of the files `unwritten`
+    exists. Returns that line."""
+    lines = proc.stderr.strip().splitlines()
+    assert proc.returncode == 1 and len(lines) == 1 and lines[0].startswith("neomesh: error:"), \
+        f"not one error line and exit 1\n{describe(proc)}"
+    missing = [w for w in words if w not in lines[0]]
+    assert not missing, f"the message lacks {missing}: {lines[0]}"
+    left = [f for f in unwritten if os.path.exists(f)]
+    assert not left, f"written despite the error: {left}"
+    return lines[0]
+
+
+def read_mesh(path):
+    """meshio's reading of `path`, its progress and warnings kept off the output."""
+    import meshio  # only the tests that read meshes need it (python3-meshio)
+    with contextlib.redirect_stdout(io.StringIO()):
+        return meshio.read(path)
+
+
+def fresh_directory():
+    """A new empty directory, and a function that removes it."""
+    path = tempfile.mkdtemp(prefix="neomesh-cli-")
+    return path, lambda: shutil.rmtree(path, ignore_errors=True)
+
+
+@pytest.fixture
+def tmp():
+    """A fresh directory for one test (a str), removed afterwards."""
+    path, remove = fresh_directory()
+    yield path
+    remove()
+
+
+@pytest.fixture(scope="module")
+def module_tmp():
+    """A directory the tests of one file share (inputs made once), removed after them."""
+    path, remove = fresh_directory()
+    yield path
+    remove()
