@@ -32,12 +32,4 @@ VolumeRatioStats volume_ratio_stats(std::span<const double> q, MPI_Comm comm) {
   return s;
 }
 
-nlohmann::json to_json(const VolumeRatioStats& s) {
-  return {{"cells", s.cells},
-          {"fraction_in_0.5_2", s.within},
-          {"min", s.min},
-          {"median", s.median},
-          {"max", s.max}};
-}
-
 }  // namespace neomesh

@@ -7,7 +7,6 @@
 #include <span>
 
 #include <mpi.h>
-#include <nlohmann/json.hpp>
 
 namespace neomesh {
 
@@ -19,7 +18,5 @@ struct VolumeRatioStats {
 
 // `q`: Q of this rank's cells. Collective.
 VolumeRatioStats volume_ratio_stats(std::span<const double> q, MPI_Comm comm);
-
-nlohmann::json to_json(const VolumeRatioStats& stats);
 
 }  // namespace neomesh

@@ -19,6 +19,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "mesh/collective_error.hpp"
+#include "report/quality_report.hpp"
 #include "report/run_report.hpp"
 
 namespace neomesh::app {

@@ -11,6 +11,7 @@
 #include "mesh/collective_error.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/plex_mesh.hpp"
+#include "report/quality_report.hpp"
 
 namespace neomesh::app {
 

@@ -32,7 +32,6 @@
 #include <vector>
 
 #include <mpi.h>
-#include <nlohmann/json.hpp>
 
 #include <neomesh/quality.hpp>
 
@@ -64,9 +63,5 @@ QualitySummary summarize(const CellQuality& quality, MPI_Comm comm);
 
 // "quadrilaterals", "hexahedra", ...: for counts in reports.
 std::string_view plural_name(CellType type);
-
-// A readable table: cell counts, min/mean/max of each metric, inverted and degenerate cells.
-std::string format_table(const QualitySummary& summary);
-nlohmann::json to_json(const QualitySummary& summary);
 
 }  // namespace neomesh

@@ -192,11 +192,6 @@ TEST(QualitySummary, SquareMidpointLevel3) {
   EXPECT_EQ(s.degenerate, 0);
   EXPECT_NEAR(s.volume.mean, 1.0 / 256, 1e-15);
   EXPECT_LT(s.scaled_jacobian.min, 1.0);
-  EXPECT_NE(format_table(s).find("256 quadrilaterals"), std::string::npos);
-  const nlohmann::json j = to_json(s);
-  EXPECT_EQ(j["cells"]["quadrilateral"], 256);
-  EXPECT_EQ(j["inverted"], 0);
-  EXPECT_DOUBLE_EQ(j["metrics"]["volume"]["max"].get<double>(), s.volume.max);
 }
 
 TEST(QualitySummary, BoxVolumesAddUpAndCollapsedCellsAreDegenerate) {
