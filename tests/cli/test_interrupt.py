@@ -123,8 +123,8 @@ def main():
             check("interrupted; written completely before the interrupt: " in err
                   and "out.vtu; no other output file was written" in err,
                   f"{ranks} rank(s), interrupted in the report write: stderr {err!r}")
-            with open(out) as f:
-                check("<VTKFile" in f.read(), "out.vtu is not the new output")
+            with open(out, "rb") as f:  # binary: the arrays are raw bytes
+                check(b"<VTKFile" in f.read(), "out.vtu is not the new output")
             check(sorted(os.listdir(tmp)) == ["out.vtu", "random.msh"],
                   f"files left behind: {sorted(os.listdir(tmp))}")
         print(f"Ctrl-C on {ranks} rank(s): true message, old output kept or new one complete, "
