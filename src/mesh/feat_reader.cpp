@@ -377,7 +377,7 @@ class FeatParser {
   }
 
   std::string file_;
-  std::string text_;
+  InputText text_;
   std::vector<std::ptrdiff_t> newlines_;  // byte offsets of the file's '\n's
   pugi::xml_document doc_;
   std::set<std::string, std::less<>> chart_names_, usable_charts_;

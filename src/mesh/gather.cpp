@@ -47,6 +47,12 @@ Packet pack(const PlexMesh& mesh, const MeshFields& fields) {
   const auto& m = MeshAccess::impl(mesh);
   const MeshView& view = mesh.view();
   Packet out;
+  std::size_t num_ints = 2 + view.num_vertices, num_reals = view.num_vertices * m.dim;
+  for (const CellBlock& block : view.blocks) num_ints += 2 * block.size() + block.vertices.size();
+  for (const Field& f : fields.vertex) num_reals += f.values.size();
+  for (const Field& f : fields.cell) num_reals += f.values.size();
+  out.ints.reserve(num_ints);
+  out.reals.reserve(num_reals);
   out.ints.push_back(std::count(view.owned.begin(), view.owned.end(), 1));
   for (PetscInt v = 0; v < view.num_vertices; ++v) {
     if (!view.owned[v]) continue;
@@ -129,9 +135,11 @@ GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
   const auto ints = gatherv(mesh.comm(), local.ints, MPIU_INT);
   const auto reals = gatherv(mesh.comm(), local.reals, MPI_DOUBLE);
 
-  GatheredMesh out{{}, fields, false};
-  for (auto& f : out.fields.cell) f.values.clear();
-  for (auto& f : out.fields.vertex) f.values.clear();
+  // The fields' names and shapes; their values come from the gathered packets.
+  GatheredMesh out{{}, {}, false};
+  for (const Field& f : fields.cell) out.fields.cell.push_back({f.name, {}, f.components});
+  for (const Field& f : fields.vertex) out.fields.vertex.push_back({f.name, {}, f.components});
+  out.fields.facet_groups = fields.facet_groups;
   out.mesh.dim = m.dim;
   out.mesh.groups = m.groups;
   out.has_cell_groups =
@@ -144,8 +152,7 @@ GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
   out.mesh.coords.resize(nv * m.dim);
   for (auto& f : out.fields.vertex) f.values.resize(nv * f.components);
   for (auto& f : out.fields.cell) f.values.resize(nc * f.components);
-  std::vector<CellType> types(nc);
-  std::vector<std::vector<PetscInt>> cells(nc);
+  std::vector<std::size_t> cell_at(nc);  // where each cell's type and vertices are in `ints`
 
   std::size_t i = 0, r = 0;
   auto take = [&](std::vector<double>& to, PetscInt at, int n) {
@@ -160,13 +167,17 @@ GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
     }
     for (PetscInt k = 0, n = ints[i++]; k < n; ++k) {
       const PetscInt c = ints[i];
-      types[c] = static_cast<CellType>(ints[i + 1]);
-      cells[c].assign(ints.begin() + i + 2, ints.begin() + i + 2 + num_vertices(types[c]));
-      i += 2 + num_vertices(types[c]);
+      cell_at[c] = i + 1;
+      i += 2 + num_vertices(static_cast<CellType>(ints[i + 1]));
       for (auto& f : out.fields.cell) take(f.values, c, f.components);
     }
   }
-  for (PetscInt c = 0; c < nc; ++c) out.mesh.add_cell(types[c], cells[c].data(), m.cell_tags[c]);
+  out.mesh.cell_types.reserve(nc);
+  out.mesh.cell_offsets.reserve(nc + 1);
+  out.mesh.cell_tags.reserve(nc);
+  for (PetscInt c = 0; c < nc; ++c)
+    out.mesh.add_cell(static_cast<CellType>(ints[cell_at[c]]), ints.data() + cell_at[c] + 1,
+                      m.cell_tags[c]);
   out.mesh.points = m.points;
   return out;
 }

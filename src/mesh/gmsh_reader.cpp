@@ -430,7 +430,7 @@ class GmshParser {
   }
 
   std::string file_;
-  std::string text_;
+  InputText text_;
   const char* pos_ = nullptr;
   const char* end_ = nullptr;
   std::string_view section_ = "$MeshFormat";

@@ -1,11 +1,32 @@
 #include "mesh/input_file.hpp"
 
+#include <sys/mman.h>
+
+#include <cstdlib>
 #include <fstream>
-#include <iterator>
+#include <new>
 
 #include "core/error.hpp"
 
 namespace neomesh {
+
+void* allocate_large(std::size_t bytes) {
+  constexpr std::size_t kHugePage = std::size_t{2} << 20;
+  void* p = nullptr;
+  if (bytes >= 2 * kHugePage) {
+    const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+    p = std::aligned_alloc(kHugePage, rounded);
+    if (p) madvise(p, rounded, MADV_HUGEPAGE);  // a hint: without it, ordinary pages
+  } else {
+    p = std::malloc(bytes ? bytes : 1);
+  }
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+
+void free_large(void* p) noexcept {
+  std::free(p);
+}
 
 void check_regular_file(const std::filesystem::path& path) {
   std::error_code ec;
@@ -18,13 +39,23 @@ void check_regular_file(const std::filesystem::path& path) {
          path.string());
 }
 
-std::string read_input_file(const std::filesystem::path& path) {
+InputText read_input_file(const std::filesystem::path& path) {
   check_regular_file(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) fail("{}: cannot be opened for reading", path.string());
-  // Read to the end rather than trusting the size the file system reports: the file may change
-  // while we read it.
-  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  // One read of the size the file system reports (a character at a time, growing the string,
+  // took most of the time of reading a large mesh), then on to the end: the file may have
+  // grown meanwhile.
+  std::error_code ec;
+  const std::uintmax_t expected = std::filesystem::file_size(path, ec);
+  InputText text(ec ? 0 : static_cast<std::size_t>(expected), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (in) {
+    char buffer[1 << 16];
+    while (in.read(buffer, sizeof buffer) || in.gcount() > 0)
+      text.append(buffer, static_cast<std::size_t>(in.gcount()));
+  }
   if (in.bad()) fail("{}: cannot be read", path.string());
   return text;
 }

@@ -25,8 +25,9 @@ void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path, const M
   check_writable_format(path);
   const GatheredMesh gathered = gather_mesh(mesh, fields);
   on_root(mesh.comm(), [&] {
-    AtomicFile file(path);
-    if (path.extension() == ".vtu")
+    const bool vtu = path.extension() == ".vtu";
+    AtomicFile file(path, vtu);
+    if (vtu)
       write_vtu(gathered, file.stream());
     else
       write_msh(gathered, file.stream());

@@ -7,8 +7,9 @@
 
 namespace neomesh {
 
-// VTK XML UnstructuredGrid (.vtu), ASCII: cell and vertex fields, plus the cell field
-// "physical" when the cells carry physical groups.
+// VTK XML UnstructuredGrid (.vtu), binary in a raw appended section (which ParaView and
+// meshio read; meshio converts to ASCII for reading by eye): cell and vertex fields, plus the
+// cell field "physical" when the cells carry physical groups.
 void write_vtu(const GatheredMesh& mesh, std::ostream& out);
 
 // Gmsh 4.1 ASCII (.msh): cells and the boundary facets and points of physical groups, one

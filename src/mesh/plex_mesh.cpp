@@ -86,8 +86,10 @@ void build_cells(const Impl& m, const std::vector<PetscInt>& original, MeshView&
     if (t < 0) fail("{}: cell {} has {} vertices in {}D", m.source, c, n, m.dim);
     type[c - cStart] = static_cast<CellType>(t);
   }
+  view.global_cell.reserve(cEnd - cStart);
   for (CellType t : kAllCellTypes) {
     CellBlock block{t, view.num_cells, {}};
+    block.vertices.reserve(std::count(type.begin(), type.end(), t) * num_vertices(t));
     for (PetscInt c = cStart; c < cEnd; ++c) {
       if (type[c - cStart] != t) continue;
       const PetscInt* cone;  // the cell's vertices
@@ -121,6 +123,18 @@ std::vector<std::uint8_t> ghost_points(DM dm) {
 // Rank 0 knows the boundary by input vertex; each rank fetches its local vertices' share.
 void build_boundary(const Impl& m, const InputTopology& root, MeshView& view) {
   const PetscInt nv = view.num_vertices;
+  for (const PhysicalGroup& g : m.groups)
+    if (g.dim == m.dim - 1 || g.dim == 0) view.parts.push_back({g.name, g.tag});
+  if (mpi_size(m.comm) == 1) {  // all on this rank: a star forest of every vertex costs more
+    auto take = [&](const auto& from, auto& to) {
+      to.resize(nv);
+      for (PetscInt v = 0; v < nv; ++v) to[v] = from[view.input_vertex[v]];
+    };
+    take(root.on_boundary, view.on_boundary);
+    take(root.boundary_part, view.boundary_part);
+    take(root.part_count, view.part_count);
+    return;
+  }
   std::vector<PetscSFNode> remote(nv);
   for (PetscInt v = 0; v < nv; ++v) remote[v] = {0, view.input_vertex[v]};
   OwnedSF sf;
@@ -135,8 +149,6 @@ void build_boundary(const Impl& m, const InputTopology& root, MeshView& view) {
   fetch(root.on_boundary, view.on_boundary, MPI_UNSIGNED_CHAR);
   fetch(root.boundary_part, view.boundary_part, MPI_INT);
   fetch(root.part_count, view.part_count, MPI_UNSIGNED_CHAR);
-  for (const PhysicalGroup& g : m.groups)
-    if (g.dim == m.dim - 1 || g.dim == 0) view.parts.push_back({g.name, g.tag});
 }
 
 void build_view(Impl& m, const std::vector<PetscInt>& original, PetscInt root_vStart,

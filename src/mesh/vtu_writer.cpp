@@ -1,3 +1,10 @@
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <iterator>
+#include <string>
+#include <vector>
+
 #include <fmt/ostream.h>
 
 #include "mesh/cell_order.hpp"
@@ -7,61 +14,115 @@ namespace neomesh {
 
 namespace {
 
-void write_field(std::ostream& f, const Field& field) {
-  fmt::print(
-      f, "<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
-      field.name, field.components);
-  for (std::size_t i = 0; i < field.values.size(); i += field.components) {
-    for (int c = 0; c < field.components; ++c)
-      fmt::print(f, "{}{:.17g}", c ? " " : "", field.values[i + c]);
-    fmt::print(f, "\n");
+// The file declares byte_order="LittleEndian" and the arrays are copied as they are in memory.
+static_assert(std::endian::native == std::endian::little);
+
+// A .vtu file whose arrays are in one <AppendedData encoding="raw"> section: each is a UInt64
+// byte count followed by the values, and its DataArray tag gives its offset into the section.
+//
+// The section holds the arrays in the reverse order of their tags. meshio (5.x) converts raw
+// data to base64 array by array in section order, finding each tag by its offset and then
+// setting that to the offset in base64: a converted tag earlier in the file could then carry the
+// offset of a later array and be taken for it (a hex mesh's "volume" came back as another
+// field). In reverse order every tag not yet converted comes before the converted ones.
+class VtuDocument {
+ public:
+  template <typename... Args>
+  void text(fmt::format_string<Args...> format, Args&&... args) {
+    fmt::format_to(std::back_inserter(pending_), format, std::forward<Args>(args)...);
   }
-  fmt::print(f, "</DataArray>\n");
+  // A DataArray whose values go to the appended section.
+  template <class T>
+  void array(std::string_view type, std::string_view attributes, const std::vector<T>& values) {
+    const std::uint64_t bytes = values.size() * sizeof(T);
+    std::string block(sizeof bytes + bytes, '\0');
+    std::memcpy(block.data(), &bytes, sizeof bytes);
+    if (bytes) std::memcpy(block.data() + sizeof bytes, values.data(), bytes);
+    arrays_.push_back(
+        {std::move(pending_),
+         fmt::format("<DataArray type=\"{}\"{} format=\"appended\"", type, attributes),
+         std::move(block)});
+    pending_.clear();
+  }
+  // Ends the data with a newline before the closing tag: meshio drops what follows the last
+  // newline.
+  void write(std::ostream& f) const {
+    std::vector<std::uint64_t> offset(arrays_.size());
+    std::uint64_t at = 0;
+    for (std::size_t k = arrays_.size(); k-- > 0;) {
+      offset[k] = at;
+      at += arrays_[k].block.size();
+    }
+    for (std::size_t k = 0; k < arrays_.size(); ++k)
+      fmt::print(f, "{}{} offset=\"{}\"/>\n", arrays_[k].before, arrays_[k].tag, offset[k]);
+    fmt::print(f, "{}<AppendedData encoding=\"raw\">\n_", pending_);
+    for (std::size_t k = arrays_.size(); k-- > 0;)
+      f.write(arrays_[k].block.data(), static_cast<std::streamsize>(arrays_[k].block.size()));
+    fmt::print(f, "\n</AppendedData>\n</VTKFile>\n");
+  }
+
+ private:
+  struct Array {
+    std::string before;  // the text between the previous array's tag and this one's
+    std::string tag;     // without the offset
+    std::string block;   // byte count and values
+  };
+  std::vector<Array> arrays_;
+  std::string pending_;  // text since the last array
+};
+
+void add_field(VtuDocument& doc, const Field& field) {
+  doc.array("Float64",
+            fmt::format(" Name=\"{}\" NumberOfComponents=\"{}\"", field.name, field.components),
+            field.values);
 }
 
 }  // namespace
 
 void write_vtu(const GatheredMesh& gathered, std::ostream& f) {
   const InputMesh& mesh = gathered.mesh;
-  fmt::print(f,
-             "<?xml version=\"1.0\"?>\n"
-             "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-             "<UnstructuredGrid>\n"
-             "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
-             mesh.num_vertices(), mesh.num_cells());
+  const PetscInt nv = mesh.num_vertices(), nc = mesh.num_cells();
+  VtuDocument doc;
+  doc.text(
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n"
+      "<UnstructuredGrid>\n"
+      "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
+      nv, nc);
 
-  fmt::print(f, "<PointData>\n");
-  for (const Field& field : gathered.fields.vertex) write_field(f, field);
-  fmt::print(f, "</PointData>\n<CellData>\n");
-  for (const Field& field : gathered.fields.cell) write_field(f, field);
+  doc.text("<PointData>\n");
+  for (const Field& field : gathered.fields.vertex) add_field(doc, field);
+  doc.text("</PointData>\n<CellData>\n");
+  for (const Field& field : gathered.fields.cell) add_field(doc, field);
   if (gathered.has_cell_groups) {
-    fmt::print(f, "<DataArray type=\"Int32\" Name=\"physical\" format=\"ascii\">\n");
-    for (int tag : mesh.cell_tags) fmt::print(f, "{}\n", tag);
-    fmt::print(f, "</DataArray>\n");
+    const std::vector<std::int32_t> tags(mesh.cell_tags.begin(), mesh.cell_tags.end());
+    doc.array("Int32", " Name=\"physical\"", tags);
   }
-  fmt::print(f, "</CellData>\n");
+  doc.text("</CellData>\n<Points>\n");
 
-  fmt::print(f,
-             "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-  for (PetscInt v = 0; v < mesh.num_vertices(); ++v) {
-    const double* x = mesh.coords.data() + v * mesh.dim;
-    fmt::print(f, "{:.17g} {:.17g} {:.17g}\n", x[0], x[1], mesh.dim == 3 ? x[2] : 0.0);
-  }
-  fmt::print(f, "</DataArray>\n</Points>\n<Cells>\n");
+  std::vector<double> points(3 * static_cast<std::size_t>(nv), 0.0);
+  for (PetscInt v = 0; v < nv; ++v)
+    for (int d = 0; d < mesh.dim; ++d) points[3 * v + d] = mesh.coords[v * mesh.dim + d];
+  doc.array("Float64", " NumberOfComponents=\"3\"", points);
+  doc.text("</Points>\n<Cells>\n");
 
-  fmt::print(f, "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-  for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
+  std::vector<std::int64_t> connectivity(mesh.cell_vertices.size());
+  for (PetscInt c = 0; c < nc; ++c) {
     const CellType t = mesh.cell_types[c];
     const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
     for (int i = 0; i < num_vertices(t); ++i)
-      fmt::print(f, "{}{}", i ? " " : "", cell[gmsh_from_canonical(t)[i]]);
-    fmt::print(f, "\n");
+      connectivity[mesh.cell_offsets[c] + i] = cell[gmsh_from_canonical(t)[i]];
   }
-  fmt::print(f, "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-  for (PetscInt c = 0; c < mesh.num_cells(); ++c) fmt::print(f, "{}\n", mesh.cell_offsets[c + 1]);
-  fmt::print(f, "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-  for (CellType t : mesh.cell_types) fmt::print(f, "{}\n", facts(t).vtk);
-  fmt::print(f, "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+  doc.array("Int64", " Name=\"connectivity\"", connectivity);
+  const std::vector<std::int64_t> offsets(mesh.cell_offsets.begin() + 1, mesh.cell_offsets.end());
+  doc.array("Int64", " Name=\"offsets\"", offsets);
+  std::vector<std::uint8_t> types(nc);
+  for (PetscInt c = 0; c < nc; ++c)
+    types[c] = static_cast<std::uint8_t>(facts(mesh.cell_types[c]).vtk);
+  doc.array("UInt8", " Name=\"types\"", types);
+  doc.text("</Cells>\n</Piece>\n</UnstructuredGrid>\n");
+  doc.write(f);
 }
 
 }  // namespace neomesh

@@ -78,6 +78,8 @@ struct QuasiNewton::Impl {
   int hessian_pc_iterations = 0;  // δ̃ iterations right after the H preconditioner was built
   int last_delta_iterations = 0;
   bool laplacian_fresh = false;  // L was assembled at the current x
+  // restart() asked for L at the current x; the next step assembles it (x has not moved).
+  bool laplacian_pending = false;
   std::optional<StopReason> stop;
   PhaseTimes times;
   double start_time = MPI_Wtime();
@@ -92,10 +94,17 @@ struct QuasiNewton::Impl {
         alpha(o.alpha0) {
     Stopwatch watch(times.setup);
     if (laplacian_preconditions_hessian()) hessian_solver.precondition_with(riesz_solver);
-    hessian = functional.create_matrix();
-    laplacian = functional.create_laplacian_matrix();
     for (OwnedVec* v : {&gradient, &s, &delta_tilde, &delta, &trial, &work, &rhs})
       *v = functional.dofs().create_global_vector();
+  }
+
+  // H and L, and L's preconditioner, only once a step is taken: a mesh that is already a
+  // minimizer needs none (their set-up was most of the run on a uniform 100x100 box).
+  void create_matrices() {
+    if (hessian) return;
+    Stopwatch watch(times.setup);
+    hessian = functional.create_matrix();
+    laplacian = functional.create_laplacian_matrix();
   }
 
   void evaluate_gradient(Vec x) {
@@ -107,11 +116,13 @@ struct QuasiNewton::Impl {
   }
 
   void assemble_laplacian(Vec x) {
+    create_matrices();
     Stopwatch watch(times.riesz_setup);
     functional.assemble_laplacian(options.riesz, x, laplacian);
     riesz_solver.set_operator(laplacian, false);
     riesz_solver.setup();
     laplacian_fresh = true;
+    laplacian_pending = false;
   }
 
   // Vertices that slide on a curved boundary turn their tangent spaces as they move, and L
@@ -226,7 +237,7 @@ struct QuasiNewton::Impl {
     rec.defect = defect;
     rec.alpha = alpha;
 
-    if (options.riesz == RieszLaplacian::CurrentMesh)
+    if (options.riesz == RieszLaplacian::CurrentMesh || laplacian_pending)
       assemble_laplacian(x);
     else if (functional.slides() && !laplacian_fresh)
       update_laplacian_tangents(x);
@@ -290,7 +301,7 @@ QuasiNewton::~QuasiNewton() = default;
 void QuasiNewton::restart(Vec x) {
   impl_->evaluate_gradient(x);
   if (impl_->initial_defect < 0) impl_->initial_defect = impl_->defect;
-  impl_->assemble_laplacian(x);
+  impl_->laplacian_pending = true;
   impl_->antigradient_left = impl_->options.kmin;
   impl_->stop.reset();
 }

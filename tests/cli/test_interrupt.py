@@ -127,7 +127,7 @@ def test_interrupted_in_the_report_write(inputs, ranks):
     assert "interrupted; written completely before the interrupt: " in err \
         and "out.vtu; no other output file was written" in err, \
         f"{ranks} rank(s), interrupted in the report write: stderr {err!r}"
-    with open(os.path.join(tmp, "out.vtu")) as f:
-        assert "<VTKFile" in f.read(), "out.vtu is not the new output"
+    with open(os.path.join(tmp, "out.vtu"), "rb") as f:  # binary: the arrays are raw bytes
+        assert b"<VTKFile" in f.read(), "out.vtu is not the new output"
     assert sorted(os.listdir(tmp)) == ["out.vtu", "random.msh"], \
         f"files left behind: {sorted(os.listdir(tmp))}"
