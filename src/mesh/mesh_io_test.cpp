@@ -104,7 +104,7 @@ TEST(WriteVtu, MeshioReadsEveryFieldAsWritten) {
   std::string files;
   for (CellType type : {CellType::Quadrilateral, CellType::Hexahedron})
     for (int n = 1; n <= 6; ++n) {
-      Mesh mesh = Mesh::from_data(box(type, n), "box");
+      PlexMesh mesh = PlexMesh::from_data(box(type, n), "box");
       const MeshView& view = mesh.view();
       MeshFields fields;
       for (int k = 0; k < 10; ++k) {
