@@ -32,23 +32,30 @@ struct VertexCells {
   }
 };
 
-// Greedy colouring: each cell takes the smallest colour no earlier cell sharing a vertex has.
-std::vector<PetscInt> colour_cells(const VertexCells& around, PetscInt num_cells) {
-  std::vector<PetscInt> colour(num_cells, -1);
-  std::vector<PetscInt> taken_by;  // taken_by[k] == cell: colour k is taken near `cell`
-  for (PetscInt cell = 0; cell < num_cells; ++cell) {
-    for (int i = 0; i < around.cell_size[cell]; ++i) {
-      const PetscInt v = around.cell_vertices[cell][i];
-      for (PetscInt k = around.start[v]; k < around.start[v + 1]; ++k) {
-        const PetscInt other = colour[around.cells[k]];
-        if (other < 0) continue;
-        if (other >= static_cast<PetscInt>(taken_by.size())) taken_by.resize(other + 1, -1);
-        taken_by[other] = cell;
+// Greedy colouring of the chunks of one block (AssemblyPattern::kChunk consecutive cells):
+// each chunk takes the smallest colour that no earlier chunk sharing a vertex with it has.
+std::vector<PetscInt> colour_block_chunks(const VertexCells& around, const CellBlock& block) {
+  const PetscInt chunks = (block.size() + AssemblyPattern::kChunk - 1) / AssemblyPattern::kChunk;
+  std::vector<PetscInt> colour(chunks, -1);
+  std::vector<PetscInt> taken_by;  // taken_by[k] == chunk: colour k is taken near `chunk`
+  const PetscInt first = block.first_cell, end = block.first_cell + block.size();
+  for (PetscInt chunk = 0; chunk < chunks; ++chunk) {
+    const PetscInt cells_end = std::min(end, first + (chunk + 1) * AssemblyPattern::kChunk);
+    for (PetscInt cell = first + chunk * AssemblyPattern::kChunk; cell < cells_end; ++cell)
+      for (int i = 0; i < around.cell_size[cell]; ++i) {
+        const PetscInt v = around.cell_vertices[cell][i];
+        for (PetscInt k = around.start[v]; k < around.start[v + 1]; ++k) {
+          const PetscInt other = around.cells[k];
+          if (other < first || other >= end) continue;  // another block
+          const PetscInt taken = colour[(other - first) / AssemblyPattern::kChunk];
+          if (taken < 0) continue;
+          if (taken >= static_cast<PetscInt>(taken_by.size())) taken_by.resize(taken + 1, -1);
+          taken_by[taken] = chunk;
+        }
       }
-    }
     PetscInt k = 0;
-    while (k < static_cast<PetscInt>(taken_by.size()) && taken_by[k] == cell) ++k;
-    colour[cell] = k;
+    while (k < static_cast<PetscInt>(taken_by.size()) && taken_by[k] == chunk) ++k;
+    colour[chunk] = k;
   }
   return colour;
 }
@@ -346,10 +353,9 @@ void fill_vertex_entries(const MeshView& view, const Numbering& num, const Layou
   }
 }
 
-// block_entry, and the cells of each block in colour order.
+// block_entry, and the chunks of each block in colour order.
 void fill_cell_entries(const MeshView& view, const Numbering& num, const VertexCells& around,
                        const Layout& layout, int d, AssemblyPattern& p) {
-  const std::vector<PetscInt> colour = colour_cells(around, view.num_cells);
   for (const CellBlock& block : view.blocks) {
     const int n = num_vertices(block.type);
     std::vector<PetscInt>& entry = p.block_entry.emplace_back(block.vertices.size() * n);
@@ -361,15 +367,16 @@ void fill_cell_entries(const MeshView& view, const Numbering& num, const VertexC
           entry[(c * n + i) * n + j] = row.entry(num.global[block.cell(c)[j]], d);
       }
 
-    // Counting sort of the block's cells by colour.
-    const PetscInt* first = colour.data() + block.first_cell;
-    const PetscInt colours = block.size() ? *std::max_element(first, first + block.size()) + 1 : 0;
+    // Counting sort of the block's chunks by colour.
+    const std::vector<PetscInt> colour = colour_block_chunks(around, block);
+    const PetscInt chunks = static_cast<PetscInt>(colour.size());
+    const PetscInt colours = chunks ? *std::max_element(colour.begin(), colour.end()) + 1 : 0;
     std::vector<PetscInt>& start = p.colour_start.emplace_back(colours + 1, 0);
-    for (PetscInt c = 0; c < block.size(); ++c) ++start[first[c] + 1];
+    for (PetscInt k = 0; k < chunks; ++k) ++start[colour[k] + 1];
     std::partial_sum(start.begin(), start.end(), start.begin());
-    std::vector<PetscInt>& order = p.colour_order.emplace_back(block.size());
+    std::vector<PetscInt>& order = p.colour_chunks.emplace_back(chunks);
     std::vector<PetscInt> next(start.begin(), start.end() - 1);
-    for (PetscInt c = 0; c < block.size(); ++c) order[next[first[c]]++] = c;
+    for (PetscInt k = 0; k < chunks; ++k) order[next[colour[k]]++] = k;
   }
 }
 

@@ -259,22 +259,24 @@ PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b,
   constexpr int d = CellKernel<Type>::dim;
   const CellBlock& block = view.blocks[b];
   const double* desired = volumes.data() + block.first_cell;
-  const std::vector<PetscInt>& order = assembler->colour_order(b);
+  const std::vector<PetscInt>& chunks = assembler->colour_chunks(b);
   const std::vector<PetscInt>& start = assembler->colour_start(b);
   PetscInt first_bad = std::numeric_limits<PetscInt>::max();
   for (std::size_t colour = 0; colour + 1 < start.size(); ++colour) {
-    // Cells of one colour share no vertex: their blocks go to disjoint entries.
+    // Chunks of one colour share no vertex: their blocks go to disjoint entries.
 #pragma omp parallel for schedule(static) reduction(min : first_bad)
-    for (PetscInt i = start[colour]; i < start[colour + 1]; ++i) {
-      const PetscInt c = order[i];
-      Block cell_block;
-      if (!fill(CellTag<Type>{}, cell_coordinates<Type>(block, c, local_x.data()), desired[c],
-                Eigen::Map<Block>(cell_block.data()))) {
-        first_bad = std::min(first_bad, block.first_cell + c);
-        continue;
+    for (PetscInt k = start[colour]; k < start[colour + 1]; ++k) {
+      const PetscInt end = std::min(block.size(), (chunks[k] + 1) * MatrixAssembler::kChunk);
+      for (PetscInt c = chunks[k] * MatrixAssembler::kChunk; c < end; ++c) {
+        Block cell_block;
+        if (!fill(CellTag<Type>{}, cell_coordinates<Type>(block, c, local_x.data()), desired[c],
+                  Eigen::Map<Block>(cell_block.data()))) {
+          first_bad = std::min(first_bad, block.first_cell + c);
+          continue;
+        }
+        if (!sliding.vertices.empty()) project_block<d, n>(block.cell(c), cell_block);
+        values.add_cell<d, n>(b, c, cell_block.data());
       }
-      if (!sliding.vertices.empty()) project_block<d, n>(block.cell(c), cell_block);
-      values.add_cell<d, n>(b, c, cell_block.data());
     }
   }
   return first_bad;

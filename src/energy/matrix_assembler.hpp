@@ -37,10 +37,12 @@ class MatrixAssembler {
   // The layout of a matrix made by create() of this assembler; throws Error for any other.
   MatrixLayout layout(Mat m) const;
 
-  // Cells of block b (block-local numbers) in colour order: no two cells of one colour
-  // share a vertex, colour k is colour_order(b)[colour_start(b)[k] .. colour_start(b)[k+1]).
-  const std::vector<PetscInt>& colour_order(std::size_t b) const {
-    return pattern_.colour_order[b];
+  // The chunks of block b in colour order (assembly_pattern.hpp): no two chunks of one colour
+  // share a vertex; colour j is colour_chunks(b)[colour_start(b)[j] .. colour_start(b)[j+1]),
+  // chunk k the block's cells [k · kChunk, (k + 1) · kChunk).
+  static constexpr PetscInt kChunk = AssemblyPattern::kChunk;
+  const std::vector<PetscInt>& colour_chunks(std::size_t b) const {
+    return pattern_.colour_chunks[b];
   }
   const std::vector<PetscInt>& colour_start(std::size_t b) const {
     return pattern_.colour_start[b];
@@ -74,7 +76,7 @@ class MatrixAssembler::Values {
 
   // Adds the (D·N) × (D·N) block of cell c of block b (column-major, dof D·i + a of local
   // vertex i), without the rows and columns of fixed dofs; an Uncoupled matrix takes only
-  // the entries within a component. Cells of one colour may be added concurrently.
+  // the entries within a component. Chunks of one colour may be added concurrently.
   template <int D, int N>
   void add_cell(std::size_t b, PetscInt c, const double* block) {
     if (coupled_)
