@@ -432,16 +432,17 @@ void make_ghost_exchange(MPI_Comm comm, const Numbering& num, const Neighbours& 
 
 }  // namespace
 
-std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(const AssemblyPattern& p,
-                                                                      int dim) {
-  const std::size_t rows = p.row_start.size() - 1;
-  std::vector<PetscInt> row_start(rows + 1), column(p.column.size() / dim);
-  for (std::size_t r = 0; r <= rows; ++r) row_start[r] = p.row_start[r] / dim;
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(
+    const std::vector<PetscInt>& coupled_start, const std::vector<PetscInt>& coupled_column,
+    int dim) {
+  const std::size_t rows = coupled_start.size() - 1;
+  std::vector<PetscInt> row_start(rows + 1), column(coupled_column.size() / dim);
+  for (std::size_t r = 0; r <= rows; ++r) row_start[r] = coupled_start[r] / dim;
 #pragma omp parallel for schedule(static)
   for (std::size_t r = 0; r < rows; ++r)
-    for (PetscInt e = p.row_start[r] + static_cast<PetscInt>(r % dim); e < p.row_start[r + 1];
+    for (PetscInt e = coupled_start[r] + static_cast<PetscInt>(r % dim); e < coupled_start[r + 1];
          e += dim)
-      column[e / dim] = p.column[e];
+      column[e / dim] = coupled_column[e];
   return {std::move(row_start), std::move(column)};
 }
 

@@ -55,10 +55,10 @@ struct AssemblyPattern {
 };
 
 // The CSR (row starts, columns) of the same rows without the couplings between different
-// components: entry e of the coupled pattern with column ≡ row (mod dim) is entry e / dim here
-// (and likewise in A, B and G). Needs `column`.
-std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(const AssemblyPattern& p,
-                                                                      int dim);
+// components: entry e of the coupled pattern (row_start, column) with column ≡ row (mod dim)
+// is entry e / dim here (and likewise in A, B and G).
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(
+    const std::vector<PetscInt>& row_start, const std::vector<PetscInt>& column, int dim);
 
 // Collective. Throws Error if the DofMap does not number each rank's vertices consecutively
 // from its first owned dof, with a vertex's dofs next to each other (as Mesh does).

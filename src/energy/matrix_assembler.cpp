@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 #include <tuple>
 
 namespace neomesh {
@@ -16,6 +17,44 @@ struct Tag {
 constexpr const char* kTagName = "neomesh_matrix_assembler";
 
 using OwnedContainer = PetscOwner<PetscContainer, PetscContainerDestroy>;
+
+// The arrays of a SeqAIJ matrix made by MatCreateSeqAIJWithArrays, which PETSc uses in place
+// (no copy of the columns, no MatSetValues pass over them). They hang on the matrix and on
+// every duplicate of it (PetscObjectCompose under kArraysName), and go with the last of them.
+struct CsrArrays {
+  std::vector<PetscInt> row_start, column;
+  std::vector<PetscScalar> values;
+};
+constexpr const char* kArraysName = "neomesh_csr_arrays";
+
+PetscErrorCode destroy_arrays(void* arrays) {
+  delete static_cast<CsrArrays*>(arrays);
+  return 0;
+}
+
+void compose(Mat m, const char* name, PetscObject object) {
+  NM_PETSC(PetscObjectCompose(reinterpret_cast<PetscObject>(m), name, object));
+}
+
+// A SeqAIJ matrix on these arrays, which it keeps; and where its columns are.
+std::pair<OwnedMat, const std::vector<PetscInt>*> matrix_on_arrays(MPI_Comm comm,
+                                                                   std::vector<PetscInt> row_start,
+                                                                   std::vector<PetscInt> column) {
+  auto arrays = std::make_unique<CsrArrays>(
+      CsrArrays{std::move(row_start), std::move(column), std::vector<PetscScalar>()});
+  arrays->values.resize(arrays->column.size());
+  const PetscInt rows = static_cast<PetscInt>(arrays->row_start.size()) - 1;
+  OwnedMat m;
+  NM_PETSC(MatCreateSeqAIJWithArrays(comm, rows, rows, arrays->row_start.data(),
+                                     arrays->column.data(), arrays->values.data(), m.out()));
+  const std::vector<PetscInt>* columns = &arrays->column;
+  OwnedContainer container;
+  NM_PETSC(PetscContainerCreate(comm, container.out()));
+  NM_PETSC(PetscContainerSetPointer(container, arrays.release()));
+  NM_PETSC(PetscContainerSetUserDestroy(container, destroy_arrays));
+  compose(m, kArraysName, reinterpret_cast<PetscObject>(container.get()));
+  return {std::move(m), columns};
+}
 
 std::uint64_t next_id() {
   static std::atomic<std::uint64_t> last{0};
@@ -48,8 +87,7 @@ void attach_tag(Mat m, std::uint64_t assembler, MatrixLayout layout) {
       PetscContainerCreate(PetscObjectComm(reinterpret_cast<PetscObject>(m)), container.out()));
   NM_PETSC(PetscContainerSetPointer(container, tag));
   NM_PETSC(PetscContainerSetUserDestroy(container, PetscContainerUserDestroyDefault));
-  NM_PETSC(PetscObjectCompose(reinterpret_cast<PetscObject>(m), kTagName,
-                              reinterpret_cast<PetscObject>(container.get())));
+  compose(m, kTagName, reinterpret_cast<PetscObject>(container.get()));
 }
 
 }  // namespace
@@ -73,27 +111,46 @@ MatrixAssembler::~MatrixAssembler() = default;
 
 OwnedMat MatrixAssembler::create(MatrixLayout layout) {
   const bool coupled = layout == MatrixLayout::Coupled;
+  const int d = dofs_.dim();
   OwnedMat m;
   if (first_[coupled]) {
     NM_PETSC(MatDuplicate(first_[coupled], MAT_SHARE_NONZERO_PATTERN, m.out()));
+    // A duplicate shares the first matrix's columns: it keeps them too.
+    PetscObject arrays = nullptr;
+    NM_PETSC(PetscObjectQuery(reinterpret_cast<PetscObject>(first_[coupled].get()), kArraysName,
+                              &arrays));
+    if (arrays) compose(m, kArraysName, arrays);
   } else {
-    NM_PETSC(MatCreate(dofs_.comm(), m.out()));
-    NM_PETSC(MatSetSizes(m, dofs_.num_owned_dofs(), dofs_.num_owned_dofs(), dofs_.num_global_dofs(),
-                         dofs_.num_global_dofs()));
-    NM_PETSC(MatSetType(m, MATAIJ));
-    NM_PETSC(MatSetBlockSize(m, dofs_.dim()));
-    std::vector<PetscInt> uncoupled_row_start, uncoupled_column;
-    if (!coupled)
-      std::tie(uncoupled_row_start, uncoupled_column) = uncoupled_csr(pattern_, dofs_.dim());
-    const PetscInt* row_start = coupled ? pattern_.row_start.data() : uncoupled_row_start.data();
-    const PetscInt* column = coupled ? pattern_.column.data() : uncoupled_column.data();
-    // Only the call for the matrix's type (SeqAIJ on one rank, else MPIAIJ) does anything.
-    NM_PETSC(MatSeqAIJSetPreallocationCSR(m, row_start, column, nullptr));
-    NM_PETSC(MatMPIAIJSetPreallocationCSR(m, row_start, column, nullptr));
+    // The columns of the coupled pattern: the pattern's, or, on one rank, the coupled matrix's.
+    const std::vector<PetscInt>& all_columns =
+        coupled_columns_ ? *coupled_columns_ : pattern_.column;
+    std::vector<PetscInt> row_start, column;
+    if (!coupled) std::tie(row_start, column) = uncoupled_csr(pattern_.row_start, all_columns, d);
+    if (mpi_size(dofs_.comm()) == 1) {
+      if (coupled) {
+        row_start = pattern_.row_start;
+        column = std::move(pattern_.column);
+      }
+      const std::vector<PetscInt>* columns = nullptr;
+      std::tie(m, columns) =
+          matrix_on_arrays(dofs_.comm(), std::move(row_start), std::move(column));
+      if (coupled) coupled_columns_ = columns;  // first_[1] keeps them
+      // hypre's BoomerAMG reads the block size as its number of functions.
+      NM_PETSC(MatSetBlockSize(m, d));
+    } else {
+      NM_PETSC(MatCreate(dofs_.comm(), m.out()));
+      NM_PETSC(MatSetSizes(m, dofs_.num_owned_dofs(), dofs_.num_owned_dofs(),
+                           dofs_.num_global_dofs(), dofs_.num_global_dofs()));
+      NM_PETSC(MatSetType(m, MATMPIAIJ));
+      NM_PETSC(MatSetBlockSize(m, d));
+      NM_PETSC(
+          MatMPIAIJSetPreallocationCSR(m, coupled ? pattern_.row_start.data() : row_start.data(),
+                                       coupled ? pattern_.column.data() : column.data(), nullptr));
+    }
     // Values are written where assembly_pattern.hpp says PETSc keeps each entry; a different
     // number of entries in A or B means a PETSc that stores them differently.
     const auto [a, b] = aij_parts(m);
-    const std::size_t shrink = coupled ? 1 : dofs_.dim();
+    const std::size_t shrink = coupled ? 1 : d;
     if (stored_entries(a) != pattern_.diagonal_entries / shrink ||
         stored_entries(b) != pattern_.off_diagonal_entries / shrink)
       fail("internal error: PETSc stores {} in {} + {} entries, not {} + {}", coupled ? "H" : "L",
@@ -102,7 +159,10 @@ OwnedMat MatrixAssembler::create(MatrixLayout layout) {
     NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(m.get())));
     first_[coupled] = OwnedMat(m.get());
     // Every later matrix is a duplicate: the matrices hold the columns from now on.
-    if (first_[0] && first_[1]) std::vector<PetscInt>().swap(pattern_.column);
+    if (first_[0] && first_[1]) {
+      std::vector<PetscInt>().swap(pattern_.column);
+      coupled_columns_ = nullptr;
+    }
   }
   attach_tag(m, id_, layout);
   // H(α) and L are symmetric by construction (cell_kernels.hpp), exactly in floating point.

@@ -59,6 +59,9 @@ class MatrixAssembler {
   std::uint64_t id_;  // tells this assembler's matrices from those of others
   // The first matrix of each layout; later ones share its pattern (MAT_SHARE_NONZERO_PATTERN).
   OwnedMat first_[2];
+  // On one rank, once the coupled matrix took the pattern's columns (and until both layouts
+  // have a matrix): the columns in that matrix.
+  const std::vector<PetscInt>* coupled_columns_ = nullptr;
 };
 
 // The values of one matrix made by MatrixAssembler::create, while it is assembled: all zero

@@ -139,5 +139,34 @@ TEST(MatrixAssembler, RefusesMatricesItDidNotCreate) {
   EXPECT_EQ(s.assembler.layout(mine), MatrixLayout::Coupled);
 }
 
+// ‖M · (1, …, 1)‖
+double product_norm(Mat m) {
+  OwnedVec ones, product;
+  NM_PETSC(MatCreateVecs(m, ones.out(), product.out()));
+  NM_PETSC(VecSet(ones, 1.0));
+  NM_PETSC(MatMult(m, ones, product));
+  double norm = 0.0;
+  NM_PETSC(VecNorm(product, NORM_2, &norm));
+  return norm;
+}
+
+// On one rank the first matrix of a layout uses the assembler's arrays in place; a duplicate
+// shares them and must keep them when the first matrix and the assembler are gone.
+TEST(MatrixAssembler, DuplicatesKeepTheSharedPatternAlive) {
+  OwnedMat duplicate;
+  double expected = 0.0;
+  {
+    TestMesh s(box(CellType::Triangle, 3));
+    OwnedMat first = s.assembler.create(MatrixLayout::Coupled);
+    duplicate = s.assembler.create(MatrixLayout::Coupled);
+    MatrixAssembler::Values values(s.assembler, duplicate);
+    values.gather();
+    values.finish();
+    expected = product_norm(duplicate);
+  }
+  EXPECT_EQ(product_norm(duplicate), expected);  // reads the columns and the values
+  EXPECT_GT(expected, 0.0);                      // the identity rows of fixed dofs
+}
+
 }  // namespace
 }  // namespace neomesh
