@@ -1,6 +1,8 @@
 // Cost of the energy per cell type: F, F and its gradient, the assembly of H(α) (cell blocks
 // added into the matrix values) and the one-time setup of the H and L matrices, on perturbed
-// boxes of about 2.5·10⁵ (2D) or 10⁵ (3D) cells.
+// boxes of about 2.5·10⁵ (2D) or 10⁵ (3D) cells; and the assembly of H(α) and L and the
+// setup on the boxes of the whole-program runs (300² quadrilaterals, 40³ cubes of tetrahedra,
+// 30³ hexahedra).
 // The counter `s_per_Mcell` is the time of one evaluation scaled to a million cells.
 //
 //   OMP_NUM_THREADS=1 ./energy_bench     (serial; the default uses every core)
@@ -36,8 +38,8 @@ struct Problem {
   OwnedVec x;
   OwnedMat matrix;
 
-  explicit Problem(CellType type)
-      : data(perturbed_box(type)),
+  Problem(CellType type, int n)
+      : data(perturbed_box(type, n)),
         view(serial_view(data)),
         dofs(DofMap::serial(data.dim, static_cast<PetscInt>(data.num_vertices()))),
         functional(view, dofs, EnergyOptions{}, view.on_boundary),
@@ -51,8 +53,7 @@ struct Problem {
     matrix = functional.create_matrix();
   }
 
-  static MeshData perturbed_box(CellType type) {
-    const int n = cells_per_direction(type);
+  static MeshData perturbed_box(CellType type, int n) {
     MeshData mesh = box(type, n);
     std::mt19937 rng(1);
     // The pyramids of a split cube are half a cube high: moved by 20% of the cube some invert.
@@ -67,12 +68,16 @@ struct Problem {
 };
 
 // Destroyed by main before PetscFinalize.
-std::map<CellType, std::unique_ptr<Problem>> problems;
+std::map<std::pair<CellType, int>, std::unique_ptr<Problem>> problems;
+
+Problem& problem(CellType type, int n) {
+  auto& p = problems[{type, n}];
+  if (!p) p = std::make_unique<Problem>(type, n);
+  return *p;
+}
 
 Problem& problem(CellType type) {
-  auto& p = problems[type];
-  if (!p) p = std::make_unique<Problem>(type);
-  return *p;
+  return problem(type, cells_per_direction(type));
 }
 
 void report_per_cell(benchmark::State& state, const Problem& p) {
@@ -115,6 +120,44 @@ void CreateMatrices(benchmark::State& state) {
   }
   report_per_cell(state, p);
 }
+
+// Whole assemblies on the boxes of the whole-program runs: H(α), the optimal-cell Laplacian
+// into its own (uncoupled) matrix, and the one-time setup of both matrices.
+template <CellType Type, int N>
+void WholeHessian(benchmark::State& state) {
+  Problem& p = problem(Type, N);
+  for (auto _ : state) p.functional.assemble_hessian(p.x, 0.5, p.matrix);
+  report_per_cell(state, p);
+}
+
+template <CellType Type, int N>
+void WholeLaplacian(benchmark::State& state) {
+  Problem& p = problem(Type, N);
+  const OwnedMat laplacian = p.functional.create_laplacian_matrix();
+  for (auto _ : state)
+    p.functional.assemble_laplacian(RieszLaplacian::OptimalCells, p.x, laplacian);
+  report_per_cell(state, p);
+}
+
+template <CellType Type, int N>
+void WholeSetup(benchmark::State& state) {
+  Problem& p = problem(Type, N);
+  for (auto _ : state) {
+    const Functional fresh(p.view, p.dofs, EnergyOptions{}, p.view.on_boundary);
+    const OwnedMat hessian = fresh.create_matrix();
+    const OwnedMat laplacian = fresh.create_laplacian_matrix();
+  }
+  report_per_cell(state, p);
+}
+
+#define NEOMESH_WHOLE_BENCH(type, n)                                                \
+  BENCHMARK(WholeHessian<type, n>)->Unit(benchmark::kMillisecond)->UseRealTime();   \
+  BENCHMARK(WholeLaplacian<type, n>)->Unit(benchmark::kMillisecond)->UseRealTime(); \
+  BENCHMARK(WholeSetup<type, n>)->Unit(benchmark::kMillisecond)->UseRealTime()
+
+NEOMESH_WHOLE_BENCH(CellType::Quadrilateral, 300);
+NEOMESH_WHOLE_BENCH(CellType::Tetrahedron, 40);
+NEOMESH_WHOLE_BENCH(CellType::Hexahedron, 30);
 
 #define NEOMESH_ENERGY_BENCH(type)                                                 \
   BENCHMARK(Value<type>)->Unit(benchmark::kMillisecond)->UseRealTime();            \

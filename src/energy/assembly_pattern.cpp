@@ -32,23 +32,30 @@ struct VertexCells {
   }
 };
 
-// Greedy colouring: each cell takes the smallest colour no earlier cell sharing a vertex has.
-std::vector<PetscInt> colour_cells(const VertexCells& around, PetscInt num_cells) {
-  std::vector<PetscInt> colour(num_cells, -1);
-  std::vector<PetscInt> taken_by;  // taken_by[k] == cell: colour k is taken near `cell`
-  for (PetscInt cell = 0; cell < num_cells; ++cell) {
-    for (int i = 0; i < around.cell_size[cell]; ++i) {
-      const PetscInt v = around.cell_vertices[cell][i];
-      for (PetscInt k = around.start[v]; k < around.start[v + 1]; ++k) {
-        const PetscInt other = colour[around.cells[k]];
-        if (other < 0) continue;
-        if (other >= static_cast<PetscInt>(taken_by.size())) taken_by.resize(other + 1, -1);
-        taken_by[other] = cell;
+// Greedy colouring of the chunks of one block (AssemblyPattern::kChunk consecutive cells):
+// each chunk takes the smallest colour that no earlier chunk sharing a vertex with it has.
+std::vector<PetscInt> colour_block_chunks(const VertexCells& around, const CellBlock& block) {
+  const PetscInt chunks = (block.size() + AssemblyPattern::kChunk - 1) / AssemblyPattern::kChunk;
+  std::vector<PetscInt> colour(chunks, -1);
+  std::vector<PetscInt> taken_by;  // taken_by[k] == chunk: colour k is taken near `chunk`
+  const PetscInt first = block.first_cell, end = block.first_cell + block.size();
+  for (PetscInt chunk = 0; chunk < chunks; ++chunk) {
+    const PetscInt cells_end = std::min(end, first + (chunk + 1) * AssemblyPattern::kChunk);
+    for (PetscInt cell = first + chunk * AssemblyPattern::kChunk; cell < cells_end; ++cell)
+      for (int i = 0; i < around.cell_size[cell]; ++i) {
+        const PetscInt v = around.cell_vertices[cell][i];
+        for (PetscInt k = around.start[v]; k < around.start[v + 1]; ++k) {
+          const PetscInt other = around.cells[k];
+          if (other < first || other >= end) continue;  // another block
+          const PetscInt taken = colour[(other - first) / AssemblyPattern::kChunk];
+          if (taken < 0) continue;
+          if (taken >= static_cast<PetscInt>(taken_by.size())) taken_by.resize(taken + 1, -1);
+          taken_by[taken] = chunk;
+        }
       }
-    }
     PetscInt k = 0;
-    while (k < static_cast<PetscInt>(taken_by.size()) && taken_by[k] == cell) ++k;
-    colour[cell] = k;
+    while (k < static_cast<PetscInt>(taken_by.size()) && taken_by[k] == chunk) ++k;
+    colour[chunk] = k;
   }
   return colour;
 }
@@ -61,18 +68,19 @@ struct Lists {
   const PetscInt* begin(PetscInt i) const { return value.data() + start[i]; }
 };
 
-// The lists collect(i, buffer) leaves (sorted, unique) for i < n. Two passes, counting then
-// filling, keep it parallel without allocations.
-template <typename Collect>
+// The lists collect(i, buffer, scratch) leaves (sorted, unique) for i < n; each thread has its
+// own Scratch. Two passes, counting then filling, keep it parallel without allocations.
+template <typename Scratch, typename Collect>
 Lists make_lists(PetscInt n, Collect&& collect) {
   Lists lists;
   lists.start.assign(n + 1, 0);
 #pragma omp parallel
   {
     std::vector<PetscInt> buffer;
+    Scratch scratch;
 #pragma omp for schedule(static)
     for (PetscInt i = 0; i < n; ++i) {
-      collect(i, buffer);
+      collect(i, buffer, scratch);
       lists.start[i + 1] = static_cast<PetscInt>(buffer.size());
     }
 #pragma omp single
@@ -82,12 +90,22 @@ Lists make_lists(PetscInt n, Collect&& collect) {
     }
 #pragma omp for schedule(static)
     for (PetscInt i = 0; i < n; ++i) {
-      collect(i, buffer);
+      collect(i, buffer, scratch);
       std::copy(buffer.begin(), buffer.end(), lists.value.begin() + lists.start[i]);
     }
   }
   return lists;
 }
+
+// Per local vertex, the stamp of the last collect call that listed it: the vertices of
+// the cells around a vertex (some 100 in a tet mesh) are made unique before the ~15 left are
+// sorted, not after.
+struct Marks {
+  std::vector<PetscInt> stamp;
+  PetscInt current = 0;
+};
+
+struct NoScratch {};
 
 void sort_unique(std::vector<PetscInt>& v) {
   std::sort(v.begin(), v.end());
@@ -221,21 +239,27 @@ struct Neighbours {
   // From this rank's cells.
   Neighbours(const Numbering& num, const VertexCells& around) {
     auto from_cells = [&](PetscInt first_item) {
-      return [&, first_item](PetscInt i, std::vector<PetscInt>& out) {
+      return [&, first_item](PetscInt i, std::vector<PetscInt>& out, Marks& marks) {
         const PetscInt v = num.local[first_item + i];
+        if (marks.stamp.empty()) marks.stamp.assign(num.local.size(), -1);
+        const PetscInt stamp = marks.current++;
         out.clear();
         // A vertex without cells still has its diagonal.
         if (around.start[v] == around.start[v + 1]) out.push_back(num.global[v]);
         for (PetscInt k = around.start[v]; k < around.start[v + 1]; ++k) {
           const PetscInt cell = around.cells[k];
-          for (int j = 0; j < around.cell_size[cell]; ++j)
-            out.push_back(num.global[around.cell_vertices[cell][j]]);
+          for (int j = 0; j < around.cell_size[cell]; ++j) {
+            const PetscInt w = around.cell_vertices[cell][j];
+            if (marks.stamp[w] == stamp) continue;
+            marks.stamp[w] = stamp;
+            out.push_back(num.global[w]);
+          }
         }
-        sort_unique(out);
+        std::sort(out.begin(), out.end());
       };
     };
-    rows = make_lists(num.owned, from_cells(0));
-    ghosts = make_lists(num.num_ghosts(), from_cells(num.owned));
+    rows = make_lists<Marks>(num.owned, from_cells(0));
+    ghosts = make_lists<Marks>(num.num_ghosts(), from_cells(num.owned));
   }
 
   // Collective. Each ghost's list goes to its owner and is merged into the owner's row: the
@@ -258,14 +282,15 @@ struct Neighbours {
     std::vector<PetscInt> next(start.begin(), start.end() - 1);
     for (std::size_t k = 0; k < in.size(); k += 2 + in[k + 1])
       list[next[in[k] - num.first]++] = static_cast<PetscInt>(k);
-    rows = make_lists(num.owned, [&](PetscInt r, std::vector<PetscInt>& merged) {
+    auto merge = [&](PetscInt r, std::vector<PetscInt>& merged, NoScratch&) {
       merged.assign(rows.begin(r), rows.begin(r) + rows.size(r));
       if (start[r] == start[r + 1]) return;  // not on the interface
       for (PetscInt k = start[r]; k < start[r + 1]; ++k)
         merged.insert(merged.end(), in.begin() + list[k] + 2,
                       in.begin() + list[k] + 2 + in[list[k] + 1]);
       sort_unique(merged);
-    });
+    };
+    rows = make_lists<NoScratch>(num.owned, merge);
   }
 };
 
@@ -346,10 +371,9 @@ void fill_vertex_entries(const MeshView& view, const Numbering& num, const Layou
   }
 }
 
-// block_entry, and the cells of each block in colour order.
+// block_entry, and the chunks of each block in colour order.
 void fill_cell_entries(const MeshView& view, const Numbering& num, const VertexCells& around,
                        const Layout& layout, int d, AssemblyPattern& p) {
-  const std::vector<PetscInt> colour = colour_cells(around, view.num_cells);
   for (const CellBlock& block : view.blocks) {
     const int n = num_vertices(block.type);
     std::vector<PetscInt>& entry = p.block_entry.emplace_back(block.vertices.size() * n);
@@ -361,15 +385,16 @@ void fill_cell_entries(const MeshView& view, const Numbering& num, const VertexC
           entry[(c * n + i) * n + j] = row.entry(num.global[block.cell(c)[j]], d);
       }
 
-    // Counting sort of the block's cells by colour.
-    const PetscInt* first = colour.data() + block.first_cell;
-    const PetscInt colours = block.size() ? *std::max_element(first, first + block.size()) + 1 : 0;
+    // Counting sort of the block's chunks by colour.
+    const std::vector<PetscInt> colour = colour_block_chunks(around, block);
+    const PetscInt chunks = static_cast<PetscInt>(colour.size());
+    const PetscInt colours = chunks ? *std::max_element(colour.begin(), colour.end()) + 1 : 0;
     std::vector<PetscInt>& start = p.colour_start.emplace_back(colours + 1, 0);
-    for (PetscInt c = 0; c < block.size(); ++c) ++start[first[c] + 1];
+    for (PetscInt k = 0; k < chunks; ++k) ++start[colour[k] + 1];
     std::partial_sum(start.begin(), start.end(), start.begin());
-    std::vector<PetscInt>& order = p.colour_order.emplace_back(block.size());
+    std::vector<PetscInt>& order = p.colour_chunks.emplace_back(chunks);
     std::vector<PetscInt> next(start.begin(), start.end() - 1);
-    for (PetscInt c = 0; c < block.size(); ++c) order[next[first[c]]++] = c;
+    for (PetscInt k = 0; k < chunks; ++k) order[next[colour[k]]++] = k;
   }
 }
 
@@ -425,16 +450,17 @@ void make_ghost_exchange(MPI_Comm comm, const Numbering& num, const Neighbours& 
 
 }  // namespace
 
-std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(const AssemblyPattern& p,
-                                                                      int dim) {
-  const std::size_t rows = p.row_start.size() - 1;
-  std::vector<PetscInt> row_start(rows + 1), column(p.column.size() / dim);
-  for (std::size_t r = 0; r <= rows; ++r) row_start[r] = p.row_start[r] / dim;
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(
+    const std::vector<PetscInt>& coupled_start, const std::vector<PetscInt>& coupled_column,
+    int dim) {
+  const std::size_t rows = coupled_start.size() - 1;
+  std::vector<PetscInt> row_start(rows + 1), column(coupled_column.size() / dim);
+  for (std::size_t r = 0; r <= rows; ++r) row_start[r] = coupled_start[r] / dim;
 #pragma omp parallel for schedule(static)
   for (std::size_t r = 0; r < rows; ++r)
-    for (PetscInt e = p.row_start[r] + static_cast<PetscInt>(r % dim); e < p.row_start[r + 1];
+    for (PetscInt e = coupled_start[r] + static_cast<PetscInt>(r % dim); e < coupled_start[r + 1];
          e += dim)
-      column[e / dim] = p.column[e];
+      column[e / dim] = coupled_column[e];
   return {std::move(row_start), std::move(column)};
 }
 

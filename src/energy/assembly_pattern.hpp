@@ -13,9 +13,11 @@
 // vertices (in that part), so entry (row dim·v + a, column dim·w + b) sits at
 // vertex_entry(v, w) + a · stride(v) + b.
 //
-// Cells are coloured so that no two cells of a colour share a vertex: threads add the cells of
-// one colour without races, and every entry receives its contributions in the same order for
-// any number of threads.
+// Cells are added in chunks of consecutive cells, and the chunks coloured so that no two
+// chunks of a colour share a vertex: threads add the chunks of one colour without races, and
+// every entry receives its contributions in the same order for any number of threads. A chunk
+// rather than a cell per colour keeps the entries a thread adds to in cache: with one cell
+// per colour each colour swept the whole matrix.
 #pragma once
 
 #include <utility>
@@ -41,9 +43,11 @@ struct AssemblyPattern {
   // Per block, per cell, per (i, j) in i · vertices + j: the entry of (dof 0 of vertex i, dof 0
   // of vertex j) in A or G (as vertex i is owned or a ghost), or e < 0 for entry ~e of B.
   std::vector<std::vector<PetscInt>> block_entry;
-  // Per block: its cells (block-local indices) ordered by colour; colour k is
-  // colour_order[colour_start[k] .. colour_start[k+1]).
-  std::vector<std::vector<PetscInt>> colour_order, colour_start;
+  // Chunk k of a block is its cells [k · kChunk, (k + 1) · kChunk) (block-local indices).
+  static constexpr PetscInt kChunk = 1024;
+  // Per block: its chunks ordered by colour; colour j is
+  // colour_chunks[colour_start[j] .. colour_start[j+1]).
+  std::vector<std::vector<PetscInt>> colour_chunks, colour_start;
   // From G (leaves) into the owners' A and B values (roots), per [coupled]: the coupled SFs
   // move every entry, the uncoupled ones only entries within a component, at entry / dim
   // (see uncoupled_csr). Null on one rank.
@@ -51,10 +55,10 @@ struct AssemblyPattern {
 };
 
 // The CSR (row starts, columns) of the same rows without the couplings between different
-// components: entry e of the coupled pattern with column ≡ row (mod dim) is entry e / dim here
-// (and likewise in A, B and G). Needs `column`.
-std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(const AssemblyPattern& p,
-                                                                      int dim);
+// components: entry e of the coupled pattern (row_start, column) with column ≡ row (mod dim)
+// is entry e / dim here (and likewise in A, B and G).
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(
+    const std::vector<PetscInt>& row_start, const std::vector<PetscInt>& column, int dim);
 
 // Collective. Throws Error if the DofMap does not number each rank's vertices consecutively
 // from its first owned dof, with a vertex's dofs next to each other (as PlexMesh does).

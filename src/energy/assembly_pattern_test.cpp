@@ -11,7 +11,7 @@
 namespace neomesh {
 namespace {
 
-// Every pair of dofs of a cell has its entry, at the column it names; cells of one colour
+// Every pair of dofs of a cell has its entry, at the column it names; chunks of one colour
 // share no vertex; the rows hold exactly the couplings of the mesh.
 void check_pattern(const MeshData& data) {
   const MeshView view = serial_view(data);
@@ -37,13 +37,22 @@ void check_pattern(const MeshData& data) {
               EXPECT_LT(e, pattern.row_start[d * vi + a + 1]);
               coupled[d * vi + a].insert(d * vj + bb);
             }
-    const auto& order = pattern.colour_order[b];
+    const auto& chunks = pattern.colour_chunks[b];
     const auto& start = pattern.colour_start[b];
-    EXPECT_EQ(start.back(), block.size());
+    const PetscInt chunk = AssemblyPattern::kChunk;
+    EXPECT_EQ(start.back(), (block.size() + chunk - 1) / chunk);
+    std::set<PetscInt> all_chunks(chunks.begin(), chunks.end());
+    EXPECT_EQ(all_chunks.size(), chunks.size());
     for (std::size_t k = 0; k + 1 < start.size(); ++k) {
-      std::set<PetscInt> seen;
+      std::vector<PetscInt> owner(view.num_vertices, -1);  // the chunk of this colour at a vertex
       for (PetscInt i = start[k]; i < start[k + 1]; ++i)
-        for (int v = 0; v < n; ++v) EXPECT_TRUE(seen.insert(block.cell(order[i])[v]).second);
+        for (PetscInt c = chunks[i] * chunk; c < std::min(block.size(), (chunks[i] + 1) * chunk);
+             ++c)
+          for (int v = 0; v < n; ++v) {
+            PetscInt& at = owner[block.cell(c)[v]];
+            EXPECT_TRUE(at < 0 || at == chunks[i]);
+            at = chunks[i];
+          }
     }
   }
   for (PetscInt row = 0; row < d * view.num_vertices; ++row) {
@@ -58,6 +67,7 @@ TEST(AssemblyPattern, EntriesColumnsAndColoursMatchTheMesh) {
   check_pattern(box(CellType::Triangle, 4));
   check_pattern(box(CellType::Tetrahedron, 2));
   check_pattern(box(CellType::Hexahedron, 3));
+  check_pattern(box(CellType::Tetrahedron, 12));  // 10 368 cells: several chunks per colour
 }
 
 }  // namespace

@@ -9,8 +9,8 @@
 #include <tuple>
 #include <type_traits>
 
-#include "energy/assembly_pattern.hpp"
 #include "energy/cell_kernels.hpp"
+#include "energy/matrix_assembler.hpp"
 #include "energy/untangling_kernel.hpp"
 #include "mesh/collective_error.hpp"
 
@@ -68,53 +68,6 @@ double sum_over_ranks(double local, MPI_Comm comm) {
   return global;
 }
 
-// A and B of an AIJ matrix made by create_matrix (assembly_pattern.hpp); B is null on one
-// rank.
-std::pair<Mat, Mat> aij_parts(Mat m) {
-  PetscBool distributed = PETSC_FALSE;
-  NM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(m), MATMPIAIJ, &distributed));
-  if (!distributed) return {m, nullptr};
-  Mat a = nullptr, b = nullptr;
-  NM_PETSC(MatMPIAIJGetSeqAIJ(m, &a, &b, nullptr));
-  return {a, b};
-}
-
-std::size_t stored_entries(Mat part) {
-  if (!part) return 0;
-  MatInfo info;
-  NM_PETSC(MatGetInfo(part, MAT_LOCAL, &info));
-  return static_cast<std::size_t>(info.nz_used);
-}
-
-// The value arrays of A and B, given back to PETSc on scope exit.
-class AijValues {
- public:
-  explicit AijValues(Mat m) {
-    std::tie(diagonal_part_, off_diagonal_part_) = aij_parts(m);
-    NM_PETSC(MatSeqAIJGetArrayWrite(diagonal_part_, &diagonal));
-    if (off_diagonal_part_) NM_PETSC(MatSeqAIJGetArrayWrite(off_diagonal_part_, &off_diagonal));
-  }
-  ~AijValues() {
-    MatSeqAIJRestoreArrayWrite(diagonal_part_, &diagonal);
-    if (off_diagonal_part_) MatSeqAIJRestoreArrayWrite(off_diagonal_part_, &off_diagonal);
-  }
-  // Collective, after the arrays are given back: restoring them marks A and B as changed, but
-  // solvers look at the state of the MPIAIJ matrix itself.
-  static void mark_changed(Mat m) {
-    if (aij_parts(m).second == nullptr) return;
-    NM_PETSC(MatAssemblyBegin(m, MAT_FINAL_ASSEMBLY));
-    NM_PETSC(MatAssemblyEnd(m, MAT_FINAL_ASSEMBLY));
-  }
-  AijValues(const AijValues&) = delete;
-  AijValues& operator=(const AijValues&) = delete;
-
-  PetscScalar* diagonal = nullptr;
-  PetscScalar* off_diagonal = nullptr;
-
- private:
-  Mat diagonal_part_ = nullptr, off_diagonal_part_ = nullptr;
-};
-
 }  // namespace
 
 struct Functional::Impl {
@@ -133,20 +86,15 @@ struct Functional::Impl {
   std::vector<PetscInt> projector_of;  // per local vertex: its index in sliding.vertices, or -1
   bool slides_anywhere = false;        // sliding.vertices is not empty on some rank
 
-  // The AIJ pattern (assembly_pattern.hpp), built by the first create_*matrix and shared by
-  // every matrix of its kind (MatDuplicate with MAT_SHARE_NONZERO_PATTERN); assembly adds
-  // straight into its values. Laplacian matrices leave out the couplings between components
-  // (all zero).
-  mutable std::optional<AssemblyPattern> pattern;
-  mutable OwnedMat pattern_matrix[2];  // [coupled]
+  // Built by the first create_*matrix (the pattern is a one-time cost not every use needs).
+  mutable std::optional<MatrixAssembler> assembler;
 
   // Work arrays reused between calls.
   mutable std::vector<double> local_x;
   mutable std::vector<double> thread_gradients;  // one local gradient per OpenMP thread
   mutable std::vector<double> local_gradient;
-  mutable std::vector<PetscScalar> ghost_values;  // G of assembly_pattern.hpp
-  mutable std::vector<double> tangent_spaces;     // per sliding.vertices entry, at local_x
-  mutable std::vector<double> bending_force;      // per sliding.vertices entry: g · w (owned)
+  mutable std::vector<double> tangent_spaces;  // per sliding.vertices entry, at local_x
+  mutable std::vector<double> bending_force;   // per sliding.vertices entry: g · w (owned)
 
   Impl(const MeshView& v, const DofMap& d, const EnergyOptions& o, std::vector<std::uint8_t> f,
        SlidingVertices t)
@@ -203,35 +151,16 @@ struct Functional::Impl {
 
   double local_energy() const;
   double local_energy_and_gradient(std::vector<double>& gradient) const;
-  OwnedMat create_matrix(bool coupled) const;
-  // Assembly writes into A and B where assembly_pattern.hpp says PETSc keeps each entry;
-  // a different number of entries in A or B means a PETSc that stores them differently.
-  void check_layout(Mat m, bool coupled) const {
-    const auto [a, b] = aij_parts(m);
-    const std::size_t shrink = coupled ? 1 : dofs.dim();
-    if (stored_entries(a) != pattern->diagonal_entries / shrink ||
-        stored_entries(b) != pattern->off_diagonal_entries / shrink)
-      fail("internal error: PETSc stores {} in {} + {} entries, not {} + {}", coupled ? "H" : "L",
-           stored_entries(a), stored_entries(b), pattern->diagonal_entries / shrink,
-           pattern->off_diagonal_entries / shrink);
-  }
-  // True for a matrix made by create_matrix, false for one made by create_laplacian_matrix.
-  // Collective.
-  bool is_coupled(Mat M) const {
-    MatInfo info;
-    NM_PETSC(MatGetInfo(M, MAT_GLOBAL_SUM, &info));
-    return static_cast<PetscInt>(info.nz_allocated) == pattern->global_entries;
-  }
+  OwnedMat create_matrix(MatrixLayout layout) const;
   // Assembles the cell blocks computed by fill(CellTag<type>, x, volume, block) -> bool into M
   // (values only); fails on every rank, naming the first cell for which fill returned false.
   // With sliding vertices, `curvature` times their curvature term is added (α for H(α)).
   template <typename Fill>
   void assemble(Fill&& fill, const char* what, Mat M, double curvature = 0.0) const;
-  // Adds the blocks of the cells of block b into A, B and G; returns the first cell for which
-  // fill returned false (or the largest PetscInt).
-  template <CellType Type, bool Coupled, typename Fill>
-  PetscInt add_cell_blocks(Fill& fill, std::size_t b, const AijValues& values,
-                           PetscScalar* ghost) const;
+  // Adds the blocks of the cells of block b; returns the first cell for which fill returned
+  // false (or the largest PetscInt).
+  template <CellType Type, typename Fill>
+  PetscInt add_cell_blocks(Fill& fill, std::size_t b, MatrixAssembler::Values& values) const;
 };
 
 double Functional::Impl::local_energy() const {
@@ -322,56 +251,31 @@ void Functional::Impl::project_block(const PetscInt* vertex, Block& block) const
   }
 }
 
-template <CellType Type, bool Coupled, typename Fill>
-PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b, const AijValues& values,
-                                           PetscScalar* ghost) const {
+template <CellType Type, typename Fill>
+PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b,
+                                           MatrixAssembler::Values& values) const {
   using Block = typename CellKernel<Type>::Block;
   constexpr int n = CellKernel<Type>::vertices;
   constexpr int d = CellKernel<Type>::dim;
-  // Laplacian matrices hold 1/d of the entries, at entry / d of the coupled ones.
-  constexpr int shrink = Coupled ? 1 : d;
-  const AssemblyPattern& p = *pattern;
   const CellBlock& block = view.blocks[b];
   const double* desired = volumes.data() + block.first_cell;
-  const std::vector<PetscInt>& order = p.colour_order[b];
-  const std::vector<PetscInt>& start = p.colour_start[b];
+  const std::vector<PetscInt>& chunks = assembler->colour_chunks(b);
+  const std::vector<PetscInt>& start = assembler->colour_start(b);
   PetscInt first_bad = std::numeric_limits<PetscInt>::max();
   for (std::size_t colour = 0; colour + 1 < start.size(); ++colour) {
-    // Cells of one colour share no vertex: their blocks go to disjoint entries.
+    // Chunks of one colour share no vertex: their blocks go to disjoint entries.
 #pragma omp parallel for schedule(static) reduction(min : first_bad)
-    for (PetscInt i = start[colour]; i < start[colour + 1]; ++i) {
-      const PetscInt c = order[i];
-      Block cell_block;
-      if (!fill(CellTag<Type>{}, cell_coordinates<Type>(block, c, local_x.data()), desired[c],
-                Eigen::Map<Block>(cell_block.data()))) {
-        first_bad = std::min(first_bad, block.first_cell + c);
-        continue;
-      }
-      const PetscInt* vertex = block.cell(c);
-      if (!sliding.vertices.empty()) project_block<d, n>(vertex, cell_block);
-      const PetscInt* entry = p.block_entry[b].data() + c * n * n;
-      for (int vi = 0; vi < n; ++vi) {
-        const PetscInt v = vertex[vi];
-        // The row of a ghost vertex goes to G, and from there to its owner.
-        PetscScalar* const row = view.owned[v] ? values.diagonal : ghost;
-        const PetscInt row_stride = p.row_stride[v] / shrink;
-        const PetscInt off_row_stride = p.off_row_stride[v] / shrink;
-        for (int vj = 0; vj < n; ++vj) {
-          const PetscInt w = vertex[vj];
-          const PetscInt e = entry[vi * n + vj];
-          PetscScalar* const out = e >= 0 ? row + e / shrink : values.off_diagonal + ~e / shrink;
-          const PetscInt stride = e >= 0 ? row_stride : off_row_stride;
-          for (int a = 0; a < d; ++a) {
-            if (is_fixed_dof(d * v + a)) continue;
-            if constexpr (!Coupled) {
-              if (!is_fixed_dof(d * w + a)) out[a * stride] += cell_block(d * vi + a, d * vj + a);
-            } else {
-              for (int bb = 0; bb < d; ++bb)
-                if (!is_fixed_dof(d * w + bb))
-                  out[a * stride + bb] += cell_block(d * vi + a, d * vj + bb);
-            }
-          }
+    for (PetscInt k = start[colour]; k < start[colour + 1]; ++k) {
+      const PetscInt end = std::min(block.size(), (chunks[k] + 1) * MatrixAssembler::kChunk);
+      for (PetscInt c = chunks[k] * MatrixAssembler::kChunk; c < end; ++c) {
+        Block cell_block;
+        if (!fill(CellTag<Type>{}, cell_coordinates<Type>(block, c, local_x.data()), desired[c],
+                  Eigen::Map<Block>(cell_block.data()))) {
+          first_bad = std::min(first_bad, block.first_cell + c);
+          continue;
         }
+        if (!sliding.vertices.empty()) project_block<d, n>(block.cell(c), cell_block);
+        values.add_cell<d, n>(b, c, cell_block.data());
       }
     }
   }
@@ -380,51 +284,32 @@ PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b, const AijV
 
 template <typename Fill>
 void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M, double curvature) const {
-  const AssemblyPattern& p = *pattern;
   const int d = dofs.dim();
-  // The pattern of M: all couplings (create_matrix) or only within components (Laplacian).
-  const bool coupled = is_coupled(M);
-  const int shrink = coupled ? 1 : d;
   PetscInt first_bad = std::numeric_limits<PetscInt>::max();
-  {
-    AijValues values(M);
-    std::fill_n(values.diagonal, p.diagonal_entries / shrink, 0.0);
-    std::fill_n(values.off_diagonal, p.off_diagonal_entries / shrink, 0.0);
-    ghost_values.assign(p.ghost_entries / shrink, 0.0);
-    PetscScalar* const ghost = ghost_values.data();
-    for (std::size_t b = 0; b < view.blocks.size(); ++b) {
-      visit_cell_type(view.blocks[b].type, [&]<CellType Type>(CellTag<Type>) {
-        first_bad =
-            std::min(first_bad, coupled ? add_cell_blocks<Type, true>(fill, b, values, ghost)
-                                        : add_cell_blocks<Type, false>(fill, b, values, ghost));
-      });
-    }
-    if (p.ghost_to_diagonal[coupled]) {
-      PetscSF to_a = p.ghost_to_diagonal[coupled], to_b = p.ghost_to_off_diagonal[coupled];
-      NM_PETSC(PetscSFReduceBegin(to_a, MPIU_SCALAR, ghost, values.diagonal, MPI_SUM));
-      NM_PETSC(PetscSFReduceBegin(to_b, MPIU_SCALAR, ghost, values.off_diagonal, MPI_SUM));
-      NM_PETSC(PetscSFReduceEnd(to_a, MPIU_SCALAR, ghost, values.diagonal, MPI_SUM));
-      NM_PETSC(PetscSFReduceEnd(to_b, MPIU_SCALAR, ghost, values.off_diagonal, MPI_SUM));
-    }
-    for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l)
-      if (is_fixed_dof(l) && p.diagonal[l] >= 0)
-        values.diagonal[coupled ? p.diagonal[l] : (p.diagonal[l] - l % d) / d] = 1.0;
-    // The normal part of a sliding vertex's rows: + (I − P_v) on its diagonal block; and the
-    // curvature term (g_v · w_v) M_v of the last gradient (sliding_vertices.hpp).
-    for (std::size_t i = 0; i < sliding.vertices.size(); ++i) {
-      const PetscInt v = sliding.vertices[i];
-      if (!view.owned[v]) continue;
-      if (!coupled) fail("internal error: a Laplacian without couplings for sliding vertices");
-      const double* proj = projector(v);
-      const double* bend = proj + d * d + d;
-      const double force = curvature * bending_force[i];
-      for (int a = 0; a < d; ++a)
-        for (int bb = 0; bb < d; ++bb)
-          values.diagonal[p.diagonal[d * v] + a * p.row_stride[v] + bb] +=
-              (a == bb ? 1.0 : 0.0) - proj[a * d + bb] + force * bend[a * d + bb];
-    }
+  if (!assembler) fail("internal error: a matrix to assemble before create_matrix made one");
+  MatrixAssembler::Values values(*assembler, M);
+  for (std::size_t b = 0; b < view.blocks.size(); ++b) {
+    visit_cell_type(view.blocks[b].type, [&]<CellType Type>(CellTag<Type>) {
+      first_bad = std::min(first_bad, add_cell_blocks<Type>(fill, b, values));
+    });
   }
-  AijValues::mark_changed(M);
+  values.gather();
+  // The normal part of a sliding vertex's rows: + (I − P_v) on its diagonal block; and the
+  // curvature term (g_v · w_v) M_v of the last gradient (sliding_vertices.hpp).
+  for (std::size_t i = 0; i < sliding.vertices.size(); ++i) {
+    const PetscInt v = sliding.vertices[i];
+    if (!view.owned[v]) continue;
+    const double* proj = projector(v);
+    const double* bend = proj + d * d + d;
+    const double force = curvature * bending_force[i];
+    double diagonal_block[9];
+    for (int a = 0; a < d; ++a)
+      for (int bb = 0; bb < d; ++bb)
+        diagonal_block[a * d + bb] =
+            (a == bb ? 1.0 : 0.0) - proj[a * d + bb] + force * bend[a * d + bb];
+    values.add_to_diagonal_block(v, diagonal_block);
+  }
+  values.finish();
   std::string error;
   if (first_bad != std::numeric_limits<PetscInt>::max())
     error = fmt::format("{}: input cell {} is inverted or degenerate (det G <= 0)", what,
@@ -518,45 +403,19 @@ double Functional::value_and_gradient(Vec x, Vec gradient) const {
   return sum_over_ranks(local, impl_->dofs.comm());
 }
 
-OwnedMat Functional::Impl::create_matrix(bool coupled) const {
-  if (!pattern) pattern = make_assembly_pattern(view, dofs);
-  OwnedMat m;
-  if (pattern_matrix[coupled]) {
-    NM_PETSC(MatDuplicate(pattern_matrix[coupled], MAT_SHARE_NONZERO_PATTERN, m.out()));
-  } else {
-    NM_PETSC(MatCreate(dofs.comm(), m.out()));
-    NM_PETSC(MatSetSizes(m, dofs.num_owned_dofs(), dofs.num_owned_dofs(), dofs.num_global_dofs(),
-                         dofs.num_global_dofs()));
-    NM_PETSC(MatSetType(m, MATAIJ));
-    NM_PETSC(MatSetBlockSize(m, dofs.dim()));
-    std::vector<PetscInt> uncoupled_row_start, uncoupled_column;
-    if (!coupled)
-      std::tie(uncoupled_row_start, uncoupled_column) = uncoupled_csr(*pattern, dofs.dim());
-    const PetscInt* row_start = coupled ? pattern->row_start.data() : uncoupled_row_start.data();
-    const PetscInt* column = coupled ? pattern->column.data() : uncoupled_column.data();
-    // Only the call for the matrix's type (SeqAIJ on one rank, else MPIAIJ) does anything.
-    NM_PETSC(MatSeqAIJSetPreallocationCSR(m, row_start, column, nullptr));
-    NM_PETSC(MatMPIAIJSetPreallocationCSR(m, row_start, column, nullptr));
-    check_layout(m, coupled);
-    NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(m.get())));
-    pattern_matrix[coupled] = OwnedMat(m.get());
-    // Every later matrix is a duplicate: the matrices hold the columns from now on.
-    if (pattern_matrix[0] && pattern_matrix[1]) std::vector<PetscInt>().swap(pattern->column);
-  }
-  // H(α) and L are symmetric by construction (cell_kernels.hpp), exactly in floating point.
-  NM_PETSC(MatSetOption(m, MAT_SYMMETRIC, PETSC_TRUE));
-  NM_PETSC(MatSetOption(m, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
-  // Rows of ghost vertices reach their owners through the pattern's PetscSFs.
-  NM_PETSC(MatSetOption(m, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
-  return m;
+OwnedMat Functional::Impl::create_matrix(MatrixLayout layout) const {
+  if (!assembler) assembler.emplace(view, dofs, fixed);
+  return assembler->create(layout);
 }
 
 OwnedMat Functional::create_matrix() const {
-  return impl_->create_matrix(true);
+  return impl_->create_matrix(MatrixLayout::Coupled);
 }
 
 OwnedMat Functional::create_laplacian_matrix() const {
-  return impl_->create_matrix(impl_->slides_anywhere);
+  // The projectors of sliding vertices couple the components.
+  return impl_->create_matrix(impl_->slides_anywhere ? MatrixLayout::Coupled
+                                                     : MatrixLayout::Uncoupled);
 }
 
 void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {

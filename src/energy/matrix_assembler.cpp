@@ -1,0 +1,248 @@
+#include "energy/matrix_assembler.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <memory>
+#include <tuple>
+
+namespace neomesh {
+
+namespace {
+
+// What create() attaches to each matrix (PetscObjectCompose under kTagName).
+struct Tag {
+  std::uint64_t assembler;
+  MatrixLayout layout;
+};
+constexpr const char* kTagName = "neomesh_matrix_assembler";
+
+using OwnedContainer = PetscOwner<PetscContainer, PetscContainerDestroy>;
+
+// The arrays of a SeqAIJ matrix made by MatCreateSeqAIJWithArrays, which PETSc uses in place
+// (no copy of the columns, no MatSetValues pass over them). They hang on the matrix and on
+// every duplicate of it (PetscObjectCompose under kArraysName), and go with the last of them.
+struct CsrArrays {
+  std::vector<PetscInt> row_start, column;
+  std::vector<PetscScalar> values;
+};
+constexpr const char* kArraysName = "neomesh_csr_arrays";
+
+PetscErrorCode destroy_arrays(void* arrays) {
+  delete static_cast<CsrArrays*>(arrays);
+  return 0;
+}
+
+void compose(Mat m, const char* name, PetscObject object) {
+  NM_PETSC(PetscObjectCompose(reinterpret_cast<PetscObject>(m), name, object));
+}
+
+// A SeqAIJ matrix on these arrays, which it keeps; and where its columns are.
+std::pair<OwnedMat, const std::vector<PetscInt>*> matrix_on_arrays(MPI_Comm comm,
+                                                                   std::vector<PetscInt> row_start,
+                                                                   std::vector<PetscInt> column) {
+  auto arrays = std::make_unique<CsrArrays>(
+      CsrArrays{std::move(row_start), std::move(column), std::vector<PetscScalar>()});
+  arrays->values.resize(arrays->column.size());
+  const PetscInt rows = static_cast<PetscInt>(arrays->row_start.size()) - 1;
+  OwnedMat m;
+  NM_PETSC(MatCreateSeqAIJWithArrays(comm, rows, rows, arrays->row_start.data(),
+                                     arrays->column.data(), arrays->values.data(), m.out()));
+  const std::vector<PetscInt>* columns = &arrays->column;
+  OwnedContainer container;
+  NM_PETSC(PetscContainerCreate(comm, container.out()));
+  NM_PETSC(PetscContainerSetPointer(container, arrays.release()));
+  NM_PETSC(PetscContainerSetUserDestroy(container, destroy_arrays));
+  compose(m, kArraysName, reinterpret_cast<PetscObject>(container.get()));
+  return {std::move(m), columns};
+}
+
+std::uint64_t next_id() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
+}
+
+// A and B of an AIJ matrix; B is null on one rank (SeqAIJ).
+std::pair<Mat, Mat> aij_parts(Mat m) {
+  PetscBool distributed = PETSC_FALSE;
+  NM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(m), MATMPIAIJ, &distributed));
+  if (!distributed) return {m, nullptr};
+  Mat a = nullptr, b = nullptr;
+  NM_PETSC(MatMPIAIJGetSeqAIJ(m, &a, &b, nullptr));
+  return {a, b};
+}
+
+std::size_t stored_entries(Mat part) {
+  if (!part) return 0;
+  MatInfo info;
+  NM_PETSC(MatGetInfo(part, MAT_LOCAL, &info));
+  return static_cast<std::size_t>(info.nz_used);
+}
+
+void attach_tag(Mat m, std::uint64_t assembler, MatrixLayout layout) {
+  Tag* tag = nullptr;
+  NM_PETSC(PetscNew(&tag));
+  *tag = Tag{assembler, layout};
+  OwnedContainer container;
+  NM_PETSC(
+      PetscContainerCreate(PetscObjectComm(reinterpret_cast<PetscObject>(m)), container.out()));
+  NM_PETSC(PetscContainerSetPointer(container, tag));
+  NM_PETSC(PetscContainerSetUserDestroy(container, PetscContainerUserDestroyDefault));
+  compose(m, kTagName, reinterpret_cast<PetscObject>(container.get()));
+}
+
+}  // namespace
+
+MatrixAssembler::MatrixAssembler(const MeshView& view, const DofMap& dofs,
+                                 std::span<const std::uint8_t> fixed)
+    : view_(view),
+      dofs_(dofs),
+      fixed_(fixed.begin(), fixed.end()),
+      vertex_fixed_(view.num_vertices, 0),
+      pattern_(make_assembly_pattern(view, dofs)),
+      id_(next_id()) {
+  const int d = dofs.dim();
+  if (static_cast<PetscInt>(fixed_.size()) != d * view.num_vertices)
+    fail("MatrixAssembler: {} fixed flags for {} local dofs", fixed_.size(), d * view.num_vertices);
+  for (PetscInt l = 0; l < d * view.num_vertices; ++l)
+    if (fixed_[l]) vertex_fixed_[l / d] = 1;
+}
+
+MatrixAssembler::~MatrixAssembler() = default;
+
+OwnedMat MatrixAssembler::create(MatrixLayout layout) {
+  const bool coupled = layout == MatrixLayout::Coupled;
+  const int d = dofs_.dim();
+  OwnedMat m;
+  if (first_[coupled]) {
+    NM_PETSC(MatDuplicate(first_[coupled], MAT_SHARE_NONZERO_PATTERN, m.out()));
+    // A duplicate shares the first matrix's columns: it keeps them too.
+    PetscObject arrays = nullptr;
+    NM_PETSC(PetscObjectQuery(reinterpret_cast<PetscObject>(first_[coupled].get()), kArraysName,
+                              &arrays));
+    if (arrays) compose(m, kArraysName, arrays);
+  } else {
+    // The columns of the coupled pattern: the pattern's, or, on one rank, the coupled matrix's.
+    const std::vector<PetscInt>& all_columns =
+        coupled_columns_ ? *coupled_columns_ : pattern_.column;
+    std::vector<PetscInt> row_start, column;
+    if (!coupled) std::tie(row_start, column) = uncoupled_csr(pattern_.row_start, all_columns, d);
+    if (mpi_size(dofs_.comm()) == 1) {
+      if (coupled) {
+        row_start = pattern_.row_start;
+        column = std::move(pattern_.column);
+      }
+      const std::vector<PetscInt>* columns = nullptr;
+      std::tie(m, columns) =
+          matrix_on_arrays(dofs_.comm(), std::move(row_start), std::move(column));
+      if (coupled) coupled_columns_ = columns;  // first_[1] keeps them
+      // hypre's BoomerAMG reads the block size as its number of functions.
+      NM_PETSC(MatSetBlockSize(m, d));
+    } else {
+      NM_PETSC(MatCreate(dofs_.comm(), m.out()));
+      NM_PETSC(MatSetSizes(m, dofs_.num_owned_dofs(), dofs_.num_owned_dofs(),
+                           dofs_.num_global_dofs(), dofs_.num_global_dofs()));
+      NM_PETSC(MatSetType(m, MATMPIAIJ));
+      NM_PETSC(MatSetBlockSize(m, d));
+      NM_PETSC(
+          MatMPIAIJSetPreallocationCSR(m, coupled ? pattern_.row_start.data() : row_start.data(),
+                                       coupled ? pattern_.column.data() : column.data(), nullptr));
+    }
+    // Values are written where assembly_pattern.hpp says PETSc keeps each entry; a different
+    // number of entries in A or B means a PETSc that stores them differently.
+    const auto [a, b] = aij_parts(m);
+    const std::size_t shrink = coupled ? 1 : d;
+    if (stored_entries(a) != pattern_.diagonal_entries / shrink ||
+        stored_entries(b) != pattern_.off_diagonal_entries / shrink)
+      fail("internal error: PETSc stores {} in {} + {} entries, not {} + {}", coupled ? "H" : "L",
+           stored_entries(a), stored_entries(b), pattern_.diagonal_entries / shrink,
+           pattern_.off_diagonal_entries / shrink);
+    NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(m.get())));
+    first_[coupled] = OwnedMat(m.get());
+    // Every later matrix is a duplicate: the matrices hold the columns from now on.
+    if (first_[0] && first_[1]) {
+      std::vector<PetscInt>().swap(pattern_.column);
+      coupled_columns_ = nullptr;
+    }
+  }
+  attach_tag(m, id_, layout);
+  // H(α) and L are symmetric by construction (cell_kernels.hpp), exactly in floating point.
+  NM_PETSC(MatSetOption(m, MAT_SYMMETRIC, PETSC_TRUE));
+  NM_PETSC(MatSetOption(m, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+  // Rows of ghost vertices reach their owners through the pattern's PetscSFs.
+  NM_PETSC(MatSetOption(m, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
+  return m;
+}
+
+MatrixLayout MatrixAssembler::layout(Mat m) const {
+  PetscObject container = nullptr;
+  if (m) NM_PETSC(PetscObjectQuery(reinterpret_cast<PetscObject>(m), kTagName, &container));
+  void* tag = nullptr;
+  if (container)
+    NM_PETSC(PetscContainerGetPointer(reinterpret_cast<PetscContainer>(container), &tag));
+  if (!tag || static_cast<const Tag*>(tag)->assembler != id_)
+    fail(
+        "internal error: the matrix to assemble was not made by this Functional's "
+        "create_matrix or create_laplacian_matrix");
+  return static_cast<const Tag*>(tag)->layout;
+}
+
+MatrixAssembler::Values::Values(const MatrixAssembler& assembler, Mat m)
+    : assembler_(assembler), m_(m) {
+  coupled_ = assembler.layout(m) == MatrixLayout::Coupled;
+  const AssemblyPattern& p = assembler.pattern_;
+  const std::size_t shrink = coupled_ ? 1 : assembler.dofs_.dim();
+  std::tie(diagonal_part_, off_diagonal_part_) = aij_parts(m);
+  NM_PETSC(MatSeqAIJGetArrayWrite(diagonal_part_, &diagonal_));
+  if (off_diagonal_part_) NM_PETSC(MatSeqAIJGetArrayWrite(off_diagonal_part_, &off_diagonal_));
+  std::fill_n(diagonal_, p.diagonal_entries / shrink, 0.0);
+  std::fill_n(off_diagonal_, p.off_diagonal_entries / shrink, 0.0);
+  ghost_.assign(p.ghost_entries / shrink, 0.0);
+}
+
+MatrixAssembler::Values::~Values() {
+  restore();
+}
+
+void MatrixAssembler::Values::restore() {
+  if (diagonal_) MatSeqAIJRestoreArrayWrite(diagonal_part_, &diagonal_);
+  if (off_diagonal_) MatSeqAIJRestoreArrayWrite(off_diagonal_part_, &off_diagonal_);
+  diagonal_ = off_diagonal_ = nullptr;
+}
+
+void MatrixAssembler::Values::gather() {
+  const AssemblyPattern& p = assembler_.pattern_;
+  if (p.ghost_to_diagonal[coupled_]) {
+    PetscSF to_a = p.ghost_to_diagonal[coupled_], to_b = p.ghost_to_off_diagonal[coupled_];
+    PetscScalar* const ghost = ghost_.data();
+    NM_PETSC(PetscSFReduceBegin(to_a, MPIU_SCALAR, ghost, diagonal_, MPI_SUM));
+    NM_PETSC(PetscSFReduceBegin(to_b, MPIU_SCALAR, ghost, off_diagonal_, MPI_SUM));
+    NM_PETSC(PetscSFReduceEnd(to_a, MPIU_SCALAR, ghost, diagonal_, MPI_SUM));
+    NM_PETSC(PetscSFReduceEnd(to_b, MPIU_SCALAR, ghost, off_diagonal_, MPI_SUM));
+  }
+  const int d = assembler_.dofs_.dim();
+  const std::vector<std::uint8_t>& fixed = assembler_.fixed_;
+  for (PetscInt l = 0; l < static_cast<PetscInt>(fixed.size()); ++l)
+    if (fixed[l] && p.diagonal[l] >= 0)
+      diagonal_[coupled_ ? p.diagonal[l] : (p.diagonal[l] - l % d) / d] = 1.0;
+}
+
+void MatrixAssembler::Values::add_to_diagonal_block(PetscInt v, const double* block) {
+  if (!coupled_) fail("internal error: a diagonal block added to a matrix without couplings");
+  const AssemblyPattern& p = assembler_.pattern_;
+  const int d = assembler_.dofs_.dim();
+  for (int a = 0; a < d; ++a)
+    for (int b = 0; b < d; ++b)
+      diagonal_[p.diagonal[d * v] + a * p.row_stride[v] + b] += block[a * d + b];
+}
+
+void MatrixAssembler::Values::finish() {
+  restore();
+  // Restoring the arrays marks A and B as changed, but solvers look at the state of the
+  // MPIAIJ matrix itself.
+  if (off_diagonal_part_) {
+    NM_PETSC(MatAssemblyBegin(m_, MAT_FINAL_ASSEMBLY));
+    NM_PETSC(MatAssemblyEnd(m_, MAT_FINAL_ASSEMBLY));
+  }
+}
+
+}  // namespace neomesh

@@ -1,0 +1,172 @@
+#include "energy/matrix_assembler.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+
+#include "mesh/generate.hpp"
+#include "mesh/serial_view.hpp"
+
+namespace neomesh {
+namespace {
+
+// A serial mesh with some dofs fixed (every coordinate of the first vertex of each cell
+// block's first cell, and one coordinate of every fifth vertex) and its assembler.
+struct TestMesh {
+  MeshData data;
+  MeshView view;
+  DofMap dofs;
+  std::vector<std::uint8_t> fixed;
+  MatrixAssembler assembler;
+
+  explicit TestMesh(MeshData mesh)
+      : data(std::move(mesh)),
+        view(serial_view(data)),
+        dofs(DofMap::serial(data.dim, static_cast<PetscInt>(data.num_vertices()))),
+        fixed(fixed_dofs(view)),
+        assembler(view, dofs, fixed) {}
+
+  static std::vector<std::uint8_t> fixed_dofs(const MeshView& view) {
+    std::vector<std::uint8_t> fixed(view.dim * view.num_vertices, 0);
+    for (PetscInt v = 0; v < view.num_vertices; v += 5) fixed[view.dim * v + v % view.dim] = 1;
+    for (const CellBlock& block : view.blocks)
+      for (int a = 0; a < view.dim; ++a) fixed[view.dim * block.cell(0)[0] + a] = 1;
+    return fixed;
+  }
+};
+
+double value(Mat m, PetscInt row, PetscInt column) {
+  PetscScalar v = 0.0;
+  NM_PETSC(MatGetValues(m, 1, &row, 1, &column, &v));
+  return v;
+}
+
+// Adds a random block per cell through the assembler, and the same blocks entry by entry
+// into a dense reference with the rule of docs/method.md §3 (fixed rows and columns are
+// those of the identity; Uncoupled keeps entries within a component only).
+void check_assembly(const MeshData& mesh, MatrixLayout layout) {
+  TestMesh s(mesh);
+  const int d = s.view.dim;
+  const PetscInt n = d * s.view.num_vertices;
+  std::vector<double> reference(static_cast<std::size_t>(n * n), 0.0);
+  OwnedMat m = s.assembler.create(layout);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  {
+    MatrixAssembler::Values values(s.assembler, m);
+    EXPECT_EQ(values.layout(), layout);
+    for (std::size_t b = 0; b < s.view.blocks.size(); ++b) {
+      const CellBlock& block = s.view.blocks[b];
+      visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
+        constexpr int nv = num_vertices(Type);
+        constexpr int dim = dimension(Type);
+        constexpr int k = dim * nv;
+        for (PetscInt c = 0; c < block.size(); ++c) {
+          double cell_block[k * k];
+          for (double& x : cell_block) x = u(rng);
+          values.add_cell<dim, nv>(b, c, cell_block);
+          for (int i = 0; i < k; ++i)
+            for (int j = 0; j < k; ++j) {
+              const PetscInt row = d * block.cell(c)[i / d] + i % d;
+              const PetscInt column = d * block.cell(c)[j / d] + j % d;
+              if (s.fixed[row] || s.fixed[column]) continue;
+              if (layout == MatrixLayout::Uncoupled && i % d != j % d) continue;
+              reference[row * n + column] += cell_block[i + j * k];
+            }
+        }
+      });
+    }
+    values.gather();
+    values.finish();
+  }
+  for (PetscInt l = 0; l < n; ++l)
+    if (s.fixed[l]) reference[l * n + l] = 1.0;
+  for (PetscInt row = 0; row < n; ++row)
+    for (PetscInt column = 0; column < n; ++column)
+      ASSERT_NEAR(value(m, row, column), reference[row * n + column], 1e-12)
+          << "row " << row << ", column " << column;
+  PetscBool assembled = PETSC_FALSE;
+  NM_PETSC(MatAssembled(m, &assembled));
+  EXPECT_TRUE(assembled);
+}
+
+TEST(MatrixAssembler, AddsCellBlocksWhereTheMatrixKeepsThem) {
+  for (MatrixLayout layout : {MatrixLayout::Coupled, MatrixLayout::Uncoupled}) {
+    check_assembly(square_random(4, 0.2, 1), layout);
+    check_assembly(box(CellType::Triangle, 3), layout);
+    check_assembly(box(CellType::Tetrahedron, 2), layout);
+    check_assembly(box(CellType::Hexahedron, 2), layout);
+  }
+}
+
+TEST(MatrixAssembler, UncoupledMatricesHoldOneEntryInDim) {
+  TestMesh s(box(CellType::Tetrahedron, 2));
+  OwnedMat coupled = s.assembler.create(MatrixLayout::Coupled);
+  OwnedMat uncoupled = s.assembler.create(MatrixLayout::Uncoupled);
+  MatInfo a, b;
+  NM_PETSC(MatGetInfo(coupled, MAT_GLOBAL_SUM, &a));
+  NM_PETSC(MatGetInfo(uncoupled, MAT_GLOBAL_SUM, &b));
+  EXPECT_EQ(a.nz_allocated, 3 * b.nz_allocated);
+  // Later matrices of a layout share the first one's pattern and keep their own tag.
+  OwnedMat second = s.assembler.create(MatrixLayout::Uncoupled);
+  EXPECT_EQ(s.assembler.layout(coupled), MatrixLayout::Coupled);
+  EXPECT_EQ(s.assembler.layout(uncoupled), MatrixLayout::Uncoupled);
+  EXPECT_EQ(s.assembler.layout(second), MatrixLayout::Uncoupled);
+}
+
+// Whatever its pattern, a matrix the assembler did not create is refused: the assembler
+// would otherwise write its values by a layout the matrix may not have.
+TEST(MatrixAssembler, RefusesMatricesItDidNotCreate) {
+  TestMesh s(box(CellType::Triangle, 3));
+  OwnedMat mine = s.assembler.create(MatrixLayout::Coupled);
+  OwnedMat copy;
+  NM_PETSC(MatDuplicate(mine, MAT_SHARE_NONZERO_PATTERN, copy.out()));
+  const PetscInt n = s.dofs.num_global_dofs();
+  OwnedMat dense;
+  NM_PETSC(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, n, nullptr, dense.out()));
+  TestMesh other(box(CellType::Triangle, 3));
+  OwnedMat theirs = other.assembler.create(MatrixLayout::Coupled);
+  for (Mat m : {copy.get(), dense.get(), theirs.get()}) {
+    try {
+      MatrixAssembler::Values values(s.assembler, m);
+      ADD_FAILURE() << "a foreign matrix was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("not made by"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(s.assembler.layout(m), Error);
+  }
+  EXPECT_EQ(s.assembler.layout(mine), MatrixLayout::Coupled);
+}
+
+// ‖M · (1, …, 1)‖
+double product_norm(Mat m) {
+  OwnedVec ones, product;
+  NM_PETSC(MatCreateVecs(m, ones.out(), product.out()));
+  NM_PETSC(VecSet(ones, 1.0));
+  NM_PETSC(MatMult(m, ones, product));
+  double norm = 0.0;
+  NM_PETSC(VecNorm(product, NORM_2, &norm));
+  return norm;
+}
+
+// On one rank the first matrix of a layout uses the assembler's arrays in place; a duplicate
+// shares them and must keep them when the first matrix and the assembler are gone.
+TEST(MatrixAssembler, DuplicatesKeepTheSharedPatternAlive) {
+  OwnedMat duplicate;
+  double expected = 0.0;
+  {
+    TestMesh s(box(CellType::Triangle, 3));
+    OwnedMat first = s.assembler.create(MatrixLayout::Coupled);
+    duplicate = s.assembler.create(MatrixLayout::Coupled);
+    MatrixAssembler::Values values(s.assembler, duplicate);
+    values.gather();
+    values.finish();
+    expected = product_norm(duplicate);
+  }
+  EXPECT_EQ(product_norm(duplicate), expected);  // reads the columns and the values
+  EXPECT_GT(expected, 0.0);                      // the identity rows of fixed dofs
+}
+
+}  // namespace
+}  // namespace neomesh
