@@ -86,6 +86,7 @@ SmoothOptions SmoothOptions::thesis(SmoothOptions o) {
   o.solver.practical = false;  // iterate to the defect tolerance
   o.solver.riesz_rtol = SolverOptions::kThesisRieszRtol;
   o.quality_guard = false;
+  o.energy.gauss_points = EnergyOptions().gauss_points;
   return o;
 }
 
@@ -100,6 +101,7 @@ AdaptOptions AdaptOptions::thesis(AdaptOptions o) {
   o.sizes.smoothing_passes = SizeFieldOptions::thesis().smoothing_passes;
   o.energy.lambda = 1.0;
   o.energy.mu = 10.0;
+  o.energy.gauss_points = EnergyOptions().gauss_points;
   o.boundary.mode = BoundaryMode::Fixed;
   o.boundary.shapes.clear();
   o.picard = PicardOptions::thesis();

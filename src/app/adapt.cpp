@@ -336,8 +336,7 @@ Subcommand add_adapt(CLI::App& app) {
   auto o = std::make_shared<AdaptCommand>();
   // Adaptation wants volumes met, not only shapes: λ = 4 μ, and boundary vertices that slide
   // so that the cells at the boundary can grade too (docs/adaptivity.md).
-  o->method.energy.lambda = 4.0;
-  o->method.energy.mu = 1.0;
+  o->method.energy = AdaptOptions().energy;
   o->method.boundary = "slide";
   CLI::App* cmd = app.add_subcommand(
       "adapt",

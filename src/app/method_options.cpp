@@ -39,7 +39,8 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "(default: λ)")
       ->group(energy);
   cmd.add_option("--gauss", o.energy.gauss_points,
-                 "Gauss points per direction on quadrilaterals/hexahedra/wedges/pyramids (1-5)")
+                 "Gauss points per direction on quadrilaterals/hexahedra/wedges/pyramids (1-5; "
+                 "--thesis: 3)")
       ->capture_default_str()
       ->group(energy);
 

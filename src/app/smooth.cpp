@@ -64,6 +64,7 @@ Subcommand add_smooth(CLI::App& app) {
   // (box_with_hole: min scaled Jacobian 0.024 fixed, 0.151 sliding); the boundary stays on the
   // input's facets, corners and group borders stay put (docs/boundary.md).
   o->method.boundary = "slide";
+  o->method.energy = SmoothOptions().energy;
   CLI::App* cmd = app.add_subcommand(
       "smooth",
       "Improve the shape of every cell. Moves the vertices (the connectivity stays; boundary\n"
