@@ -139,7 +139,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
   cmd.add_flag("--thesis", o.thesis,
                "the thesis' conventions: uniform desired volumes, fixed boundary vertices, no "
                "practical stopping criterion (iterate to the defect tolerance), Riesz solve to "
-               "1e-8; default: off")
+               "1e-8, 3 Gauss points per direction; default: off")
       ->group(method);
 }
 
