@@ -31,8 +31,9 @@ class Optimizer {
 
   // Cells crowd where `field` is small (thesis chapter 6): the desired volumes are recomputed
   // from the moving mesh in Picard iterations. The first call starts cold; a later call (the
-  // field moved, e.g. set_time) starts from the mesh and desired volumes the last one left
-  // and may stop after options.warm_updates updates. Collective.
+  // field moved, e.g. set_time) starts warm from the mesh the last one left, where the field's
+  // desired volumes are nearly met, and may stop after options.warm_updates updates. Inverted
+  // cells are untangled first unless options.untangle is false. Collective.
   Result adapt(const SizeField& field, const AdaptOptions& options = {},
                const Observer& observer = {});
   // The next adapt() starts cold (the mesh was changed in another way, say).

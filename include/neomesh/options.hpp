@@ -16,7 +16,7 @@ namespace neomesh {
 struct EnergyOptions {
   double lambda = 1.0;
   double mu = 10.0;
-  double kappa = -1.0;   // < 0 means κ = λ (enough for convexity, thesis §4.3)
+  double kappa = -1.0;  // < 0 means κ = λ (enough for convexity, thesis §4.3)
   // Gauss points per direction for Q1 cells, wedges and pyramids; 3 reproduces the thesis.
   // SmoothOptions and AdaptOptions use 2 (docs/benchmarks.md: the same optimum and iterations).
   int gauss_points = 3;
@@ -183,6 +183,9 @@ struct AdaptOptions {
   // A warm start (adapt() after an earlier adapt() on the same Optimizer, e.g. the next time
   // step): Picard updates before it may stop, instead of picard.min_updates.
   int warm_updates = 1;
+  // Inverted cells are untangled first, towards the size field's volumes (a geometry that
+  // moved through the mesh); false: they are an error.
+  bool untangle = true;
 
   // `base` with the thesis' scheme (§6.1): the raw field, λ = 1, μ = 10, 3×3(×3) Gauss points,
   // fixed boundary vertices, the thesis' Picard updates and stopping rule, the Riesz solve to

@@ -96,6 +96,23 @@ const Functional& Optimizer::Impl::constrain(SlidingVertices extra) {
   return *functional;
 }
 
+std::optional<UntanglingSummary> Optimizer::Impl::untangle(const QuasiNewtonOptions& method,
+                                                           const Observer& observer) {
+  const PetscInt inverted = functional->inversion(x, 0).count;
+  if (inverted == 0) return std::nullopt;
+  if (observer.untangling) observer.untangling(inverted);
+  const UntangleResult u =
+      neomesh::untangle(*functional, x, method, cell_size, {}, observer.iteration);
+  if (u.after.count > 0)
+    fail(
+        "{}: the mesh cannot be untangled with its boundary as it is: {} of {} inverted cells "
+        "are still inverted after {} iterations (cells {}; 0-based, in input order)",
+        mesh.name(), u.after.count, u.before.count, u.history.size(), list_cells(u.after));
+  const UntanglingSummary summary = summarize(u);
+  if (observer.untangled) observer.untangled(summary);
+  return summary;
+}
+
 ProblemSummary Optimizer::Impl::problem() const {
   double free = 0.0;
   NM_PETSC(VecSum(functional->free_mask(), &free));
@@ -155,19 +172,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   OwnedVec input;
   NM_PETSC(VecDuplicate(r.x, input.out()));
   NM_PETSC(VecCopy(r.x, input));
-  if (const PetscInt inverted = r.functional->inversion(r.x, 0).count;
-      options.untangle && inverted > 0) {
-    if (observer.untangling) observer.untangling(inverted);
-    const UntangleResult u =
-        untangle(*r.functional, r.x, method, r.cell_size, {}, observer.iteration);
-    result.untangling = summarize(u);
-    if (u.after.count > 0)
-      fail(
-          "{}: the mesh cannot be untangled with its boundary as it is: {} of {} inverted cells "
-          "are still inverted after {} iterations (cells {}; 0-based, in input order)",
-          r.mesh.name(), u.after.count, u.before.count, u.history.size(), list_cells(u.after));
-    if (observer.untangled) observer.untangled(*result.untangling);
-  }
+  if (options.untangle) result.untangling = r.untangle(method, observer);
   const QuasiNewtonResult run =
       minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
   copy_run(run, result);
@@ -188,16 +193,16 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
   const double start = MPI_Wtime();
   Result result;
   result.quality_before = r.mesh.quality();
-  if (result.quality_before.inverted > 0 || result.quality_before.degenerate > 0)
-    fail("{} has {} inverted and {} degenerate cells; smoothing untangles them before adapting",
+  if (!options.untangle && (result.quality_before.inverted > 0 || result.quality_before.degenerate))
+    fail("{} has {} inverted and {} degenerate cells, and untangling is switched off",
          r.mesh.name(), result.quality_before.inverted, result.quality_before.degenerate);
   r.start(options.energy, options.boundary);
   const auto target_volumes =
       size_field_volumes(field, options.sizes, r.view(), r.dofs(), r.mesh_volume);
-  if (observer.started) {
-    r.set_desired_volumes(target_volumes(r.x));  // what the observer sees of the start
-    observer.started(r.problem());
-  }
+  // The size field's volumes at the start: what the observer sees, and what untangling aims at.
+  r.set_desired_volumes(target_volumes(r.x));
+  if (observer.started) observer.started(r.problem());
+  if (options.untangle) result.untangling = r.untangle(r.method(options.solver), observer);
   PicardOptions picard = options.picard;
   if (r.warm) picard.min_updates = options.warm_updates;
   const PicardResult run = neomesh::picard(

@@ -36,6 +36,10 @@ struct Optimizer::Impl {
   // Rebuilds the functional with `extra` vertices sliding besides the boundary's (an interface
   // fitted to a level set; none: the boundary's alone), keeping the desired volumes.
   const Functional& constrain(SlidingVertices extra);
+  // If cells are inverted at x, untangles them (docs/untangling.md) towards the current desired
+  // volumes, telling `observer`; throws Error naming the cells that stay inverted.
+  std::optional<UntanglingSummary> untangle(const QuasiNewtonOptions& method,
+                                            const Observer& observer);
   // The free coordinates and the boundary's classification.
   ProblemSummary problem() const;
   // The solver options with what derives from the mesh.

@@ -32,6 +32,7 @@ struct AdaptCommand {
   std::vector<double> circle, sphere, plane, box;
   bool force = false;
   bool fit = false;
+  bool no_untangle = false;
   SizeFieldOptions sizes;
   PicardOptions picard;
   MethodOptions method;
@@ -238,6 +239,7 @@ void adapt(AdaptCommand& o) {
   options.sizes = o.sizes;
   options.picard = o.picard;
   options.warm_updates = o.step_updates;
+  options.untangle = !o.no_untangle;
   options = resolve(o.method, options);
   check_finite("--circle", o.circle);
   check_finite("--sphere", o.sphere);
@@ -265,7 +267,7 @@ void adapt(AdaptCommand& o) {
   if (o.fit && mpi_size(PETSC_COMM_WORLD) > 1)
     fail("--fit runs on one process for now (the interface is found within each process' cells)");
 
-  OptimizationRun run(o.input, InvertedCells::Refuse);
+  OptimizationRun run(o.input, o.no_untangle ? InvertedCells::Refuse : InvertedCells::Keep);
   const MeshView& view = run.mesh().plex().view();
   std::optional<LevelSetFunction> phi;
   if (o.fit) {
@@ -348,6 +350,10 @@ Subcommand add_adapt(CLI::App& app) {
                   "adapted mesh (.vtu with per-cell energy, Q and quality fields, or .msh)")
       ->required();
   cmd->add_flag("--force", o->force, "allow the output to overwrite the input file");
+  cmd->add_flag("--no-untangle", o->no_untangle,
+                "refuse a mesh with inverted cells instead of untangling it first (default: off, "
+                "i.e. inverted cells are untangled towards the size field's volumes, then the mesh "
+                "is adapted)");
 
   const char* field = "Size field (exactly one)";
   cmd->add_option("--circle", o->circle, "cx,cy,r: distance to a circle")

@@ -1,4 +1,5 @@
-"""neomesh smooth untangles a mesh with inverted cells before smoothing it (docs/untangling.md):
+"""neomesh smooth (and adapt) untangles a mesh with inverted cells before smoothing (adapting)
+it (docs/untangling.md):
 jittered boxes of quads and hexes, bumped boxes, and jittered Gmsh meshes of wedges, hexahedra,
 pyramids and tets come out with no inverted cell, the table names the phases,
 the report counts the inverted cells before and after; --no-untangle refuses such a mesh, and a
@@ -57,12 +58,13 @@ def tangled_gmsh_mesh(tmp, name, geo, amplitude):
     return mesh
 
 
-def untangles(tmp, name, generate=None, mesh=None, options=(), inverted_before=100):
+def untangles(tmp, name, generate=None, mesh=None, options=(), inverted_before=100,
+              command="smooth"):
     out, report = (os.path.join(tmp, name + ext) for ext in ("-out.vtu", ".json"))
     if generate:
         mesh = os.path.join(tmp, name + ".msh")
         run([NEOMESH, "generate", *generate, "-o", mesh], timeout=120)
-    proc = run([NEOMESH, "smooth", mesh, "-o", out, "--report", report, *options], timeout=120)
+    proc = run([NEOMESH, command, mesh, "-o", out, "--report", report, *options], timeout=120)
     with open(report) as f:
         r = json.load(f)
     u = r["untangling"]
@@ -106,9 +108,9 @@ $EndElements
 """
 
 
-def refuses(tmp, args, mesh, expected):
+def refuses(tmp, args, mesh, expected, command="smooth"):
     out = os.path.join(tmp, "refused.msh")
-    proc = run([NEOMESH, "smooth", mesh, "-o", out, *args], expect=1, timeout=120)
+    proc = run([NEOMESH, command, mesh, "-o", out, *args], expect=1, timeout=120)
     errors = [line for line in proc.stderr.splitlines() if line.strip()]
     assert len(errors) == 1 and errors[0].startswith("neomesh: error:"), \
         f"expected one error line, got:\n{proc.stderr}"
@@ -145,6 +147,20 @@ def test_no_untangle_refuses_a_tangled_mesh(tmp):
     tangled = os.path.join(tmp, "quads.msh")
     run([NEOMESH, "generate", *JITTERED_QUADS, "-o", tangled], timeout=120)
     refuses(tmp, ["--no-untangle"], tangled, "is inverted")
+
+
+def test_adapt_untangles_then_adapts(tmp):
+    """A geometry that moved through the mesh leaves it tangled: adapt untangles it towards the
+    size field's volumes, then adapts."""
+    untangles(tmp, "adapt-quads", JITTERED_QUADS, options=["--circle", "0,0,0.5"],
+              command="adapt")
+
+
+def test_adapt_no_untangle_refuses_a_tangled_mesh(tmp):
+    tangled = os.path.join(tmp, "quads.msh")
+    run([NEOMESH, "generate", *JITTERED_QUADS, "-o", tangled], timeout=120)
+    refuses(tmp, ["--no-untangle", "--circle", "0,0,0.5"], tangled, "is inverted",
+            command="adapt")
 
 
 @pytest.mark.parametrize("boundary", ["slide", "fixed"])
