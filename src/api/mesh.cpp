@@ -157,11 +157,8 @@ QualitySummary Mesh::quality() const {
 
 void Mesh::write(const std::filesystem::path& path, const std::vector<Field>& cell_fields) const {
   const MeshView& view = plex_->view();
-  const CellQuality q = cell_quality(view, view.coords);
   MeshFields fields;
-  fields.cell = {{"volume", q.volume},         {"scaled_jacobian", q.scaled_jacobian},
-                 {"min_angle", q.min_angle},   {"max_angle", q.max_angle},
-                 {"edge_ratio", q.edge_ratio}, {"inverse_mean_ratio", q.inverse_mean_ratio}};
+  fields.cell = quality_fields(cell_quality(view, view.coords));
   fields.cell.insert(fields.cell.end(), cell_fields.begin(), cell_fields.end());
   write_mesh(*plex_, path, fields);
 }

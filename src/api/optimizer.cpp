@@ -60,10 +60,9 @@ std::string list_cells(const Inversion& inversion) {
 
 }  // namespace
 
-Optimizer::Impl::Impl(Mesh& m) : mesh(m), x(m.plex().coordinates()) {}
+Optimizer::Impl::Impl(Mesh& m) : mesh(m) {}
 
 void Optimizer::Impl::start(const EnergyOptions& e, const BoundaryOptions& b) {
-  NM_PETSC(VecDestroy(x.out()));
   x = mesh.plex().coordinates();
   if (functional && energy && same(*energy, e) && boundary_options && same(*boundary_options, b)) {
     boundary->project(x);
@@ -132,6 +131,14 @@ std::vector<double> Optimizer::Impl::cell_volumes() const {
   return cell_quality(view(), view().coords).volume;
 }
 
+QualitySummary Optimizer::Impl::input_quality(bool untangle) const {
+  const QualitySummary quality = mesh.quality();
+  if (!untangle && (quality.inverted > 0 || quality.degenerate > 0))
+    fail("{} has {} inverted and {} degenerate cells, and untangling is switched off", mesh.name(),
+         quality.inverted, quality.degenerate);
+  return quality;
+}
+
 QualitySummary Optimizer::Impl::finish() {
   mesh.plex().set_coordinates(x);
   const QualitySummary summary = mesh.quality();
@@ -157,10 +164,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   Impl& r = *impl_;
   const double start = MPI_Wtime();
   Result result;
-  result.quality_before = r.mesh.quality();
-  if (!options.untangle && (result.quality_before.inverted > 0 || result.quality_before.degenerate))
-    fail("{} has {} inverted and {} degenerate cells, and untangling is switched off",
-         r.mesh.name(), result.quality_before.inverted, result.quality_before.degenerate);
+  result.quality_before = r.input_quality(options.untangle);
   r.start(options.energy, options.boundary);
   r.warm = false;  // the desired volumes are smoothing's now
   r.set_desired_volumes(desired_volumes(options.sizes, r.view(), r.dofs(), r.cell_volumes()));
@@ -192,10 +196,7 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
   Impl& r = *impl_;
   const double start = MPI_Wtime();
   Result result;
-  result.quality_before = r.mesh.quality();
-  if (!options.untangle && (result.quality_before.inverted > 0 || result.quality_before.degenerate))
-    fail("{} has {} inverted and {} degenerate cells, and untangling is switched off",
-         r.mesh.name(), result.quality_before.inverted, result.quality_before.degenerate);
+  result.quality_before = r.input_quality(options.untangle);
   r.start(options.energy, options.boundary);
   const auto target_volumes =
       size_field_volumes(field, options.sizes, r.view(), r.dofs(), r.mesh_volume);

@@ -27,6 +27,9 @@ struct Optimizer::Impl {
   const MeshView& view() const { return mesh.plex().view(); }
   const DofMap& dofs() const { return mesh.plex().dofs(); }
 
+  // The mesh's quality where a call starts; throws Error if cells are inverted or degenerate
+  // and `untangle` is false.
+  QualitySummary input_quality(bool untangle) const;
   // Takes the mesh's coordinates into x and (re)builds the boundary classification and the
   // functional unless they were built for the same energy and boundary options (then the
   // desired volumes stay). Sliding vertices are projected onto their geometry.
@@ -52,7 +55,7 @@ struct Optimizer::Impl {
   QualitySummary finish();
 
   Mesh& mesh;
-  OwnedVec x;
+  OwnedVec x;                // set by start()
   double mesh_volume = 0.0;  // of the mesh when the functional was built
   std::optional<EnergyOptions> energy;
   std::optional<BoundaryOptions> boundary_options;

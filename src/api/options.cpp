@@ -79,14 +79,25 @@ void PicardOptions::validate() const {
   require(relaxation > 0 && relaxation <= 1, "picard.relaxation", relaxation, "in (0, 1]");
 }
 
+namespace {
+
+// What smoothing and adaptation share of the thesis' conventions: its quadrature, fixed
+// boundary vertices (its H¹₀ setting), iterating to the defect tolerance, the Riesz solve to
+// 1e-8.
+void use_thesis_method(EnergyOptions& energy, BoundaryOptions& boundary, SolverOptions& solver) {
+  energy.gauss_points = EnergyOptions().gauss_points;
+  boundary.mode = BoundaryMode::Fixed;
+  boundary.shapes.clear();
+  solver.practical = false;
+  solver.riesz_rtol = SolverOptions::kThesisRieszRtol;
+}
+
+}  // namespace
+
 SmoothOptions SmoothOptions::thesis(SmoothOptions o) {
+  use_thesis_method(o.energy, o.boundary, o.solver);
   o.sizes = SizeMode::Uniform;
-  o.boundary.mode = BoundaryMode::Fixed;  // the thesis' H¹₀ setting
-  o.boundary.shapes.clear();
-  o.solver.practical = false;  // iterate to the defect tolerance
-  o.solver.riesz_rtol = SolverOptions::kThesisRieszRtol;
   o.quality_guard = false;
-  o.energy.gauss_points = EnergyOptions().gauss_points;
   return o;
 }
 
@@ -101,12 +112,8 @@ AdaptOptions AdaptOptions::thesis(AdaptOptions o) {
   o.sizes.smoothing_passes = SizeFieldOptions::thesis().smoothing_passes;
   o.energy.lambda = 1.0;
   o.energy.mu = 10.0;
-  o.energy.gauss_points = EnergyOptions().gauss_points;
-  o.boundary.mode = BoundaryMode::Fixed;
-  o.boundary.shapes.clear();
+  use_thesis_method(o.energy, o.boundary, o.solver);
   o.picard = PicardOptions::thesis();
-  o.solver.practical = false;
-  o.solver.riesz_rtol = SolverOptions::kThesisRieszRtol;
   return o;
 }
 

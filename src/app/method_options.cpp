@@ -5,7 +5,6 @@
 #include <string_view>
 #include <utility>
 
-#include "app/checks.hpp"
 #include "boundary/boundary.hpp"
 #include "core/error.hpp"
 #include "solver/linear_solver.hpp"

@@ -163,13 +163,9 @@ struct OptimizationRun::Impl {
   // At the mesh's coordinates: its quality, the optimizer's fields and the extra outputs.
   MeshFields output_fields() const {
     const MeshView& view = mesh.plex().view();
-    const CellQuality quality = cell_quality(view, view.coords);
     MeshFields fields;
     fields.cell = optimizer.cell_fields();
-    const std::vector<Field> metrics = {
-        {"volume", quality.volume},         {"scaled_jacobian", quality.scaled_jacobian},
-        {"min_angle", quality.min_angle},   {"max_angle", quality.max_angle},
-        {"edge_ratio", quality.edge_ratio}, {"inverse_mean_ratio", quality.inverse_mean_ratio}};
+    const std::vector<Field> metrics = quality_fields(cell_quality(view, view.coords));
     fields.cell.insert(fields.cell.end(), metrics.begin(), metrics.end());
     fields.cell.insert(fields.cell.end(), extra_outputs.cell.begin(), extra_outputs.cell.end());
     fields.vertex = extra_outputs.vertex;

@@ -266,6 +266,12 @@ std::vector<std::pair<std::string_view, MetricStats>> QualitySummary::metrics() 
           {"inverse_mean_ratio", inverse_mean_ratio}};
 }
 
+std::vector<Field> quality_fields(const CellQuality& q) {
+  return {{"volume", q.volume},         {"scaled_jacobian", q.scaled_jacobian},
+          {"min_angle", q.min_angle},   {"max_angle", q.max_angle},
+          {"edge_ratio", q.edge_ratio}, {"inverse_mean_ratio", q.inverse_mean_ratio}};
+}
+
 QualitySummary summarize(const CellQuality& quality, MPI_Comm comm) {
   QualitySummary s;
   for (CellType t : quality.type) ++s.cells_by_type[static_cast<int>(t)];

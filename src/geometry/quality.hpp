@@ -33,6 +33,7 @@
 
 #include <mpi.h>
 
+#include <neomesh/mesh.hpp>
 #include <neomesh/quality.hpp>
 
 #include "mesh/cell_type.hpp"
@@ -57,6 +58,10 @@ struct CellQuality {
 // `coords` holds view.num_vertices × view.dim values in the view's local vertex order (e.g.
 // view.coords, or the current coordinates of a run).
 CellQuality cell_quality(const MeshView& view, std::span<const double> coords);
+
+// The metrics of `quality` as the per-cell fields of an output (.vtu), by the names the
+// reports and `--picture-field` use.
+std::vector<Field> quality_fields(const CellQuality& quality);
 
 // Collective over `comm`: every rank passes the quality of its own cells.
 QualitySummary summarize(const CellQuality& quality, MPI_Comm comm);
