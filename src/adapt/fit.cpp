@@ -148,7 +148,7 @@ FitResult fit_interface(const MeshView& view, const DofMap& dofs, Vec x,
     step /= 2;
     if (step < smallest)
       fail(
-          "--fit: could not pull the interface of {} onto its zero set without inverting a "
+          "fit: could not pull the interface of {} onto its zero set without inverting a "
           "cell (stuck {:.0f}% of the way); a finer mesh near the interface may help",
           phi.expression(), 100 * from);
   }

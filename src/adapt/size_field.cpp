@@ -78,7 +78,7 @@ SizeField::SizeField(std::string description, int dim, Distance distance)
 SizeField SizeField::sphere(std::vector<double> centre, double radius) {
   expect_size(centre, "centre of a circle/sphere", 2, 3);
   if (!(radius > 0))
-    fail("{}: the radius must be positive (got {})", centre.size() == 2 ? "--circle" : "--sphere",
+    fail("the radius of a {} must be positive (got {})", centre.size() == 2 ? "circle" : "sphere",
          radius);
   const int dim = static_cast<int>(centre.size());
   return {fmt::format("distance to the {} around ({}) with radius {}",
@@ -94,7 +94,7 @@ SizeField SizeField::plane(std::vector<double> point, std::vector<double> normal
   expect_size(point, "point of a plane", 2, 3);
   expect_size(normal, "normal of a plane", point.size(), point.size());
   const double length = norm(normal);
-  if (!(length > 0)) fail("--plane: the normal of the plane must not be zero");
+  if (!(length > 0)) fail("the normal of the plane must not be zero");
   for (double& n : normal) n /= length;
   return {
       fmt::format("distance to the {} through ({}) with normal ({})",

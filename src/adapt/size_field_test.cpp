@@ -147,7 +147,7 @@ TEST(SizeField, BadInputIsReportedInOneLine) {
       [] {
         SizeField::sphere({0.0, 0.0}, 0.0);
       },
-      "--circle: the radius must be positive (got 0)");
+      "the radius of a circle must be positive (got 0)");
   expect_error([] { SizeField::sphere({0.0}, 1.0); },
                "the centre of a circle/sphere needs 2 or 3 coordinates (got 1)");
   expect_error([] { SizeField::plane({0.0, 0.0}, {0.0, 0.0}); }, "normal of the plane");

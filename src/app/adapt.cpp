@@ -39,6 +39,7 @@ struct AdaptCommand {
   RunOutputs outputs;
 };
 
+// The size field of the command line; an error in its arguments names the option.
 SizeField make_size_field(const AdaptCommand& o) {
   const int given = !o.circle.empty() + !o.sphere.empty() + !o.plane.empty() + !o.box.empty() +
                     !o.levelset.empty() + !o.sizes_file.empty();
@@ -48,18 +49,31 @@ SizeField make_size_field(const AdaptCommand& o) {
     return std::pair{std::vector<double>(v.begin(), v.begin() + first),
                      std::vector<double>(v.begin() + first, v.end())};
   };
-  if (!o.circle.empty()) return SizeField::sphere({o.circle[0], o.circle[1]}, o.circle[2]);
+  auto option = [](const char* flag, auto make) {
+    try {
+      return make();
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: {}", flag, e.what()));
+    }
+  };
+  if (!o.circle.empty())
+    return option("--circle", [&] {
+      return SizeField::sphere({o.circle[0], o.circle[1]}, o.circle[2]);
+    });
   if (!o.sphere.empty())
-    return SizeField::sphere({o.sphere[0], o.sphere[1], o.sphere[2]}, o.sphere[3]);
+    return option("--sphere", [&] {
+      return SizeField::sphere({o.sphere[0], o.sphere[1], o.sphere[2]}, o.sphere[3]);
+    });
   if (!o.plane.empty()) {
     auto [point, normal] = split(o.plane, o.plane.size() / 2);
-    return SizeField::plane(point, normal);
+    return option("--plane", [&] { return SizeField::plane(point, normal); });
   }
   if (!o.box.empty()) {
     auto [lower, upper] = split(o.box, o.box.size() / 2);
-    return SizeField::box(lower, upper);
+    return option("--box", [&] { return SizeField::box(lower, upper); });
   }
-  if (!o.levelset.empty()) return SizeField::level_set(o.levelset);
+  if (!o.levelset.empty())
+    return option("--levelset", [&] { return SizeField::level_set(o.levelset); });
   return SizeField::read_cell_values(o.sizes_file);
 }
 

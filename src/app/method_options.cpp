@@ -142,7 +142,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
       ->group(method);
 }
 
-std::string option_name(const std::string& field) {
+std::string cli_message(const std::string& message) {
   static const std::map<std::string, std::string, std::less<>> kNames = {
       {"energy.lambda", "--lambda"},
       {"energy.mu", "--mu"},
@@ -171,9 +171,13 @@ std::string option_name(const std::string& field) {
       {"picard.update_move", "--update-move"},
       {"picard.update_step_norm", "--update-step"},
       {"picard.relaxation", "--relaxation"},
-      {"warm_updates", "--step-updates"}};
-  const auto it = kNames.find(field);
-  return it != kNames.end() ? it->second : field;
+      {"warm_updates", "--step-updates"},
+      {"solver.linear_solver", "--linear-solver"},
+      {"fit", "--fit"}};
+  const std::size_t end = message.find_first_of(" :");
+  if (end == std::string::npos) return message;
+  const auto it = kNames.find(message.substr(0, end));
+  return it != kNames.end() ? it->second + message.substr(end) : message;
 }
 
 void resolve(const MethodOptions& o, EnergyOptions& energy, SolverOptions& solver,

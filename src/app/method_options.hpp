@@ -31,21 +31,13 @@ struct MethodOptions {
 
 void add_method_options(CLI::App& cmd, MethodOptions& options);
 
-// The command line's spelling of a library option field ("energy.gauss_points" → "--gauss").
-std::string option_name(const std::string& field);
-// Runs `validate` and rethrows an OptionError as an Error naming the command-line option.
-template <typename Validate>
-void validate_options(Validate&& validate) {
-  try {
-    validate();
-  } catch (const OptionError& e) {
-    throw Error(option_name(e.field()) + " " + e.requirement());
-  }
-}
+// A library error about an option begins with the option's field path ("solver.eta must be
+// ...", "boundary.shapes: ..."): the message with the command line's spelling instead
+// ("--eta must be ...", "--shape: ...").
+std::string cli_message(const std::string& message);
 
 // `options` (SmoothOptions or AdaptOptions) with the method options of the command line: the
-// names resolved, the thesis preset applied with --thesis, the ranges checked. Throws Error
-// with a one-line message naming the option.
+// names resolved, the thesis preset applied with --thesis, the ranges checked (OptionError).
 void resolve(const MethodOptions& method, EnergyOptions& energy, SolverOptions& solver,
              BoundaryOptions& boundary);
 template <typename Options>
@@ -53,7 +45,7 @@ Options resolve(const MethodOptions& method, Options options) {
   resolve(method, options.energy, options.solver, options.boundary);
   if (method.thesis) options = Options::thesis(options);
   if (method.riesz_rtol) options.solver.riesz_rtol = *method.riesz_rtol;
-  validate_options([&] { options.validate(); });
+  options.validate();
   return options;
 }
 

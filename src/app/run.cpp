@@ -15,6 +15,7 @@
 #include <petscsys.h>
 #include <unistd.h>
 
+#include "app/method_options.hpp"
 #include "app/subcommand.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -387,9 +388,9 @@ int run(int argc, char** argv) {
       if (c.cli->parsed()) c.run();
     PetscSession::warn_unused_options();
   } catch (const CollectiveError& e) {
-    return end_failed_command(e.what(), kFailure, Agreed::AllRanks);
+    return end_failed_command(cli_message(e.what()), kFailure, Agreed::AllRanks);
   } catch (const std::exception& e) {
-    return end_failed_command(user_message(e), kFailure, Agreed::ThisRankOnly);
+    return end_failed_command(cli_message(user_message(e)), kFailure, Agreed::ThisRankOnly);
   }
   return 0;
 }

@@ -142,7 +142,8 @@ struct Boundary::Impl {
     return part >= 0 ? view.parts[part].name : std::string();
   }
 
-  // The shape specs of --shape by part index; fails for names that are no facet group.
+  // The shape specs of BoundaryOptions::shapes by part index; fails for names that are no facet
+  // group.
   std::map<int, std::string> shapes_by_part() const {
     std::vector<std::uint8_t> has_facets(view.parts.size(), 0);
     for (int part : surface.facet_part)
@@ -157,8 +158,8 @@ struct Boundary::Impl {
         for (std::size_t p = 0; p < view.parts.size(); ++p)
           if (has_facets[p] && !view.parts[p].name.empty())
             names += (names.empty() ? "" : ", ") + view.parts[p].name;
-        fail("--shape {}={}: the mesh has no boundary part named '{}' ({})", name, spec, name,
-             names.empty() ? "it has no named boundary parts" : "its parts: " + names);
+        fail("boundary.shapes: {}={}: the mesh has no boundary part named '{}' ({})", name, spec,
+             name, names.empty() ? "it has no named boundary parts" : "its parts: " + names);
       }
       out[found] = spec;
     }
@@ -239,7 +240,7 @@ struct Boundary::Impl {
         patch_surface[p] = parse_shape(it->second, surface.dim);
         patch_analytic[p] = 1;
         check_on_surface(*patch_surface[p], facets[p], size,
-                         fmt::format("--shape {}={}", name, it->second));
+                         fmt::format("boundary.shapes: {}={}", name, it->second));
       } else if (!chart.empty()) {
         const auto c = std::find_if(surface.charts.begin(), surface.charts.end(),
                                     [&](const Chart& x) { return x.name == chart; });

@@ -137,7 +137,7 @@ void check_two_sides(const std::vector<std::uint8_t>& inside, const LevelSetFunc
   const auto n = std::count(inside.begin(), inside.end(), 1);
   if (n == 0 || n == static_cast<std::ptrdiff_t>(inside.size()))
     fail(
-        "--fit: the level set {} is {} at every cell centre{}: there is no interface inside the "
+        "fit: the level set {} is {} at every cell centre{}: there is no interface inside the "
         "mesh to fit",
         phi.expression(), n == 0 ? "≥ 0" : "< 0", when);
 }
@@ -178,7 +178,7 @@ Interface find_interface(const MeshView& view, std::span<const double> coords,
     if (view.on_boundary[u]) {
       const Point p = local_point(view, coords, u);
       fail(
-          "--fit: the interface of {} reaches the domain's boundary at ({:.4g}, {:.4g}{}); "
+          "fit: the interface of {} reaches the domain's boundary at ({:.4g}, {:.4g}{}); "
           "fitting needs it inside the domain",
           phi.expression(), p[0], p[1], view.dim == 3 ? fmt::format(", {:.4g}", p[2]) : "");
     }

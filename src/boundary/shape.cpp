@@ -173,11 +173,11 @@ std::vector<double> parse_numbers(std::string_view spec, std::string_view list, 
     const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), v);
     if (field.empty() || ec != std::errc() || end != field.data() + field.size() ||
         !std::isfinite(v))
-      fail("--shape '{}': expected {}", spec, expected);
+      fail("boundary.shapes: '{}': expected {}", spec, expected);
     values.push_back(v);
     start = comma + 1;
   }
-  if (values.size() != count) fail("--shape '{}': expected {}", spec, expected);
+  if (values.size() != count) fail("boundary.shapes: '{}': expected {}", spec, expected);
   return values;
 }
 
@@ -294,53 +294,56 @@ std::unique_ptr<Surface> parse_shape(std::string_view spec, int dim) {
   const auto colon = spec.find(':');
   if (colon == std::string_view::npos)
     fail(
-        "--shape '{}': expected KIND:PARAMETERS (circle, sphere, line, plane, cylinder or "
+        "boundary.shapes: '{}': expected KIND:PARAMETERS (circle, sphere, line, plane, cylinder or "
         "levelset)",
         spec);
   const std::string_view kind = spec.substr(0, colon), rest = spec.substr(colon + 1);
   auto need_dim = [&](int d) {
-    if (dim != d) fail("--shape '{}': a {} needs a {}D mesh, this one is {}D", spec, kind, d, dim);
+    if (dim != d)
+      fail("boundary.shapes: '{}': a {} needs a {}D mesh, this one is {}D", spec, kind, d, dim);
   };
   if (kind == "circle") {
     need_dim(2);
     const auto v = parse_numbers(spec, rest, 3, "circle:cx,cy,r");
-    if (!(v[2] > 0)) fail("--shape '{}': the radius must be positive", spec);
+    if (!(v[2] > 0)) fail("boundary.shapes: '{}': the radius must be positive", spec);
     return make_sphere({v[0], v[1], 0.0}, v[2], 2);
   }
   if (kind == "sphere") {
     need_dim(3);
     const auto v = parse_numbers(spec, rest, 4, "sphere:cx,cy,cz,r");
-    if (!(v[3] > 0)) fail("--shape '{}': the radius must be positive", spec);
+    if (!(v[3] > 0)) fail("boundary.shapes: '{}': the radius must be positive", spec);
     return make_sphere({v[0], v[1], v[2]}, v[3], 3);
   }
   if (kind == "line") {
     need_dim(2);
     const auto v = parse_numbers(spec, rest, 4, "line:px,py,nx,ny (a point and the normal)");
     const Point n(v[2], v[3], 0.0);
-    if (!(n.norm() > 0)) fail("--shape '{}': the normal must not be zero", spec);
+    if (!(n.norm() > 0)) fail("boundary.shapes: '{}': the normal must not be zero", spec);
     return make_plane({v[0], v[1], 0.0}, n);
   }
   if (kind == "plane") {
     need_dim(3);
     const auto v = parse_numbers(spec, rest, 6, "plane:px,py,pz,nx,ny,nz (a point and the normal)");
     const Point n(v[3], v[4], v[5]);
-    if (!(n.norm() > 0)) fail("--shape '{}': the normal must not be zero", spec);
+    if (!(n.norm() > 0)) fail("boundary.shapes: '{}': the normal must not be zero", spec);
     return make_plane({v[0], v[1], v[2]}, n);
   }
   if (kind == "cylinder") {
     need_dim(3);
     const auto v = parse_numbers(spec, rest, 7, "cylinder:px,py,pz,ax,ay,az,r");
     const Point axis(v[3], v[4], v[5]);
-    if (!(axis.norm() > 0)) fail("--shape '{}': the axis must not be zero", spec);
-    if (!(v[6] > 0)) fail("--shape '{}': the radius must be positive", spec);
+    if (!(axis.norm() > 0)) fail("boundary.shapes: '{}': the axis must not be zero", spec);
+    if (!(v[6] > 0)) fail("boundary.shapes: '{}': the radius must be positive", spec);
     return make_cylinder({v[0], v[1], v[2]}, axis, v[6]);
   }
   if (kind == "levelset") {
-    if (rest.empty()) fail("--shape '{}': expected levelset:EXPRESSION", spec);
+    if (rest.empty()) fail("boundary.shapes: '{}': expected levelset:EXPRESSION", spec);
     return make_level_set(std::string(rest), dim);
   }
-  fail("--shape '{}': unknown shape '{}' (circle, sphere, line, plane, cylinder or levelset)", spec,
-       kind);
+  fail(
+      "boundary.shapes: '{}': unknown shape '{}' (circle, sphere, line, plane, cylinder or "
+      "levelset)",
+      spec, kind);
 }
 
 }  // namespace neomesh

@@ -247,8 +247,8 @@ struct QuasiNewton::Impl {
       const auto out = riesz_solver.solve(gradient, s);
       if (!out.converged)
         fail(
-            "the Riesz-representative solve (L s = g) did not converge in {} iterations; "
-            "try --linear-solver direct",
+            "solver.linear_solver: the Riesz-representative solve (L s = g) did not converge in "
+            "{} iterations; the direct solver may",
             out.iterations);
       rec.krylov_s = out.iterations;
     }
