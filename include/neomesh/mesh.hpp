@@ -28,9 +28,22 @@ enum class InvertedCells { Refuse, Keep };
 // A per-cell or per-vertex field written with the mesh (.vtu; .msh keeps the mesh only).
 struct Field {
   std::string name;
-  std::vector<double> values;  // one per local cell (vertex), in this process' order
+  // `components` values per local cell (in this process' order) or per vertex of
+  // Mesh::vertex_numbers()
+  std::vector<double> values;
   int components = 1;
 };
+
+// Facets (edges in 2D, faces in 3D) that a .msh output lists as the physical group `name`
+// (replacing an input group of that name); .vtu leaves them out. On every process its own
+// facets, each once over all processes.
+struct FacetGroup {
+  std::string name;
+  std::vector<std::int64_t> offsets = {0};  // facet f is vertices[offsets[f], offsets[f + 1])
+  std::vector<std::int64_t> vertices;       // vertex numbers (vertex_numbers()), cyclic order
+};
+
+class LevelSet;  // level_set.hpp
 
 class Mesh {
  public:
@@ -71,9 +84,19 @@ class Mesh {
   // The quality of all cells (collective).
   QualitySummary quality() const;
 
-  // Writes .msh (Gmsh 4.1, with the input's physical groups) or .vtu (with the cell quality
-  // fields and `cell_fields`) atomically: an error leaves no partial file. Collective.
-  void write(const std::filesystem::path& path, const std::vector<Field>& cell_fields = {}) const;
+  // Writes .msh (Gmsh 4.1, with the input's physical groups and `facet_groups`) or .vtu (with
+  // the cell quality fields, `cell_fields` and `vertex_fields`) atomically: an error leaves no
+  // partial file. Collective.
+  void write(const std::filesystem::path& path, const std::vector<Field>& cell_fields = {},
+             const std::vector<Field>& vertex_fields = {},
+             const std::vector<FacetGroup>& facet_groups = {}) const;
+
+  // The facets that fitting to `phi` (Optimizer::adapt with a LevelSet) would pull onto its
+  // zero set, at the current coordinates and φ's time: between the cells with φ < 0 at the
+  // centroid and the others, after the clean-up of docs/adaptivity.md. Throws Error if φ has
+  // one sign at every centroid or the interface touches the domain's boundary. One process
+  // only for now (cells across a partition are not seen).
+  FacetGroup interface(const LevelSet& phi) const;
 
   // The distributed DMPlex, for a caller that works with PETSc directly (owned by the Mesh).
   DM dm() const;

@@ -8,6 +8,7 @@
 
 #include <memory>
 
+#include <neomesh/level_set.hpp>
 #include <neomesh/mesh.hpp>
 #include <neomesh/options.hpp>
 #include <neomesh/result.hpp>
@@ -36,12 +37,26 @@ class Optimizer {
   // cells are untangled first unless options.untangle is false. Collective.
   Result adapt(const SizeField& field, const AdaptOptions& options = {},
                const Observer& observer = {});
+  // The same, then the mesh fitted to the zero set of `fit_to` at its time (docs/adaptivity.md):
+  // a chain of edges (2D) or surface of faces (3D) — Mesh::interface() — is pulled onto it in
+  // stages while the whole mesh is optimized, no cell inverted. A warm start adapts briefly
+  // before (the fit goes on optimizing). The fit holds until the next adapt(). Throws Error
+  // ("fit: ...") if there is no interface inside the mesh, it touches the boundary, or no stage
+  // can be taken without inverting a cell. One process only for now. Collective.
+  Result adapt(const SizeField& field, const LevelSet& fit_to, const AdaptOptions& options = {},
+               const Observer& observer = {});
   // The next adapt() starts cold (the mesh was changed in another way, say).
   void forget_warm_start();
 
   // Per local cell at the mesh's coordinates: "energy", "det_G_min", "Q" (actual over desired
-  // volume) and "desired_volume", for Mesh::write. Empty before the first call.
+  // volume) and "desired_volume", for Mesh::write; after a fit also "inside" (1 where φ < 0).
+  // Empty before the first call.
   std::vector<Field> cell_fields() const;
+  // After a fit, per vertex of Mesh::vertex_numbers(): "interface" (1 on the fitted vertices)
+  // and "phi" (φ there); empty otherwise.
+  std::vector<Field> vertex_fields() const;
+  // After a fit, the fitted facets as the group "interface"; empty otherwise.
+  std::vector<FacetGroup> facet_groups() const;
 
   // The implementation, for neomesh's own front end (src/api/optimizer_impl.hpp).
   struct Impl;

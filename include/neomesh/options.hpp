@@ -7,6 +7,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -27,6 +28,7 @@ struct EnergyOptions {
 // What the boundary vertices may do (docs/boundary.md): stay put (the thesis' H¹₀ setting), or
 // slide along the input's boundary, corners and ridges kept.
 enum class BoundaryMode { Fixed, Slide };
+std::string_view name(BoundaryMode mode);  // "fixed", "slide"
 
 struct BoundaryOptions {
   BoundaryOptions() = default;
@@ -55,6 +57,7 @@ enum class RieszLaplacian {
 //   Jacobi  CG + Jacobi (the thesis' PCG)
 //   Direct  Cholesky (MUMPS, works in parallel; the thesis used UMFPACK)
 enum class LinearSolverKind { Amg, Jacobi, Direct };
+std::string_view name(LinearSolverKind kind);  // "amg", "jacobi", "direct"
 
 // What preconditions the δ̃ solve with LinearSolverKind::Amg: the Riesz solve's AMG hierarchy
 // of L = B3/μ, which is built anyway and changes only with the desired volumes, or a

@@ -28,4 +28,12 @@ struct QualitySummary {
   std::vector<std::pair<std::string_view, MetricStats>> metrics() const;
 };
 
+// How well an adapted mesh meets its desired volumes: the distribution of Q = actual volume /
+// desired volume (thesis §6.2); Q = 1 is a perfect fit.
+struct VolumeRatioStats {
+  std::int64_t cells = 0;
+  double within = 0.0;  // fraction of cells with Q in [1/2, 2]
+  double min = 0.0, median = 0.0, max = 0.0;
+};
+
 }  // namespace neomesh

@@ -67,6 +67,9 @@ struct BoundarySummary {
 struct ProblemSummary {
   std::int64_t free_coordinates = 0;  // over all processes
   BoundarySummary boundary;           // empty with fixed boundary vertices
+  // The linear solvers of the δ̃ and Riesz solves as PETSc will run them, after the options
+  // database's -hess_* and -riesz_* options: "KSP cg, PC hypre boomeramg, rtol 0.0001, ...".
+  std::string hessian_solver, riesz_solver;
 };
 
 // Untangling before smoothing (docs/untangling.md).
@@ -89,6 +92,17 @@ struct QualityGuardResult {
   bool gave_up = false;  // pulling back made the worst cell worse: the optimum was kept
 };
 
+// Fitting to the zero set of a level set (Optimizer::adapt with a LevelSet, docs/adaptivity.md).
+struct FitSummary {
+  std::string level_set;  // φ's expression
+  std::int64_t facets = 0, vertices = 0;
+  double max_distance = 0.0;   // of an interface vertex from φ = 0 (|φ| / |∇φ|)
+  int stages = 0;              // steps of lowering the vertices' levels to zero
+  int undone = 0;              // steps undone because a cell would have inverted
+  int cells_moved_across = 0;  // by the interface's clean-up
+  int iterations = 0;          // the fit's, the last ones of Result::history
+};
+
 struct Result {
   std::vector<IterationRecord> history;  // the iterations on the Neo-Hookean energy
   StopReason reason = StopReason::MaxIterations;
@@ -96,9 +110,16 @@ struct Result {
   double initial_defect = 0.0, final_defect = 0.0;
   PhaseTimes times;
   QualitySummary quality_before, quality_after;
+  ProblemSummary problem;  // what was optimized
+  // How the domain changed: the largest distance of a boundary vertex from the boundary where
+  // the call started (0 with fixed boundary vertices; with sliding ones bounded by the
+  // input's discretization), and the relative change of its volume.
+  double boundary_distance = 0.0, volume_change = 0.0;
   std::optional<UntanglingSummary> untangling;      // smooth, if cells were inverted
   std::optional<QualityGuardResult> quality_guard;  // smooth, unless switched off
   std::vector<int> update_iterations;  // adapt: iterations after which volumes were updated
+  VolumeRatioStats volume_ratio;       // adapt: Q = actual / desired volume at the end
+  std::optional<FitSummary> fit;       // adapt with a LevelSet
   double seconds = 0.0;
 };
 
@@ -114,6 +135,8 @@ struct Observer {
   std::function<void(const IterationRecord&)> iteration;
   // Adaptation: after iteration k the desired volumes were updated for the `update`-th time.
   std::function<void(int k, int update)> volumes_updated;
+  // Adaptation with a LevelSet: adapted; now the mesh is fitted to φ = 0 (φ's expression).
+  std::function<void(const std::string& level_set)> fitting;
 };
 
 }  // namespace neomesh

@@ -1,9 +1,13 @@
+#include <neomesh/level_set.hpp>
 #include <neomesh/mesh.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
+#include "api/fitting.hpp"
+#include "api/vertex_order.hpp"
+#include "boundary/interface.hpp"
 #include "core/error.hpp"
 #include "geometry/quality.hpp"
 #include "mesh/collective_error.hpp"
@@ -98,21 +102,6 @@ const PlexMesh& Mesh::plex() const {
   return *plex_;
 }
 
-namespace {
-
-// This rank's owned local vertices, ordered by their input number.
-std::vector<PetscInt> owned_by_number(const MeshView& view) {
-  std::vector<PetscInt> owned;
-  for (PetscInt u = 0; u < view.num_vertices; ++u)
-    if (view.owned[u]) owned.push_back(u);
-  std::sort(owned.begin(), owned.end(), [&view](PetscInt a, PetscInt b) {
-    return view.input_vertex[a] < view.input_vertex[b];
-  });
-  return owned;
-}
-
-}  // namespace
-
 std::vector<std::int64_t> Mesh::vertex_numbers() const {
   const MeshView& view = plex_->view();
   std::vector<std::int64_t> numbers;
@@ -155,12 +144,26 @@ QualitySummary Mesh::quality() const {
   return summarize(cell_quality(view, view.coords), comm());
 }
 
-void Mesh::write(const std::filesystem::path& path, const std::vector<Field>& cell_fields) const {
+void Mesh::write(const std::filesystem::path& path, const std::vector<Field>& cell_fields,
+                 const std::vector<Field>& vertex_fields,
+                 const std::vector<FacetGroup>& facet_groups) const {
   const MeshView& view = plex_->view();
   MeshFields fields;
   fields.cell = quality_fields(cell_quality(view, view.coords));
   fields.cell.insert(fields.cell.end(), cell_fields.begin(), cell_fields.end());
+  collectively(comm(), [&] {
+    for (const Field& f : vertex_fields) fields.vertex.push_back(local_vertex_field(view, f));
+  });
+  fields.facet_groups = facet_groups;
   write_mesh(*plex_, path, fields);
+}
+
+FacetGroup Mesh::interface(const LevelSet& phi) const {
+  require_one_process(comm());
+  const MeshView& view = plex_->view();
+  const LevelSetFunction function = level_set_function(phi, view.dim);
+  const Interface found = find_interface(view, view.coords, function);
+  return public_facet_group(view, "interface", found.offsets, found.facet_vertices);
 }
 
 }  // namespace neomesh

@@ -2,15 +2,20 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <utility>
 
 #include "adapt/picard.hpp"
 #include "adapt/size_field.hpp"
+#include "adapt/volume_ratio.hpp"
+#include "api/fitting.hpp"
 #include "api/optimizer_impl.hpp"
+#include "api/vertex_order.hpp"
 #include "boundary/interface.hpp"
 #include "core/error.hpp"
 #include "geometry/quality.hpp"
 #include "solver/desired_volumes.hpp"
+#include "solver/linear_solver.hpp"
 #include "solver/quality_guard.hpp"
 #include "solver/untangle.hpp"
 
@@ -26,8 +31,7 @@ bool same(const BoundaryOptions& a, const BoundaryOptions& b) {
   return a.mode == b.mode && a.feature_angle == b.feature_angle && a.shapes == b.shapes;
 }
 
-}  // namespace
-
+// The run's iterations, stop reason, energies, defects and times into `result`.
 void copy_run(const QuasiNewtonResult& run, Result& result) {
   result.history = run.history;
   result.reason = run.reason;
@@ -37,8 +41,6 @@ void copy_run(const QuasiNewtonResult& run, Result& result) {
   result.final_defect = run.final_defect;
   result.times = run.times;
 }
-
-namespace {
 
 UntanglingSummary summarize(const UntangleResult& u) {
   return {.inverted_before = u.before.count,
@@ -112,12 +114,18 @@ std::optional<UntanglingSummary> Optimizer::Impl::untangle(const QuasiNewtonOpti
   return summary;
 }
 
-ProblemSummary Optimizer::Impl::problem() const {
+ProblemSummary Optimizer::Impl::problem(const SolverOptions& solver) const {
   double free = 0.0;
   NM_PETSC(VecSum(functional->free_mask(), &free));
   ProblemSummary p;
   p.free_coordinates = static_cast<std::int64_t>(free);
   if (boundary_options->mode == BoundaryMode::Slide) p.boundary = boundary->summary();
+  const int dim = view().dim;
+  p.hessian_solver =
+      LinearSolver(mesh.comm(), solver.linear_solver, "hess_", dim, solver.hessian_rtol)
+          .description();
+  p.riesz_solver = LinearSolver(mesh.comm(), solver.linear_solver, "riesz_", dim, solver.riesz_rtol)
+                       .description();
   return p;
 }
 
@@ -139,15 +147,60 @@ QualitySummary Optimizer::Impl::input_quality(bool untangle) const {
   return quality;
 }
 
-QualitySummary Optimizer::Impl::finish() {
+void Optimizer::Impl::finish(Result& result) {
   mesh.plex().set_coordinates(x);
-  const QualitySummary summary = mesh.quality();
-  if (summary.inverted > 0 || summary.degenerate > 0)
+  result.quality_after = mesh.quality();
+  if (result.quality_after.inverted > 0 || result.quality_after.degenerate > 0)
     fail(
         "the optimized mesh has {} inverted and {} degenerate cells (please report this with the "
         "input mesh)",
-        summary.inverted, summary.degenerate);
-  return summary;
+        result.quality_after.inverted, result.quality_after.degenerate);
+  result.boundary_distance = boundary->max_distance_from_input(x);
+  const double volume = result.quality_after.volume.mean * result.quality_after.cells;
+  result.volume_change = (volume - mesh_volume) / mesh_volume;
+}
+
+VolumeRatioStats Optimizer::Impl::volume_ratio() const {
+  return volume_ratio_stats(functional->cell_fields(x).volume_ratio, mesh.comm());
+}
+
+void Optimizer::Impl::release_interface() {
+  if (!fitted) return;
+  constrain({});
+  fitted.reset();
+}
+
+void Optimizer::Impl::fit(const LevelSet& level_set, const SizeField& field,
+                          const AdaptOptions& options, const PicardOptions& last_stage,
+                          const Observer& observer, Result& result) {
+  phi = std::make_unique<LevelSetFunction>(level_set_function(level_set, view().dim));
+  const FitHooks hooks{
+      .constrain = [this](SlidingVertices extra) -> const Functional& {
+        return constrain(std::move(extra));
+      },
+      .target_volumes = size_field_volumes(field, options.sizes, view(), dofs(), mesh_volume),
+      .set_volumes = [this](const std::vector<double>& v) { set_desired_volumes(v); }};
+  fitted = fit_interface(view(), dofs(), x, *phi, hooks, last_stage, method(options.solver), {},
+                         observer);
+  const FitResult& f = *fitted;
+  // The fit's iterations follow the adaptation's; it starts from new volumes.
+  const int before = static_cast<int>(result.history.size());
+  result.update_iterations.push_back(before);
+  result.history.insert(result.history.end(), f.picard.run.history.begin(),
+                        f.picard.run.history.end());
+  for (int k : f.picard.update_iterations) result.update_iterations.push_back(k + before);
+  result.reason = f.picard.run.reason;
+  result.final_energy = f.picard.run.final_energy;
+  result.final_defect = f.picard.run.final_defect;
+  result.fit = FitSummary{.level_set = level_set.expression(),
+                          .facets = f.interface.num_facets(),
+                          .vertices = static_cast<std::int64_t>(f.interface.vertices.size()),
+                          .max_distance = f.max_distance,
+                          .stages = f.stages,
+                          .undone = f.retries,
+                          .cells_moved_across = f.interface.cells_flipped,
+                          .iterations = static_cast<int>(f.picard.run.history.size())};
+  finish(result);
 }
 
 Optimizer::Optimizer(Mesh& mesh) : impl_(std::make_unique<Impl>(mesh)) {}
@@ -169,7 +222,8 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   r.warm = false;  // the desired volumes are smoothing's now
   r.set_desired_volumes(desired_volumes(options.sizes, r.view(), r.dofs(), r.cell_volumes()));
   const QuasiNewtonOptions method = r.method(options.solver);
-  if (observer.started) observer.started(r.problem());
+  result.problem = r.problem(options.solver);
+  if (observer.started) observer.started(result.problem);
 
   // The guard's promise is about the input: a tangled input's worst cell is inverted, so any
   // untangled output keeps it.
@@ -185,7 +239,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
         r.view(), r.dofs(), input, r.x, [&r](Vec x) { r.functional->project_onto_boundary(x); });
     if (result.quality_guard->vertices_moved > 0) result.final_energy = r.functional->value(r.x);
   }
-  result.quality_after = r.finish();
+  r.finish(result);
   result.seconds = MPI_Wtime() - start;
   return result;
 }
@@ -198,11 +252,13 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
   Result result;
   result.quality_before = r.input_quality(options.untangle);
   r.start(options.energy, options.boundary);
+  r.release_interface();  // adapt with the interface free; a fit follows if asked
   const auto target_volumes =
       size_field_volumes(field, options.sizes, r.view(), r.dofs(), r.mesh_volume);
   // The size field's volumes at the start: what the observer sees, and what untangling aims at.
   r.set_desired_volumes(target_volumes(r.x));
-  if (observer.started) observer.started(r.problem());
+  result.problem = r.problem(options.solver);
+  if (observer.started) observer.started(result.problem);
   if (options.untangle) result.untangling = r.untangle(r.method(options.solver), observer);
   PicardOptions picard = options.picard;
   if (r.warm) picard.min_updates = options.warm_updates;
@@ -213,7 +269,32 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
   r.warm = true;
   copy_run(run.run, result);
   result.update_iterations = run.update_iterations;
-  result.quality_after = r.finish();
+  r.finish(result);
+  result.volume_ratio = r.volume_ratio();
+  result.seconds = MPI_Wtime() - start;
+  return result;
+}
+
+Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const AdaptOptions& options,
+                        const Observer& observer) {
+  require_one_process(impl_->mesh.comm());
+  Impl& r = *impl_;
+  const double start = MPI_Wtime();
+  // A warm step adapts only until the small cells have moved along with the geometry: the fit
+  // goes on optimizing, and its start recomputes the desired volumes (one of the step's
+  // updates). After a cold start the volumes follow the fitted cells once more.
+  const bool warm = r.warm;
+  AdaptOptions adapting = options;
+  if (warm) {
+    adapting.warm_updates = std::max(0, options.warm_updates - 1);
+    adapting.solver.max_iterations = FitOptions().stage_iterations;
+  }
+  Result result = adapt(field, adapting, observer);
+  if (observer.fitting) observer.fitting(fit_to.expression());
+  PicardOptions last_stage = options.picard;
+  last_stage.min_updates = warm ? 0 : 1;
+  r.fit(fit_to, field, options, last_stage, observer, result);
+  result.volume_ratio = r.volume_ratio();
   result.seconds = MPI_Wtime() - start;
   return result;
 }
@@ -226,10 +307,35 @@ std::vector<Field> Optimizer::cell_fields() const {
   const Impl& r = *impl_;
   if (!r.functional || r.functional->desired_volumes().empty()) return {};
   const CellFields fields = r.functional->cell_fields(r.x);
-  return {{"energy", fields.energy},
-          {"det_G_min", fields.min_det},
-          {"Q", fields.volume_ratio},
-          {"desired_volume", r.functional->desired_volumes()}};
+  std::vector<Field> out = {{"energy", fields.energy},
+                            {"det_G_min", fields.min_det},
+                            {"Q", fields.volume_ratio},
+                            {"desired_volume", r.functional->desired_volumes()}};
+  if (r.fitted)
+    out.push_back({"inside", std::vector<double>(r.fitted->interface.inside.begin(),
+                                                 r.fitted->interface.inside.end())});
+  return out;
+}
+
+std::vector<Field> Optimizer::vertex_fields() const {
+  const Impl& r = *impl_;
+  if (!r.fitted) return {};
+  const MeshView& view = r.view();
+  std::vector<double> on(view.num_vertices, 0.0), phi(view.num_vertices);
+  for (PetscInt u : r.fitted->interface.vertices) on[u] = 1.0;
+  for (PetscInt u = 0; u < view.num_vertices; ++u) {
+    Point p = Point::Zero();
+    for (int j = 0; j < view.dim; ++j) p[j] = view.coords[u * view.dim + j];
+    phi[u] = r.phi->value(p);
+  }
+  return {public_vertex_field(view, "interface", on), public_vertex_field(view, "phi", phi)};
+}
+
+std::vector<FacetGroup> Optimizer::facet_groups() const {
+  const Impl& r = *impl_;
+  if (!r.fitted) return {};
+  return {public_facet_group(r.view(), "interface", r.fitted->interface.offsets,
+                             r.fitted->interface.facet_vertices)};
 }
 
 }  // namespace neomesh

@@ -1,11 +1,10 @@
-// What an Optimizer holds (include/neomesh/optimizer.hpp), for the library and for the command
-// line, which reaches further in than a user does: it prints the boundary's classification and
-// fits interfaces (adapt --fit) with the same functional.
+// What an Optimizer holds (include/neomesh/optimizer.hpp).
 //
 // One owner per piece of state: the Mesh owns the coordinates between calls; during a call
 // they are the Vec x, which is handed back with finish(). The Impl owns the functional, the
 // boundary classification, the desired volumes (inside the functional) and what derives from
-// them (the cell size of the practical criterion, the round-off level of F).
+// them (the cell size of the practical criterion, the round-off level of F), and a fit's
+// interface with the level set its constraint refers to.
 #pragma once
 
 #include <memory>
@@ -14,6 +13,7 @@
 
 #include <neomesh/optimizer.hpp>
 
+#include "adapt/fit.hpp"
 #include "boundary/boundary.hpp"
 #include "energy/functional.hpp"
 #include "mesh/plex_mesh.hpp"
@@ -39,20 +39,28 @@ struct Optimizer::Impl {
   // Rebuilds the functional with `extra` vertices sliding besides the boundary's (an interface
   // fitted to a level set; none: the boundary's alone), keeping the desired volumes.
   const Functional& constrain(SlidingVertices extra);
+  // After an adaptation: fits x to the zero set of `level_set` (adapt/fit.hpp), the last stage
+  // adapting with `last_stage`; appends the fit's iterations to `result`.
+  void fit(const LevelSet& level_set, const SizeField& field, const AdaptOptions& options,
+           const PicardOptions& last_stage, const Observer& observer, Result& result);
+  // Q = actual / desired volume at x.
+  VolumeRatioStats volume_ratio() const;
+  // The functional without the interface constraint of an earlier fit.
+  void release_interface();
   // If cells are inverted at x, untangles them (docs/untangling.md) towards the current desired
   // volumes, telling `observer`; throws Error naming the cells that stay inverted.
   std::optional<UntanglingSummary> untangle(const QuasiNewtonOptions& method,
                                             const Observer& observer);
-  // The free coordinates and the boundary's classification.
-  ProblemSummary problem() const;
+  // The free coordinates, the boundary's classification and the linear solvers.
+  ProblemSummary problem(const SolverOptions& solver) const;
   // The solver options with what derives from the mesh.
   QuasiNewtonOptions method(const SolverOptions& solver) const;
   // Volume of each local cell at the mesh's coordinates (where a call starts).
   std::vector<double> cell_volumes() const;
-  // Moves the mesh to x and returns its quality; throws Error if a cell is inverted (the
-  // energy is infinite there, so the method cannot produce one: a promise kept for every
-  // output).
-  QualitySummary finish();
+  // Moves the mesh to x and sets result's quality_after and boundary change; throws
+  // Error if a cell is inverted (the energy is infinite there, so the method cannot produce
+  // one: a promise kept for every output).
+  void finish(Result& result);
 
   Mesh& mesh;
   OwnedVec x;                // set by start()
@@ -61,11 +69,10 @@ struct Optimizer::Impl {
   std::optional<BoundaryOptions> boundary_options;
   std::unique_ptr<Boundary> boundary;
   std::unique_ptr<Functional> functional;
-  OwnedVec cell_size;  // local cell size per dof, for the practical criterion
-  bool warm = false;   // an adapt() ran: the next one starts from its volumes
+  OwnedVec cell_size;                     // local cell size per dof, for the practical criterion
+  bool warm = false;                      // an adapt() ran: the next one starts from its volumes
+  std::unique_ptr<LevelSetFunction> phi;  // of the last fit; its constraint refers to it
+  std::optional<FitResult> fitted;        // the last fit, until the next adapt()
 };
-
-// The run's iterations, stop reason, energies, defects and times into `result`.
-void copy_run(const QuasiNewtonResult& run, Result& result);
 
 }  // namespace neomesh

@@ -6,11 +6,6 @@
 #include <memory>
 #include <optional>
 
-#include "adapt/fit.hpp"
-#include "adapt/picard.hpp"
-#include "adapt/size_field.hpp"
-#include "adapt/volume_ratio.hpp"
-#include "api/optimizer_impl.hpp"
 #include "app/checks.hpp"
 #include "app/method_options.hpp"
 #include "app/optimization.hpp"
@@ -77,101 +72,33 @@ SizeField make_size_field(const AdaptCommand& o) {
   return SizeField::read_cell_values(o.sizes_file);
 }
 
-// The surface --fit fits the mesh to, as a level set φ (< 0 inside) in x, y, z and t.
-LevelSetFunction fit_level_set(const AdaptCommand& o, int dim) {
-  const auto& c = o.circle.empty() ? o.sphere : o.circle;
-  if (!o.levelset.empty()) return LevelSetFunction(o.levelset, dim, true);
-  if (!c.empty()) {
-    const int n = static_cast<int>(c.size()) - 1;
-    std::string sum;
-    for (int j = 0; j < n; ++j)
-      sum += fmt::format("{}({}-({:.17g}))^2", j ? "+" : "", "xyz"[j], c[j]);
-    return LevelSetFunction(fmt::format("sqrt({})-({:.17g})", sum, c[n]), dim, true);
-  }
+// The surface --fit fits the mesh to: the zero set of --levelset, or of the signed distance to
+// --circle, --sphere or --plane.
+LevelSet fit_level_set(const AdaptCommand& o) {
+  if (!o.levelset.empty()) return LevelSet::expression(o.levelset);
+  if (!o.circle.empty())
+    return LevelSet::sphere({o.circle.begin(), o.circle.end() - 1}, o.circle.back());
+  if (!o.sphere.empty())
+    return LevelSet::sphere({o.sphere.begin(), o.sphere.end() - 1}, o.sphere.back());
   if (!o.plane.empty()) {
-    const std::size_t n = o.plane.size() / 2;
-    std::string sum;
-    for (std::size_t j = 0; j < n; ++j)
-      sum += fmt::format("{}(({}-({:.17g}))*({:.17g}))", j ? "+" : "", "xyz"[j], o.plane[j],
-                         o.plane[n + j]);
-    return LevelSetFunction(sum, dim, true);
+    const auto middle = o.plane.begin() + static_cast<std::ptrdiff_t>(o.plane.size() / 2);
+    return LevelSet::plane({o.plane.begin(), middle}, {middle, o.plane.end()});
   }
   fail("--fit fits the mesh to a level set: give --levelset, --circle, --sphere or --plane");
 }
 
-// What the outputs show of a fit: the cell field "inside" (1 on the side φ < 0), the vertex
-// fields "interface" (1 on the fitted vertices) and "phi", and the facet group "interface"
-// (.msh).
-MeshFields fit_outputs(const Optimizer::Impl& impl, const FitResult& fit,
-                       const LevelSetFunction& phi) {
-  const MeshView& view = impl.view();
-  MeshFields out;
-  out.cell.push_back(
-      {"inside", std::vector<double>(fit.interface.inside.begin(), fit.interface.inside.end())});
-  std::vector<double> on(view.num_vertices, 0.0), values(view.num_vertices);
-  for (PetscInt u : fit.interface.vertices) on[u] = 1.0;
-  std::vector<double> local(static_cast<std::size_t>(impl.dofs().num_local_dofs()));
-  impl.dofs().global_to_local(impl.x, local);
-  for (PetscInt u = 0; u < view.num_vertices; ++u) {
-    Point p = Point::Zero();
-    for (int j = 0; j < view.dim; ++j) p[j] = local[u * view.dim + j];
-    values[u] = phi.value(p);
-  }
-  out.vertex = {{"interface", std::move(on)}, {"phi", std::move(values)}};
-  out.facet_groups.push_back({"interface", fit.interface.offsets, fit.interface.facet_vertices});
-  return out;
-}
-
-std::string describe(const FitResult& f) {
+std::string describe(const FitSummary& f) {
   return fmt::format(
       "fit: {} interface facets, {} vertices within {:.1e} of the zero set, {} stages ({} undone, "
       "{} cells moved across)",
-      f.interface.num_facets(), f.interface.vertices.size(), f.max_distance, f.stages, f.retries,
-      f.interface.cells_flipped);
-}
-
-// After an adapt(): fits the run's mesh to φ = 0 (the time set in phi) with the Optimizer's
-// functional, makes the outputs show it, and appends its iterations to `result` (the mesh is
-// moved to the fitted coordinates, and result's quality_after is theirs).
-FitResult fit(OptimizationRun& run, const SizeField& field, const LevelSetFunction& phi,
-              const AdaptOptions& options, const PicardOptions& last_stage, Result& result,
-              const Observer& observe = {}) {
-  Optimizer::Impl& impl = run.optimizer().impl();
-  const auto target_volumes =
-      size_field_volumes(field, options.sizes, impl.view(), impl.dofs(), impl.mesh_volume);
-  const FitHooks hooks{
-      .constrain = [&impl](SlidingVertices extra) -> const Functional& {
-        return impl.constrain(std::move(extra));
-      },
-      .target_volumes = target_volumes,
-      .set_volumes = [&impl](const std::vector<double>& v) { impl.set_desired_volumes(v); }};
-  FitResult f = fit_interface(impl.view(), impl.dofs(), impl.x, phi, hooks, last_stage,
-                              impl.method(options.solver), {}, observe);
-  result.quality_after = impl.finish();
-  run.set_extra_outputs(fit_outputs(impl, f, phi));
-  const int before = static_cast<int>(result.history.size());
-  result.update_iterations.push_back(before);  // the fit starts from new volumes
-  result.history.insert(result.history.end(), f.picard.run.history.begin(),
-                        f.picard.run.history.end());
-  for (int k : f.picard.update_iterations) result.update_iterations.push_back(k + before);
-  result.reason = f.picard.run.reason;
-  result.final_energy = f.picard.run.final_energy;
-  result.final_defect = f.picard.run.final_defect;
-  return f;
-}
-
-// Q = actual / desired volume of the run's cells.
-VolumeRatioStats volume_ratio(OptimizationRun& run) {
-  for (const Field& f : run.optimizer().cell_fields())
-    if (f.name == "Q") return volume_ratio_stats(f.values, run.mesh().comm());
-  return {};
+      f.facets, f.vertices, f.max_distance, f.stages, f.undone, f.cells_moved_across);
 }
 
 // A geometry that moves: the size field at each time of `times` in turn, every step warm-started
 // from the mesh and desired volumes of the one before; one mesh file, summary line (and
 // picture) per step, and a ParaView collection for an .pvd output.
 void adapt_in_time(const AdaptCommand& o, const AdaptOptions& options, SizeField& field,
-                   OptimizationRun& run, const std::vector<double>& times, LevelSetFunction* phi) {
+                   OptimizationRun& run, const std::vector<double>& times, LevelSet* phi) {
   const std::filesystem::path output = o.output;
   std::vector<std::filesystem::path> members;
   nlohmann::json steps = nlohmann::json::array();
@@ -179,39 +106,30 @@ void adapt_in_time(const AdaptCommand& o, const AdaptOptions& options, SizeField
   const double start = MPI_Wtime();
   for (std::size_t i = 0; i < times.size(); ++i) {
     field.set_time(times[i]);
-    AdaptOptions step = options;
-    if (i > 0 && phi) {
-      // The fit's start recomputes the desired volumes: one of the step's updates; and a warm
-      // step's adaptation only has to move the small cells along: the fit goes on optimizing.
-      step.warm_updates = std::max(0, options.warm_updates - 1);
-      step.solver.max_iterations = FitOptions().stage_iterations;
-    }
     const double step_start = MPI_Wtime();
-    // With --fit: adapt with the interface free, then fit: the small cells are already at the
-    // new interface when its vertices are pulled onto it.
-    if (phi && i > 0) run.optimizer().impl().constrain({});
     // The problem is printed once; then one summary line per step.
     Observer observe;
     if (i == 0) observe.started = run.observer(settings, true).started;
-    Result result = run.optimizer().adapt(field, step, observe);
     std::string fitted;
     nlohmann::json fit_record;
+    Result result;
     if (phi) {
       phi->set_time(times[i]);
-      PicardOptions last = options.picard;
-      last.min_updates = 0;  // the volumes where the fit starts will do
-      const FitResult f = fit(run, field, *phi, options, last, result);
+      result = run.optimizer().adapt(field, *phi, options, observe);
+      const FitSummary& f = *result.fit;
       fitted = "; " + describe(f);
       fit_record = {{"max_distance", f.max_distance},
-                    {"iterations", f.picard.run.history.size()},
-                    {"facets", f.interface.num_facets()},
+                    {"iterations", f.iterations},
+                    {"facets", f.facets},
                     {"stages", f.stages},
-                    {"undone", f.retries}};
+                    {"undone", f.undone}};
+    } else {
+      result = run.optimizer().adapt(field, options, observe);
     }
     const double seconds = MPI_Wtime() - step_start;
     members.push_back(series_member(output, static_cast<int>(i)));
     run.snapshot(members.back());
-    const VolumeRatioStats q = volume_ratio(run);
+    const VolumeRatioStats& q = result.volume_ratio;
     const double min_sj = result.quality_after.scaled_jacobian.min;
     always(
         "step {}/{}, t = {:.4g}: {} iterations, {} updates, {}; Q in [0.5, 2] for {:.1f}% of "
@@ -276,23 +194,18 @@ void adapt(AdaptCommand& o) {
           "pattern");
   }
 
-  if (o.fit && o.levelset.empty() && o.circle.empty() && o.sphere.empty() && o.plane.empty())
-    fail("--fit fits the mesh to a level set: give --levelset, --circle, --sphere or --plane");
-  if (o.fit && mpi_size(PETSC_COMM_WORLD) > 1)
-    fail("--fit runs on one process for now (the interface is found within each process' cells)");
+  std::optional<LevelSet> phi;
+  if (o.fit) phi.emplace(fit_level_set(o));
 
   OptimizationRun run(o.input, o.no_untangle ? InvertedCells::Refuse : InvertedCells::Keep);
-  const MeshView& view = run.mesh().plex().view();
-  std::optional<LevelSetFunction> phi;
-  if (o.fit) {
-    phi.emplace(fit_level_set(o, view.dim));
-    // Every time's interface must exist and lie inside the domain: fail before any output.
+  const Mesh& mesh = run.mesh();
+  // Every time's interface must exist and lie inside the domain: fail before any output.
+  if (phi)
     for (double t : times.empty() ? std::vector<double>{0.0} : times) {
       phi->set_time(t);
-      find_interface(view, view.coords, *phi);
+      mesh.interface(*phi);
     }
-  }
-  check_run_outputs(o.outputs, view.dim);  // pictures of a 3D mesh: before the run
+  check_run_outputs(o.outputs, mesh.dim());  // pictures of a 3D mesh: before the run
   say("size field: {}\n", field.description());
   if (!times.empty()) {
     adapt_in_time(o, options, field, run, times, phi ? &*phi : nullptr);
@@ -304,25 +217,23 @@ void adapt(AdaptCommand& o) {
       run.draw(o.outputs.picture_before, o.outputs.picture_field, "input: " + o.input);
   };
   const Observer observe = run.observer(settings, o.outputs.progress_lines, picture_before);
-  Result result = run.optimizer().adapt(field, options, observe);
+  const Result result = phi ? run.optimizer().adapt(field, *phi, options, observe)
+                            : run.optimizer().adapt(field, options, observe);
   nlohmann::json fit_report;
-  if (phi) {
-    say("fitting the mesh to {} = 0 ...\n", phi->expression());
-    PicardOptions last = options.picard;
-    last.min_updates = 1;  // the volumes follow the fitted cells once
-    const FitResult f = fit(run, field, *phi, options, last, result, observe);
-    always("{}; {} iterations\n", describe(f), f.picard.run.history.size());
-    fit_report = {{"level_set", phi->expression()},
-                  {"facets", f.interface.num_facets()},
-                  {"vertices", f.interface.vertices.size()},
+  if (result.fit) {
+    const FitSummary& f = *result.fit;
+    always("{}; {} iterations\n", describe(f), f.iterations);
+    fit_report = {{"level_set", f.level_set},
+                  {"facets", f.facets},
+                  {"vertices", f.vertices},
                   {"max_distance", f.max_distance},
                   {"stages", f.stages},
-                  {"undone", f.retries},
-                  {"cells_moved_across", f.interface.cells_flipped},
-                  {"iterations", f.picard.run.history.size()}};
+                  {"undone", f.undone},
+                  {"cells_moved_across", f.cells_moved_across},
+                  {"iterations", f.iterations}};
   }
 
-  const VolumeRatioStats q = volume_ratio(run);
+  const VolumeRatioStats& q = result.volume_ratio;
   always(
       "adaptation: {} updates of the desired volumes (after iterations {}); Q = actual/desired "
       "volume in [0.5, 2] for {:.1f}% of the cells, min {:.3g}, median {:.3g}, max {:.3g}\n",

@@ -5,7 +5,6 @@
 #include <sys/resource.h>
 #include <cstdlib>
 
-#include "api/optimizer_impl.hpp"
 #include "app/checks.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -18,7 +17,6 @@
 #include "report/quality_report.hpp"
 #include "report/render.hpp"
 #include "report/run_report.hpp"
-#include "solver/linear_solver.hpp"
 
 namespace neomesh::app {
 
@@ -63,32 +61,6 @@ void share_cores(MPI_Comm comm) {
   omp_set_num_threads(std::max(1, omp_get_num_procs() / ranks));
 }
 
-// "KSP cg, PC hypre boomeramg, rtol 0.0001, at most 10000 iterations": what PETSc will run,
-// after the -hess_/-riesz_ options of the command line.
-std::string describe(const LinearSolver& solver) {
-  KSPType ksp_type = nullptr;
-  PC pc = nullptr;
-  PCType pc_type = nullptr;
-  NM_PETSC(KSPGetType(solver.ksp(), &ksp_type));
-  NM_PETSC(KSPGetPC(solver.ksp(), &pc));
-  NM_PETSC(PCGetType(pc, &pc_type));
-  std::string pc_name = pc_type ? pc_type : "none";
-  if (pc_name == PCHYPRE) {
-    const char* hypre = nullptr;
-    NM_PETSC(PCHYPREGetType(pc, &hypre));
-    pc_name += fmt::format(" {}", hypre ? hypre : "");
-  } else if (pc_name == PCCHOLESKY || pc_name == PCLU) {
-    MatSolverType package = nullptr;
-    NM_PETSC(PCFactorGetMatSolverType(pc, &package));
-    pc_name += fmt::format(" ({})", package ? package : "petsc");
-  }
-  double rtol = 0.0;
-  PetscInt max_it = 0;
-  NM_PETSC(KSPGetTolerances(solver.ksp(), &rtol, nullptr, nullptr, &max_it));
-  return fmt::format("KSP {}, PC {}, rtol {:g}, at most {} iterations", ksp_type, pc_name, rtol,
-                     max_it);
-}
-
 // --verbose: the linear solves of one iteration.
 void print_solver_details(const IterationRecord& rec) {
   const std::string delta =
@@ -121,17 +93,11 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
         b.patches, b.ridges, b.corners, b.ridge_vertices, b.surface_vertices);
     for (const std::string& g : b.patch_geometry) detail("  {}\n", g);
   }
-  if (verbosity() == Verbosity::Verbose) {
-    const SolverOptions& o = s.solver;
-    detail(
-        "quasi-Newton system H(alpha) delta~ = -g (options -hess_*): {}, or residual <= {:g} "
-        "x defect\n",
-        describe(LinearSolver(mesh.comm(), o.linear_solver, "hess_", mesh.dim(), o.hessian_rtol)),
-        o.hessian_defect_factor);
-    detail(
-        "Riesz representative L s = g (options -riesz_*): {}\n",
-        describe(LinearSolver(mesh.comm(), o.linear_solver, "riesz_", mesh.dim(), o.riesz_rtol)));
-  }
+  detail(
+      "quasi-Newton system H(alpha) delta~ = -g (options -hess_*): {}, or residual <= {:g} x "
+      "defect\n",
+      problem.hessian_solver, s.solver.hessian_defect_factor);
+  detail("Riesz representative L s = g (options -riesz_*): {}\n", problem.riesz_solver);
   // The first iteration assembles the matrices and builds the preconditioners: on a large
   // mesh the longest wait before the first row of the table.
   say("assembling the matrices and setting up the linear solvers ...\n");
@@ -144,7 +110,6 @@ struct OptimizationRun::Impl {
   double read_seconds = 0.0, prepare_seconds = 0.0;
   Mesh mesh;
   Optimizer optimizer;
-  MeshFields extra_outputs;
 
   Impl(const std::filesystem::path& input, InvertedCells inverted)
       : mesh(read(input, inverted)), optimizer(mesh) {
@@ -160,16 +125,12 @@ struct OptimizationRun::Impl {
     return Mesh::read(input, PETSC_COMM_WORLD, inverted);
   }
 
-  // At the mesh's coordinates: its quality, the optimizer's fields and the extra outputs.
-  MeshFields output_fields() const {
+  // The cell fields of the outputs at the mesh's coordinates: the optimizer's and the quality.
+  std::vector<Field> cell_fields() const {
     const MeshView& view = mesh.plex().view();
-    MeshFields fields;
-    fields.cell = optimizer.cell_fields();
+    std::vector<Field> fields = optimizer.cell_fields();
     const std::vector<Field> metrics = quality_fields(cell_quality(view, view.coords));
-    fields.cell.insert(fields.cell.end(), metrics.begin(), metrics.end());
-    fields.cell.insert(fields.cell.end(), extra_outputs.cell.begin(), extra_outputs.cell.end());
-    fields.vertex = extra_outputs.vertex;
-    fields.facet_groups = extra_outputs.facet_groups;
+    fields.insert(fields.end(), metrics.begin(), metrics.end());
     return fields;
   }
 };
@@ -184,9 +145,6 @@ Mesh& OptimizationRun::mesh() {
 Optimizer& OptimizationRun::optimizer() {
   return impl_->optimizer;
 }
-void OptimizationRun::set_extra_outputs(MeshFields extra) {
-  impl_->extra_outputs = std::move(extra);
-}
 
 Observer OptimizationRun::observer(const RunSettings& settings, bool progress_only,
                                    std::function<void()> before_run) {
@@ -197,41 +155,44 @@ Observer OptimizationRun::observer(const RunSettings& settings, bool progress_on
   };
   auto table = std::make_shared<Table>();
   Impl& r = *impl_;
-  return {.started =
-              [&r, settings, before_run](const ProblemSummary& problem) {
-                r.prepare_seconds = MPI_Wtime() - r.start - r.read_seconds;
-                print_problem(r.mesh, problem, settings);
-                if (before_run) before_run();
-              },
-          .untangling =
-              [table](std::int64_t inverted) {
-                say("{} cells are inverted: untangling them first\n", inverted);
-                table->round = -1;
-              },
-          .untangled =
-              [](const UntanglingSummary& u) {
-                say("untangled {} cells in {} iterations ({:.2f} s)\n", u.inverted_before,
-                    u.history.size(), u.seconds);
-              },
-          .iteration =
-              [table, progress_only](const IterationRecord& rec) {
-                if (rec.untangling_round != table->round) {
-                  say("{}\n", untangling_phase_line(rec));
-                  table->round = rec.untangling_round;
-                }
-                if (progress_only) {
-                  say("{}\n", progress_line(rec));
-                } else {
-                  if (!table->header_printed) say("{}\n", iteration_table_header());
-                  table->header_printed = true;
-                  say("{}\n", iteration_table_row(rec));
-                }
-                print_solver_details(rec);
-              },
-          .volumes_updated =
-              [](int k, int update) {
-                say("  -- desired volumes updated after iteration {} (update {})\n", k, update);
-              }};
+  return {
+      .started =
+          [&r, settings, before_run](const ProblemSummary& problem) {
+            r.prepare_seconds = MPI_Wtime() - r.start - r.read_seconds;
+            print_problem(r.mesh, problem, settings);
+            if (before_run) before_run();
+          },
+      .untangling =
+          [table](std::int64_t inverted) {
+            say("{} cells are inverted: untangling them first\n", inverted);
+            table->round = -1;
+          },
+      .untangled =
+          [](const UntanglingSummary& u) {
+            say("untangled {} cells in {} iterations ({:.2f} s)\n", u.inverted_before,
+                u.history.size(), u.seconds);
+          },
+      .iteration =
+          [table, progress_only](const IterationRecord& rec) {
+            if (rec.untangling_round != table->round) {
+              say("{}\n", untangling_phase_line(rec));
+              table->round = rec.untangling_round;
+            }
+            if (progress_only) {
+              say("{}\n", progress_line(rec));
+            } else {
+              if (!table->header_printed) say("{}\n", iteration_table_header());
+              table->header_printed = true;
+              say("{}\n", iteration_table_row(rec));
+            }
+            print_solver_details(rec);
+          },
+      .volumes_updated =
+          [](int k, int update) {
+            say("  -- desired volumes updated after iteration {} (update {})\n", k, update);
+          },
+      .fitting =
+          [](const std::string& level_set) { say("fitting the mesh to {} = 0 ...\n", level_set); }};
 }
 
 namespace {
@@ -295,8 +256,7 @@ void check_run_outputs(const RunOutputs& o, int dim) {
 
 void OptimizationRun::draw(const std::filesystem::path& path, const std::string& field,
                            const std::string& title) const {
-  const MeshFields fields = impl_->output_fields();
-  for (const Field& f : fields.cell)
+  for (const Field& f : impl_->cell_fields())
     if (f.name == field) {
       RenderOptions options;
       options.title = title;
@@ -310,7 +270,8 @@ void OptimizationRun::draw(const std::filesystem::path& path, const std::string&
 
 void OptimizationRun::snapshot(const std::filesystem::path& output) const {
   const Activity writing("writing " + output.string());
-  write_mesh(impl_->mesh.plex(), output, impl_->output_fields());
+  const Optimizer& o = impl_->optimizer;
+  impl_->mesh.write(output, o.cell_fields(), o.vertex_fields(), o.facet_groups());
 }
 
 void OptimizationRun::finish(const Result& result, const RunSettings& settings,
@@ -325,16 +286,13 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
 
   // How much the domain changed: zero with fixed boundary vertices; with sliding ones bounded
   // by the input's discretization (vertices stay on its facets or on the given shapes).
-  const Optimizer::Impl& o = r.optimizer.impl();
-  const double volume_after = result.quality_after.volume.mean * result.quality_after.cells;
   const nlohmann::json boundary_change = {
-      {"max_distance_from_input_boundary", o.boundary->max_distance_from_input(o.x)},
-      {"relative_volume_change", (volume_after - o.mesh_volume) / o.mesh_volume}};
+      {"max_distance_from_input_boundary", result.boundary_distance},
+      {"relative_volume_change", result.volume_change}};
   if (settings.boundary.mode == BoundaryMode::Slide)
     say("boundary: largest distance of a boundary vertex from the input's boundary {:.3g}, "
         "domain volume change {:+.3g}%\n",
-        boundary_change["max_distance_from_input_boundary"].get<double>(),
-        100 * boundary_change["relative_volume_change"].get<double>());
+        result.boundary_distance, 100 * result.volume_change);
 
   const double write_start = MPI_Wtime();
   snapshot(output);
@@ -349,7 +307,7 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
         {"processes", mpi_size(r.mesh.comm())},
         {"cells", r.mesh.num_cells()},
         {"vertices", r.mesh.num_vertices()},
-        {"free_dofs", o.problem().free_coordinates},
+        {"free_dofs", result.problem.free_coordinates},
         {"energy_options", to_json(settings.energy)},
         {"solver_options", to_json(settings.solver)},
         {"boundary", std::string(name(settings.boundary.mode))},

@@ -15,8 +15,6 @@
 #include <neomesh/mesh.hpp>
 #include <neomesh/optimizer.hpp>
 
-#include "mesh/mesh_io.hpp"
-
 namespace neomesh::app {
 
 // Throws Error unless `output` has a writable format and differs from `input` (or `force`).
@@ -64,12 +62,10 @@ class OptimizationRun {
   Observer observer(const RunSettings& settings, bool progress_only,
                     std::function<void()> before_run = {});
 
-  // Fields and facet groups every later output carries besides the run's own.
-  void set_extra_outputs(MeshFields extra);
   // Draws the mesh at its current coordinates coloured by `field` (an output cell field).
   void draw(const std::filesystem::path& path, const std::string& field,
             const std::string& title) const;
-  // Writes `output` with per-cell fields (one step of a time series).
+  // Writes `output` with the optimizer's fields and facet groups (one step of a time series).
   void snapshot(const std::filesystem::path& output) const;
   // Prints the outcome and the quality before and after, writes `output` with per-cell fields,
   // and the optional JSON report (with `extra` merged in), history plot and picture.

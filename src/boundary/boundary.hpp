@@ -34,7 +34,6 @@ namespace neomesh {
 
 // "fixed" or "slide"; throws Error for anything else.
 BoundaryMode parse_boundary_mode(std::string_view name);
-std::string_view name(BoundaryMode mode);
 
 class Boundary {
  public:

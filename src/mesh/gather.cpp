@@ -78,17 +78,15 @@ Packet pack(const PlexMesh& mesh, const MeshFields& fields) {
   return out;
 }
 
-// The facet group on rank 0 as facets of `mesh` (input vertex numbers) in a physical group of
-// its own: the input's group of the same name and dimension if there is one (its facets are
-// replaced), else a new tag.
+// The facet group on rank 0 as facets of `mesh` in a physical group of its own: the input's
+// group of the same name and dimension if there is one (its facets are replaced), else a new
+// tag.
 void add_facet_group(const PlexMesh& mesh, const FacetGroup& group, InputMesh& out) {
   const auto& m = MeshAccess::impl(mesh);
-  std::vector<PetscInt> sizes, vertices;
-  for (std::size_t f = 0; f + 1 < group.offsets.size(); ++f) {
-    sizes.push_back(group.offsets[f + 1] - group.offsets[f]);
-    for (PetscInt k = group.offsets[f]; k < group.offsets[f + 1]; ++k)
-      vertices.push_back(m.view->input_vertex[group.vertices[k]]);
-  }
+  std::vector<PetscInt> sizes;
+  for (std::size_t f = 0; f + 1 < group.offsets.size(); ++f)
+    sizes.push_back(static_cast<PetscInt>(group.offsets[f + 1] - group.offsets[f]));
+  const std::vector<PetscInt> vertices(group.vertices.begin(), group.vertices.end());
   const auto all_sizes = gatherv(mesh.comm(), sizes, MPIU_INT);
   const auto all_vertices = gatherv(mesh.comm(), vertices, MPIU_INT);
   if (mpi_rank(mesh.comm()) != 0) return;

@@ -14,16 +14,9 @@
 
 namespace neomesh {
 
-// A named field with one value per local cell (MeshView order) or per local vertex.
-
-// Facets (edges in 2D, faces in 3D) that a .msh output lists as the physical group `name`
-// (replacing an input group of that name); other formats leave them out.
-struct FacetGroup {
-  std::string name;
-  std::vector<PetscInt> offsets = {0};
-  std::vector<PetscInt> vertices;  // per facet, local vertices (MeshView order)
-};
-
+// What is written with a mesh: fields per local cell (MeshView order) and per local vertex
+// (MeshView order; the owned vertices' values are written), facet groups (input vertex
+// numbers).
 struct MeshFields {
   std::vector<Field> cell;
   std::vector<Field> vertex;

@@ -138,4 +138,28 @@ LinearSolver::Outcome LinearSolver::solve(Vec b, Vec x, double atol) {
   return out;
 }
 
+std::string LinearSolver::description() const {
+  KSPType ksp_type = nullptr;
+  PC pc = nullptr;
+  PCType pc_type = nullptr;
+  NM_PETSC(KSPGetType(ksp_, &ksp_type));
+  NM_PETSC(KSPGetPC(ksp_, &pc));
+  NM_PETSC(PCGetType(pc, &pc_type));
+  std::string pc_name = pc_type ? pc_type : "none";
+  if (pc_name == PCHYPRE) {
+    const char* hypre = nullptr;
+    NM_PETSC(PCHYPREGetType(pc, &hypre));
+    pc_name += fmt::format(" {}", hypre ? hypre : "");
+  } else if (pc_name == PCCHOLESKY || pc_name == PCLU) {
+    MatSolverType package = nullptr;
+    NM_PETSC(PCFactorGetMatSolverType(pc, &package));
+    pc_name += fmt::format(" ({})", package ? package : "petsc");
+  }
+  double rtol = 0.0;
+  PetscInt max_it = 0;
+  NM_PETSC(KSPGetTolerances(ksp_, &rtol, nullptr, nullptr, &max_it));
+  return fmt::format("KSP {}, PC {}, rtol {:g}, at most {} iterations", ksp_type, pc_name, rtol,
+                     max_it);
+}
+
 }  // namespace neomesh

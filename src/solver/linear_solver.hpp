@@ -18,7 +18,6 @@
 namespace neomesh {
 
 LinearSolverKind parse_linear_solver(std::string_view name);
-std::string_view name(LinearSolverKind kind);
 
 class LinearSolver {
  public:
@@ -49,6 +48,9 @@ class LinearSolver {
   Outcome solve(Vec b, Vec x, double atol = 0.0);
 
   KSP ksp() const { return ksp_; }
+  // "KSP cg, PC hypre boomeramg, rtol 0.0001, at most 10000 iterations": what PETSc will run,
+  // after the options database's -<prefix> options.
+  std::string description() const;
 
  private:
   OwnedKSP ksp_;

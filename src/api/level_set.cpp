@@ -1,0 +1,67 @@
+#include <neomesh/level_set.hpp>
+
+#include <cmath>
+
+#include "api/fitting.hpp"
+#include "core/error.hpp"
+
+namespace neomesh {
+
+namespace {
+
+// Numbers written so that muparser reads back the same double.
+std::string exact(double v) {
+  return fmt::format("({:.17g})", v);
+}
+
+}  // namespace
+
+LevelSet::LevelSet(std::string expression) : expression_(std::move(expression)) {
+  LevelSetFunction(expression_, 3, true);  // parses it: errors now, not in the first fit
+}
+
+LevelSet LevelSet::sphere(const std::vector<double>& centre, double radius) {
+  if (centre.size() != 2 && centre.size() != 3)
+    fail("the centre of a circle/sphere needs 2 or 3 coordinates (got {})", centre.size());
+  if (!(radius > 0 && std::isfinite(radius)))
+    fail("the radius of a {} must be positive (got {})", centre.size() == 2 ? "circle" : "sphere",
+         radius);
+  std::string sum;
+  for (std::size_t j = 0; j < centre.size(); ++j)
+    sum += fmt::format("{}({}-{})^2", j ? "+" : "", "xyz"[j], exact(centre[j]));
+  return LevelSet(fmt::format("sqrt({})-{}", sum, exact(radius)));
+}
+
+LevelSet LevelSet::plane(const std::vector<double>& point, const std::vector<double>& normal) {
+  if ((point.size() != 2 && point.size() != 3) || normal.size() != point.size())
+    fail("a line/plane needs a point and a normal of 2 or 3 coordinates each (got {} and {})",
+         point.size(), normal.size());
+  double length = 0.0;
+  for (double n : normal) length += n * n;
+  if (!(length > 0)) fail("the normal of the plane must not be zero");
+  std::string sum;
+  for (std::size_t j = 0; j < point.size(); ++j)
+    sum += fmt::format("{}(({}-{})*{})", j ? "+" : "", "xyz"[j], exact(point[j]), exact(normal[j]));
+  return LevelSet(sum);
+}
+
+LevelSet LevelSet::expression(const std::string& phi) {
+  return LevelSet(phi);
+}
+
+LevelSetFunction level_set_function(const LevelSet& phi, int dim) {
+  LevelSetFunction function(phi.expression(), dim, true);
+  function.set_time(phi.time());
+  return function;
+}
+
+void require_one_process(MPI_Comm comm) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  if (size > 1)
+    fail(
+        "fit: fitting runs on one process for now (the interface is found within each process' "
+        "cells)");
+}
+
+}  // namespace neomesh
