@@ -1,5 +1,6 @@
 #include "solver/linear_solver.hpp"
 
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -28,28 +29,42 @@ std::string_view name(LinearSolverKind kind) {
 
 namespace {
 
-// BoomerAMG is tuned only through the options database: put neomesh's defaults there unless
-// the user gave the option. Chebyshev smoothing halves the time of the δ̃ solve against
-// PETSc's default hybrid SOR/Jacobi at the same CG iterations (square-midpoint 512²: whole run
-// 18.9 s → 14.1 s). In 3D, hypre's advice for 3D problems (HMIS coarsening, ext+i
-// interpolation with at most 4 entries per row, strong threshold 0.5) keeps the hierarchies
-// sparse: on cube-midpoint 32³ the Riesz Laplacian's operator complexity was 5.4 with the 2D
-// defaults, and both setups and V-cycles take half the time or less at the same CG
+// BoomerAMG is tuned only through the options database: neomesh's defaults go there unless
+// the caller gave the option, for as long as the solver reads its options (the destructor
+// takes them out again, so the database is left as the caller made it). Chebyshev smoothing halves
+// the time of the δ̃ solve against PETSc's default hybrid SOR/Jacobi at the same CG iterations
+// (square-midpoint 512²: whole run 18.9 s → 14.1 s). In 3D, hypre's advice for 3D problems (HMIS
+// coarsening, ext+i interpolation with at most 4 entries per row, strong threshold 0.5) keeps the
+// hierarchies sparse: on cube-midpoint 32³ the Riesz Laplacian's operator complexity was 5.4 with
+// the 2D defaults, and both setups and V-cycles take half the time or less at the same CG
 // iterations. In 2D the same options do not help (same time, more iterations).
-void set_amg_defaults(const std::string& prefix, int dim) {
-  std::vector<std::pair<const char*, const char*>> defaults = {{"relax_type_all", "Chebyshev"}};
-  if (dim == 3)
-    defaults.insert(defaults.end(), {{"coarsen_type", "HMIS"},
-                                     {"interp_type", "ext+i"},
-                                     {"P_max", "4"},
-                                     {"strong_threshold", "0.5"}});
-  for (const auto& [name, value] : defaults) {
-    const std::string option = "-" + prefix + "pc_hypre_boomeramg_" + name;
-    PetscBool given = PETSC_FALSE;
-    NM_PETSC(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &given));
-    if (!given) NM_PETSC(PetscOptionsSetValue(nullptr, option.c_str(), value));
+class AmgDefaults {
+ public:
+  AmgDefaults(const std::string& prefix, int dim) {
+    std::vector<std::pair<const char*, const char*>> defaults = {{"relax_type_all", "Chebyshev"}};
+    if (dim == 3)
+      defaults.insert(defaults.end(), {{"coarsen_type", "HMIS"},
+                                       {"interp_type", "ext+i"},
+                                       {"P_max", "4"},
+                                       {"strong_threshold", "0.5"}});
+    for (const auto& [name, value] : defaults) {
+      std::string option = "-" + prefix + "pc_hypre_boomeramg_" + name;
+      PetscBool given = PETSC_FALSE;
+      NM_PETSC(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &given));
+      if (given) continue;
+      NM_PETSC(PetscOptionsSetValue(nullptr, option.c_str(), value));
+      set_.push_back(std::move(option));
+    }
   }
-}
+  ~AmgDefaults() {
+    for (const std::string& option : set_) PetscOptionsClearValue(nullptr, option.c_str());
+  }
+  AmgDefaults(const AmgDefaults&) = delete;
+  AmgDefaults& operator=(const AmgDefaults&) = delete;
+
+ private:
+  std::vector<std::string> set_;  // the options this put in
+};
 
 }  // namespace
 
@@ -60,12 +75,13 @@ LinearSolver::LinearSolver(MPI_Comm comm, LinearSolverKind kind, const std::stri
   NM_PETSC(KSPSetOptionsPrefix(ksp_, prefix.c_str()));
   PC pc = nullptr;
   NM_PETSC(KSPGetPC(ksp_, &pc));
+  std::optional<AmgDefaults> amg_defaults;  // until KSPSetFromOptions has read them
   switch (kind) {
     case LinearSolverKind::Amg:
       NM_PETSC(KSPSetType(ksp_, KSPCG));
       NM_PETSC(PCSetType(pc, PCHYPRE));
       NM_PETSC(PCHYPRESetType(pc, "boomeramg"));
-      set_amg_defaults(prefix, dim);
+      amg_defaults.emplace(prefix, dim);
       break;
     case LinearSolverKind::Jacobi:
       NM_PETSC(KSPSetType(ksp_, KSPCG));

@@ -1,0 +1,59 @@
+// LinearSolver's BoomerAMG defaults reach hypre and leave the options database as it was.
+#include "solver/linear_solver.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace neomesh {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+// What PCView prints of the solver's preconditioner (hypre's settings need an ASCII viewer).
+std::string view_pc(const LinearSolver& solver) {
+  PC pc = nullptr;
+  NM_PETSC(KSPGetPC(solver.ksp(), &pc));
+  const std::string path = testing::TempDir() + "linear_solver_test_pc.txt";
+  PetscViewer viewer = nullptr;
+  NM_PETSC(PetscViewerASCIIOpen(PETSC_COMM_SELF, path.c_str(), &viewer));
+  NM_PETSC(PCView(pc, viewer));
+  NM_PETSC(PetscViewerDestroy(&viewer));
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::remove(path.c_str());
+  return text;
+}
+
+bool in_database(const char* option) {
+  PetscBool has = PETSC_FALSE;
+  NM_PETSC(PetscOptionsHasName(nullptr, nullptr, option, &has));
+  return has == PETSC_TRUE;
+}
+
+TEST(LinearSolver, AmgDefaultsReachHypreAndLeaveNoOptionBehind) {
+  const LinearSolver solver(PETSC_COMM_SELF, LinearSolverKind::Amg, "amgtest_", 3, 1e-4);
+  const std::string pc = view_pc(solver);
+  EXPECT_THAT(pc, HasSubstr("HMIS"));
+  EXPECT_THAT(pc, HasSubstr("Chebyshev"));
+  EXPECT_FALSE(in_database("-amgtest_pc_hypre_boomeramg_coarsen_type"));
+  EXPECT_FALSE(in_database("-amgtest_pc_hypre_boomeramg_relax_type_all"));
+}
+
+TEST(LinearSolver, AnOptionTheCallerGaveWinsAndStays) {
+  NM_PETSC(PetscOptionsSetValue(nullptr, "-given_pc_hypre_boomeramg_coarsen_type", "PMIS"));
+  const LinearSolver solver(PETSC_COMM_SELF, LinearSolverKind::Amg, "given_", 3, 1e-4);
+  const std::string pc = view_pc(solver);
+  EXPECT_THAT(pc, HasSubstr("PMIS"));
+  EXPECT_THAT(pc, Not(HasSubstr("HMIS")));
+  EXPECT_TRUE(in_database("-given_pc_hypre_boomeramg_coarsen_type"));
+  NM_PETSC(PetscOptionsClearValue(nullptr, "-given_pc_hypre_boomeramg_coarsen_type"));
+}
+
+}  // namespace
+}  // namespace neomesh
