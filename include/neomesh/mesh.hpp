@@ -63,6 +63,16 @@ class Mesh {
                           const std::string& name = "mesh from arrays",
                           InvertedCells inverted = InvertedCells::Refuse);
 
+  // Takes over a DMPlex the caller built (serial or distributed, interpolated or not): its
+  // owned cells and vertex coordinates, with the vertices numbered by DMPlexGetVertexNumbering
+  // (their vertex_numbers()). neomesh builds and distributes its own DMPlex over the DM's
+  // communicator; `dm` stays the caller's and is not changed. Labels are not taken over (the
+  // boundary's parts then come from its corners and ridges). Throws Error for a DM neomesh
+  // cannot use (not a DMPlex, not 2D/3D, high-order or periodic coordinates, other cell
+  // types) and, like read(), for inverted or degenerate cells.
+  static Mesh from_dm(DM dm, const std::string& name = "mesh from a DMPlex",
+                      InvertedCells inverted = InvertedCells::Refuse);
+
   Mesh(Mesh&&) noexcept;
   Mesh& operator=(Mesh&&) noexcept;
   ~Mesh();

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "geometry/quality.hpp"
 #include "mesh/collective_error.hpp"
+#include "mesh/dm_input.hpp"
 #include "mesh/input_mesh.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/plex_mesh.hpp"
@@ -69,6 +70,12 @@ Mesh Mesh::from_arrays(MPI_Comm comm, int dim, std::span<const double> coordinat
   collectively(comm, [&] {
     if (mpi_rank(comm) == 0) input = input_from_arrays(dim, coordinates, cells, types, name);
   });
+  return Mesh(std::make_unique<PlexMesh>(PlexMesh::from_input(input, name, comm, inverted)));
+}
+
+Mesh Mesh::from_dm(DM dm, const std::string& name, InvertedCells inverted) {
+  InputMesh input = input_from_dm(dm, name);
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
   return Mesh(std::make_unique<PlexMesh>(PlexMesh::from_input(input, name, comm, inverted)));
 }
 

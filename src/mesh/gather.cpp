@@ -11,19 +11,6 @@ namespace neomesh {
 
 namespace {
 
-// Concatenation of every rank's `local` on rank 0, with each rank's length.
-template <typename T>
-std::vector<T> gatherv(MPI_Comm comm, const std::vector<T>& local, MPI_Datatype type) {
-  const int size = mpi_size(comm), rank = mpi_rank(comm);
-  int count = static_cast<int>(local.size());
-  std::vector<int> counts(size), offsets(size + 1, 0);
-  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
-  std::partial_sum(counts.begin(), counts.end(), offsets.begin() + 1);
-  std::vector<T> all(rank == 0 ? offsets[size] : 0);
-  MPI_Gatherv(local.data(), count, type, all.data(), counts.data(), offsets.data(), type, 0, comm);
-  return all;
-}
-
 // One rank's share, as a stream of integers and one of doubles, read back in the same order:
 //   count, per owned vertex:  input number | coordinates, vertex field values
 //   count, per cell:          input number, type, vertices (input numbers) | cell fields

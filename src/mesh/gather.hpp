@@ -2,10 +2,27 @@
 // numbering (so a parallel run writes the same file as a serial one), with the fields.
 #pragma once
 
+#include <numeric>
+#include <vector>
+
+#include "core/petsc.hpp"
 #include "mesh/input_mesh.hpp"
 #include "mesh/mesh_io.hpp"
 
 namespace neomesh {
+
+// Concatenation of every rank's `local` on rank 0, with each rank's length.
+template <typename T>
+std::vector<T> gatherv(MPI_Comm comm, const std::vector<T>& local, MPI_Datatype type) {
+  const int size = mpi_size(comm), rank = mpi_rank(comm);
+  int count = static_cast<int>(local.size());
+  std::vector<int> counts(size), offsets(size + 1, 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+  std::partial_sum(counts.begin(), counts.end(), offsets.begin() + 1);
+  std::vector<T> all(rank == 0 ? offsets[size] : 0);
+  MPI_Gatherv(local.data(), count, type, all.data(), counts.data(), offsets.data(), type, 0, comm);
+  return all;
+}
 
 struct GatheredMesh {
   InputMesh mesh;        // cells by input number; facets and points in physical groups
