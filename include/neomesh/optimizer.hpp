@@ -43,6 +43,13 @@ class Optimizer {
   // volume) and "desired_volume", for Mesh::write. Empty before the first call.
   std::vector<Field> cell_fields() const;
 
+  // Where smooth(options) would start, without moving a vertex: sets up the functional and the
+  // desired volumes (options.sizes) at the mesh's coordinates and returns the energy F there
+  // (+∞ if a cell is inverted: nothing is refused or untangled). cell_fields() then gives
+  // every cell's energy and Q, e.g. for a picture of a mesh before it is smoothed. Throws
+  // OptionError if the options are out of range. Collective.
+  double evaluate(const SmoothOptions& options = {});
+
   // The implementation, for neomesh's own front end (src/api/optimizer_impl.hpp).
   struct Impl;
   Impl& impl();

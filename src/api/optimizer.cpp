@@ -232,4 +232,14 @@ std::vector<Field> Optimizer::cell_fields() const {
           {"desired_volume", r.functional->desired_volumes()}};
 }
 
+double Optimizer::evaluate(const SmoothOptions& options) {
+  options.validate();
+  Impl& r = *impl_;
+  r.start(options.energy, options.boundary);
+  r.x = r.mesh.plex().coordinates();  // as they are: sliding vertices not projected
+  r.warm = false;
+  r.set_desired_volumes(desired_volumes(options.sizes, r.view(), r.dofs(), r.cell_volumes()));
+  return r.functional->value(r.x);
+}
+
 }  // namespace neomesh
