@@ -301,7 +301,7 @@ void OptimizationRun::draw(const std::filesystem::path& path, const std::string&
       RenderOptions options;
       options.title = title;
       options.field_name = field;
-      render_mesh(impl_->mesh.plex(), f.values, path, options);
+      render_mesh(impl_->mesh, f.values, path, options);
       always("wrote {}\n", path.string());
       return;
     }
