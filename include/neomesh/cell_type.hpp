@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
 
 namespace neomesh {
 
@@ -15,5 +16,8 @@ enum class CellType : std::uint8_t {
   Pyramid
 };
 constexpr int kNumCellTypes = 6;
+
+// "triangles", "quadrilaterals", "hexahedra", ...: for counts in messages.
+std::string_view plural_name(CellType type);
 
 }  // namespace neomesh

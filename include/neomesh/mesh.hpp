@@ -19,7 +19,9 @@ typedef struct _p_DM* DM;  // PETSc's handle, as petscdm.h declares it
 
 namespace neomesh {
 
-class PlexMesh;  // the implementation (src/mesh/plex_mesh.hpp)
+class PlexMesh;          // the implementation (src/mesh/plex_mesh.hpp)
+struct GenerateOptions;  // neomesh/generate.hpp
+struct MeshArrays;       // below
 
 // Whether a mesh with inverted or degenerate cells is an error (Refuse) or read as it is
 // (Keep: Optimizer::smooth untangles it, quality() counts the inverted cells).
@@ -111,6 +113,39 @@ class Mesh {
   // The distributed DMPlex, for a caller that works with PETSc directly (owned by the Mesh).
   DM dm() const;
 
+  // One of the thesis' test meshes (neomesh/generate.hpp), built on the communicator's first
+  // process and distributed like from_arrays; named after the case, its boundary sides in
+  // named groups ("left", "right", ..., "circle") as .msh physical groups. A large jitter
+  // folds cells over: such a mesh is kept as it is (InvertedCells::Keep), for smooth() to
+  // untangle. Throws OptionError for options out of range. Collective.
+  static Mesh generate(const GenerateOptions& options, MPI_Comm comm = MPI_COMM_WORLD);
+
+  // The cells of this process by their number in the input (the file's order, or the position
+  // in from_arrays' types), in this process' order: the order of per-cell fields
+  // (quality_by_cell(), Optimizer::cell_fields(), write()).
+  std::vector<std::int64_t> cell_numbers() const;
+  // Per local cell at the current coordinates (this process' order, as write() takes fields):
+  // "volume" (signed), "scaled_jacobian", "min_angle", "max_angle", "edge_ratio",
+  // "inverse_mean_ratio" (as quality() summarizes them) and "inverted" (1 where det J ≤ 0 at a
+  // corner or Gauss point, else 0).
+  std::vector<Field> quality_by_cell() const;
+  // The volume of the domain: the sum of the cells' signed volumes (collective).
+  double volume() const;
+  // The largest distance of a boundary vertex from `reference`'s boundary facets, e.g. the
+  // mesh before an optimization with sliding boundary vertices: how far the domain moved.
+  // Throws Error if the dimensions differ. Collective (both meshes on the same communicator).
+  double max_boundary_distance(const Mesh& reference) const;
+
+  // The whole mesh at its current coordinates on the communicator's first process, as
+  // from_arrays takes it and in the same numbering (its vertex numbers, cells in input order),
+  // with `cell_fields` (per local cell, as quality_by_cell() gives them) by cell number. The other
+  // processes get only `dim` and the fields' names. Throws Error if a field does not have a
+  // value per cell. Collective.
+  MeshArrays gather(const std::vector<Field>& cell_fields = {}) const;
+
+  // Writes the mesh without fields (.vtu: no quality fields either), atomically. Collective.
+  void write_mesh_only(const std::filesystem::path& path) const;
+
   // The implementation, for neomesh's own layers.
   PlexMesh& plex();
   const PlexMesh& plex() const;
@@ -118,6 +153,16 @@ class Mesh {
  private:
   explicit Mesh(std::unique_ptr<PlexMesh> plex);
   std::unique_ptr<PlexMesh> plex_;
+};
+
+// A whole mesh as arrays (Mesh::gather), the inverse of Mesh::from_arrays:
+// Mesh::from_arrays(comm, a.dim, a.coordinates, a.cells, a.types) builds the same mesh.
+struct MeshArrays {
+  int dim = 0;
+  std::vector<double> coordinates;  // `dim` values per vertex, by vertex number
+  std::vector<std::int64_t> cells;  // each cell's vertices in Gmsh's order, by cell number
+  std::vector<CellType> types;      // one per cell
+  std::vector<Field> cell_fields;   // `components` values per cell, by cell number
 };
 
 }  // namespace neomesh

@@ -58,6 +58,13 @@ class Optimizer {
   // After a fit, the fitted facets as the group "interface"; empty otherwise.
   std::vector<FacetGroup> facet_groups() const;
 
+  // Where smooth(options) would start, without moving a vertex: sets up the functional and the
+  // desired volumes (options.sizes) at the mesh's coordinates and returns the energy F there
+  // (+∞ if a cell is inverted: nothing is refused or untangled). cell_fields() then gives
+  // every cell's energy and Q, e.g. for a picture of a mesh before it is smoothed. Throws
+  // OptionError if the options are out of range. Collective.
+  double evaluate(const SmoothOptions& options = {});
+
   // The implementation, for neomesh's own front end (src/api/optimizer_impl.hpp).
   struct Impl;
   Impl& impl();

@@ -109,6 +109,8 @@ struct SolverOptions {
 //   Smoothed  the input volumes averaged over neighbouring cells a few times: the grading
 //             stays while noise from badly shaped cells is removed (the default)
 enum class SizeMode { Uniform, Input, Smoothed };
+// "uniform", "input" or "smoothed" (the command line's --sizes); throws Error for another name.
+SizeMode parse_size_mode(std::string_view name);
 
 // How a size field becomes desired volumes (docs/adaptivity.md): v_K = floor + d(c_K)^p, made
 // consistent.

@@ -7,11 +7,13 @@
 
 #include "api/fitting.hpp"
 #include "api/vertex_order.hpp"
+#include "boundary/boundary_distance.hpp"
 #include "boundary/interface.hpp"
 #include "core/error.hpp"
 #include "geometry/quality.hpp"
 #include "mesh/collective_error.hpp"
 #include "mesh/dm_input.hpp"
+#include "mesh/gather.hpp"
 #include "mesh/input_mesh.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/plex_mesh.hpp"
@@ -171,6 +173,63 @@ FacetGroup Mesh::interface(const LevelSet& phi) const {
   const LevelSetFunction function = level_set_function(phi, view.dim);
   const Interface found = find_interface(view, view.coords, function);
   return public_facet_group(view, "interface", found.offsets, found.facet_vertices);
+}
+
+std::vector<std::int64_t> Mesh::cell_numbers() const {
+  const std::vector<PetscInt>& numbers = plex_->view().global_cell;
+  return {numbers.begin(), numbers.end()};
+}
+
+std::vector<Field> Mesh::quality_by_cell() const {
+  const MeshView& view = plex_->view();
+  const CellQuality quality = neomesh::cell_quality(view, view.coords);
+  std::vector<Field> fields = quality_fields(quality);
+  Field inverted{"inverted", std::vector<double>(quality.size(), 0.0)};
+  for (std::size_t c = 0; c < quality.size(); ++c)
+    if (!(quality.min_corner_det[c] > 0 && quality.min_gauss_det[c] > 0)) inverted.values[c] = 1;
+  fields.push_back(std::move(inverted));
+  return fields;
+}
+
+double Mesh::volume() const {
+  const MeshView& view = plex_->view();
+  const std::vector<double> volumes = neomesh::cell_quality(view, view.coords).volume;
+  double sum = std::accumulate(volumes.begin(), volumes.end(), 0.0);
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, comm());
+  return sum;
+}
+
+double Mesh::max_boundary_distance(const Mesh& reference) const {
+  if (reference.dim() != dim())
+    fail("{} is {}D, {} {}D: their boundaries cannot be compared", reference.name(),
+         reference.dim(), name(), dim());
+  const MeshView& view = plex_->view();
+  return neomesh::max_boundary_distance(
+      view, view.coords, DistanceToBoundary(*reference.plex().view().boundary), comm());
+}
+
+MeshArrays Mesh::gather(const std::vector<Field>& cell_fields) const {
+  MeshFields fields;
+  fields.cell = cell_fields;
+  const GatheredMesh gathered = gather_mesh(*plex_, fields);
+  const InputMesh& m = gathered.mesh;
+  MeshArrays out;
+  out.dim = m.dim;
+  out.cell_fields = gathered.fields.cell;
+  if (mpi_rank(comm()) != 0) return out;
+  out.coordinates = m.coords;
+  out.types = m.cell_types;
+  out.cells.reserve(m.cell_vertices.size());
+  for (PetscInt c = 0; c < m.num_cells(); ++c) {
+    const CellFacts& facts = neomesh::facts(m.cell_types[c]);
+    for (int i = 0; i < facts.vertices; ++i)  // canonical → Gmsh order
+      out.cells.push_back(m.cell_vertices[m.cell_offsets[c] + facts.gmsh_order[i]]);
+  }
+  return out;
+}
+
+void Mesh::write_mesh_only(const std::filesystem::path& path) const {
+  write_mesh(*plex_, path);
 }
 
 }  // namespace neomesh

@@ -338,4 +338,14 @@ std::vector<FacetGroup> Optimizer::facet_groups() const {
                              r.fitted->interface.facet_vertices)};
 }
 
+double Optimizer::evaluate(const SmoothOptions& options) {
+  options.validate();
+  Impl& r = *impl_;
+  r.start(options.energy, options.boundary);
+  r.x = r.mesh.plex().coordinates();  // as they are: sliding vertices not projected
+  r.warm = false;
+  r.set_desired_volumes(desired_volumes(options.sizes, r.view(), r.dofs(), r.cell_volumes()));
+  return r.functional->value(r.x);
+}
+
 }  // namespace neomesh

@@ -6,6 +6,10 @@
 
 namespace neomesh::app {
 
+void check_input_mesh(const std::string& path) {
+  check_readable_format(path);
+}
+
 void check_finite(const char* option, std::span<const double> values) {
   for (double v : values)
     if (!std::isfinite(v)) fail("{}: every value must be a finite number (got {})", option, v);

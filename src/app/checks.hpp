@@ -25,6 +25,10 @@ void check_option(const char* option, T value, bool in_range, const char* range)
 // Every value of a list option (--circle 0.5,0.5,0.2) is finite.
 void check_finite(const char* option, std::span<const double> values);
 
+// Not collective: throws Error unless `path` has the extension of a mesh format neomesh reads
+// (.msh, .xml), before the (possibly long) read.
+void check_input_mesh(const std::string& path);
+
 enum class OutputKind { Mesh, Picture, Json };
 
 // Not collective: throws Error unless `path`, the value of `option`, can be written: not

@@ -4,14 +4,13 @@
 #include <memory>
 #include <string>
 
+#include <neomesh/mesh.hpp>
+
 #include "app/checks.hpp"
 #include "app/subcommand.hpp"
-#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "mesh/collective_error.hpp"
-#include "mesh/mesh_io.hpp"
-#include "mesh/plex_mesh.hpp"
 
 namespace neomesh::app {
 
@@ -29,21 +28,20 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
 }
 
 void run_convert(const ConvertOptions& o) {
-  collectively(PETSC_COMM_WORLD, [&] {
-    check_readable_format(o.input);
+  collectively(MPI_COMM_WORLD, [&] {
+    check_input_mesh(o.input);
     check_output_file("-o/--output", o.output, OutputKind::Mesh);
     if (!o.force && same_file(o.input, o.output))
       fail("{}: output is the input file; choose another -o or pass --force", o.output);
   });
   say("reading {} ...\n", o.input);
-  const PlexMesh mesh = [&] {
+  const Mesh mesh = [&] {
     const Activity reading("reading " + o.input);
-    return PlexMesh::load(o.input);
+    return Mesh::read(o.input);
   }();
   const Activity writing("writing " + o.output);
-  write_mesh(mesh, o.output);
-  say("wrote {}: {} cells, {} vertices\n", o.output, mesh.global_num_cells(),
-      mesh.global_num_vertices());
+  mesh.write_mesh_only(o.output);
+  say("wrote {}: {} cells, {} vertices\n", o.output, mesh.num_cells(), mesh.num_vertices());
 }
 
 }  // namespace

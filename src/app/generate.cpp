@@ -1,33 +1,22 @@
 // `neomesh generate`: writes one of the thesis' test meshes (docs/cases.md).
-#include <array>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
-#include <string_view>
+
+#include <neomesh/generate.hpp>
+#include <neomesh/mesh.hpp>
 
 #include "app/checks.hpp"
 #include "app/subcommand.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "geometry/quality.hpp"
 #include "mesh/collective_error.hpp"
-#include "mesh/generate.hpp"
-#include "mesh/mesh_io.hpp"
-#include "mesh/plex_mesh.hpp"
 
 namespace neomesh::app {
 
 namespace {
 
-// How --level maps to the size argument of a generator.
-enum class Levels {
-  MovedMidpoint,  // thesis level t: 2^(t+1) cells per direction
-  Lattice,        // level L: 2^L cells per direction
-  Refinements,    // level = number of uniform refinements of the coarse mesh
-};
-
-struct GenerateOptions {
+struct GenerateCommandOptions {
   std::string name;
   std::optional<int> level, cells;
   double rotate_degrees = 0.0;
@@ -37,95 +26,71 @@ struct GenerateOptions {
   std::string output;
 };
 
-struct Case {
-  const char* name;
-  Levels levels;
-  std::function<MeshData(int size, const GenerateOptions&)> make;
-};
-
-const std::array<Case, 13>& cases() {
-  static const std::array<Case, 13> all = {{
-      {"square-midpoint", Levels::MovedMidpoint, [](int n, auto&) { return square_midpoint(n); }},
-      {"cube-midpoint", Levels::MovedMidpoint, [](int n, auto&) { return cube_midpoint(n); }},
-      {"square-random", Levels::Lattice,
-       [](int n, const GenerateOptions& o) { return square_random(n, o.amplitude, o.seed); }},
-      {"transition", Levels::Refinements, [](int r, auto&) { return transition(r); }},
-      {"circle-quad", Levels::Refinements, [](int r, auto&) { return circle_quad(r); }},
-      {"triangle-equilateral", Levels::Refinements,
-       [](int r, const GenerateOptions& o) { return triangle_equilateral(r, o.seed); }},
-      {"triangle-curved", Levels::Refinements, [](int r, auto&) { return triangle_curved(r); }},
-      {"box-quad", Levels::Lattice, [](int n, auto&) { return box(CellType::Quadrilateral, n); }},
-      {"box-tri", Levels::Lattice, [](int n, auto&) { return box(CellType::Triangle, n); }},
-      {"box-hex", Levels::Lattice, [](int n, auto&) { return box(CellType::Hexahedron, n); }},
-      {"box-tet", Levels::Lattice, [](int n, auto&) { return box(CellType::Tetrahedron, n); }},
-      {"box-wedge", Levels::Lattice, [](int n, auto&) { return box(CellType::Wedge, n); }},
-      {"box-pyramid", Levels::Lattice, [](int n, auto&) { return box(CellType::Pyramid, n); }},
-  }};
-  return all;
-}
-
-const Case& find_case(const std::string& name) {
-  for (const Case& c : cases())
+const GeneratedCase& find_case(const std::string& name) {
+  for (const GeneratedCase& c : generated_cases())
     if (name == c.name) return c;
   fail("unknown mesh case '{}'", name);  // CLI11 checks the choices first
 }
 
-// The generator's size argument from --level or --cells.
-int size_of(const Case& c, const GenerateOptions& o) {
+// The generator's size argument from --level or --cells. The thesis' levels: t for the moved
+// midpoint cases (2^(t+1) cells per direction), L for lattices (2^L), refinements otherwise.
+int size_of(const GeneratedCase& c, const GenerateCommandOptions& o) {
   if (o.level.has_value() == o.cells.has_value())
     fail("generate {}: give exactly one of --level and --cells", c.name);
   if (o.cells) {
-    if (c.levels == Levels::Refinements)
+    if (c.size == GeneratedSize::Refinements)
       fail("generate {}: --cells does not apply to a refined mesh; use --level (refinements)",
            c.name);
     // Checked here, on every rank, because only rank 0 runs the generator.
-    if (*o.cells < 1 || (c.levels == Levels::MovedMidpoint && *o.cells % 2 != 0))
+    if (*o.cells < 1 || (c.size == GeneratedSize::EvenCells && *o.cells % 2 != 0))
       fail("generate {}: --cells must be {} (got {})", c.name,
-           c.levels == Levels::MovedMidpoint ? "even and >= 2" : ">= 1", *o.cells);
+           c.size == GeneratedSize::EvenCells ? "even and >= 2" : ">= 1", *o.cells);
     return *o.cells;
   }
   const int level = *o.level;
-  const int max_level = c.levels == Levels::Refinements ? 12 : 14;
+  const int max_level = c.size == GeneratedSize::Refinements ? 12 : 14;
   if (level < 0 || level > max_level)
     fail("generate {}: --level must be in 0..{} (got {})", c.name, max_level, level);
-  switch (c.levels) {
-    case Levels::MovedMidpoint:
+  switch (c.size) {
+    case GeneratedSize::EvenCells:
       return 1 << (level + 1);
-    case Levels::Lattice:
+    case GeneratedSize::Cells:
       return 1 << level;
-    case Levels::Refinements:
+    case GeneratedSize::Refinements:
       return level;
   }
   return level;
 }
 
-void run_generate(const GenerateOptions& o) {
-  const Case& c = find_case(o.name);
-  const int size = size_of(c, o);
-  check_option("--rotate", o.rotate_degrees, true, "in degrees");
-  if (!(o.amplitude >= 0.0 && o.amplitude < 0.25))
-    fail("generate: --amplitude must be in [0, 0.25) (got {})", o.amplitude);
-  const bool is_box = std::string_view(c.name).starts_with("box-");
-  if (o.jitter != 0.0 && !is_box) fail("generate {}: --jitter applies to the box cases", c.name);
-  if (!(o.jitter >= 0.0 && o.jitter < 1.0))
-    fail("generate: --jitter must be in [0, 1) (got {})", o.jitter);
-  collectively(PETSC_COMM_WORLD,
-               [&] { check_output_file("-o/--output", o.output, OutputKind::Mesh); });
-  // The mesh is built on rank 0; PlexMesh::from_data distributes it.
-  MeshData data;
-  if (is_root_rank()) {
-    data = c.make(size, o);
-    if (o.jitter > 0.0) jitter(data, 2.0 / size, o.jitter, o.seed);  // boxes are [-1,1]^d
-    if (o.rotate_degrees != 0.0) rotate(data, o.rotate_degrees);
+// The library's check of the options, told with the command line's flags.
+void check_generate_options(const GenerateOptions& g) {
+  try {
+    g.validate();
+  } catch (const OptionError& e) {
+    if (e.field() == "rotate_degrees") throw Error("--rotate " + e.requirement());
+    if (e.requirement().starts_with("must"))  // a value out of range
+      throw Error(fmt::format("generate: --{} {}", e.field(), e.requirement()));
+    throw Error(fmt::format("generate {}: --{} {}", g.name, e.field(), e.requirement()));
   }
-  const CellType type = data.cell_type;
+}
+
+void run_generate(const GenerateCommandOptions& o) {
+  const GeneratedCase& c = find_case(o.name);
+  const GenerateOptions options{.name = o.name,
+                                .size = size_of(c, o),
+                                .amplitude = o.amplitude,
+                                .seed = o.seed,
+                                .jitter = o.jitter,
+                                .rotate_degrees = o.rotate_degrees};
+  check_generate_options(options);
+  collectively(MPI_COMM_WORLD,
+               [&] { check_output_file("-o/--output", o.output, OutputKind::Mesh); });
   // A large --jitter folds cells over: such meshes are written as they are, to be untangled.
-  const PlexMesh mesh = PlexMesh::from_data(data, c.name, PETSC_COMM_WORLD, InvertedCells::Keep);
-  write_mesh(mesh, o.output);
-  say("wrote {}: {} {}, {} vertices\n", o.output, mesh.global_num_cells(), plural_name(type),
-      mesh.global_num_vertices());
-  const QualitySummary quality =
-      summarize(cell_quality(mesh.view(), mesh.view().coords), mesh.comm());
+  const Mesh mesh = Mesh::generate(options, MPI_COMM_WORLD);
+  mesh.write_mesh_only(o.output);
+  say("wrote {}: {} {}, {} vertices\n", o.output, mesh.num_cells(), plural_name(c.type),
+      mesh.num_vertices());
+  const QualitySummary quality = mesh.quality();
   if (quality.inverted > 0)
     say("{} of them are inverted (neomesh smooth untangles them)\n", quality.inverted);
 }
@@ -133,7 +98,7 @@ void run_generate(const GenerateOptions& o) {
 }  // namespace
 
 Subcommand add_generate(CLI::App& app) {
-  auto options = std::make_shared<GenerateOptions>();
+  auto options = std::make_shared<GenerateCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "generate",
       "Write one of the thesis' test meshes (docs/cases.md) to a .msh or .vtu file.\n"
@@ -147,7 +112,7 @@ Subcommand add_generate(CLI::App& app) {
       "    uniform refinements of the coarse mesh (5, 5, 1 and 8 cells), 4x cells each\n"
       "--cells N gives the cells per direction directly (not for refined cases).");
   std::vector<std::string> names;
-  for (const Case& c : cases()) names.emplace_back(c.name);
+  for (const GeneratedCase& c : generated_cases()) names.emplace_back(c.name);
   cmd->add_option("case", options->name, "the mesh to generate")
       ->required()
       ->check(CLI::IsMember(names));

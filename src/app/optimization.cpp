@@ -9,7 +9,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "geometry/quality.hpp"
+#include "core/petsc.hpp"
 #include "mesh/collective_error.hpp"
 #include "report/canvas.hpp"
 #include "report/history_plot.hpp"
@@ -127,9 +127,8 @@ struct OptimizationRun::Impl {
 
   // The cell fields of the outputs at the mesh's coordinates: the optimizer's and the quality.
   std::vector<Field> cell_fields() const {
-    const MeshView& view = mesh.plex().view();
     std::vector<Field> fields = optimizer.cell_fields();
-    const std::vector<Field> metrics = quality_fields(cell_quality(view, view.coords));
+    const std::vector<Field> metrics = mesh.quality_by_cell();
     fields.insert(fields.end(), metrics.begin(), metrics.end());
     return fields;
   }
@@ -261,7 +260,7 @@ void OptimizationRun::draw(const std::filesystem::path& path, const std::string&
       RenderOptions options;
       options.title = title;
       options.field_name = field;
-      render_mesh(impl_->mesh.plex(), f.values, path, options);
+      render_mesh(impl_->mesh, f.values, path, options);
       always("wrote {}\n", path.string());
       return;
     }

@@ -2,15 +2,14 @@
 #include <memory>
 #include <string>
 
+#include <neomesh/mesh.hpp>
+
 #include "app/checks.hpp"
 #include "app/subcommand.hpp"
-#include "boundary/boundary_distance.hpp"
 #include "core/atomic_file.hpp"
+#include "core/error.hpp"
 #include "core/log.hpp"
-#include "geometry/quality.hpp"
 #include "mesh/collective_error.hpp"
-#include "mesh/mesh_io.hpp"
-#include "mesh/plex_mesh.hpp"
 #include "report/quality_report.hpp"
 
 namespace neomesh::app {
@@ -23,27 +22,19 @@ struct QualityOptions {
   std::string reference;
 };
 
-double total_volume(const PlexMesh& mesh) {
-  double sum = 0.0;
-  for (double v : cell_quality(mesh.view(), mesh.view().coords).volume) sum += v;
-  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
-  return sum;
-}
-
 // How far the mesh's boundary is from the reference's (a mesh before smoothing): the largest
 // distance of a boundary vertex from the reference's boundary facets, and the relative change
 // of the domain's volume.
-nlohmann::json compare_boundary(const PlexMesh& mesh, const std::string& reference_file) {
-  const PlexMesh reference = [&] {
+nlohmann::json compare_boundary(const Mesh& mesh, const std::string& reference_file) {
+  const Mesh reference = [&] {
     const Activity reading("reading " + reference_file);
-    return PlexMesh::load(reference_file, PETSC_COMM_WORLD, InvertedCells::Keep);
+    return Mesh::read(reference_file, MPI_COMM_WORLD, InvertedCells::Keep);
   }();
   if (reference.dim() != mesh.dim())
     fail("--reference {} is {}D, the mesh {}D", reference_file, reference.dim(), mesh.dim());
-  const double distance = max_boundary_distance(
-      mesh.view(), mesh.view().coords, DistanceToBoundary(*reference.view().boundary), mesh.comm());
-  const double before = total_volume(reference);
-  const double change = (total_volume(mesh) - before) / before;
+  const double distance = mesh.max_boundary_distance(reference);
+  const double before = reference.volume();
+  const double change = (mesh.volume() - before) / before;
   always(
       "boundary against {}: largest distance of a boundary vertex from its boundary {:.3g}, "
       "domain volume change {:+.3g}%\n",
@@ -54,18 +45,17 @@ nlohmann::json compare_boundary(const PlexMesh& mesh, const std::string& referen
 }
 
 void run_quality(const QualityOptions& o) {
-  collectively(PETSC_COMM_WORLD, [&] {
-    check_readable_format(o.input);
-    if (!o.reference.empty()) check_readable_format(o.reference);
+  collectively(MPI_COMM_WORLD, [&] {
+    check_input_mesh(o.input);
+    if (!o.reference.empty()) check_input_mesh(o.reference);
     if (!o.json.empty()) check_output_file("--json", o.json, OutputKind::Json);
   });
   // Inverted and degenerate cells are what this command counts, not a reason to refuse.
-  const PlexMesh mesh = [&] {
+  const Mesh mesh = [&] {
     const Activity reading("reading " + o.input);
-    return PlexMesh::load(o.input, PETSC_COMM_WORLD, InvertedCells::Keep);
+    return Mesh::read(o.input, MPI_COMM_WORLD, InvertedCells::Keep);
   }();
-  const MeshView& view = mesh.view();
-  const QualitySummary summary = summarize(cell_quality(view, view.coords), mesh.comm());
+  const QualitySummary summary = mesh.quality();
   always("{}\n{}", o.input, format_table(summary));
   nlohmann::json json = to_json(summary);
   if (!o.reference.empty()) json["boundary_change"] = compare_boundary(mesh, o.reference);

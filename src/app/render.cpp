@@ -8,19 +8,16 @@
 #include <string>
 #include <vector>
 
+#include <neomesh/mesh.hpp>
+#include <neomesh/optimizer.hpp>
+#include <neomesh/options.hpp>
+
 #include "app/checks.hpp"
 #include "app/subcommand.hpp"
-#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "energy/functional.hpp"
-#include "geometry/quality.hpp"
 #include "mesh/collective_error.hpp"
-#include "mesh/mesh_io.hpp"
-#include "mesh/plex_mesh.hpp"
-#include "report/canvas.hpp"
 #include "report/render.hpp"
-#include "solver/desired_volumes.hpp"
 
 namespace neomesh::app {
 
@@ -55,32 +52,33 @@ const FieldInfo& field_info(const std::string& option) {
   fail("unknown field '{}'", option);  // CLI11 checks the choices first
 }
 
-// Energy and Q compare each cell with its optimal cell, whose volume --sizes decides.
-std::vector<double> energy_field(const PlexMesh& mesh, const CellQuality& quality,
-                                 const RenderCommandOptions& o) {
-  const MeshView& view = mesh.view();
-  Functional functional(view, mesh.dofs(), EnergyOptions{}, view.on_boundary);
-  functional.set_desired_volumes(
-      desired_volumes(parse_size_mode(o.sizes), view, mesh.dofs(), quality.volume));
-  const OwnedVec x = mesh.coordinates();
-  CellFields fields = functional.cell_fields(x);
-  return o.field == "energy" ? std::move(fields.energy) : std::move(fields.volume_ratio);
+// The values of the field named `name` (none on a process without cells).
+std::vector<double> values_of(const std::vector<Field>& fields, const std::string& name) {
+  for (const Field& f : fields)
+    if (f.name == name) return f.values;
+  return {};
 }
 
-std::vector<double> field_values(const PlexMesh& mesh, const RenderCommandOptions& o) {
-  const MeshView& view = mesh.view();
-  const CellQuality quality = cell_quality(view, view.coords);
-  std::vector<double> values = o.field == "scaled_jacobian"      ? quality.scaled_jacobian
-                               : o.field == "min_angle"          ? quality.min_angle
-                               : o.field == "max_angle"          ? quality.max_angle
-                               : o.field == "edge_ratio"         ? quality.edge_ratio
-                               : o.field == "inverse_mean_ratio" ? quality.inverse_mean_ratio
-                               : o.field == "volume"             ? quality.volume
-                                                                 : energy_field(mesh, quality, o);
+// Energy and Q compare each cell with its optimal cell, whose volume --sizes decides: the
+// energy's own defaults (3 Gauss points per direction), boundary vertices fixed.
+std::vector<double> energy_field(Mesh& mesh, const RenderCommandOptions& o) {
+  SmoothOptions options;
+  options.energy = EnergyOptions{};
+  options.boundary = BoundaryOptions{BoundaryMode::Fixed};
+  options.sizes = parse_size_mode(o.sizes);
+  Optimizer optimizer(mesh);
+  optimizer.evaluate(options);
+  return values_of(optimizer.cell_fields(), o.field == "energy" ? "energy" : "Q");
+}
+
+std::vector<double> field_values(Mesh& mesh, const RenderCommandOptions& o) {
+  const std::vector<Field> quality = mesh.quality_by_cell();
+  std::vector<double> values =
+      o.field == "energy" || o.field == "Q" ? energy_field(mesh, o) : values_of(quality, o.field);
   // Inverted cells stand out in red whatever the field (render counts non-finite values).
+  const std::vector<double> inverted = values_of(quality, "inverted");
   for (std::size_t c = 0; c < values.size(); ++c)
-    if (!(quality.min_corner_det[c] > 0 && quality.min_gauss_det[c] > 0))
-      values[c] = std::numeric_limits<double>::quiet_NaN();
+    if (inverted[c] != 0) values[c] = std::numeric_limits<double>::quiet_NaN();
   return values;
 }
 
@@ -89,14 +87,14 @@ void run_render(const RenderCommandOptions& o) {
     fail("--range takes MIN,MAX (got {} numbers)", o.range.size());
   check_finite("--range", o.range);
   // Fail before the (possibly long) load.
-  collectively(PETSC_COMM_WORLD, [&] {
+  collectively(MPI_COMM_WORLD, [&] {
     check_output_file("-o/--output", o.output, OutputKind::Picture);
-    check_readable_format(o.input);
+    check_input_mesh(o.input);
   });
   // Inverted cells are drawn in red and counted, not refused.
-  const PlexMesh mesh = [&] {
+  Mesh mesh = [&] {
     const Activity reading("reading " + o.input);
-    return PlexMesh::load(o.input, PETSC_COMM_WORLD, InvertedCells::Keep);
+    return Mesh::read(o.input, MPI_COMM_WORLD, InvertedCells::Keep);
   }();
 
   RenderOptions options;
@@ -106,7 +104,7 @@ void run_render(const RenderCommandOptions& o) {
   options.log_scale = o.log_scale;
   if (!o.range.empty()) options.min = o.range[0], options.max = o.range[1];
   render_mesh(mesh, field_values(mesh, o), o.output, options);
-  say("wrote {}: {} of {} cells\n", o.output, o.field, mesh.global_num_cells());
+  say("wrote {}: {} of {} cells\n", o.output, o.field, mesh.num_cells());
 }
 
 }  // namespace

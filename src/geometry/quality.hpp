@@ -27,7 +27,6 @@
 #include <cstdint>
 #include <span>
 #include <string>
-#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -65,8 +64,5 @@ std::vector<Field> quality_fields(const CellQuality& quality);
 
 // Collective over `comm`: every rank passes the quality of its own cells.
 QualitySummary summarize(const CellQuality& quality, MPI_Comm comm);
-
-// "quadrilaterals", "hexahedra", ...: for counts in reports.
-std::string_view plural_name(CellType type);
 
 }  // namespace neomesh

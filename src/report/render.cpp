@@ -3,13 +3,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "mesh/cell_type.hpp"
 #include "mesh/collective_error.hpp"
-#include "mesh/gather.hpp"
 #include "report/canvas.hpp"
 
 namespace neomesh {
@@ -24,8 +26,6 @@ constexpr Rgb kMutedInk{0.45, 0.45, 0.45};
 constexpr int kMinWidth = 200, kMaxWidth = 20000;
 // Edges of cells smaller than this (mean size in pixels) would only darken the picture.
 constexpr double kMinCellPixelsForEdges = 2.0;
-// Quads are stored in tensor order (cell_type.hpp); their outline visits 0, 1, 3, 2.
-constexpr int kQuadOutline[4] = {0, 1, 3, 2};
 // Colour-bar ticks: their length and the gap to their label, in font sizes.
 constexpr double kTickLength = 0.35, kTickLabelGap = 0.6;
 
@@ -153,18 +153,42 @@ Layout layout(std::span<const double> coords, const RenderOptions& o, const Lege
   return l;
 }
 
-template <typename Visit>
-void for_each_cell(const MeshView& view, Visit&& visit) {
-  for (const CellBlock& block : view.blocks)
-    for (PetscInt c = 0; c < block.size(); ++c) visit(block, c, block.first_cell + c);
+// A cell of the picture: its vertices (Gmsh order, which is the outline's for triangles and
+// quadrilaterals) in the coordinates.
+struct Outline {
+  std::span<const std::int64_t> vertices;
+  std::size_t cell;  // its number, for its value
+};
+
+// The cells in the order they are drawn: triangles first, then quadrilaterals, each by number.
+// Throws Error unless the arrays make a 2D mesh of triangles and quadrilaterals.
+std::vector<Outline> outlines(const MeshArrays& mesh) {
+  std::vector<std::size_t> first(mesh.types.size() + 1, 0);
+  for (std::size_t c = 0; c < mesh.types.size(); ++c) {
+    if (mesh.types[c] != CellType::Triangle && mesh.types[c] != CellType::Quadrilateral)
+      fail("render: cell {} is a {}, not a triangle or quadrilateral", c,
+           facts(mesh.types[c]).name);
+    first[c + 1] = first[c] + num_vertices(mesh.types[c]);
+  }
+  const auto vertex_count = static_cast<std::int64_t>(mesh.coordinates.size() / 2);
+  if (first.back() != mesh.cells.size())
+    fail("render: {} vertex numbers for {} cells that have {}", mesh.cells.size(),
+         mesh.types.size(), first.back());
+  for (std::int64_t v : mesh.cells)
+    if (v < 0 || v >= vertex_count)
+      fail("render: a cell names vertex {}, but there are {} vertices", v, vertex_count);
+  std::vector<Outline> out;
+  out.reserve(mesh.types.size());
+  for (CellType type : {CellType::Triangle, CellType::Quadrilateral})
+    for (std::size_t c = 0; c < mesh.types.size(); ++c)
+      if (mesh.types[c] == type)
+        out.push_back({std::span(mesh.cells).subspan(first[c], first[c + 1] - first[c]), c});
+  return out;
 }
 
-void trace_cell(cairo_t* cr, const Layout& l, std::span<const double> coords,
-                const CellBlock& block, PetscInt c) {
-  const PetscInt* v = block.cell(c);
-  const int n = num_vertices(block.type);
-  for (int i = 0; i < n; ++i) {
-    const PetscInt vertex = v[block.type == CellType::Quadrilateral ? kQuadOutline[i] : i];
+void trace_cell(cairo_t* cr, const Layout& l, std::span<const double> coords, const Outline& cell) {
+  for (std::size_t i = 0; i < cell.vertices.size(); ++i) {
+    const std::int64_t vertex = cell.vertices[i];
     const double x = l.px(coords[2 * vertex]), y = l.py(coords[2 * vertex + 1]);
     i == 0 ? cairo_move_to(cr, x, y) : cairo_line_to(cr, x, y);
   }
@@ -172,25 +196,24 @@ void trace_cell(cairo_t* cr, const Layout& l, std::span<const double> coords,
 }
 
 // Mean cell size on the picture: the square root of the mean |area| in picture units².
-double mean_cell_pixels(const MeshView& view, const Layout& l, std::span<const double> coords) {
+double mean_cell_pixels(std::span<const Outline> cells, const Layout& l,
+                        std::span<const double> coords) {
   double area = 0;
-  for_each_cell(view, [&](const CellBlock& block, PetscInt c, PetscInt) {
-    const PetscInt* v = block.cell(c);
-    const int n = num_vertices(block.type);
+  for (const Outline& cell : cells) {
+    const std::size_t n = cell.vertices.size();
     double twice = 0;  // shoelace formula along the outline
-    for (int i = 0; i < n; ++i) {
-      const int j = (i + 1) % n;
-      const PetscInt a = v[block.type == CellType::Quadrilateral ? kQuadOutline[i] : i];
-      const PetscInt b = v[block.type == CellType::Quadrilateral ? kQuadOutline[j] : j];
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::int64_t a = cell.vertices[i], b = cell.vertices[(i + 1) % n];
       twice += coords[2 * a] * coords[2 * b + 1] - coords[2 * b] * coords[2 * a + 1];
     }
     area += 0.5 * std::abs(twice);
-  });
-  return l.scale * std::sqrt(area / std::max<PetscInt>(view.num_cells, 1));
+  }
+  return l.scale * std::sqrt(area / static_cast<double>(std::max<std::size_t>(cells.size(), 1)));
 }
 
-void draw_cells(cairo_t* cr, const MeshView& view, const Layout& l, std::span<const double> coords,
-                std::span<const double> values, const ColourScale& scale) {
+void draw_cells(cairo_t* cr, std::span<const Outline> cells, const Layout& l,
+                std::span<const double> coords, std::span<const double> values,
+                const ColourScale& scale) {
   // Stroking each cell in its own colour closes the hairline seams that antialiasing
   // leaves between neighbouring fills.
   cairo_set_line_width(cr, 0.6);
@@ -198,24 +221,22 @@ void draw_cells(cairo_t* cr, const MeshView& view, const Layout& l, std::span<co
   // Invalid (inverted) cells last: an inverted cell overlaps its neighbours, which would
   // otherwise cover it.
   for (const bool invalid : {false, true})
-    for_each_cell(view, [&](const CellBlock& block, PetscInt c, PetscInt cell) {
-      const double v = values[cell];
-      if (std::isfinite(v) == invalid) return;
+    for (const Outline& cell : cells) {
+      const double v = values[cell.cell];
+      if (std::isfinite(v) == invalid) continue;
       set_colour(cr, invalid ? kInvalidColour : viridis(scale.position(v)));
-      trace_cell(cr, l, coords, block, c);
+      trace_cell(cr, l, coords, cell);
       cairo_fill_preserve(cr);
       cairo_stroke(cr);
-    });
+    }
 }
 
 // All edges as one path, so that an edge shared by two cells is not darkened twice.
-void draw_edges(cairo_t* cr, const MeshView& view, const Layout& l, std::span<const double> coords,
-                double cell_pixels) {
+void draw_edges(cairo_t* cr, std::span<const Outline> cells, const Layout& l,
+                std::span<const double> coords, double cell_pixels) {
   const double width = std::clamp(0.03 * cell_pixels, 0.3, 1.2);
   const double alpha = std::clamp(cell_pixels / 30, 0.1, 0.7);  // fading out as cells shrink
-  for_each_cell(view, [&](const CellBlock& block, PetscInt c, PetscInt) {
-    trace_cell(cr, l, coords, block, c);
-  });
+  for (const Outline& cell : cells) trace_cell(cr, l, coords, cell);
   set_colour(cr, kInk, alpha);
   cairo_set_line_width(cr, width);
   cairo_stroke(cr);
@@ -259,45 +280,20 @@ void draw_colour_bar(cairo_t* cr, const Layout& l, const Legend& g) {
   draw_text(cr, g.count, x, y, 0.85 * l.font);
 }
 
-// The gathered mesh as a MeshView with one block per cell type, and its values in that order.
-std::pair<MeshView, std::vector<double>> whole_view(const GatheredMesh& gathered) {
-  const InputMesh& m = gathered.mesh;
-  const std::vector<double>& input_values = gathered.fields.cell.front().values;
-  MeshView view;
-  view.dim = m.dim;
-  view.num_vertices = m.num_vertices();
-  view.num_cells = m.num_cells();
-  view.coords = m.coords;
-  std::vector<double> values;
-  for (CellType type : {CellType::Triangle, CellType::Quadrilateral}) {
-    CellBlock block{type, static_cast<PetscInt>(values.size()), {}};
-    for (PetscInt c = 0; c < m.num_cells(); ++c)
-      if (m.cell_types[c] == type) {
-        block.vertices.insert(block.vertices.end(), m.cell_vertices.begin() + m.cell_offsets[c],
-                              m.cell_vertices.begin() + m.cell_offsets[c + 1]);
-        values.push_back(input_values[c]);
-      }
-    if (block.size() > 0) view.blocks.push_back(std::move(block));
-  }
-  return {std::move(view), std::move(values)};
-}
-
 }  // namespace
 
-void render_mesh(const MeshView& view, std::span<const double> coords,
-                 std::span<const double> cell_values, const std::filesystem::path& out,
-                 const RenderOptions& options) {
-  if (view.dim != 2)
-    fail(
-        "render draws 2D meshes; open the .vtu output in ParaView for 3D (see "
-        "docs/user-guide.md)");
-  if (coords.size() != static_cast<std::size_t>(2 * view.num_vertices) ||
-      cell_values.size() != static_cast<std::size_t>(view.num_cells))
+void render_mesh(const MeshArrays& mesh, std::span<const double> cell_values,
+                 const std::filesystem::path& out, const RenderOptions& options) {
+  if (mesh.dim != 2) throw Error(kOnly2D);
+  const std::vector<Outline> cells = outlines(mesh);
+  if (mesh.coordinates.size() % 2 != 0 || cell_values.size() != mesh.types.size())
     fail(
         "render: {} coordinates and {} cell values do not fit a mesh of {} vertices and {} "
         "cells",
-        coords.size(), cell_values.size(), view.num_vertices, view.num_cells);
+        mesh.coordinates.size(), cell_values.size(), mesh.coordinates.size() / 2,
+        mesh.types.size());
   picture_format(out);  // an unknown extension fails before any work
+  const std::span<const double> coords = mesh.coordinates;
   const ColourScale scale = colour_scale(cell_values, options);
   const Legend g = legend(scale, options, cell_values);
   const Layout l = layout(coords, options, g);
@@ -308,25 +304,20 @@ void render_mesh(const MeshView& view, std::span<const double> coords,
     set_colour(cr, kInk);
     draw_text(cr, options.title, l.margin, l.title_y, l.title_font, Anchor::Left, true);
   }
-  draw_cells(cr, view, l, coords, cell_values, scale);
-  const double cell_pixels = mean_cell_pixels(view, l, coords);
+  draw_cells(cr, cells, l, coords, cell_values, scale);
+  const double cell_pixels = mean_cell_pixels(cells, l, coords);
   if (options.draw_edges && cell_pixels >= kMinCellPixelsForEdges)
-    draw_edges(cr, view, l, coords, cell_pixels);
+    draw_edges(cr, cells, l, coords, cell_pixels);
   draw_colour_bar(cr, l, g);
   canvas.finish();
 }
 
-void render_mesh(const PlexMesh& mesh, std::span<const double> cell_values,
+void render_mesh(const Mesh& mesh, std::span<const double> cell_values,
                  const std::filesystem::path& out, const RenderOptions& options) {
   if (mesh.dim() != 2) throw Error(kOnly2D);
   picture_format(out);  // an unknown extension fails before the gather
-  MeshFields fields;
-  fields.cell.push_back({"value", {cell_values.begin(), cell_values.end()}, 1});
-  const GatheredMesh gathered = gather_mesh(mesh, fields);
-  on_root(mesh.comm(), [&] {
-    const auto [view, values] = whole_view(gathered);
-    render_mesh(view, view.coords, values, out, options);
-  });
+  const MeshArrays whole = mesh.gather({{"value", {cell_values.begin(), cell_values.end()}}});
+  on_root(mesh.comm(), [&] { render_mesh(whole, whole.cell_fields.front().values, out, options); });
 }
 
 }  // namespace neomesh

@@ -7,8 +7,7 @@
 #include <span>
 #include <string>
 
-#include "mesh/mesh_view.hpp"
-#include "mesh/plex_mesh.hpp"
+#include <neomesh/mesh.hpp>
 
 namespace neomesh {
 
@@ -23,17 +22,17 @@ struct RenderOptions {
   std::string invalid_label = "inverted";
 };
 
-// Draws `view`'s cells at `coords` (num_vertices × 2, MeshView order), coloured by
-// `cell_values` (one per cell, MeshView order; NaN/±inf drawn in red and counted), to `out`
-// (.png or .svg). Throws Error for 3D meshes and for files that cannot be written; never
-// leaves a partial file.
-void render_mesh(const MeshView& view, std::span<const double> coords,
-                 std::span<const double> cell_values, const std::filesystem::path& out,
-                 const RenderOptions& options = {});
+// Draws a whole 2D mesh (Mesh::gather's arrays; its cell_fields are not used) coloured by
+// `cell_values` (one per cell, by cell number; NaN/±inf drawn in red and counted) to `out`
+// (.png or .svg). Throws Error for 3D meshes, for arrays that do not make a mesh and for files
+// that cannot be written; never leaves a partial file.
+void render_mesh(const MeshArrays& mesh, std::span<const double> cell_values,
+                 const std::filesystem::path& out, const RenderOptions& options = {});
 
 // The same for a whole, possibly distributed mesh at its current coordinates: collective;
-// rank 0 gathers the cells and `cell_values` (one per local cell, MeshView order) and draws.
-void render_mesh(const PlexMesh& mesh, std::span<const double> cell_values,
+// the first process gathers the cells and `cell_values` (one per local cell, in the order of
+// Mesh::quality_by_cell()) and draws.
+void render_mesh(const Mesh& mesh, std::span<const double> cell_values,
                  const std::filesystem::path& out, const RenderOptions& options = {});
 
 }  // namespace neomesh

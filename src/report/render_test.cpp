@@ -8,61 +8,54 @@
 #include <cairo.h>
 #include <gtest/gtest.h>
 
+#include <neomesh/generate.hpp>
+
 #include "core/error.hpp"
 #include "core/testing/test_data.hpp"
-#include "mesh/generate.hpp"
-#include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
 namespace {
 
 // An n × n grid of unit-square quads on [0, n]², slightly sheared so that cells differ.
-MeshView quad_grid(int n) {
-  MeshView view;
-  view.dim = 2;
-  view.num_vertices = (n + 1) * (n + 1);
+MeshArrays quad_grid(int n) {
+  MeshArrays mesh;
+  mesh.dim = 2;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
-      view.coords.push_back(i + 0.15 * j * j / n);
-      view.coords.push_back(j);
+      mesh.coordinates.push_back(i + 0.15 * j * j / n);
+      mesh.coordinates.push_back(j);
     }
-  CellBlock block{CellType::Quadrilateral, 0, {}};
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
-      const PetscInt v = j * (n + 1) + i;  // tensor order: (0,0), (1,0), (0,1), (1,1)
-      block.vertices.insert(block.vertices.end(), {v, v + 1, v + n + 1, v + n + 2});
+      const std::int64_t v = j * (n + 1) + i;  // Gmsh order: counter-clockwise
+      mesh.cells.insert(mesh.cells.end(), {v, v + 1, v + n + 2, v + n + 1});
+      mesh.types.push_back(CellType::Quadrilateral);
     }
-  view.num_cells = n * n;
-  view.blocks.push_back(std::move(block));
-  return view;
+  return mesh;
 }
 
 // A 2:1 rectangle [0, 2] × [0, 1] of 2 × 3 × 3 counter-clockwise triangles.
-MeshView triangle_strip() {
-  MeshView view;
-  view.dim = 2;
+MeshArrays triangle_strip() {
+  MeshArrays mesh;
+  mesh.dim = 2;
   const int nx = 6, ny = 3;
-  view.num_vertices = (nx + 1) * (ny + 1);
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i <= nx; ++i) {
-      view.coords.push_back(2.0 * i / nx);
-      view.coords.push_back(1.0 * j / ny);
+      mesh.coordinates.push_back(2.0 * i / nx);
+      mesh.coordinates.push_back(1.0 * j / ny);
     }
-  CellBlock block{CellType::Triangle, 0, {}};
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const PetscInt v = j * (nx + 1) + i;
-      block.vertices.insert(block.vertices.end(),
-                            {v, v + 1, v + nx + 2, v, v + nx + 2, v + nx + 1});
+      const std::int64_t v = j * (nx + 1) + i;
+      mesh.cells.insert(mesh.cells.end(), {v, v + 1, v + nx + 2, v, v + nx + 2, v + nx + 1});
+      mesh.types.insert(mesh.types.end(), 2, CellType::Triangle);
     }
-  view.num_cells = block.size();
-  view.blocks.push_back(std::move(block));
-  return view;
+  return mesh;
 }
 
-std::vector<double> ramp(PetscInt n) {
+std::vector<double> ramp(std::size_t n) {
   std::vector<double> values;
-  for (PetscInt c = 0; c < n; ++c) values.push_back(0.2 + 0.8 * c / (n - 1));
+  for (std::size_t c = 0; c < n; ++c) values.push_back(0.2 + 0.8 * c / (n - 1));
   return values;
 }
 
@@ -91,13 +84,13 @@ Png read_png(const std::filesystem::path& path) {
 
 TEST(RenderMesh, QuadGridToPngFillsMostOfThePicture) {
   const auto dir = testing::scratch_dir("render_quads");
-  const MeshView view = quad_grid(4);
-  const auto values = ramp(view.num_cells);
+  const MeshArrays mesh = quad_grid(4);
+  const auto values = ramp(mesh.types.size());
   RenderOptions options;
   options.width = 800;
   options.title = "4 x 4 quads";
   options.field_name = "scaled Jacobian";
-  render_mesh(view, view.coords, values, dir / "quads.png", options);
+  render_mesh(mesh, values, dir / "quads.png", options);
 
   const Png png = read_png(dir / "quads.png");
   EXPECT_EQ(png.width, 800);
@@ -112,15 +105,15 @@ TEST(RenderMesh, QuadGridToPngFillsMostOfThePicture) {
 
 TEST(RenderMesh, TrianglesWithInvertedCellsToPng) {
   const auto dir = testing::scratch_dir("render_triangles");
-  const MeshView view = triangle_strip();
-  auto values = ramp(view.num_cells);
+  const MeshArrays mesh = triangle_strip();
+  auto values = ramp(mesh.types.size());
   values[3] = std::numeric_limits<double>::infinity();
   values[7] = std::numeric_limits<double>::quiet_NaN();
   RenderOptions options;
   options.width = 600;
   options.field_name = "energy";
   options.log_scale = true;
-  render_mesh(view, view.coords, values, dir / "triangles.png", options);
+  render_mesh(mesh, values, dir / "triangles.png", options);
 
   const Png png = read_png(dir / "triangles.png");
   EXPECT_EQ(png.width, 600);
@@ -129,8 +122,8 @@ TEST(RenderMesh, TrianglesWithInvertedCellsToPng) {
 
 TEST(RenderMesh, SvgByExtension) {
   const auto dir = testing::scratch_dir("render_svg");
-  const MeshView view = quad_grid(4);
-  render_mesh(view, view.coords, ramp(view.num_cells), dir / "quads.SVG");
+  const MeshArrays mesh = quad_grid(4);
+  render_mesh(mesh, ramp(mesh.types.size()), dir / "quads.SVG");
   std::ifstream in(dir / "quads.SVG");
   std::string head(5, '\0');
   in.read(head.data(), 5);
@@ -139,40 +132,55 @@ TEST(RenderMesh, SvgByExtension) {
 
 TEST(RenderMesh, ConstantFieldAndManySmallCellsStillDraw) {
   const auto dir = testing::scratch_dir("render_constant");
-  const MeshView view = quad_grid(150);  // cells of about 3 pixels: edges would be noise
-  const std::vector<double> values(view.num_cells, 1.0);
+  const MeshArrays mesh = quad_grid(150);  // cells of about 3 pixels: edges would be noise
+  const std::vector<double> values(mesh.types.size(), 1.0);
   RenderOptions options;
   options.width = 500;
-  render_mesh(view, view.coords, values, dir / "fine.png", options);
+  render_mesh(mesh, values, dir / "fine.png", options);
   EXPECT_GT(read_png(dir / "fine.png").non_white_fraction, 0.3);
 }
 
 TEST(RenderMesh, WholeMeshOfTriangles) {
   const auto dir = testing::scratch_dir("render_whole_mesh");
-  const PlexMesh mesh = PlexMesh::from_data(box(CellType::Triangle, 8), "box-tri");
-  render_mesh(mesh, ramp(mesh.view().num_cells), dir / "box.png");
+  const Mesh mesh = Mesh::generate({.name = "box-tri", .size = 8});
+  render_mesh(mesh, ramp(mesh.num_cells()), dir / "box.png");
   const Png png = read_png(dir / "box.png");
   EXPECT_EQ(png.width, 1200);
   EXPECT_GT(png.non_white_fraction, 0.3);
 }
 
 TEST(RenderMesh, ThreeDimensionalMeshIsRefused) {
-  MeshView view;
-  view.dim = 3;
-  EXPECT_THROW(render_mesh(view, {}, {}, "never.png"), Error);
-  const PlexMesh cube = PlexMesh::from_data(box(CellType::Hexahedron, 1), "box-hex");
+  MeshArrays arrays;
+  arrays.dim = 3;
+  EXPECT_THROW(render_mesh(arrays, {}, "never.png"), Error);
+  const Mesh cube = Mesh::generate({.name = "box-hex", .size = 1});
   EXPECT_THROW(render_mesh(cube, std::vector<double>(1, 1.0), "never.png"), Error);
 }
 
 TEST(RenderMesh, BadOutputPathsFailWithoutWriting) {
   const auto dir = testing::scratch_dir("render_errors");
-  const MeshView view = quad_grid(2);
-  const auto values = ramp(view.num_cells);
-  EXPECT_THROW(render_mesh(view, view.coords, values, dir / "mesh.jpg"), Error);
-  EXPECT_THROW(render_mesh(view, view.coords, values, dir / "missing" / "mesh.png"), Error);
+  const MeshArrays mesh = quad_grid(2);
+  const auto values = ramp(mesh.types.size());
+  EXPECT_THROW(render_mesh(mesh, values, dir / "mesh.jpg"), Error);
+  EXPECT_THROW(render_mesh(mesh, values, dir / "missing" / "mesh.png"), Error);
   RenderOptions empty_range;
   empty_range.min = 2.0, empty_range.max = 1.0;
-  EXPECT_THROW(render_mesh(view, view.coords, values, dir / "mesh.png", empty_range), Error);
+  EXPECT_THROW(render_mesh(mesh, values, dir / "mesh.png", empty_range), Error);
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+TEST(RenderMesh, ArraysThatMakeNoMeshAreRefused) {
+  const auto dir = testing::scratch_dir("render_bad_arrays");
+  MeshArrays mesh = quad_grid(2);
+  EXPECT_THROW(render_mesh(mesh, ramp(3), dir / "mesh.png"), Error);  // 4 cells
+  mesh.cells.back() = 9;                                              // 9 vertices: 0..8
+  EXPECT_THROW(render_mesh(mesh, ramp(4), dir / "mesh.png"), Error);
+  mesh = quad_grid(2);
+  mesh.cells.pop_back();
+  EXPECT_THROW(render_mesh(mesh, ramp(4), dir / "mesh.png"), Error);
+  mesh = quad_grid(2);
+  mesh.types[1] = CellType::Tetrahedron;
+  EXPECT_THROW(render_mesh(mesh, ramp(4), dir / "mesh.png"), Error);
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 

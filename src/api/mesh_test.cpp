@@ -1,0 +1,143 @@
+// The public Mesh's whole-mesh functions: gather (the inverse of from_arrays), per-cell quality,
+// volume and the distance between boundaries.
+#include <neomesh/mesh.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <neomesh/error.hpp>
+#include <neomesh/generate.hpp>
+
+#include "core/testing/test_data.hpp"
+
+namespace neomesh {
+namespace {
+
+// [0,1]² as a quad (cell 0) and [1,3]×[0,1] as two triangles, the vertices numbered out of
+// geometric order so that a gather that ignored the numbering would show:
+//   3 ---- 0 ------------ 4
+//   |  0   |    1     /   |
+//   |      |     /    2   |
+//   1 ---- 2 ------------ 5
+MeshArrays square_and_triangles() {
+  MeshArrays mesh;
+  mesh.dim = 2;
+  mesh.coordinates = {1, 1, 0, 0, 1, 0, 0, 1, 3, 1, 3, 0};
+  mesh.cells = {1, 2, 0, 3, /**/ 2, 4, 0, /**/ 2, 5, 4};
+  mesh.types = {CellType::Quadrilateral, CellType::Triangle, CellType::Triangle};
+  return mesh;
+}
+
+Mesh build(const MeshArrays& a, InvertedCells inverted = InvertedCells::Refuse) {
+  return Mesh::from_arrays(MPI_COMM_WORLD, a.dim, a.coordinates, a.cells, a.types, "test mesh",
+                           inverted);
+}
+
+const std::vector<double>& field(const std::vector<Field>& fields, const std::string& name) {
+  const auto it =
+      std::find_if(fields.begin(), fields.end(), [&](const Field& f) { return f.name == name; });
+  if (it == fields.end()) throw std::runtime_error("no field " + name);
+  return it->values;
+}
+
+// Per local cell, its number's value in `by_number`.
+std::vector<double> by_local_cell(const Mesh& mesh, const std::vector<double>& by_number) {
+  std::vector<double> out;
+  for (std::int64_t c : mesh.cell_numbers()) out.push_back(by_number[c]);
+  return out;
+}
+
+TEST(MeshGather, GivesBackTheArraysOfFromArrays) {
+  const MeshArrays input = square_and_triangles();
+  const Mesh mesh = build(input);
+  const MeshArrays out = mesh.gather();
+  EXPECT_EQ(out.dim, 2);
+  EXPECT_EQ(out.coordinates, input.coordinates);
+  EXPECT_EQ(out.cells, input.cells);
+  EXPECT_EQ(out.types, input.types);
+  EXPECT_TRUE(out.cell_fields.empty());
+}
+
+TEST(MeshGather, GivesFieldsByCellNumber) {
+  const Mesh mesh = build(square_and_triangles());
+  const std::vector<double> by_number = {10, 11, 12};
+  const std::vector<double> twice = {20, 21, 22, 23, 24, 25};  // two components
+  std::vector<double> local_twice;
+  for (std::int64_t c : mesh.cell_numbers())
+    local_twice.insert(local_twice.end(), {twice[2 * c], twice[2 * c + 1]});
+  const MeshArrays out =
+      mesh.gather({{"number", by_local_cell(mesh, by_number)}, {"pair", local_twice, 2}});
+  ASSERT_EQ(out.cell_fields.size(), 2u);
+  EXPECT_EQ(out.cell_fields[0].name, "number");
+  EXPECT_EQ(out.cell_fields[0].values, by_number);
+  EXPECT_EQ(out.cell_fields[1].components, 2);
+  EXPECT_EQ(out.cell_fields[1].values, twice);
+  // The volumes of quality_by_cell(), gathered: the quad is 1, the triangles 1 each.
+  const MeshArrays volumes = mesh.gather({{"volume", field(mesh.quality_by_cell(), "volume")}});
+  for (double v : volumes.cell_fields[0].values) EXPECT_NEAR(v, 1.0, 1e-14);
+}
+
+TEST(MeshGather, FieldOfTheWrongSizeIsAnError) {
+  const Mesh mesh = build(square_and_triangles());
+  EXPECT_THROW(mesh.gather({{"short", {1.0, 2.0}}}), Error);
+}
+
+TEST(MeshGather, FollowsTheCoordinates) {
+  Mesh mesh = build(square_and_triangles());
+  std::vector<double> x = mesh.coordinates();
+  for (double& c : x) c *= 2;
+  mesh.set_coordinates(x);
+  const MeshArrays out = mesh.gather();
+  const MeshArrays input = square_and_triangles();
+  for (std::size_t i = 0; i < input.coordinates.size(); ++i)
+    EXPECT_EQ(out.coordinates[i], 2 * input.coordinates[i]);
+}
+
+TEST(MeshQualityByCell, MarksTheInvertedCell) {
+  MeshArrays input = square_and_triangles();
+  input.coordinates[0] = input.coordinates[1] = 0.2;  // vertex 0: the quad's corner turns reflex
+  const Mesh mesh = build(input, InvertedCells::Keep);
+  const std::vector<Field> quality = mesh.quality_by_cell();
+  std::vector<std::string> names;
+  for (const Field& f : quality) names.push_back(f.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"volume", "scaled_jacobian", "min_angle", "max_angle",
+                                             "edge_ratio", "inverse_mean_ratio", "inverted"}));
+  EXPECT_EQ(field(quality, "inverted"), by_local_cell(mesh, {1, 0, 0}));
+  EXPECT_EQ(mesh.quality().inverted, 1);
+  const std::vector<double>& volume = field(quality, "volume");
+  EXPECT_NEAR(std::accumulate(volume.begin(), volume.end(), 0.0), mesh.volume(), 1e-14);
+}
+
+TEST(MeshVolume, OfBoxesAndOfAScaledMesh) {
+  EXPECT_NEAR(Mesh::generate({.name = "box-hex", .size = 3}).volume(), 8.0, 1e-12);
+  EXPECT_NEAR(Mesh::generate({.name = "box-tet", .size = 2}).volume(), 8.0, 1e-12);
+  EXPECT_NEAR(Mesh::generate({.name = "box-tri", .size = 4, .rotate_degrees = 30}).volume(), 4.0,
+              1e-12);
+  Mesh mesh = build(square_and_triangles());
+  EXPECT_NEAR(mesh.volume(), 3.0, 1e-14);
+  std::vector<double> x = mesh.coordinates();
+  for (double& c : x) c *= 3;
+  mesh.set_coordinates(x);
+  EXPECT_NEAR(mesh.volume(), 27.0, 1e-12);
+}
+
+TEST(MeshBoundaryDistance, HowFarTheBoundaryMoved) {
+  const Mesh reference = build(square_and_triangles());
+  Mesh mesh = build(square_and_triangles());
+  EXPECT_NEAR(mesh.max_boundary_distance(reference), 0.0, 1e-14);
+  // Vertex 4 at (3, 1) moves up by 0.25: 0.25 from the top edge, further from the others.
+  std::vector<double> x = mesh.coordinates();
+  const std::vector<std::int64_t> numbers = mesh.vertex_numbers();
+  const auto at = std::find(numbers.begin(), numbers.end(), 4) - numbers.begin();
+  x[2 * at + 1] += 0.25;
+  mesh.set_coordinates(x);
+  EXPECT_NEAR(mesh.max_boundary_distance(reference), 0.25, 1e-12);
+  EXPECT_THROW(mesh.max_boundary_distance(Mesh::generate({.name = "box-hex", .size = 1})), Error);
+}
+
+}  // namespace
+}  // namespace neomesh
