@@ -47,6 +47,11 @@ struct FacetGroup {
 
 class LevelSet;  // level_set.hpp
 
+// Throws Error unless `path` has an extension neomesh reads (.msh, .xml) / writes (.msh,
+// .vtu): a check before a long run.
+void check_readable_format(const std::filesystem::path& path);
+void check_writable_format(const std::filesystem::path& path);
+
 class Mesh {
  public:
   // Reads .msh (Gmsh 2.2/4.1, ASCII or binary) or .xml (FEAT3) on the first process and
@@ -146,11 +151,10 @@ class Mesh {
   // Writes the mesh without fields (.vtu: no quality fields either), atomically. Collective.
   void write_mesh_only(const std::filesystem::path& path) const;
 
-  // The implementation, for neomesh's own layers.
+ private:
+  friend class Optimizer;  // works on the implementation
   PlexMesh& plex();
   const PlexMesh& plex() const;
-
- private:
   explicit Mesh(std::unique_ptr<PlexMesh> plex);
   std::unique_ptr<PlexMesh> plex_;
 };

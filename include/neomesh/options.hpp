@@ -28,7 +28,10 @@ struct EnergyOptions {
 // What the boundary vertices may do (docs/boundary.md): stay put (the thesis' H¹₀ setting), or
 // slide along the input's boundary, corners and ridges kept.
 enum class BoundaryMode { Fixed, Slide };
-std::string_view name(BoundaryMode mode);  // "fixed", "slide"
+// Each choice has one name, the command line's and the report's: "fixed", "slide". parse_*()
+// throws Error for another name.
+std::string_view name(BoundaryMode mode);
+BoundaryMode parse_boundary_mode(std::string_view name);
 
 struct BoundaryOptions {
   BoundaryOptions() = default;
@@ -58,6 +61,7 @@ enum class RieszLaplacian {
 //   Direct  Cholesky (MUMPS, works in parallel; the thesis used UMFPACK)
 enum class LinearSolverKind { Amg, Jacobi, Direct };
 std::string_view name(LinearSolverKind kind);  // "amg", "jacobi", "direct"
+LinearSolverKind parse_linear_solver(std::string_view name);
 
 // What preconditions the δ̃ solve with LinearSolverKind::Amg: the Riesz solve's AMG hierarchy
 // of L = B3/μ, which is built anyway and changes only with the desired volumes, or a

@@ -11,7 +11,7 @@
 #include "boundary/interface.hpp"
 #include "core/error.hpp"
 #include "geometry/quality.hpp"
-#include "mesh/collective_error.hpp"
+#include "core/collective_error.hpp"
 #include "mesh/dm_input.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/input_mesh.hpp"

@@ -11,9 +11,9 @@
 #include "app/optimization.hpp"
 #include "app/subcommand.hpp"
 #include "app/time_series.hpp"
+#include "core/collective_error.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "mesh/collective_error.hpp"
 #include "report/quality_report.hpp"
 #include "report/run_report.hpp"
 

@@ -1,7 +1,8 @@
 #include "app/checks.hpp"
 
+#include <neomesh/mesh.hpp>
 #include "core/atomic_file.hpp"
-#include "mesh/mesh_io.hpp"
+
 #include "report/canvas.hpp"
 
 namespace neomesh::app {

@@ -8,9 +8,9 @@
 
 #include "app/checks.hpp"
 #include "app/subcommand.hpp"
+#include "core/collective_error.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "mesh/collective_error.hpp"
 
 namespace neomesh::app {
 

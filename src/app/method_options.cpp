@@ -5,9 +5,7 @@
 #include <string_view>
 #include <utility>
 
-#include "boundary/boundary.hpp"
 #include "core/error.hpp"
-#include "solver/linear_solver.hpp"
 
 namespace neomesh::app {
 

@@ -7,10 +7,10 @@
 
 #include "app/checks.hpp"
 #include "core/atomic_file.hpp"
+#include "core/collective_error.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/petsc.hpp"
-#include "mesh/collective_error.hpp"
 #include "report/canvas.hpp"
 #include "report/history_plot.hpp"
 #include "report/iteration_table.hpp"

@@ -7,9 +7,9 @@
 #include "app/checks.hpp"
 #include "app/subcommand.hpp"
 #include "core/atomic_file.hpp"
+#include "core/collective_error.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "mesh/collective_error.hpp"
 #include "report/quality_report.hpp"
 
 namespace neomesh::app {

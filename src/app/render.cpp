@@ -14,9 +14,9 @@
 
 #include "app/checks.hpp"
 #include "app/subcommand.hpp"
+#include "core/collective_error.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "mesh/collective_error.hpp"
 #include "report/render.hpp"
 
 namespace neomesh::app {

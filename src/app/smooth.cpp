@@ -8,7 +8,6 @@
 #include "app/subcommand.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "solver/desired_volumes.hpp"
 
 namespace neomesh::app {
 

@@ -32,9 +32,6 @@
 
 namespace neomesh {
 
-// "fixed" or "slide"; throws Error for anything else.
-BoundaryMode parse_boundary_mode(std::string_view name);
-
 class Boundary {
  public:
   // Classifies the boundary and builds its geometry; throws Error for a shape naming an

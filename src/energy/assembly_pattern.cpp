@@ -4,7 +4,7 @@
 #include <numeric>
 #include <string>
 
-#include "mesh/collective_error.hpp"
+#include "core/collective_error.hpp"
 
 namespace neomesh {
 

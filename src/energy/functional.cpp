@@ -12,7 +12,7 @@
 #include "energy/cell_kernels.hpp"
 #include "energy/matrix_assembler.hpp"
 #include "energy/untangling_kernel.hpp"
-#include "mesh/collective_error.hpp"
+#include "core/collective_error.hpp"
 
 namespace neomesh {
 

@@ -9,7 +9,7 @@
 #include <map>
 
 #include "energy/functional.hpp"
-#include "mesh/collective_error.hpp"
+#include "core/collective_error.hpp"
 #include "mesh/generate.hpp"
 #include "mesh/plex_mesh.hpp"
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "mesh/cell_order.hpp"
-#include "mesh/collective_error.hpp"
+#include "core/collective_error.hpp"
 #include "mesh/gather.hpp"
 
 namespace neomesh {

@@ -4,7 +4,7 @@
 #include <numeric>
 
 #include "mesh/cell_order.hpp"
-#include "mesh/collective_error.hpp"
+#include "core/collective_error.hpp"
 #include "mesh/mesh_impl.hpp"
 
 namespace neomesh {

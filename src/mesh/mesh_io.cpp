@@ -1,7 +1,7 @@
 #include "mesh/mesh_io.hpp"
 
 #include "core/atomic_file.hpp"
-#include "mesh/collective_error.hpp"
+#include "core/collective_error.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/mesh_writers.hpp"
 

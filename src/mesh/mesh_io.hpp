@@ -26,8 +26,4 @@ struct MeshFields {
 void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path,
                 const MeshFields& fields = {});
 
-// Throws Error unless `path` has an extension neomesh can read (.msh, .xml) / write.
-void check_readable_format(const std::filesystem::path& path);
-void check_writable_format(const std::filesystem::path& path);
-
 }  // namespace neomesh

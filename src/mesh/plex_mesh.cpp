@@ -6,7 +6,7 @@
 
 #include "mesh/boundary_surface.hpp"
 #include "mesh/cell_order.hpp"
-#include "mesh/collective_error.hpp"
+#include "core/collective_error.hpp"
 #include "mesh/feat_reader.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/input_file.hpp"

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "mesh/cell_type.hpp"
-#include "mesh/collective_error.hpp"
+#include "core/collective_error.hpp"
 
 namespace neomesh {
 

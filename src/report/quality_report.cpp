@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include "geometry/quality.hpp"
 #include "mesh/cell_type.hpp"
 
 namespace neomesh {

@@ -8,8 +8,6 @@
 
 #include <neomesh/quality.hpp>
 
-#include "adapt/volume_ratio.hpp"
-
 namespace neomesh {
 
 // Cell counts, min/mean/max of each metric, inverted and degenerate cells.

@@ -11,7 +11,7 @@
 
 #include "core/error.hpp"
 #include "mesh/cell_type.hpp"
-#include "mesh/collective_error.hpp"
+#include "core/collective_error.hpp"
 #include "report/canvas.hpp"
 
 namespace neomesh {

@@ -1,8 +1,9 @@
 #include "report/run_report.hpp"
 
+#include <neomesh/options.hpp>
+
 #include "core/atomic_file.hpp"
 #include "core/log.hpp"
-#include "solver/linear_solver.hpp"
 
 namespace neomesh {
 

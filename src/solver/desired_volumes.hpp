@@ -19,8 +19,6 @@
 
 namespace neomesh {
 
-SizeMode parse_size_mode(std::string_view name);
-
 // `cell_volumes`: actual volume of each local cell (MeshView order). Collective.
 std::vector<double> desired_volumes(SizeMode mode, const MeshView& view, const DofMap& dofs,
                                     std::span<const double> cell_volumes);

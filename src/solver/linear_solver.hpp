@@ -17,8 +17,6 @@
 
 namespace neomesh {
 
-LinearSolverKind parse_linear_solver(std::string_view name);
-
 class LinearSolver {
  public:
   // `dim`: the mesh's dimension (AMG defaults differ in 3D); `rtol`: relative reduction of

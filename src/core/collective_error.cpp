@@ -1,4 +1,4 @@
-#include "mesh/collective_error.hpp"
+#include "core/collective_error.hpp"
 
 #include <climits>
 

@@ -5,7 +5,7 @@
 #include <new>
 
 #include "core/petsc.hpp"
-#include "mesh/collective_error.hpp"
+#include "core/collective_error.hpp"
 
 namespace neomesh {
 namespace {
