@@ -3,7 +3,7 @@
 // CMakeLists.txt (NEOMESH_LONG_TESTS).
 #include <gtest/gtest.h>
 
-#include "adapt/sphere_case.hpp"
+#include "adapt/testing/sphere_case.hpp"
 
 namespace neomesh {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "adapt/sphere_case.hpp"
+#include "adapt/testing/sphere_case.hpp"
 
 namespace neomesh {
 namespace {

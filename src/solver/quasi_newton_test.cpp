@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "mesh/generate.hpp"
-#include "solver/thesis_problem.hpp"
+#include "solver/testing/thesis_problem.hpp"
 
 namespace neomesh {
 namespace {

@@ -12,7 +12,7 @@
 #include <numbers>
 
 #include "mesh/generate.hpp"
-#include "solver/thesis_problem.hpp"
+#include "solver/testing/thesis_problem.hpp"
 
 namespace neomesh {
 namespace {

@@ -14,7 +14,7 @@
 #include "adapt/volume_ratio.hpp"
 #include "geometry/quality.hpp"
 #include "mesh/generate.hpp"
-#include "solver/thesis_problem.hpp"
+#include "solver/testing/thesis_problem.hpp"
 
 namespace neomesh::testing {
 

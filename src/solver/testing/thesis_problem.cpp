@@ -1,4 +1,4 @@
-#include "solver/thesis_problem.hpp"
+#include "solver/testing/thesis_problem.hpp"
 
 namespace neomesh {
 
