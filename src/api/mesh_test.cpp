@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <petscdm.h>
 
 #include <neomesh/error.hpp>
 #include <neomesh/generate.hpp>
@@ -95,6 +96,26 @@ TEST(MeshGather, FollowsTheCoordinates) {
   const MeshArrays input = square_and_triangles();
   for (std::size_t i = 0; i < input.coordinates.size(); ++i)
     EXPECT_EQ(out.coordinates[i], 2 * input.coordinates[i]);
+}
+
+// The DMPlex a caller gets has the coordinates the mesh has now, not those it was built with.
+TEST(MeshDm, HasTheCurrentCoordinates) {
+  Mesh mesh = build(square_and_triangles());
+  std::vector<double> x = mesh.coordinates();
+  for (double& c : x) c = 2 * c + 1;
+  mesh.set_coordinates(x);
+  Vec local = nullptr;
+  ASSERT_EQ(DMGetCoordinatesLocal(mesh.dm(), &local), 0);
+  const PetscScalar* values = nullptr;
+  PetscInt n = 0;
+  ASSERT_EQ(VecGetLocalSize(local, &n), 0);
+  ASSERT_EQ(VecGetArrayRead(local, &values), 0);
+  std::vector<double> in_dm(values, values + n);
+  ASSERT_EQ(VecRestoreArrayRead(local, &values), 0);
+  // Serial: every vertex is local; the DM may order them its own way.
+  std::sort(in_dm.begin(), in_dm.end());
+  std::sort(x.begin(), x.end());
+  EXPECT_EQ(in_dm, x);
 }
 
 TEST(MeshQualityByCell, MarksTheInvertedCell) {

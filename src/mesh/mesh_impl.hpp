@@ -23,7 +23,10 @@ struct PlexMesh::Impl {
   // and points of physical groups in input numbering (input_topology.hpp).
   std::vector<int> cell_tags;
   TaggedEntities facets, points;
+  // The coordinates' one owner is view->coords; the DMPlex's are brought up to date only when
+  // someone asks for the DM (PlexMesh::dm()), not at every move.
   std::unique_ptr<MeshView> view;
+  bool dm_coordinates_stale = false;
   std::unique_ptr<DofMap> dofs;
 };
 

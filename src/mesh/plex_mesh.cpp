@@ -288,7 +288,20 @@ MPI_Comm PlexMesh::comm() const {
   return impl_->comm;
 }
 DM PlexMesh::dm() const {
-  return impl_->dm;
+  Impl& m = *impl_;
+  if (m.dm_coordinates_stale) {
+    // The same layout as view.coords (build_view checked it); set again so that the DM drops
+    // its cached global coordinates.
+    Vec local;
+    NM_PETSC(DMGetCoordinatesLocal(m.dm, &local));
+    {
+      VecWriteView x(local);
+      std::copy(m.view->coords.begin(), m.view->coords.end(), x.data());
+    }
+    NM_PETSC(DMSetCoordinatesLocal(m.dm, local));
+    m.dm_coordinates_stale = false;
+  }
+  return m.dm;
 }
 int PlexMesh::dim() const {
   return impl_->dim;
@@ -322,17 +335,8 @@ OwnedVec PlexMesh::coordinates() const {
 }
 
 void PlexMesh::set_coordinates(Vec coords) {
-  MeshView& view = *impl_->view;
-  impl_->dofs->global_to_local(coords, view.coords);
-  Vec current;
-  NM_PETSC(DMGetCoordinatesLocal(impl_->dm, &current));
-  OwnedVec moved;
-  NM_PETSC(VecDuplicate(current, moved.out()));
-  {
-    VecWriteView x(moved);
-    std::copy(view.coords.begin(), view.coords.end(), x.data());
-  }
-  NM_PETSC(DMSetCoordinatesLocal(impl_->dm, moved));
+  impl_->dofs->global_to_local(coords, impl_->view->coords);
+  impl_->dm_coordinates_stale = true;
 }
 
 }  // namespace neomesh

@@ -43,6 +43,7 @@ class PlexMesh {
   ~PlexMesh();
 
   MPI_Comm comm() const;
+  // The DMPlex, its coordinates brought up to date with view().coords.
   DM dm() const;
   int dim() const;
   const std::string& source() const;  // file name or generator name, for messages
@@ -56,8 +57,8 @@ class PlexMesh {
 
   // Current vertex coordinates as a global Vec laid out by dofs() (a new Vec).
   OwnedVec coordinates() const;
-  // Moves the vertices: `coords` is a global Vec laid out by dofs(). Updates the DMPlex
-  // coordinates (for writing) and view().coords.
+  // Moves the vertices: `coords` is a global Vec laid out by dofs(). view().coords is the one
+  // place that holds them (dm() updates the DMPlex's when asked).
   void set_coordinates(Vec coords);
 
  private:
