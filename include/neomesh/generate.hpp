@@ -34,6 +34,8 @@ struct GeneratedCase {
 //   triangle-curved  8·4^r triangles with curved sides (§5.7)
 //   box-quad, box-tri, box-hex, box-tet, box-wedge, box-pyramid  [-1,1]^d (2 triangles per
 //                    square; 6 tets, 2 wedges or 6 pyramids per cube)
+//   annulus-quad, annulus-tri, annulus-hex, annulus-tet  the quarter annulus 1 ≤ r ≤ 2,
+//                    0 ≤ θ ≤ π/2 (extruded to 0 ≤ z ≤ 1 in 3D): curved boundaries
 std::span<const GeneratedCase> generated_cases();
 
 // Which test mesh Mesh::generate builds (the same on every process).
@@ -42,13 +44,14 @@ struct GenerateOptions {
   int size = 4;                   // what the case's GeneratedSize counts
   double amplitude = 0.2;         // square-random: largest move per coordinate, in cell widths
   unsigned seed = 1;              // square-random, triangle-equilateral and jitter
-  // Box cases: interior vertices moved at random by up to this many cell widths per
-  // coordinate; from 0.25 on cells may fold over (a tangled mesh, kept as it is).
+  // Box and annulus cases: interior vertices moved at random by up to this many cell widths
+  // (radial widths for the annulus) per coordinate; from 0.25 on cells may fold over (a
+  // tangled mesh, kept as it is).
   double jitter = 0.0;
   double rotate_degrees = 0.0;  // counter-clockwise about the origin (2D) or the z axis (3D)
 
   // Throws OptionError for a field out of range ("amplitude must be in [0, 0.25) (got 0.3)",
-  // "jitter applies to the box cases", "name must be one of ...").
+  // "jitter applies to the box and annulus cases", "name must be one of ...").
   void validate() const;
 };
 

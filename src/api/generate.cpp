@@ -15,18 +15,25 @@ namespace neomesh {
 
 namespace {
 
-// A case with the generator that builds it from its size (rank 0 only).
+// A case with the generator that builds it from its size (rank 0 only), and the width of the
+// domain across the lattice's first direction (0: not a lattice), which jitter divides by the
+// cells per direction.
 struct Generator {
   GeneratedCase what;
   MeshData (*make)(int size, const GenerateOptions& options);
+  double lattice_width = 0.0;
 };
 
 template <CellType Type>
 MeshData make_box(int n, const GenerateOptions&) {
   return box(Type, n);
 }
+template <CellType Type>
+MeshData make_annulus(int n, const GenerateOptions&) {
+  return quarter_annulus(Type, n);
+}
 
-constexpr std::array<Generator, 13> kGenerators = {{
+constexpr std::array<Generator, 17> kGenerators = {{
     {{"square-midpoint", CellType::Quadrilateral, GeneratedSize::EvenCells},
      [](int n, const GenerateOptions&) { return square_midpoint(n); }},
     {{"cube-midpoint", CellType::Hexahedron, GeneratedSize::EvenCells},
@@ -42,12 +49,27 @@ constexpr std::array<Generator, 13> kGenerators = {{
     {{"triangle-curved", CellType::Triangle, GeneratedSize::Refinements},
      [](int r, const GenerateOptions&) { return triangle_curved(r); }},
     {{"box-quad", CellType::Quadrilateral, GeneratedSize::Cells},
-     make_box<CellType::Quadrilateral>},
-    {{"box-tri", CellType::Triangle, GeneratedSize::Cells}, make_box<CellType::Triangle>},
-    {{"box-hex", CellType::Hexahedron, GeneratedSize::Cells}, make_box<CellType::Hexahedron>},
-    {{"box-tet", CellType::Tetrahedron, GeneratedSize::Cells}, make_box<CellType::Tetrahedron>},
-    {{"box-wedge", CellType::Wedge, GeneratedSize::Cells}, make_box<CellType::Wedge>},
-    {{"box-pyramid", CellType::Pyramid, GeneratedSize::Cells}, make_box<CellType::Pyramid>},
+     make_box<CellType::Quadrilateral>,
+     2.0},
+    {{"box-tri", CellType::Triangle, GeneratedSize::Cells}, make_box<CellType::Triangle>, 2.0},
+    {{"box-hex", CellType::Hexahedron, GeneratedSize::Cells}, make_box<CellType::Hexahedron>, 2.0},
+    {{"box-tet", CellType::Tetrahedron, GeneratedSize::Cells},
+     make_box<CellType::Tetrahedron>,
+     2.0},
+    {{"box-wedge", CellType::Wedge, GeneratedSize::Cells}, make_box<CellType::Wedge>, 2.0},
+    {{"box-pyramid", CellType::Pyramid, GeneratedSize::Cells}, make_box<CellType::Pyramid>, 2.0},
+    {{"annulus-quad", CellType::Quadrilateral, GeneratedSize::Cells},
+     make_annulus<CellType::Quadrilateral>,
+     1.0},
+    {{"annulus-tri", CellType::Triangle, GeneratedSize::Cells},
+     make_annulus<CellType::Triangle>,
+     1.0},
+    {{"annulus-hex", CellType::Hexahedron, GeneratedSize::Cells},
+     make_annulus<CellType::Hexahedron>,
+     1.0},
+    {{"annulus-tet", CellType::Tetrahedron, GeneratedSize::Cells},
+     make_annulus<CellType::Tetrahedron>,
+     1.0},
 }};
 
 constexpr std::array<GeneratedCase, kGenerators.size()> kCases = [] {
@@ -60,11 +82,6 @@ const Generator* find_generator(const std::string& name) {
   for (const Generator& g : kGenerators)
     if (g.what.name == name) return &g;
   return nullptr;
-}
-
-// The boxes are [-1,1]^d: the only cases whose vertices --jitter moves.
-bool is_box(const GeneratedCase& c) {
-  return c.name.starts_with("box-");
 }
 
 void check_size(const GeneratedCase& c, int size) {
@@ -102,8 +119,8 @@ void GenerateOptions::validate() const {
                       fmt::format("must be a finite number, in degrees (got {})", rotate_degrees));
   if (!(amplitude >= 0.0 && amplitude < 0.25))
     throw OptionError("amplitude", fmt::format("must be in [0, 0.25) (got {})", amplitude));
-  if (jitter != 0.0 && !is_box(generator->what))
-    throw OptionError("jitter", "applies to the box cases");
+  if (jitter != 0.0 && generator->lattice_width == 0.0)
+    throw OptionError("jitter", "applies to the box and annulus cases");
   if (!(jitter >= 0.0 && jitter < 1.0))
     throw OptionError("jitter", fmt::format("must be in [0, 1) (got {})", jitter));
 }
@@ -114,7 +131,8 @@ Mesh Mesh::generate(const GenerateOptions& options, MPI_Comm comm) {
   MeshData data;
   if (mpi_rank(comm) == 0) {
     data = generator.make(options.size, options);
-    if (options.jitter > 0.0) jitter(data, 2.0 / options.size, options.jitter, options.seed);
+    if (options.jitter > 0.0)
+      jitter(data, generator.lattice_width / options.size, options.jitter, options.seed);
     if (options.rotate_degrees != 0.0) rotate(data, options.rotate_degrees);
   }
   return Mesh(std::make_unique<PlexMesh>(

@@ -19,14 +19,15 @@ struct Expected {
 };
 
 // docs/cases.md: 2D refinements make 4× the cells; box-tri 2 per square, box-tet 6, box-wedge
-// 2 and box-pyramid 6 per cube.
+// 2 and box-pyramid 6 per cube; the annulus cases split like the boxes.
 const std::map<std::string, Expected>& expected() {
   static const std::map<std::string, Expected> all = {
       {"square-midpoint", {4, 16}}, {"cube-midpoint", {2, 8}}, {"square-random", {3, 9}},
       {"transition", {1, 20}},      {"circle-quad", {1, 20}},  {"triangle-equilateral", {2, 16}},
       {"triangle-curved", {1, 32}}, {"box-quad", {3, 9}},      {"box-tri", {3, 18}},
       {"box-hex", {2, 8}},          {"box-tet", {2, 48}},      {"box-wedge", {2, 16}},
-      {"box-pyramid", {2, 48}},
+      {"box-pyramid", {2, 48}},     {"annulus-quad", {3, 9}},  {"annulus-tri", {3, 18}},
+      {"annulus-hex", {2, 8}},      {"annulus-tet", {2, 48}},
   };
   return all;
 }
@@ -50,6 +51,12 @@ TEST(GenerateMesh, ALargeJitterKeepsInvertedCells) {
   const Mesh calm = Mesh::generate({.name = "box-quad", .size = 16, .jitter = 0.2});
   EXPECT_EQ(calm.quality().inverted, 0);
   EXPECT_NEAR(calm.volume(), 4.0, 1e-12);  // only interior vertices move
+  // The annulus' cells are as wide across (1/n) as the box's (2/n) at twice the cells.
+  const Mesh annulus = Mesh::generate({.name = "annulus-quad", .size = 8, .jitter = 0.2});
+  EXPECT_EQ(annulus.quality().inverted, 0);
+  const Mesh plain = Mesh::generate({.name = "annulus-quad", .size = 8});
+  EXPECT_NEAR(annulus.volume(), plain.volume(), 1e-12);
+  EXPECT_NE(annulus.coordinates(), plain.coordinates());
 }
 
 TEST(GenerateMesh, SeedDecidesTheRandomMesh) {

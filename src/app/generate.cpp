@@ -105,9 +105,11 @@ Subcommand add_generate(CLI::App& app) {
       "Meaning of --level per case:\n"
       "  square-midpoint, cube-midpoint: thesis level t = 2^(t+1) cells per direction\n"
       "    (level 3 = 16x16 quads, Table 5.1; 3D level 3 = 16^3 hexes)\n"
-      "  square-random, box-quad, box-tri, box-hex, box-tet, box-wedge, box-pyramid: level\n"
-      "    L = 2^L cells per direction (box-tri: 2 triangles per square; box-tet: 6 tets,\n"
-      "    box-wedge: 2 wedges, box-pyramid: 6 pyramids per cube)\n"
+      "  square-random, box-quad, box-tri, box-hex, box-tet, box-wedge, box-pyramid,\n"
+      "    annulus-quad, annulus-tri, annulus-hex, annulus-tet: level L = 2^L cells per\n"
+      "    direction (box-tri: 2 triangles per square; box-tet: 6 tets, box-wedge: 2 wedges,\n"
+      "    box-pyramid: 6 pyramids per cube; annulus: the quarter annulus 1 <= r <= 2, in 3D\n"
+      "    extruded to 0 <= z <= 1, split likewise)\n"
       "  transition, circle-quad, triangle-equilateral, triangle-curved: level = number of\n"
       "    uniform refinements of the coarse mesh (5, 5, 1 and 8 cells), 4x cells each\n"
       "--cells N gives the cells per direction directly (not for refined cases).");
@@ -131,8 +133,9 @@ Subcommand add_generate(CLI::App& app) {
                   "square-random: largest displacement per coordinate, in cell widths, < 0.25")
       ->capture_default_str();
   cmd->add_option("--jitter", options->jitter,
-                  "box cases: displace interior vertices by up to this many cell widths per "
-                  "coordinate, at random, < 1 (from 0.25 on, cells may fold over: a tangled mesh)")
+                  "box and annulus cases: displace interior vertices by up to this many cell "
+                  "widths per coordinate, at random, < 1 (from 0.25 on, cells may fold over: a "
+                  "tangled mesh)")
       ->capture_default_str();
   cmd->add_option("-o,--output", options->output, "output file (.msh or .vtu)")->required();
   return {cmd, [options] { run_generate(*options); }};

@@ -210,6 +210,26 @@ MeshData box(CellType type, int cells_per_direction) {
   return mesh;
 }
 
+MeshData quarter_annulus(CellType type, int cells_per_direction) {
+  if (type == CellType::Wedge || type == CellType::Pyramid)
+    fail("quarter annulus: quadrilaterals, triangles, hexahedra or tetrahedra only");
+  const int dim = dimension(type), n = cells_per_direction;
+  // (i, j, k) → (r, θ, z): i across, j around, k up; a positive Jacobian (r > 0).
+  MeshData mesh = lattice_mesh(dim, n, [dim, n](const Index& ijk, double* x) {
+    const double r = 1.0 + static_cast<double>(ijk[0]) / n;
+    const double theta = 0.5 * std::numbers::pi * ijk[1] / n;
+    x[0] = r * std::cos(theta);
+    x[1] = r * std::sin(theta);
+    if (dim == 3) x[2] = static_cast<double>(ijk[2]) / n;
+  });
+  static constexpr std::array<const char*, 6> names = {"inner", "outer",  "start",
+                                                       "end",   "bottom", "top"};
+  for (std::size_t p = 0; p < mesh.boundary_parts.size(); ++p)
+    mesh.boundary_parts[p].name = names[p];
+  if (is_simplex(type)) split_into_simplices(mesh);
+  return mesh;
+}
+
 MeshData ring(CellType type, int angular, int radial, double bunching) {
   if (type == CellType::Tetrahedron) fail("ring: no tetrahedral version");
   if (angular < 3 || radial < 1) fail("ring: needs at least 3 cells around and 1 across");

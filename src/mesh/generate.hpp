@@ -62,6 +62,12 @@ MeshData triangle_curved(int refinements);
 // (each cube split into six, one on each face, with an extra vertex at the cube's centre).
 MeshData box(CellType type, int cells_per_direction);
 
+// The quarter annulus 1 ≤ r ≤ 2, 0 ≤ θ ≤ π/2 (2D), extruded to 0 ≤ z ≤ 1 (3D), with n cells
+// across, n around (and n up): quads, triangles, hexes or tets split like box()'s. A mesh with
+// curved boundaries for the benchmarks against Mesquite and TMOP (docs/benchmarks.md). Boundary
+// parts "inner", "outer" (the arcs), "start", "end" (θ = 0, π/2) and "bottom", "top" (z).
+MeshData quarter_annulus(CellType type, int cells_per_direction);
+
 // The ring 1/2 ≤ r ≤ 1 (quadrilaterals or triangles) or the cylindrical shell 1/2 ≤ r ≤ 1,
 // 0 ≤ z ≤ 1/2 (hexahedra) with `angular` cells around and `radial` cells across (and as many
 // layers in z). The vertices sit at the angles θ(s) = 2πs + a sin 2πs, s = i/angular, so that

@@ -312,13 +312,15 @@ TEST(Box, WedgesAndPyramidsArePositiveAndConforming) {
   }
 }
 
+// Cells of the lattice generators (box, quarter_annulus) at n = 4 per direction.
+const std::vector<std::pair<CellType, int>> kLatticeCells = {{CellType::Quadrilateral, 16},
+                                                             {CellType::Triangle, 32},
+                                                             {CellType::Hexahedron, 64},
+                                                             {CellType::Tetrahedron, 384}};
+
 TEST(Box, CountsOrientationAndConformingDiagonals) {
   const int n = 4;
-  const std::vector<std::pair<CellType, int>> expected = {{CellType::Quadrilateral, 16},
-                                                          {CellType::Triangle, 32},
-                                                          {CellType::Hexahedron, 64},
-                                                          {CellType::Tetrahedron, 384}};
-  for (const auto& [type, cells] : expected) {
+  for (const auto& [type, cells] : kLatticeCells) {
     const MeshData m = box(type, n);
     EXPECT_EQ(m.cell_type, type);
     EXPECT_EQ(m.num_cells(), cells);
@@ -335,6 +337,23 @@ TEST(Box, CountsOrientationAndConformingDiagonals) {
     }
     expect_parts_cover_boundary(m);
   }
+}
+
+TEST(QuarterAnnulus, CountsOrientationAndTheArcs) {
+  const int n = 4;
+  for (const auto& [type, cells] : kLatticeCells) {
+    const MeshData m = quarter_annulus(type, n);
+    EXPECT_EQ(m.num_cells(), cells) << name(type);
+    EXPECT_GT(min_corner_det(m), 0.0) << name(type);
+    expect_parts_cover_boundary(m);
+    // The arcs at r = 1 and r = 2, the straight sides on the axes.
+    for (const auto& [arc, radius] : {std::pair{"inner", 1.0}, std::pair{"outer", 2.0}})
+      for (std::int64_t v : part(m, arc).vertices)
+        EXPECT_NEAR(std::hypot(coord(m, v, 0), coord(m, v, 1)), radius, 1e-14);
+    for (std::int64_t v : part(m, "start").vertices) EXPECT_EQ(coord(m, v, 1), 0.0);
+    for (std::int64_t v : part(m, "end").vertices) EXPECT_NEAR(coord(m, v, 0), 0.0, 1e-15);
+  }
+  EXPECT_THROW(quarter_annulus(CellType::Wedge, n), Error);
 }
 
 TEST(Rotate, PreservesEdgeLengthsAndTurnsCounterClockwise) {
