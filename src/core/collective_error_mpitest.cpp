@@ -4,8 +4,8 @@
 
 #include <new>
 
-#include "core/petsc.hpp"
 #include "core/collective_error.hpp"
+#include "core/petsc.hpp"
 
 namespace neomesh {
 namespace {

@@ -9,10 +9,10 @@
 #include <tuple>
 #include <type_traits>
 
+#include "core/collective_error.hpp"
 #include "energy/cell_kernels.hpp"
 #include "energy/matrix_assembler.hpp"
 #include "energy/untangling_kernel.hpp"
-#include "core/collective_error.hpp"
 
 namespace neomesh {
 

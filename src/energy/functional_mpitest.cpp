@@ -8,8 +8,8 @@
 #include <functional>
 #include <map>
 
-#include "energy/functional.hpp"
 #include "core/collective_error.hpp"
+#include "energy/functional.hpp"
 #include "mesh/generate.hpp"
 #include "mesh/plex_mesh.hpp"
 

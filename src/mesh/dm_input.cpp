@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "mesh/cell_order.hpp"
 #include "core/collective_error.hpp"
+#include "mesh/cell_order.hpp"
 #include "mesh/gather.hpp"
 
 namespace neomesh {

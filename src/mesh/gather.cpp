@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
-#include "mesh/cell_order.hpp"
 #include "core/collective_error.hpp"
+#include "mesh/cell_order.hpp"
 #include "mesh/mesh_impl.hpp"
 
 namespace neomesh {

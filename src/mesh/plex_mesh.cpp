@@ -4,9 +4,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/collective_error.hpp"
 #include "mesh/boundary_surface.hpp"
 #include "mesh/cell_order.hpp"
-#include "core/collective_error.hpp"
 #include "mesh/feat_reader.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/input_file.hpp"

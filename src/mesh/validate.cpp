@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "mesh/cell_type.hpp"
 #include "core/collective_error.hpp"
+#include "mesh/cell_type.hpp"
 
 namespace neomesh {
 

@@ -9,9 +9,9 @@
 
 #include <fmt/format.h>
 
+#include "core/collective_error.hpp"
 #include "core/error.hpp"
 #include "mesh/cell_type.hpp"
-#include "core/collective_error.hpp"
 #include "report/canvas.hpp"
 
 namespace neomesh {
