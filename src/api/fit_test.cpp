@@ -92,6 +92,24 @@ TEST(Fit, PullsAClosedChainOfEdgesOntoTheCircle) {
   EXPECT_TRUE(optimizer.vertex_fields().empty());
 }
 
+TEST(Fit, TheNextSmoothReleasesTheInterfaceToo) {
+  Mesh mesh = grid(16);
+  Optimizer optimizer(mesh);
+  const LevelSet circle = LevelSet::sphere({0.0, 0.0}, 0.5);
+  optimizer.adapt(SizeField::sphere({0.0, 0.0}, 0.5), circle);
+  ASSERT_FALSE(optimizer.facet_groups().empty());
+  // Smoothing with the adaptation's energy and boundary keeps the functional, not the fit.
+  SmoothOptions smooth;
+  smooth.energy = AdaptOptions().energy;
+  smooth.boundary = AdaptOptions().boundary;
+  smooth.sizes = SizeMode::Uniform;
+  const Result result = optimizer.smooth(smooth);
+  EXPECT_EQ(result.quality_after.inverted, 0);
+  EXPECT_TRUE(optimizer.facet_groups().empty());
+  EXPECT_TRUE(optimizer.vertex_fields().empty());
+  for (const Field& f : optimizer.cell_fields()) EXPECT_NE(f.name, "inside");
+}
+
 TEST(Fit, ALevelSetWithoutInterfaceOrOutOfRangeIsAnError) {
   const Mesh mesh = grid(4);
   try {

@@ -66,22 +66,18 @@ Optimizer::Impl::Impl(Mesh& m) : mesh(m) {}
 
 void Optimizer::Impl::start(const EnergyOptions& e, const BoundaryOptions& b) {
   x = mesh.plex().coordinates();
-  if (functional && energy && same(*energy, e) && boundary_options && same(*boundary_options, b)) {
-    boundary->project(x);
-    return;
+  const bool same_problem = functional && same(*energy, e) && same(*boundary_options, b);
+  if (!same_problem) {
+    double local = 0.0;
+    for (double v : cell_volumes()) local += v;
+    MPI_Allreduce(&local, &mesh_volume, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
+    boundary = std::make_unique<Boundary>(view(), dofs(), b);
+    energy = e;
+    boundary_options = b;
   }
-  double local = 0.0;
-  for (double v : cell_volumes()) local += v;
-  MPI_Allreduce(&local, &mesh_volume, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
-  const std::vector<double> volumes =
-      functional ? functional->desired_volumes() : std::vector<double>{};
-  boundary = std::make_unique<Boundary>(view(), dofs(), b);
-  functional = std::make_unique<Functional>(view(), dofs(), e, boundary->fixed_dofs(),
-                                            boundary->sliding_vertices());
-  if (!volumes.empty()) functional->set_desired_volumes(volumes);
+  if (!same_problem || fitted) constrain({});  // the boundary's sliding vertices alone
+  fitted.reset();
   boundary->project(x);  // onto given shapes and charts: they pass within 1e-6 h
-  energy = e;
-  boundary_options = b;
 }
 
 void Optimizer::Impl::set_desired_volumes(std::vector<double> volumes) {
@@ -90,7 +86,8 @@ void Optimizer::Impl::set_desired_volumes(std::vector<double> volumes) {
 }
 
 const Functional& Optimizer::Impl::constrain(SlidingVertices extra) {
-  const std::vector<double> volumes = functional->desired_volumes();
+  const std::vector<double> volumes =
+      functional ? functional->desired_volumes() : std::vector<double>{};
   functional = std::make_unique<Functional>(view(), dofs(), *energy, boundary->fixed_dofs(),
                                             join(boundary->sliding_vertices(), std::move(extra)));
   if (!volumes.empty()) functional->set_desired_volumes(volumes);
@@ -164,10 +161,23 @@ VolumeRatioStats Optimizer::Impl::volume_ratio() const {
   return volume_ratio_stats(functional->cell_fields(x).volume_ratio, mesh.comm());
 }
 
-void Optimizer::Impl::release_interface() {
-  if (!fitted) return;
-  constrain({});
-  fitted.reset();
+void Optimizer::Impl::adapt(const SizeField& field, const AdaptOptions& options,
+                            const Observer& observer, Result& result) {
+  const auto target_volumes = size_field_volumes(field, options.sizes, view(), dofs(), mesh_volume);
+  // The size field's volumes at the start: what the observer sees, and what untangling aims at.
+  set_desired_volumes(target_volumes(x));
+  result.problem = problem(options.solver);
+  if (observer.started) observer.started(result.problem);
+  if (options.untangle) result.untangling = untangle(method(options.solver), observer);
+  PicardOptions picard = options.picard;
+  if (warm) picard.min_updates = options.warm_updates;
+  const PicardResult run = neomesh::picard(
+      *functional, view(), x, target_volumes,
+      [this](const std::vector<double>& v) { set_desired_volumes(v); }, picard,
+      method(options.solver), observer);
+  warm = true;
+  copy_run(run.run, result);
+  result.update_iterations = run.update_iterations;
 }
 
 void Optimizer::Impl::fit(const LevelSet& level_set, const SizeField& field,
@@ -200,7 +210,6 @@ void Optimizer::Impl::fit(const LevelSet& level_set, const SizeField& field,
                           .undone = f.retries,
                           .cells_moved_across = f.interface.cells_flipped,
                           .iterations = static_cast<int>(f.picard.run.history.size())};
-  finish(result);
 }
 
 Optimizer::Optimizer(Mesh& mesh) : impl_(std::make_unique<Impl>(mesh)) {}
@@ -213,12 +222,9 @@ Optimizer::Impl& Optimizer::impl() {
 }
 
 Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer) {
-  options.validate();
   Impl& r = *impl_;
   const double start = MPI_Wtime();
-  Result result;
-  result.quality_before = r.input_quality(options.untangle);
-  r.start(options.energy, options.boundary);
+  Result result = r.start(options);
   r.warm = false;  // the desired volumes are smoothing's now
   r.set_desired_volumes(desired_volumes(options.sizes, r.view(), r.dofs(), r.cell_volumes()));
   const QuasiNewtonOptions method = r.method(options.solver);
@@ -246,29 +252,10 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
 
 Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
                         const Observer& observer) {
-  options.validate();
   Impl& r = *impl_;
   const double start = MPI_Wtime();
-  Result result;
-  result.quality_before = r.input_quality(options.untangle);
-  r.start(options.energy, options.boundary);
-  r.release_interface();  // adapt with the interface free; a fit follows if asked
-  const auto target_volumes =
-      size_field_volumes(field, options.sizes, r.view(), r.dofs(), r.mesh_volume);
-  // The size field's volumes at the start: what the observer sees, and what untangling aims at.
-  r.set_desired_volumes(target_volumes(r.x));
-  result.problem = r.problem(options.solver);
-  if (observer.started) observer.started(result.problem);
-  if (options.untangle) result.untangling = r.untangle(r.method(options.solver), observer);
-  PicardOptions picard = options.picard;
-  if (r.warm) picard.min_updates = options.warm_updates;
-  const PicardResult run = neomesh::picard(
-      *r.functional, r.view(), r.x, target_volumes,
-      [&r](const std::vector<double>& v) { r.set_desired_volumes(v); }, picard,
-      r.method(options.solver), observer);
-  r.warm = true;
-  copy_run(run.run, result);
-  result.update_iterations = run.update_iterations;
+  Result result = r.start(options);
+  r.adapt(field, options, observer, result);
   r.finish(result);
   result.volume_ratio = r.volume_ratio();
   result.seconds = MPI_Wtime() - start;
@@ -280,6 +267,7 @@ Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const Ad
   require_one_process(impl_->mesh.comm());
   Impl& r = *impl_;
   const double start = MPI_Wtime();
+  Result result = r.start(options);
   // A warm step adapts only until the small cells have moved along with the geometry: the fit
   // goes on optimizing, and its start recomputes the desired volumes (one of the step's
   // updates). After a cold start the volumes follow the fitted cells once more.
@@ -289,11 +277,12 @@ Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const Ad
     adapting.warm_updates = std::max(0, options.warm_updates - 1);
     adapting.solver.max_iterations = FitOptions().stage_iterations;
   }
-  Result result = adapt(field, adapting, observer);
+  r.adapt(field, adapting, observer, result);
   if (observer.fitting) observer.fitting(fit_to.expression());
   PicardOptions last_stage = options.picard;
   last_stage.min_updates = warm ? 0 : 1;
   r.fit(fit_to, field, options, last_stage, observer, result);
+  r.finish(result);
   result.volume_ratio = r.volume_ratio();
   result.seconds = MPI_Wtime() - start;
   return result;

@@ -30,23 +30,35 @@ struct Optimizer::Impl {
   // The mesh's quality where a call starts; throws Error if cells are inverted or degenerate
   // and `untangle` is false.
   QualitySummary input_quality(bool untangle) const;
-  // Takes the mesh's coordinates into x and (re)builds the boundary classification and the
+  // What smooth() and adapt() do first: checks `options` and the input (input_quality), takes
+  // the mesh's coordinates into x, and (re)builds the boundary classification and the
   // functional unless they were built for the same energy and boundary options (then the
-  // desired volumes stay). Sliding vertices are projected onto their geometry.
+  // desired volumes stay). An earlier fit's interface is released. Sliding vertices are
+  // projected onto their geometry. Returns the result with quality_before.
+  template <typename Options>
+  Result start(const Options& options) {
+    options.validate();
+    Result result;
+    result.quality_before = input_quality(options.untangle);
+    start(options.energy, options.boundary);
+    return result;
+  }
   void start(const EnergyOptions& energy, const BoundaryOptions& boundary);
   // Absolute desired volumes per local cell (MeshView order), summing to mesh_volume.
   void set_desired_volumes(std::vector<double> volumes);
   // Rebuilds the functional with `extra` vertices sliding besides the boundary's (an interface
   // fitted to a level set; none: the boundary's alone), keeping the desired volumes.
   const Functional& constrain(SlidingVertices extra);
+  // Adapts x to `field` (Picard iterations), untangling first if asked; the run goes into
+  // `result`.
+  void adapt(const SizeField& field, const AdaptOptions& options, const Observer& observer,
+             Result& result);
   // After an adaptation: fits x to the zero set of `level_set` (adapt/fit.hpp), the last stage
   // adapting with `last_stage`; appends the fit's iterations to `result`.
   void fit(const LevelSet& level_set, const SizeField& field, const AdaptOptions& options,
            const PicardOptions& last_stage, const Observer& observer, Result& result);
   // Q = actual / desired volume at x.
   VolumeRatioStats volume_ratio() const;
-  // The functional without the interface constraint of an earlier fit.
-  void release_interface();
   // If cells are inverted at x, untangles them (docs/untangling.md) towards the current desired
   // volumes, telling `observer`; throws Error naming the cells that stay inverted.
   std::optional<UntanglingSummary> untangle(const QuasiNewtonOptions& method,
@@ -72,7 +84,7 @@ struct Optimizer::Impl {
   OwnedVec cell_size;                     // local cell size per dof, for the practical criterion
   bool warm = false;                      // an adapt() ran: the next one starts from its volumes
   std::unique_ptr<LevelSetFunction> phi;  // of the last fit; its constraint refers to it
-  std::optional<FitResult> fitted;        // the last fit, until the next adapt()
+  std::optional<FitResult> fitted;        // the last fit, until the next call
 };
 
 }  // namespace neomesh
