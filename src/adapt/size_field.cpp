@@ -72,14 +72,24 @@ double global_max(double value, MPI_Comm comm) {
 
 }  // namespace
 
+void check_sphere(const std::vector<double>& centre, double radius) {
+  expect_size(centre, "centre of a circle/sphere", 2, 3);
+  if (!(radius > 0 && std::isfinite(radius)))
+    fail("the radius of a {} must be positive (got {})", centre.size() == 2 ? "circle" : "sphere",
+         radius);
+}
+
+void check_plane(const std::vector<double>& point, const std::vector<double>& normal) {
+  expect_size(point, "point of a plane", 2, 3);
+  expect_size(normal, "normal of a plane", point.size(), point.size());
+  if (!(norm(normal) > 0)) fail("the normal of the plane must not be zero");
+}
+
 SizeField::SizeField(std::string description, int dim, Distance distance)
     : description_(std::move(description)), dim_(dim), distance_(std::move(distance)) {}
 
 SizeField SizeField::sphere(std::vector<double> centre, double radius) {
-  expect_size(centre, "centre of a circle/sphere", 2, 3);
-  if (!(radius > 0))
-    fail("the radius of a {} must be positive (got {})", centre.size() == 2 ? "circle" : "sphere",
-         radius);
+  check_sphere(centre, radius);
   const int dim = static_cast<int>(centre.size());
   return {fmt::format("distance to the {} around ({}) with radius {}",
                       dim == 2 ? "circle" : "sphere", coordinates(centre), radius),
@@ -91,10 +101,8 @@ SizeField SizeField::sphere(std::vector<double> centre, double radius) {
 }
 
 SizeField SizeField::plane(std::vector<double> point, std::vector<double> normal) {
-  expect_size(point, "point of a plane", 2, 3);
-  expect_size(normal, "normal of a plane", point.size(), point.size());
+  check_plane(point, normal);
   const double length = norm(normal);
-  if (!(length > 0)) fail("the normal of the plane must not be zero");
   for (double& n : normal) n /= length;
   return {
       fmt::format("distance to the {} through ({}) with normal ({})",

@@ -23,6 +23,12 @@
 
 namespace neomesh {
 
+// The arguments of a circle/sphere and of a line/plane, for SizeField and LevelSet alike:
+// throws Error unless the centre (point) has 2 or 3 coordinates, the normal as many, the
+// radius is positive and finite and the normal not zero.
+void check_sphere(const std::vector<double>& centre, double radius);
+void check_plane(const std::vector<double>& point, const std::vector<double>& normal);
+
 // Centroid (vertex mean) of every local cell: num_cells × dim values.
 std::vector<double> cell_centroids(const MeshView& view, std::span<const double> coords);
 

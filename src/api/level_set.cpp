@@ -1,7 +1,7 @@
 #include <neomesh/level_set.hpp>
 
-#include <cmath>
 
+#include "adapt/size_field.hpp"
 #include "api/fitting.hpp"
 #include "core/error.hpp"
 
@@ -21,11 +21,7 @@ LevelSet::LevelSet(std::string expression) : expression_(std::move(expression)) 
 }
 
 LevelSet LevelSet::sphere(const std::vector<double>& centre, double radius) {
-  if (centre.size() != 2 && centre.size() != 3)
-    fail("the centre of a circle/sphere needs 2 or 3 coordinates (got {})", centre.size());
-  if (!(radius > 0 && std::isfinite(radius)))
-    fail("the radius of a {} must be positive (got {})", centre.size() == 2 ? "circle" : "sphere",
-         radius);
+  check_sphere(centre, radius);
   std::string sum;
   for (std::size_t j = 0; j < centre.size(); ++j)
     sum += fmt::format("{}({}-{})^2", j ? "+" : "", "xyz"[j], exact(centre[j]));
@@ -33,12 +29,7 @@ LevelSet LevelSet::sphere(const std::vector<double>& centre, double radius) {
 }
 
 LevelSet LevelSet::plane(const std::vector<double>& point, const std::vector<double>& normal) {
-  if ((point.size() != 2 && point.size() != 3) || normal.size() != point.size())
-    fail("a line/plane needs a point and a normal of 2 or 3 coordinates each (got {} and {})",
-         point.size(), normal.size());
-  double length = 0.0;
-  for (double n : normal) length += n * n;
-  if (!(length > 0)) fail("the normal of the plane must not be zero");
+  check_plane(point, normal);
   std::string sum;
   for (std::size_t j = 0; j < point.size(); ++j)
     sum += fmt::format("{}(({}-{})*{})", j ? "+" : "", "xyz"[j], exact(point[j]), exact(normal[j]));
