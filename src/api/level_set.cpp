@@ -1,6 +1,5 @@
 #include <neomesh/level_set.hpp>
 
-
 #include "adapt/size_field.hpp"
 #include "api/fitting.hpp"
 #include "core/error.hpp"
