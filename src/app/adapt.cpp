@@ -34,16 +34,22 @@ struct AdaptCommand {
   RunOutputs outputs;
 };
 
+// --circle/--sphere cx,cy[,cz],r: the centre.
+std::vector<double> centre(const std::vector<double>& v) {
+  return {v.begin(), v.end() - 1};
+}
+// --plane p,n and --box lower,upper: the two halves.
+std::pair<std::vector<double>, std::vector<double>> halves(const std::vector<double>& v) {
+  const auto middle = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  return {{v.begin(), middle}, {middle, v.end()}};
+}
+
 // The size field of the command line; an error in its arguments names the option.
 SizeField make_size_field(const AdaptCommand& o) {
   const int given = !o.circle.empty() + !o.sphere.empty() + !o.plane.empty() + !o.box.empty() +
                     !o.levelset.empty() + !o.sizes_file.empty();
   if (given != 1)
     fail("give exactly one size field: --circle, --sphere, --plane, --box, --levelset or --sizes");
-  auto split = [](const std::vector<double>& v, std::size_t first) {
-    return std::pair{std::vector<double>(v.begin(), v.begin() + first),
-                     std::vector<double>(v.begin() + first, v.end())};
-  };
   auto option = [](const char* flag, auto make) {
     try {
       return make();
@@ -52,19 +58,15 @@ SizeField make_size_field(const AdaptCommand& o) {
     }
   };
   if (!o.circle.empty())
-    return option("--circle", [&] {
-      return SizeField::sphere({o.circle[0], o.circle[1]}, o.circle[2]);
-    });
+    return option("--circle", [&] { return SizeField::sphere(centre(o.circle), o.circle.back()); });
   if (!o.sphere.empty())
-    return option("--sphere", [&] {
-      return SizeField::sphere({o.sphere[0], o.sphere[1], o.sphere[2]}, o.sphere[3]);
-    });
+    return option("--sphere", [&] { return SizeField::sphere(centre(o.sphere), o.sphere.back()); });
   if (!o.plane.empty()) {
-    auto [point, normal] = split(o.plane, o.plane.size() / 2);
+    auto [point, normal] = halves(o.plane);
     return option("--plane", [&] { return SizeField::plane(point, normal); });
   }
   if (!o.box.empty()) {
-    auto [lower, upper] = split(o.box, o.box.size() / 2);
+    auto [lower, upper] = halves(o.box);
     return option("--box", [&] { return SizeField::box(lower, upper); });
   }
   if (!o.levelset.empty())
@@ -76,13 +78,11 @@ SizeField make_size_field(const AdaptCommand& o) {
 // --circle, --sphere or --plane.
 LevelSet fit_level_set(const AdaptCommand& o) {
   if (!o.levelset.empty()) return LevelSet::expression(o.levelset);
-  if (!o.circle.empty())
-    return LevelSet::sphere({o.circle.begin(), o.circle.end() - 1}, o.circle.back());
-  if (!o.sphere.empty())
-    return LevelSet::sphere({o.sphere.begin(), o.sphere.end() - 1}, o.sphere.back());
+  if (!o.circle.empty()) return LevelSet::sphere(centre(o.circle), o.circle.back());
+  if (!o.sphere.empty()) return LevelSet::sphere(centre(o.sphere), o.sphere.back());
   if (!o.plane.empty()) {
-    const auto middle = o.plane.begin() + static_cast<std::ptrdiff_t>(o.plane.size() / 2);
-    return LevelSet::plane({o.plane.begin(), middle}, {middle, o.plane.end()});
+    auto [point, normal] = halves(o.plane);
+    return LevelSet::plane(point, normal);
   }
   fail("--fit fits the mesh to a level set: give --levelset, --circle, --sphere or --plane");
 }
