@@ -103,15 +103,15 @@ def near_far(mesh, centre, radius):
     return volume[d <= 0.05].mean() / volume[d > 0.5].mean()
 
 
-def run_fit(neomesh, cell, cells, workdir, extra=()):
-    """adapt --fit; returns (figures, failures)."""
+def run_fit(neomesh, cell, cells, workdir, extra=(), launcher=()):
+    """adapt --fit (under `launcher`, e.g. mpiexec -n 2); returns (figures, failures)."""
     dim = DIM[cell]
     stem = os.path.join(workdir, f"fit-{cell}-{cells}")
     generate(neomesh, cell, cells, stem + "-in.msh")
     shape = ["--circle", f"0,0,{FIT_RADIUS[2]}"] if dim == 2 else \
         ["--sphere", f"0,0,0,{FIT_RADIUS[3]}"]
     start = time.monotonic()
-    proc = subprocess.run([neomesh, "adapt", stem + "-in.msh", "-o", stem + ".msh", "--fit",
+    proc = subprocess.run([*launcher, neomesh, "adapt", stem + "-in.msh", "-o", stem + ".msh", "--fit",
                            "--no-table", "--report", stem + ".json", *shape, *extra],
                           capture_output=True, text=True)
     wall = time.monotonic() - start
@@ -142,13 +142,13 @@ def run_fit(neomesh, cell, cells, workdir, extra=()):
     return figures, failures
 
 
-def run_bubble(neomesh, cell, cells, steps, workdir, extra=()):
-    """adapt --fit --time 0:1:STEPS; returns (per-step figures, failures)."""
+def run_bubble(neomesh, cell, cells, steps, workdir, extra=(), launcher=()):
+    """adapt --fit --time 0:1:STEPS (under `launcher`); returns (per-step figures, failures)."""
     dim = DIM[cell]
     stem = os.path.join(workdir, f"bubble-{cell}-{cells}")
     generate(neomesh, cell, cells, stem + "-in.msh")
     start = time.monotonic()
-    proc = subprocess.run([neomesh, "adapt", stem + "-in.msh", "-o", stem + ".pvd", "--fit",
+    proc = subprocess.run([*launcher, neomesh, "adapt", stem + "-in.msh", "-o", stem + ".pvd", "--fit",
                            "--levelset", bubble_level_set(dim), "--time", f"0:1:{steps}",
                            "--report", stem + ".json", *extra], capture_output=True, text=True)
     wall = time.monotonic() - start
@@ -206,16 +206,19 @@ def main():
     p.add_argument("--cells", type=int, default=64, help="cells per direction")
     p.add_argument("--steps", type=int, default=20, help="time steps (bubble)")
     p.add_argument("--workdir", default=os.path.join(HERE, "..", "build", "bench"))
+    p.add_argument("--ranks", type=int, default=1, help="MPI processes (mpiexec -n RANKS)")
     p.add_argument("extra", nargs="*", help="more options for neomesh adapt (after --)")
     a = p.parse_args()
     os.makedirs(a.workdir, exist_ok=True)
     neomesh = neomesh_binary()
+    launcher = ["mpiexec", "--allow-run-as-root", "-n", str(a.ranks)] if a.ranks > 1 else []
     if a.case == "fit":
-        figures, failures = run_fit(neomesh, a.cell, a.cells, a.workdir, a.extra)
+        figures, failures = run_fit(neomesh, a.cell, a.cells, a.workdir, a.extra, launcher)
         print(f"fit {a.cell} {a.cells}: " + ", ".join(f"{k} {v:.3g}" if isinstance(v, float)
                                                       else f"{k} {v}" for k, v in figures.items()))
     else:
-        rows, failures = run_bubble(neomesh, a.cell, a.cells, a.steps, a.workdir, a.extra)
+        rows, failures = run_bubble(neomesh, a.cell, a.cells, a.steps, a.workdir, a.extra,
+                                    launcher)
         for r in rows:
             print(f"bubble {a.cell} {a.cells} t = {r['t']:.3f}: {r['iterations']} iterations "
                   f"({r['stages']} stages, {r['undone']} undone), max distance "

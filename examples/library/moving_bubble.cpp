@@ -1,9 +1,8 @@
 // neomesh as a library, the way a simulation with a moving object uses it: the simulation owns
 // a mesh of [-1,1]² (here: a jittered grid of quadrilaterals and triangles, given as arrays in
 // its own vertex numbering), smooths it once, then at every time step moves the mesh so that
-// small cells follow a bubble rising through the domain (and, on one process, a chain of
-// edges lies on its surface). Each step starts warm from the one before. Runs serially or
-// under mpiexec.
+// small cells follow a bubble rising through the domain and a closed chain of edges lies on its
+// surface. Each step starts warm from the one before. Runs serially or under mpiexec.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -79,23 +78,19 @@ int main(int argc, char** argv) {
                   neomesh::describe(smoothed.reason).c_str());
     print_quality(rank, "smoothed:", smoothed.quality_after);
 
-    // A bubble of radius 0.2 rising from y = -0.5: small cells near its surface. On one process
-    // (fitting does not run distributed yet) a closed chain of edges also follows the surface.
+    // A bubble of radius 0.2 rising from y = -0.5: small cells near its surface, and a closed
+    // chain of edges on it.
     neomesh::SizeField bubble = neomesh::SizeField::level_set("sqrt(x^2+(y+0.5-0.25*t)^2)-0.2");
     neomesh::LevelSet surface = neomesh::LevelSet::expression("sqrt(x^2+(y+0.5-0.25*t)^2)-0.2");
-    int processes = 1;
-    MPI_Comm_size(MPI_COMM_WORLD, &processes);
-    const bool fit = processes == 1;
     neomesh::AdaptOptions adapt;
     for (int step = 0; step <= 4; ++step) {
       bubble.set_time(step);
       surface.set_time(step);
-      const neomesh::Result r =
-          fit ? optimizer.adapt(bubble, surface, adapt) : optimizer.adapt(bubble, adapt);
+      const neomesh::Result r = optimizer.adapt(bubble, surface, adapt);
       if (rank == 0)
         std::printf("step %d (bubble at y = %+.2f): %3zu iterations, %zu updates, %.2f s\n", step,
                     -0.5 + 0.25 * step, r.history.size(), r.update_iterations.size(), r.seconds);
-      if (r.fit)
+      if (rank == 0 && r.fit)
         std::printf("  fitted: %lld edges on the bubble, every vertex within %.1e of it\n",
                     static_cast<long long>(r.fit->facets), r.fit->max_distance);
       print_quality(rank, "  adapted:", r.quality_after);
@@ -109,11 +104,9 @@ int main(int argc, char** argv) {
         std::printf("vertex %lld (the grid's centre) is now at (%.4f, %.4f)\n",
                     static_cast<long long>(numbers[k]), xy[2 * k], xy[2 * k + 1]);
     mesh.write("moving_bubble.vtu", optimizer.cell_fields(), optimizer.vertex_fields());
-    if (rank == 0) std::printf("wrote moving_bubble.vtu\n");
-    if (fit) {  // the fitted edges as the physical group "interface"
-      mesh.write("moving_bubble.msh", {}, {}, optimizer.facet_groups());
-      std::printf("wrote moving_bubble.msh\n");
-    }
+    // The fitted edges as the physical group "interface".
+    mesh.write("moving_bubble.msh", {}, {}, optimizer.facet_groups());
+    if (rank == 0) std::printf("wrote moving_bubble.vtu and moving_bubble.msh\n");
   } catch (const neomesh::Error& e) {
     if (rank == 0) std::fprintf(stderr, "moving_bubble: %s\n", e.what());
     return 1;

@@ -111,8 +111,8 @@ class Mesh {
   // The facets that fitting to `phi` (Optimizer::adapt with a LevelSet) would pull onto its
   // zero set, at the current coordinates and φ's time: between the cells with φ < 0 at the
   // centroid and the others, after the clean-up of docs/adaptivity.md. Throws Error if φ has
-  // one sign at every centroid or the interface touches the domain's boundary. One process
-  // only for now (cells across a partition are not seen).
+  // one sign at every centroid or the interface touches the domain's boundary. Collective:
+  // each process gets the facets whose inside cell it holds.
   FacetGroup interface(const LevelSet& phi) const;
 
   // The distributed DMPlex, for a caller that works with PETSc directly (owned by the Mesh).

@@ -40,10 +40,10 @@ class Optimizer {
   // The same, then the mesh fitted to the zero set of `fit_to` at its time (docs/adaptivity.md):
   // a chain of edges (2D) or surface of faces (3D) — Mesh::interface() — is pulled onto it in
   // stages while the whole mesh is optimized, no cell inverted. A warm start adapts briefly
-  // before (the fit goes on optimizing). The fit holds until the next smooth() or adapt(). Throws
-  // Error
-  // ("fit: ...") if there is no interface inside the mesh, it touches the boundary, or no stage
-  // can be taken without inverting a cell. One process only for now. Collective.
+  // before (the fit goes on optimizing). The fit holds until the next smooth() or adapt().
+  // Throws Error ("fit: ...") if there is no interface inside the mesh, it touches the
+  // boundary, or no stage can be taken without inverting a cell. Collective; the interface may
+  // cross processes.
   Result adapt(const SizeField& field, const LevelSet& fit_to, const AdaptOptions& options = {},
                const Observer& observer = {});
   // The next adapt() starts cold (the mesh was changed in another way, say).

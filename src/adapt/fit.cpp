@@ -27,6 +27,15 @@ bool valid(const Functional& functional, const MeshView& view, const DofMap& dof
   return ok == 1;
 }
 
+// Per local dof, the sum of every rank's `local` values of it (a vertex's cells may lie on
+// several ranks). Collective.
+void add_over_ranks(const DofMap& dofs, std::vector<double>& local) {
+  if (mpi_size(dofs.comm()) == 1) return;
+  OwnedVec global = dofs.create_global_vector();
+  dofs.add_local_to_global(local, global);
+  dofs.global_to_local(global, local);
+}
+
 // Sweeps that spread the interface's move over the vertices around it (one ring each).
 constexpr int kSpreadSweeps = 16;
 
@@ -47,7 +56,7 @@ void move_to_stage(const MeshView& view, const DofMap& dofs, const InterfaceCons
   for (PetscInt u : constraint.vertices()) held[u] = 1;
   for (PetscInt u = 0; u < view.num_vertices; ++u)
     if (view.on_boundary[u]) held[u] = 1;  // (its move is zero)
-  std::vector<double> sum(n), count(view.num_vertices);
+  std::vector<double> sum(n), count(n);    // count: per vertex, in each of its dim entries
   for (int sweep = 0; sweep < kSpreadSweeps; ++sweep) {
     std::fill(sum.begin(), sum.end(), 0.0);
     std::fill(count.begin(), count.end(), 0.0);
@@ -58,15 +67,18 @@ void move_to_stage(const MeshView& view, const DofMap& dofs, const InterfaceCons
         double mean[3] = {0, 0, 0};
         for (int i = 0; i < nv; ++i)
           for (int j = 0; j < d; ++j) mean[j] += move[cell[i] * d + j] / nv;
-        for (int i = 0; i < nv; ++i) {
-          for (int j = 0; j < d; ++j) sum[cell[i] * d + j] += mean[j];
-          count[cell[i]] += 1.0;
-        }
+        for (int i = 0; i < nv; ++i)
+          for (int j = 0; j < d; ++j) {
+            sum[cell[i] * d + j] += mean[j];
+            count[cell[i] * d + j] += 1.0;
+          }
       }
     }
+    add_over_ranks(dofs, sum);
+    add_over_ranks(dofs, count);
     for (PetscInt u = 0; u < view.num_vertices; ++u)
-      if (!held[u] && count[u] > 0)
-        for (int j = 0; j < d; ++j) move[u * d + j] = sum[u * d + j] / count[u];
+      if (!held[u] && count[u * d] > 0)
+        for (int j = 0; j < d; ++j) move[u * d + j] = sum[u * d + j] / count[u * d];
   }
   for (PetscInt u = 0; u < view.num_vertices; ++u)
     if (!held[u] && view.owned[u]) {
@@ -104,7 +116,7 @@ FitResult fit_interface(const MeshView& view, const DofMap& dofs, Vec x,
   {
     std::vector<double> local(static_cast<std::size_t>(dofs.num_local_dofs()));
     dofs.global_to_local(x, local);
-    result.interface = find_interface(view, local, phi);
+    result.interface = find_interface(view, dofs, local, phi);
   }
   result.constraint =
       std::make_shared<InterfaceConstraint>(view, dofs, phi, result.interface.vertices, x);

@@ -45,13 +45,4 @@ LevelSetFunction level_set_function(const LevelSet& phi, int dim) {
   return function;
 }
 
-void require_one_process(MPI_Comm comm) {
-  int size = 1;
-  MPI_Comm_size(comm, &size);
-  if (size > 1)
-    fail(
-        "fit: fitting runs on one process for now (the interface is found within each process' "
-        "cells)");
-}
-
 }  // namespace neomesh

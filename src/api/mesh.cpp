@@ -168,10 +168,9 @@ void Mesh::write(const std::filesystem::path& path, const std::vector<Field>& ce
 }
 
 FacetGroup Mesh::interface(const LevelSet& phi) const {
-  require_one_process(comm());
   const MeshView& view = plex_->view();
   const LevelSetFunction function = level_set_function(phi, view.dim);
-  const Interface found = find_interface(view, view.coords, function);
+  const Interface found = find_interface(view, plex_->dofs(), view.coords, function);
   return public_facet_group(view, "interface", found.offsets, found.facet_vertices);
 }
 

@@ -202,9 +202,12 @@ void Optimizer::Impl::fit(const LevelSet& level_set, const SizeField& field,
   result.reason = f.picard.run.reason;
   result.final_energy = f.picard.run.final_energy;
   result.final_defect = f.picard.run.final_defect;
+  std::int64_t counts[2] = {f.interface.num_facets(), 0};  // over all processes: facets, vertices
+  for (PetscInt u : f.interface.vertices) counts[1] += view().owned[u];
+  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INT64_T, MPI_SUM, mesh.comm());
   result.fit = FitSummary{.level_set = level_set.expression(),
-                          .facets = f.interface.num_facets(),
-                          .vertices = static_cast<std::int64_t>(f.interface.vertices.size()),
+                          .facets = counts[0],
+                          .vertices = counts[1],
                           .max_distance = f.max_distance,
                           .stages = f.stages,
                           .undone = f.retries,
@@ -264,7 +267,6 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
 
 Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const AdaptOptions& options,
                         const Observer& observer) {
-  require_one_process(impl_->mesh.comm());
   Impl& r = *impl_;
   const double start = MPI_Wtime();
   Result result = r.start(options);

@@ -357,7 +357,7 @@ Subcommand add_adapt(CLI::App& app) {
                 "fit a chain of edges (2D) / surface of faces (3D) to the zero set of the level "
                 "set (--levelset, --circle, --sphere, --plane): its vertices end on it exactly, "
                 "written as the facet group 'interface' (.msh) and the fields inside, interface "
-                "and phi (.vtu); with --time at every step; one process only")
+                "and phi (.vtu); with --time at every step")
       ->group(time);
   add_run_output_options(*cmd, o->outputs, "Q");
   add_method_options(*cmd, o->method);

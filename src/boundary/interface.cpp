@@ -5,8 +5,10 @@
 #include <cmath>
 #include <map>
 
+#include "core/collective_error.hpp"
 #include "core/error.hpp"
 #include "mesh/cell_type.hpp"
+#include "mesh/partition_facets.hpp"
 
 namespace neomesh {
 
@@ -47,11 +49,12 @@ Point local_point(const MeshView& view, std::span<const double> coords, PetscInt
   return p;
 }
 
-// For each facet of each cell, the cell on its other side (-1 on the domain's boundary):
-// neighbour[c * 6 + f].
+// For each facet of each cell, the local cell on its other side (-1 if there is none here):
+// neighbour[c * kMaxFacets + f].
+constexpr int kMaxFacets = PartitionFacets::kMaxFacets;
 std::vector<PetscInt> facet_neighbours(const std::vector<LocalCell>& cells) {
-  std::vector<PetscInt> neighbour(cells.size() * 6, -1);
-  std::map<std::array<PetscInt, 4>, PetscInt> first;  // sorted vertices → c * 6 + f
+  std::vector<PetscInt> neighbour(cells.size() * kMaxFacets, -1);
+  std::map<std::array<PetscInt, 4>, PetscInt> first;  // sorted vertices → c * kMaxFacets + f
   for (PetscInt c = 0; c < static_cast<PetscInt>(cells.size()); ++c) {
     for (int f = 0; f < facet_count(cells[c]); ++f) {
       const int size = facet_size(cells[c], f);
@@ -60,28 +63,32 @@ std::vector<PetscInt> facet_neighbours(const std::vector<LocalCell>& cells) {
       // Insertion sort: GCC 12 warns wrongly about std::sort on part of an array.
       for (int k = 1; k < size; ++k)
         for (int i = k; i > 0 && key[i - 1] > key[i]; --i) std::swap(key[i - 1], key[i]);
-      const auto [it, added] = first.emplace(key, c * 6 + f);
+      const auto [it, added] = first.emplace(key, c * kMaxFacets + f);
       if (added) continue;
-      neighbour[c * 6 + f] = it->second / 6;
+      neighbour[c * kMaxFacets + f] = it->second / kMaxFacets;
       neighbour[it->second] = c;
     }
   }
   return neighbour;
 }
 
+// Which side of the interface each cell is on, and the clean-up. `side` holds the local cells'
+// sides, then those of the cells across the partition's facets (a copy, refreshed by
+// exchanging them); neighbour[c * kMaxFacets + f] indexes it, so that the rules see across.
 struct Cleanup {
   const MeshView& view;
   std::span<const double> coords;
   const LevelSetFunction& phi;
   const std::vector<LocalCell>& cells;
-  const std::vector<PetscInt>& neighbour;
-  std::vector<std::uint8_t>& inside;
+  std::vector<PetscInt> neighbour;
+  const PartitionFacets& partition;
+  std::vector<std::uint8_t> side;
 
   std::vector<int> interface_facets(PetscInt c) const {
     std::vector<int> out;
     for (int f = 0; f < facet_count(cells[c]); ++f) {
-      const PetscInt other = neighbour[c * 6 + f];
-      if (other >= 0 && inside[other] != inside[c]) out.push_back(f);
+      const PetscInt other = neighbour[c * kMaxFacets + f];
+      if (other >= 0 && side[other] != side[c]) out.push_back(f);
     }
     return out;
   }
@@ -103,7 +110,7 @@ struct Cleanup {
         mean += phi.to_level(local_point(view, coords, facet_vertex(cells[c], f, k)));
         ++n;
       }
-    return (phi.value(mean / n) < 0) == (inside[c] != 0);
+    return (phi.value(mean / n) < 0) == (side[c] != 0);
   }
 
   bool must_flip(PetscInt c) const {
@@ -116,74 +123,150 @@ struct Cleanup {
     return !zero_set_bends_towards(c, facets);
   }
 
+  // Collective: the sides of the cells across the partition, as they are now.
+  void refresh_remote_sides() {
+    const auto& facets = partition.facets();
+    std::vector<std::uint8_t> mine(facets.size());
+    for (std::size_t k = 0; k < facets.size(); ++k) mine[k] = side[facets[k].cell];
+    const std::vector<std::uint8_t> theirs = partition.exchange(mine);
+    std::copy(theirs.begin(), theirs.end(), side.begin() + view.num_cells);
+  }
+
+  // Collective: per local cell, whether it may flip in this pass. Two cells on either side of
+  // the partition must not flip together (each decides on the other's old side): a cell next
+  // to the partition flips only if it asked to at the start of the pass and no cell across
+  // that also asked goes first. The one that goes first is the one that did not just flip,
+  // then the one with the smaller input number: a cell that flipped answers its neighbour's
+  // flip before it flips back, as it would one after the other on one process. Cells inside
+  // the partition flip as they are found, one after the other, as on one process.
+  std::vector<std::uint8_t> allowed_to_flip(const std::vector<std::uint8_t>& just_flipped) const {
+    std::vector<std::uint8_t> allowed(view.num_cells, 1);
+    const auto& facets = partition.facets();
+    enum : std::uint8_t { kStays = 0, kAsks = 1, kAsksAgain = 2 };  // again: flipped last pass
+    std::vector<std::uint8_t> asks(facets.size());
+    for (std::size_t k = 0; k < facets.size(); ++k) {
+      const PetscInt c = facets[k].cell;
+      asks[k] = !must_flip(c) ? kStays : just_flipped[c] ? kAsksAgain : kAsks;
+    }
+    const std::vector<std::uint8_t> across = partition.exchange(asks);
+    for (std::size_t k = 0; k < facets.size(); ++k) {
+      const PetscInt c = facets[k].cell;
+      const bool other_first =
+          across[k] != kStays &&
+          (across[k] < asks[k] ||
+           (across[k] == asks[k] && facets[k].remote_cell < view.global_cell[c]));
+      if (asks[k] == kStays || other_first) allowed[c] = 0;
+    }
+    return allowed;
+  }
+
+  // Collective: flips cells until no rule asks for it; returns how many flips there were.
+  // Throws Error if that does not happen within kMaxCleanupPasses.
   int run() {
     int flipped = 0;
+    std::vector<std::uint8_t> just_flipped(view.num_cells, 0);
     for (int pass = 0; pass < kMaxCleanupPasses; ++pass) {
+      refresh_remote_sides();
+      const std::vector<std::uint8_t> allowed = allowed_to_flip(just_flipped);
       int now = 0;
-      for (PetscInt c = 0; c < view.num_cells; ++c)
-        if (must_flip(c)) {
-          inside[c] = !inside[c];
+      for (PetscInt c = 0; c < view.num_cells; ++c) {
+        just_flipped[c] = allowed[c] && must_flip(c);
+        if (just_flipped[c]) {
+          side[c] = !side[c];
           ++now;
         }
+      }
+      MPI_Allreduce(MPI_IN_PLACE, &now, 1, MPI_INT, MPI_SUM, partition.comm());
+      if (now == 0) return flipped;
       flipped += now;
-      if (now == 0) break;
     }
-    return flipped;
+    fail(
+        "fit: the interface of {} did not settle: cells were still moved across it after {} "
+        "passes of the clean-up",
+        phi.expression(), kMaxCleanupPasses);
   }
 };
 
-void check_two_sides(const std::vector<std::uint8_t>& inside, const LevelSetFunction& phi,
-                     const char* when) {
-  const auto n = std::count(inside.begin(), inside.end(), 1);
-  if (n == 0 || n == static_cast<std::ptrdiff_t>(inside.size()))
+// Collective.
+void check_two_sides(MPI_Comm comm, std::span<const std::uint8_t> inside,
+                     const LevelSetFunction& phi, const char* when) {
+  std::int64_t counts[2] = {std::count(inside.begin(), inside.end(), 1),
+                            static_cast<std::int64_t>(inside.size())};
+  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INT64_T, MPI_SUM, comm);
+  if (counts[0] == 0 || counts[0] == counts[1])
     fail(
         "fit: the level set {} is {} at every cell centre{}: there is no interface inside the "
         "mesh to fit",
-        phi.expression(), n == 0 ? "≥ 0" : "< 0", when);
+        phi.expression(), counts[0] == 0 ? "≥ 0" : "< 0", when);
+}
+
+// Marks of local vertices, made complete on every rank that has them: a vertex is marked if
+// any rank marked it (a rank sees only the facets of its own cells). Collective.
+void share_marks(const DofMap& dofs, std::vector<std::uint8_t>& marks) {
+  if (mpi_size(dofs.comm()) == 1) return;
+  const int d = dofs.dim();
+  std::vector<double> local(marks.size() * d, 0.0);
+  for (std::size_t u = 0; u < marks.size(); ++u) local[u * d] = marks[u];
+  OwnedVec global = dofs.create_global_vector();
+  dofs.add_local_to_global(local, global);
+  dofs.global_to_local(global, local);
+  for (std::size_t u = 0; u < marks.size(); ++u) marks[u] = local[u * d] > 0 ? 1 : 0;
 }
 
 }  // namespace
 
-Interface find_interface(const MeshView& view, std::span<const double> coords,
+Interface find_interface(const MeshView& view, const DofMap& dofs, std::span<const double> coords,
                          const LevelSetFunction& phi) {
   const std::vector<LocalCell> cells = local_cells(view);
-  Interface out;
-  out.inside.resize(view.num_cells);
+  std::vector<std::uint8_t> inside(view.num_cells);
   for (PetscInt c = 0; c < view.num_cells; ++c) {
     Point centroid = Point::Zero();
     const int n = num_vertices(cells[c].type);
     for (int i = 0; i < n; ++i) centroid += local_point(view, coords, cells[c].vertices[i]);
-    out.inside[c] = phi.value(centroid / n) < 0;
+    inside[c] = phi.value(centroid / n) < 0;
   }
-  check_two_sides(out.inside, phi, "");
-  const std::vector<PetscInt> neighbour = facet_neighbours(cells);
-  Cleanup cleanup{view, coords, phi, cells, neighbour, out.inside};
+  check_two_sides(dofs.comm(), inside, phi, "");
+
+  std::vector<PetscInt> neighbour = facet_neighbours(cells);
+  std::vector<std::uint8_t> open(neighbour.size());
+  for (std::size_t i = 0; i < neighbour.size(); ++i) open[i] = neighbour[i] < 0;
+  const PartitionFacets partition(view, dofs.comm(), open);
+  for (std::size_t k = 0; k < partition.facets().size(); ++k) {
+    const PartitionFacets::Facet& facet = partition.facets()[k];
+    neighbour[facet.cell * kMaxFacets + facet.facet] = view.num_cells + static_cast<PetscInt>(k);
+  }
+  inside.resize(view.num_cells + partition.facets().size());
+  Cleanup cleanup{view, coords, phi, cells, std::move(neighbour), partition, std::move(inside)};
+  Interface out;
   out.cells_flipped = cleanup.run();
-  check_two_sides(out.inside, phi, " once the cells with two facets on it are moved across");
+  out.inside.assign(cleanup.side.begin(), cleanup.side.begin() + view.num_cells);
+  check_two_sides(dofs.comm(), out.inside, phi,
+                  " once the cells with two facets on it are moved across");
 
   std::vector<std::uint8_t> on_interface(view.num_vertices, 0);
-  for (PetscInt c = 0; c < view.num_cells; ++c) {
-    if (!out.inside[c]) continue;  // each facet once: from its inside cell
+  for (PetscInt c = 0; c < view.num_cells; ++c)
     for (int f : cleanup.interface_facets(c)) {
       for (int k = 0; k < facet_size(cells[c], f); ++k) {
         const PetscInt u = facet_vertex(cells[c], f, k);
-        out.facet_vertices.push_back(u);
         on_interface[u] = 1;
+        if (out.inside[c]) out.facet_vertices.push_back(u);  // each facet once: its inside cell's
       }
-      out.offsets.push_back(static_cast<PetscInt>(out.facet_vertices.size()));
+      if (out.inside[c]) out.offsets.push_back(static_cast<PetscInt>(out.facet_vertices.size()));
     }
-  }
+  share_marks(dofs, on_interface);
+  std::string error;
   for (PetscInt u = 0; u < view.num_vertices; ++u) {
     if (!on_interface[u]) continue;
-    if (view.on_boundary[u]) {
+    if (view.on_boundary[u] && error.empty()) {
       const Point p = local_point(view, coords, u);
-      fail(
+      error = fmt::format(
           "fit: the interface of {} reaches the domain's boundary at ({:.4g}, {:.4g}{}); "
           "fitting needs it inside the domain",
           phi.expression(), p[0], p[1], view.dim == 3 ? fmt::format(", {:.4g}", p[2]) : "");
     }
     out.vertices.push_back(u);
   }
+  throw_if_any(dofs.comm(), error);
   return out;
 }
 

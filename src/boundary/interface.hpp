@@ -21,12 +21,15 @@ namespace neomesh {
 
 struct Interface {
   std::vector<std::uint8_t> inside;  // per local cell, after the clean-up
-  // The facets between inside and outside cells, each once, as local vertices (CSR) in the
-  // cyclic order of the facet's boundary.
+  // The facets between inside and outside cells whose inside cell is local (so each facet is
+  // listed once over all processes), as local vertices (CSR) in the cyclic order of the
+  // facet's boundary.
   std::vector<PetscInt> offsets = {0};
   std::vector<PetscInt> facet_vertices;
-  std::vector<PetscInt> vertices;  // the facets' local vertices, ascending
-  int cells_flipped = 0;           // by the clean-up
+  // The local vertices on the interface, ascending: those of this process' facets and those
+  // other processes' facets share with its cells.
+  std::vector<PetscInt> vertices;
+  int cells_flipped = 0;  // by the clean-up, summed over all processes
 
   PetscInt num_facets() const { return static_cast<PetscInt>(offsets.size()) - 1; }
 };
@@ -37,8 +40,10 @@ struct Interface {
 // vertices would lie on the zero set), a quadrilateral or hexahedron with two opposite ones,
 // or with adjacent ones where the zero set bends away from it (its corner between them would
 // open beyond 180°). Throws Error if φ has the same sign at every centroid or the interface
-// touches the domain's boundary. One process only: cells across a partition are not seen.
-Interface find_interface(const MeshView& view, std::span<const double> coords,
+// touches the domain's boundary. Collective: the sides of cells across the partition are
+// exchanged (PartitionFacets); `vertices` holds every local vertex on the interface, ghosts
+// included, and each facet is listed once over all processes, by its inside cell's.
+Interface find_interface(const MeshView& view, const DofMap& dofs, std::span<const double> coords,
                          const LevelSetFunction& phi);
 
 // The interface vertices held on levels of φ: vertex i on {φ = (1 − s) c_i}, where c_i is

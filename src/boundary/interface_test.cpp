@@ -13,6 +13,10 @@
 namespace neomesh {
 namespace {
 
+Interface find_serial(const MeshView& view, const LevelSetFunction& phi) {
+  return find_interface(view, DofMap::serial(view.dim, view.num_vertices), view.coords, phi);
+}
+
 // How many interface facets hold each edge of the interface's facets (3D) or each vertex
 // (2D): exactly 2 everywhere for a closed chain or surface without pinches.
 std::map<std::pair<PetscInt, PetscInt>, int> ridge_counts(const Interface& in, int dim) {
@@ -50,7 +54,7 @@ void expect_closed(CellType type, int n, const std::string& phi_expression) {
   const MeshData data = box(type, n);
   const MeshView view = serial_view(data);
   const LevelSetFunction phi(phi_expression, view.dim);
-  const Interface in = find_interface(view, view.coords, phi);
+  const Interface in = find_serial(view, phi);
   ASSERT_GT(in.num_facets(), 0);
   for (const auto& [ridge, count] : ridge_counts(in, view.dim))
     EXPECT_EQ(count, 2) << name(type) << ": vertex/edge " << ridge.first << "-" << ridge.second;
@@ -73,7 +77,7 @@ TEST(FindInterface, IsAClosedSurfaceOfFacesAroundASphere) {
 TEST(FindInterface, LeavesNoTriangleWithTwoInterfaceEdges) {
   const MeshData data = box(CellType::Triangle, 32);
   const MeshView view = serial_view(data);
-  const Interface in = find_interface(view, view.coords, LevelSetFunction("sqrt(x^2+y^2)-0.35", 2));
+  const Interface in = find_serial(view, LevelSetFunction("sqrt(x^2+y^2)-0.35", 2));
   std::set<std::pair<PetscInt, PetscInt>> edges;
   for (PetscInt f = 0; f < in.num_facets(); ++f) {
     const PetscInt a = in.facet_vertices[2 * f], b = in.facet_vertices[2 * f + 1];
@@ -94,8 +98,8 @@ TEST(FindInterface, LeavesNoTriangleWithTwoInterfaceEdges) {
 TEST(FindInterface, NeedsBothSignsAndAnInterfaceInsideTheDomain) {
   const MeshData data = box(CellType::Quadrilateral, 8);
   const MeshView view = serial_view(data);
-  EXPECT_THROW(find_interface(view, view.coords, LevelSetFunction("x^2+y^2+1", 2)), Error);
-  EXPECT_THROW(find_interface(view, view.coords, LevelSetFunction("x-0.1", 2)), Error);
+  EXPECT_THROW(find_serial(view, LevelSetFunction("x^2+y^2+1", 2)), Error);
+  EXPECT_THROW(find_serial(view, LevelSetFunction("x-0.1", 2)), Error);
 }
 
 // Stage 0 moves nothing; stage 1 puts every interface vertex on the zero set.
@@ -104,7 +108,7 @@ TEST(InterfaceConstraint, PullsTheVerticesOntoTheZeroSetInStages) {
   const MeshView view = serial_view(data);
   const DofMap dofs = DofMap::serial(view.dim, view.num_vertices);
   const LevelSetFunction phi("sqrt(x^2+y^2)-0.5", 2);
-  const Interface in = find_interface(view, view.coords, phi);
+  const Interface in = find_serial(view, phi);
   OwnedVec x = dofs.create_global_vector();
   {
     double* a = nullptr;

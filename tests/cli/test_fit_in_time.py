@@ -3,13 +3,14 @@ steps, with the checks of bench/adapt_moving.py (the full sizes): at every step 
 cell, every interface vertex within 1e-10 of that step's zero set, cells at the interface at
 most 1/4 the mean volume of cells farther than 0.5, meshio reads every member of the .pvd, and
 every step after the first needs at most half the iterations of the first (cold) one — required
-of the quads; the triangles' are printed (their fit converges more slowly: docs/adaptivity.md)."""
+of the quads; the triangles' are printed (their fit converges more slowly: docs/adaptivity.md).
+The quads also on 2 processes."""
 import os
 import sys
 
 import pytest
 
-from conftest import NEOMESH, SOURCE
+from conftest import NEOMESH, SOURCE, mpiexec, needs_mpi
 
 sys.path.insert(0, os.path.join(SOURCE, "bench"))
 import adapt_moving  # noqa: E402
@@ -22,3 +23,11 @@ def test_bubble(tmp, cell):
         print(f"bubble {cell} 16: {r}")
     # Exits on a failure; the triangles' warm iterations are only printed.
     adapt_moving.report(failures, lambda key: cell == "tri" and key == "warm_iterations")
+
+
+@needs_mpi
+def test_bubble_on_two_processes(tmp):
+    rows, failures = adapt_moving.run_bubble(NEOMESH, "quad", 16, 6, tmp, launcher=mpiexec(2))
+    for r in rows:
+        print(f"bubble quad 16 on 2: {r}")
+    adapt_moving.report(failures)
