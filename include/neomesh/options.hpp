@@ -70,11 +70,20 @@ LinearSolverKind parse_linear_solver(std::string_view name);
 // cheaper (L is block-diagonal) and no hierarchy of H is built or stored (docs/benchmarks.md).
 enum class HessianPreconditioner { Hessian, Laplacian };
 
+// What an iteration does when the quasi-Newton direction δ̃ fails the angle test
+// (docs/method.md §4):
+//   Antigradient  it goes along −s instead (the thesis);
+//   Blend         it turns δ̃ towards −s just enough to pass the test, when δ̃ points downhill
+//                 and CG did not stop at negative curvature, keeping most of the Newton step
+//                 where H(α) and L disagree (fitted interfaces, sliding boundaries); else −s.
+enum class RejectedDirection { Antigradient, Blend };
+
 // The quasi-Newton method of thesis §5.1 (docs/method.md §4).
 struct SolverOptions {
   double alpha0 = 0.3;  // initial α of H(α) = B1 + α B2 + B3
   double eta = 0.6;     // angle test: accept δ̃ if η_k ≥ η
-  int kmin = 2;         // initial antigradient steps (thesis §5.5 recommends 2)
+  RejectedDirection rejected_direction = RejectedDirection::Blend;  // the thesis: Antigradient
+  int kmin = 2;  // initial antigradient steps (thesis §5.5 recommends 2)
   int max_iterations = 200;
   double defect_atol = 1e-10;  // stop when ‖g‖ ≤ defect_atol
   double defect_rtol = 1e-10;  // ... or ‖g‖ ≤ defect_rtol · ‖g_0‖

@@ -29,6 +29,7 @@ struct IterationRecord {
   bool hessian_pc_built = false;  // amg: the H(α) hierarchy was built for this solve
   int krylov_s = 0;               // Krylov iterations for s
   bool used_s = false;            // the step went along −s
+  bool blended = false;           // δ̃ failed the angle test and was turned towards −s
   bool roundoff_step = false;     // Armijo skipped: predicted decrease below round-off
   double max_move = 0.0;          // largest vertex move / local cell size
   double seconds = 0.0;           // wall time since start

@@ -90,6 +90,7 @@ void use_thesis_method(EnergyOptions& energy, BoundaryOptions& boundary, SolverO
   boundary.shapes.clear();
   solver.practical = false;
   solver.riesz_rtol = SolverOptions::kThesisRieszRtol;
+  solver.rejected_direction = RejectedDirection::Antigradient;
 }
 
 }  // namespace

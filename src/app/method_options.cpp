@@ -49,6 +49,12 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "angle test: accept the quasi-Newton direction if η_k ≥ η, η in (0, 1)")
       ->capture_default_str()
       ->group(method);
+  cmd.add_option("--rejected-direction", o.rejected_direction,
+                 "when the quasi-Newton direction fails the angle test: blend (turn it towards "
+                 "the antigradient just enough to pass) or antigradient (the thesis)")
+      ->check(CLI::IsMember({"blend", "antigradient"}))
+      ->capture_default_str()
+      ->group(method);
   cmd.add_option("--kmin", o.solver.kmin, "initial antigradient steps before quasi-Newton steps")
       ->capture_default_str()
       ->group(method);
@@ -136,7 +142,8 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
   cmd.add_flag("--thesis", o.thesis,
                "the thesis' conventions: uniform desired volumes, fixed boundary vertices, no "
                "practical stopping criterion (iterate to the defect tolerance), Riesz solve to "
-               "1e-8, 3 Gauss points per direction; default: off")
+               "1e-8, 3 Gauss points per direction, antigradient steps where the angle test "
+               "fails; default: off")
       ->group(method);
 }
 
@@ -189,6 +196,9 @@ void resolve(const MethodOptions& o, EnergyOptions& energy, SolverOptions& solve
   solver.hessian_pc = one_of<HessianPreconditioner>(
       "--hess-pc", o.hess_pc, {"hessian", HessianPreconditioner::Hessian},
       {"laplacian", HessianPreconditioner::Laplacian});
+  solver.rejected_direction = one_of<RejectedDirection>(
+      "--rejected-direction", o.rejected_direction, {"blend", RejectedDirection::Blend},
+      {"antigradient", RejectedDirection::Antigradient});
   solver.practical = !o.no_practical;
   boundary.mode = parse_boundary_mode(o.boundary);
   boundary.feature_angle = o.feature_angle;

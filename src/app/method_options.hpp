@@ -19,6 +19,7 @@ struct MethodOptions {
   EnergyOptions energy;
   SolverOptions solver;
   std::string linear_solver = "amg";
+  std::string rejected_direction = "blend";
   std::string riesz = "optimal";
   std::string hess_pc = "laplacian";
   std::optional<double> riesz_rtol;  // unset: SolverOptions' default, the thesis' with --thesis

@@ -20,8 +20,10 @@ std::string iteration_table_header() {
 std::string iteration_table_row(const IterationRecord& rec) {
   const std::string ksp_delta = rec.delta_solved ? fmt::format("{}", rec.krylov_delta) : "-";
   const std::string res_delta = rec.delta_solved ? fmt::format("{:.2E}", rec.residual_delta) : "-";
-  // s! : δ̃ failed and α was cut; delta~ : CG stopped at negative curvature (truncated δ̃).
-  const char* direction = !rec.used_s        ? (rec.delta_truncated ? "delta~" : "delta")
+  // s! : δ̃ failed and α was cut; delta~ : CG stopped at negative curvature (truncated δ̃);
+  // +s: δ̃ turned towards −s to pass the angle test.
+  const char* direction = rec.blended        ? (rec.delta_truncated ? "delta~+s" : "delta+s")
+                          : !rec.used_s      ? (rec.delta_truncated ? "delta~" : "delta")
                           : rec.delta_failed ? "s!"
                                              : "s";
   return fmt::format(

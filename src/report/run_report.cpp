@@ -30,6 +30,7 @@ nlohmann::json to_json(const IterationRecord& r) {
                         {"delta_truncated", r.delta_truncated},
                         {"krylov_s", r.krylov_s},
                         {"used_s", r.used_s},
+                        {"blended", r.blended},
                         {"roundoff_step", r.roundoff_step},
                         {"hessian_pc_built", r.hessian_pc_built},
                         {"max_move", number(r.max_move)},

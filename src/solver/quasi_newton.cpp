@@ -10,6 +10,9 @@ namespace neomesh {
 
 namespace {
 
+// Bisections for the blend of a rejected δ̃ with −s: θ to 2^-50, far below what matters.
+constexpr int kBlendBisections = 50;
+
 // α heuristic of thesis §5.1: g(t) = 0.15 + 6.51657 / (3.66657 + e^(1.38629 t)), through
 // (0, 1.5464), (1, 1), (2, 0.4814): α grows while the defect falls fast.
 double alpha_factor(double defect_ratio) {
@@ -189,9 +192,41 @@ struct QuasiNewton::Impl {
     const double s_s = inner_L(s, s);
     const double delta_delta = inner_L(delta_tilde, delta_tilde);
     rec.eta = -s_delta / std::sqrt(s_s * delta_delta);
-    if (!(rec.eta >= options.eta)) return false;
-    NM_PETSC(VecCopy(delta_tilde, delta));
+    if (rec.eta >= options.eta) {
+      NM_PETSC(VecCopy(delta_tilde, delta));
+      return true;
+    }
+    if (options.rejected_direction != RejectedDirection::Blend || rec.delta_truncated ||
+        !(rec.eta > 0))
+      return false;
+    blend_towards_antigradient(rec, std::sqrt(delta_delta / s_s));
     return true;
+  }
+
+  // δ̃ (solved to tolerance) points downhill but failed the angle test, 0 < η_k < η. With the
+  // L-unit vectors u = δ̃/‖δ̃‖_L and v = −s/‖s‖_L, δ = ‖δ̃‖_L ((1 − θ) u + θ v) with the smallest θ
+  // whose cosine with −s is η (docs/method.md §4): a full step is still about Newton's length.
+  void blend_towards_antigradient(IterationRecord& rec, double delta_over_s) {
+    const double c = rec.eta;          // cosine between δ̃ and −s in the L inner product
+    auto cosine = [c](double theta) {  // of the mix of unit vectors with −s
+      const double mixed_norm_sq =
+          (1 - theta) * (1 - theta) + theta * theta + 2 * theta * (1 - theta) * c;
+      return ((1 - theta) * c + theta) / std::sqrt(mixed_norm_sq);
+    };
+    double below = 0.0, above = 1.0;  // the cosine grows with θ from c to 1: bisect
+    for (int i = 0; i < kBlendBisections; ++i) {
+      const double mid = 0.5 * (below + above);
+      (cosine(mid) >= options.eta ? above : below) = mid;
+    }
+    NM_PETSC(VecAXPBYPCZ(delta, 1.0 - above, -above * delta_over_s, 0.0, delta_tilde, s));
+    rec.eta = cosine(above);
+    rec.blended = true;
+  }
+
+  void use_antigradient(IterationRecord& rec) {
+    NM_PETSC(VecAXPBY(delta, -1.0, 0.0, s));
+    rec.used_s = true;
+    if (!rec.delta_solved || rec.delta_failed) rec.eta = 1.0;
   }
 
   // Armijo backtracking: the largest σ = 0.5^j with F(x + σδ) finite and
@@ -255,15 +290,20 @@ struct QuasiNewton::Impl {
 
     const bool antigradient_step = antigradient_left > 0;
     const bool take_delta = !antigradient_step && quasi_newton_direction(x, rec);
-    if (!take_delta) {
-      NM_PETSC(VecAXPBY(delta, -1.0, 0.0, s));
-      rec.used_s = true;
-      if (!rec.delta_solved || rec.delta_failed) rec.eta = 1.0;
-    }
+    if (!take_delta) use_antigradient(rec);
     rec.direction_norm = norm(delta);
 
     double new_energy = energy, sigma = 0.0;
-    if (!line_search(x, rec, new_energy, sigma)) {
+    bool decreased = line_search(x, rec, new_energy, sigma);
+    if (!decreased && rec.blended) {
+      // A blend can fail where −s, the thesis' choice, does not (a sliding vertex crossing a
+      // corner of a discrete boundary, say): go along −s instead.
+      rec.blended = false;
+      use_antigradient(rec);
+      rec.direction_norm = norm(delta);
+      decreased = line_search(x, rec, new_energy, sigma);
+    }
+    if (!decreased) {
       stop = StopReason::LineSearchFailed;
       rec.energy = energy;
       rec.seconds = MPI_Wtime() - start_time;

@@ -177,5 +177,29 @@ TEST(SlidingBoundary, ShellHexesSpreadEvenlyAlongTheCirclesAndKeepTheirRidges) {
   expect_even_ring(CellType::Hexahedron, 24, 2);
 }
 
+// On the bunched ring sliding on its input polygons, H(α) and L disagree enough that the
+// angle test rejects δ̃: blended, the direction passes the test with η_k = η exactly, and the
+// thesis' choice (−s) never blends.
+TEST(SlidingBoundary, RejectedDirectionsAreTurnedJustEnoughTowardsTheAntigradient) {
+  for (RejectedDirection choice : {RejectedDirection::Blend, RejectedDirection::Antigradient}) {
+    ThesisProblem p(ring(CellType::Triangle, 48, 4, 3.0), {}, BoundaryMode::Slide);
+    QuasiNewtonOptions options{{}, energy_roundoff(p.energy, p.view.dim, p.volume)};
+    options.rejected_direction = choice;
+    const QuasiNewtonResult result = p.minimize(options);
+    EXPECT_NE(result.reason, StopReason::LineSearchFailed);
+    int blended = 0;
+    for (const IterationRecord& r : result.history) {
+      if (!r.blended) continue;
+      ++blended;
+      EXPECT_NEAR(r.eta, options.eta, 1e-12) << "iteration " << r.k;
+      EXPECT_FALSE(r.used_s);
+    }
+    if (choice == RejectedDirection::Blend)
+      EXPECT_GT(blended, 0);
+    else
+      EXPECT_EQ(blended, 0);
+  }
+}
+
 }  // namespace
 }  // namespace neomesh

@@ -33,6 +33,7 @@ QuasiNewtonOptions ThesisProblem::thesis_options() const {
   o.kmin = 0;
   o.riesz_rtol = QuasiNewtonOptions::kThesisRieszRtol;
   o.practical = false;
+  o.rejected_direction = RejectedDirection::Antigradient;
   o.defect_atol = 1e-10;
   o.defect_rtol = 0.0;
   o.energy_roundoff = energy_roundoff(energy, view.dim, volume);
