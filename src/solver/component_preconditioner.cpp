@@ -47,7 +47,7 @@ void ComponentPreconditioner::install(PC shell) {
   NM_PETSC(PCShellSetContext(shell, this));
   NM_PETSC(PCShellSetApply(shell, apply));
   NM_PETSC(PCShellSetView(shell, view));
-  NM_PETSC(PCShellSetName(shell, "one scalar preconditioner for each component"));
+  NM_PETSC(PCShellSetName(shell, "per component"));
 }
 
 void ComponentPreconditioner::set_operator(Mat scalar, bool same_values) {
