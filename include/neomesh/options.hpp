@@ -67,7 +67,8 @@ LinearSolverKind parse_linear_solver(std::string_view name);
 // of L = B3/μ, which is built anyway and changes only with the desired volumes, or a
 // hierarchy of H(α) itself, rebuilt when it has gone stale. H(α) = B1 + α B2 + μ L is
 // spectrally close to μ L: CG needs more iterations with L's hierarchy, but its V-cycles are
-// cheaper (L is block-diagonal) and no hierarchy of H is built or stored (docs/benchmarks.md).
+// cheaper (L couples no two components; without sliding vertices it is one scalar hierarchy
+// per component) and no hierarchy of H is built or stored (docs/benchmarks.md).
 enum class HessianPreconditioner { Hessian, Laplacian };
 
 // What an iteration does when the quasi-Newton direction δ̃ fails the angle test

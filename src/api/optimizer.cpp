@@ -17,6 +17,7 @@
 #include "solver/desired_volumes.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/quality_guard.hpp"
+#include "solver/quasi_newton.hpp"
 #include "solver/untangle.hpp"
 
 namespace neomesh {
@@ -121,8 +122,9 @@ ProblemSummary Optimizer::Impl::problem(const SolverOptions& solver) const {
   p.hessian_solver =
       LinearSolver(mesh.comm(), solver.linear_solver, "hess_", dim, solver.hessian_rtol)
           .description();
-  p.riesz_solver = LinearSolver(mesh.comm(), solver.linear_solver, "riesz_", dim, solver.riesz_rtol)
-                       .description();
+  LinearSolver riesz(mesh.comm(), solver.linear_solver, "riesz_", dim, solver.riesz_rtol);
+  if (riesz_per_component(*functional, solver)) riesz.precondition_per_component();
+  p.riesz_solver = riesz.description();
   return p;
 }
 

@@ -53,6 +53,16 @@ int mpi_size(MPI_Comm comm) {
   return s;
 }
 
+Mat maij_scalar(Mat m) {
+  PetscBool maij = PETSC_FALSE;
+  NM_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(m), &maij, MATSEQMAIJ,
+                                     MATMPIMAIJ, ""));
+  if (!maij) return nullptr;
+  Mat scalar = nullptr;
+  NM_PETSC(MatMAIJGetAIJ(m, &scalar));
+  return scalar;
+}
+
 // A run not started by mpiexec initializes Open MPI as a singleton, which by default starts a
 // daemon and probes the UCX network transports: most of the wall time of a small run
 // (docs/benchmarks.md, "Start-up"). One process needs neither, so unless the user set them,

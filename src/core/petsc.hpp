@@ -109,4 +109,8 @@ void configure_singleton_mpi();
 int mpi_rank(MPI_Comm comm = PETSC_COMM_WORLD);
 int mpi_size(MPI_Comm comm = PETSC_COMM_WORLD);
 
+// The scalar AIJ matrix A of a MATMAIJ made by MatCreateMAIJ(A, d) (the d-component operator
+// that applies A to each interlaced component), or null if `m` is not a MAIJ.
+Mat maij_scalar(Mat m);
+
 }  // namespace neomesh

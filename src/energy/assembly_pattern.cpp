@@ -354,17 +354,21 @@ void fill_csr(const Lists& rows, int d, AssemblyPattern& p) {
   p.row_start[d * owned] = d * d * rows.start.back();
 }
 
-// row_stride, off_row_stride and diagonal.
+// row_stride, off_row_stride, diagonal, row_first and off_row_first.
 void fill_vertex_entries(const MeshView& view, const Numbering& num, const Layout& layout, int d,
                          AssemblyPattern& p) {
   p.row_stride.resize(view.num_vertices);
   p.off_row_stride.assign(view.num_vertices, 0);
   p.diagonal.assign(d * view.num_vertices, -1);
+  p.row_first.resize(view.num_vertices);
+  p.off_row_first.assign(view.num_vertices, 0);
   for (PetscInt v = 0; v < view.num_vertices; ++v) {
     const PetscInt i = num.item[v];
     const RowPlace row = layout.place(i);
     p.row_stride[v] = d * (row.diagonal_end - row.diagonal_begin);
+    p.row_first[v] = row.first / (d * d);
     if (i >= num.owned) continue;
+    p.off_row_first[v] = row.off_first / (d * d);
     p.off_row_stride[v] = d * (row.size - (row.diagonal_end - row.diagonal_begin));
     for (int a = 0; a < d; ++a)
       p.diagonal[d * v + a] = row.entry(num.global[v], d) + a * p.row_stride[v] + a;
@@ -398,10 +402,12 @@ void fill_cell_entries(const MeshView& view, const Numbering& num, const VertexC
   }
 }
 
-// Collective. The owners answer each list they received with (A stride, B stride, entry per
-// neighbour), in the order received; then each G entry has its place in the owner's A or B.
+// Collective. The owners answer each list they received with (A stride, B stride, first
+// block in A, first block in B, entry per neighbour), in the order received; then each G
+// entry has its place in the owner's A or B.
 void make_ghost_exchange(MPI_Comm comm, const Numbering& num, const Neighbours& neighbours,
                          const Layout& layout, int d, AssemblyPattern& p) {
+  constexpr int kHeader = 4;
   const Received& in = neighbours.requests;
   const int ranks = static_cast<int>(num.rank_first.size()) - 1;
   std::vector<std::vector<PetscInt>> out(ranks);
@@ -411,40 +417,49 @@ void make_ghost_exchange(MPI_Comm comm, const Numbering& num, const Neighbours& 
       std::vector<PetscInt>& to = out[source];
       to.push_back(d * (row.diagonal_end - row.diagonal_begin));
       to.push_back(d * (row.size - (row.diagonal_end - row.diagonal_begin)));
+      to.push_back(row.first / (d * d));
+      to.push_back(row.off_first / (d * d));
       for (PetscInt j = 0; j < in.data[k + 1]; ++j) to.push_back(row.entry(in.data[k + 2 + j], d));
     }
   const Received answer = send_to_ranks(comm, out);
 
-  std::vector<PetscInt> leaves[2][2];  // [coupled][to B]
-  std::vector<PetscSFNode> roots[2][2];
+  constexpr int kUncoupled = static_cast<int>(MatrixLayout::Uncoupled);
+  constexpr int kCoupled = static_cast<int>(MatrixLayout::Coupled);
+  constexpr int kScalar = static_cast<int>(MatrixLayout::Scalar);
+  std::vector<PetscInt> leaves[3][2];  // [layout][to B]
+  std::vector<PetscSFNode> roots[3][2];
   std::vector<int> next(answer.offset.begin(), answer.offset.end() - 1);  // per owner
   for (PetscInt i = 0; i < num.num_ghosts(); ++i) {
     const int owner = num.owner(num.global[num.local[num.owned + i]]);
     const PetscInt* reply = answer.data.data() + next[owner];
     const PetscInt size = neighbours.ghosts.size(i);
-    next[owner] += 2 + size;
+    next[owner] += kHeader + size;
     for (PetscInt k = 0; k < size; ++k) {
-      const bool to_b = reply[2 + k] < 0;
-      const PetscInt root_block = to_b ? ~reply[2 + k] : reply[2 + k];
+      const bool to_b = reply[kHeader + k] < 0;
+      const PetscInt root_block = to_b ? ~reply[kHeader + k] : reply[kHeader + k];
       const PetscInt stride = reply[to_b ? 1 : 0];
       for (int a = 0; a < d; ++a)
         for (int b = 0; b < d; ++b) {
           const PetscInt leaf = d * (d * layout.g_first[i] + k) + a * d * size + b;
           const PetscInt root = root_block + a * stride + b;
-          leaves[1][to_b].push_back(leaf);
-          roots[1][to_b].push_back({owner, root});
+          leaves[kCoupled][to_b].push_back(leaf);
+          roots[kCoupled][to_b].push_back({owner, root});
           if (a != b) continue;
-          leaves[0][to_b].push_back(leaf / d);
-          roots[0][to_b].push_back({owner, root / d});
+          leaves[kUncoupled][to_b].push_back(leaf / d);
+          roots[kUncoupled][to_b].push_back({owner, root / d});
         }
+      // Component 0 alone: block k of the ghost's row at g_first + k, the owner's block at
+      // its first block (A or B) + its place in that part (AssemblyPattern::scalar_entry).
+      const PetscInt first = reply[to_b ? 3 : 2];
+      leaves[kScalar][to_b].push_back(layout.g_first[i] + k);
+      roots[kScalar][to_b].push_back({owner, root_block / d - (d - 1) * first});
     }
   }
-  for (int coupled = 0; coupled < 2; ++coupled) {
-    const std::size_t shrink = coupled ? 1 : d;
-    p.ghost_to_diagonal[coupled] =
-        make_sf(comm, p.diagonal_entries / shrink, leaves[coupled][0], roots[coupled][0]);
-    p.ghost_to_off_diagonal[coupled] =
-        make_sf(comm, p.off_diagonal_entries / shrink, leaves[coupled][1], roots[coupled][1]);
+  for (int l = 0; l < 3; ++l) {
+    const std::size_t shrink = l == kCoupled ? 1 : l == kUncoupled ? d : d * d;
+    p.ghost_to_diagonal[l] = make_sf(comm, p.diagonal_entries / shrink, leaves[l][0], roots[l][0]);
+    p.ghost_to_off_diagonal[l] =
+        make_sf(comm, p.off_diagonal_entries / shrink, leaves[l][1], roots[l][1]);
   }
 }
 
@@ -461,6 +476,20 @@ std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(
     for (PetscInt e = coupled_start[r] + static_cast<PetscInt>(r % dim); e < coupled_start[r + 1];
          e += dim)
       column[e / dim] = coupled_column[e];
+  return {std::move(row_start), std::move(column)};
+}
+
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> scalar_csr(
+    const std::vector<PetscInt>& coupled_start, const std::vector<PetscInt>& coupled_column,
+    int dim) {
+  // Row dim · v of the coupled pattern lists dim columns per neighbour of v.
+  const std::size_t rows = (coupled_start.size() - 1) / dim;
+  std::vector<PetscInt> row_start(rows + 1), column(coupled_column.size() / (dim * dim));
+  for (std::size_t r = 0; r <= rows; ++r) row_start[r] = coupled_start[dim * r] / (dim * dim);
+#pragma omp parallel for schedule(static)
+  for (std::size_t r = 0; r < rows; ++r)
+    for (PetscInt k = row_start[r]; k < row_start[r + 1]; ++k)
+      column[k] = coupled_column[coupled_start[dim * r] + dim * (k - row_start[r])] / dim;
   return {std::move(row_start), std::move(column)};
 }
 

@@ -18,6 +18,10 @@
 // every entry receives its contributions in the same order for any number of threads. A chunk
 // rather than a cell per colour keeps the entries a thread adds to in cache: with one cell
 // per colour each colour swept the whole matrix.
+//
+// The same pattern serves three layouts of matrix (MatrixLayout): every coupling, only those
+// within a component, and one component alone (the n × n scalar matrix). The two smaller ones
+// keep the vertex-blocked order, so their entries follow from the coupled pattern's.
 #pragma once
 
 #include <utility>
@@ -28,6 +32,14 @@
 #include "mesh/mesh_view.hpp"
 
 namespace neomesh {
+
+// Which entries of the pattern a matrix holds (dof = dim · vertex + component):
+enum class MatrixLayout {
+  Uncoupled,  // only couplings within a component (1/dim of the entries): the vector Laplacian
+  Coupled,    // every coupling of two vertices' dofs: H(α), or L with projected vertices
+  Scalar,     // one component: n × n, a row per vertex (1/dim² of the entries); the scalar
+              // Laplacian whose dim copies the Uncoupled vector Laplacian holds
+};
 
 struct AssemblyPattern {
   // CSR of the owned rows with global columns, sorted within each row (what
@@ -40,6 +52,9 @@ struct AssemblyPattern {
   // Per local vertex: entries per row in A (owned vertex) or G (ghost), and in B (0 for ghosts).
   std::vector<PetscInt> row_stride, off_row_stride;
   std::vector<PetscInt> diagonal;  // per local dof: its diagonal entry in A, or −1 (ghost)
+  // Per local vertex, counted in vertex blocks: the first block of its rows in A (owned
+  // vertex) or G (ghost), and in B (0 for ghosts). Its blocks' entries are dim² apart.
+  std::vector<PetscInt> row_first, off_row_first;
   // Per block, per cell, per (i, j) in i · vertices + j: the entry of (dof 0 of vertex i, dof 0
   // of vertex j) in A or G (as vertex i is owned or a ghost), or e < 0 for entry ~e of B.
   std::vector<std::vector<PetscInt>> block_entry;
@@ -48,16 +63,31 @@ struct AssemblyPattern {
   // Per block: its chunks ordered by colour; colour j is
   // colour_chunks[colour_start[j] .. colour_start[j+1]).
   std::vector<std::vector<PetscInt>> colour_chunks, colour_start;
-  // From G (leaves) into the owners' A and B values (roots), per [coupled]: the coupled SFs
-  // move every entry, the uncoupled ones only entries within a component, at entry / dim
-  // (see uncoupled_csr). Null on one rank.
-  OwnedSF ghost_to_diagonal[2], ghost_to_off_diagonal[2];
+  // From G (leaves) into the owners' A and B values (roots), per MatrixLayout: the coupled
+  // SFs move every entry, the uncoupled ones only entries within a component, at entry / dim
+  // (see uncoupled_csr), the scalar ones only component 0's, at scalar_entry. Null on one
+  // rank.
+  OwnedSF ghost_to_diagonal[3], ghost_to_off_diagonal[3];
+
+  // Entry e of block_entry (or diagonal), in the row of local vertex v, as an entry of the
+  // scalar matrix (dof 0 of both vertices): in A or G for e ≥ 0, else ~result in B.
+  PetscInt scalar_entry(PetscInt v, PetscInt e, int dim) const {
+    // e = dim² · first + dim · k for the k-th block of the row; the scalar row holds it at
+    // first + k.
+    if (e >= 0) return e / dim - (dim - 1) * row_first[v];
+    return ~(~e / dim - (dim - 1) * off_row_first[v]);
+  }
 };
 
 // The CSR (row starts, columns) of the same rows without the couplings between different
 // components: entry e of the coupled pattern (row_start, column) with column ≡ row (mod dim)
 // is entry e / dim here (and likewise in A, B and G).
 std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(
+    const std::vector<PetscInt>& row_start, const std::vector<PetscInt>& column, int dim);
+
+// The CSR of the same rows' component 0 alone, numbered by vertex: the n × n scalar matrix
+// whose entry (v, w) is entry (dim · v, dim · w) of the coupled pattern.
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> scalar_csr(
     const std::vector<PetscInt>& row_start, const std::vector<PetscInt>& column, int dim);
 
 // Collective. Throws Error if the DofMap does not number each rank's vertices consecutively

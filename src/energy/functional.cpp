@@ -85,6 +85,7 @@ struct Functional::Impl {
   SlidingVertices sliding;
   std::vector<PetscInt> projector_of;  // per local vertex: its index in sliding.vertices, or -1
   bool slides_anywhere = false;        // sliding.vertices is not empty on some rank
+  bool scalar_laplacian = false;       // see Functional::laplacian_is_scalar
 
   // Built by the first create_*matrix (the pattern is a one-time cost not every use needs).
   mutable std::optional<MatrixAssembler> assembler;
@@ -362,6 +363,11 @@ Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOpt
   int slides = !impl_->sliding.vertices.empty();
   MPI_Allreduce(MPI_IN_PLACE, &slides, 1, MPI_INT, MPI_MAX, dofs.comm());
   impl_->slides_anywhere = slides != 0;
+  int alike = 1;  // every local vertex has all or none of its coordinates fixed
+  for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l)
+    if (impl_->fixed[l] != impl_->fixed[l - l % view.dim]) alike = 0;
+  MPI_Allreduce(MPI_IN_PLACE, &alike, 1, MPI_INT, MPI_MIN, dofs.comm());
+  impl_->scalar_laplacian = !impl_->slides_anywhere && alike;
 
   // free_mask: every local dof of an owned vertex is owned.
   impl_->free_mask = dofs.create_global_vector();
@@ -418,6 +424,21 @@ OwnedMat Functional::create_laplacian_matrix() const {
                                                      : MatrixLayout::Uncoupled);
 }
 
+bool Functional::laplacian_is_scalar() const {
+  return impl_->scalar_laplacian;
+}
+
+OwnedMat Functional::create_scalar_laplacian_matrix() const {
+  if (!impl_->scalar_laplacian)
+    fail(
+        "internal error: a scalar Riesz Laplacian where vertices slide or have only some "
+        "coordinates fixed");
+  const OwnedMat scalar = impl_->create_matrix(MatrixLayout::Scalar);
+  OwnedMat L;
+  NM_PETSC(MatCreateMAIJ(scalar, impl_->dofs.dim(), L.out()));  // takes a reference
+  return L;
+}
+
 void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {
   impl_->load_coordinates_and_tangents(x);
   const Impl& impl = *impl_;
@@ -430,7 +451,9 @@ void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {
       "H(alpha)", H, alpha);
 }
 
-void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const {
+void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat matrix) const {
+  const Mat scalar = maij_scalar(matrix);  // a scalar Laplacian's L₁
+  const Mat L = scalar ? scalar : matrix;
   if (kind == RieszLaplacian::CurrentMesh) {
     impl_->load_coordinates_and_tangents(x);
     const Impl& impl = *impl_;

@@ -79,8 +79,16 @@ class Functional {
   // vertices in tangent spaces (on any rank) it is create_matrix's: their projectors couple
   // the components.
   OwnedMat create_laplacian_matrix() const;
-  // The Riesz Laplacian into a matrix made by create_laplacian_matrix or create_matrix. `x` is used
-  // for RieszLaplacian::CurrentMesh and for the tangent spaces of sliding vertices.
+  // True if L is dim copies of one scalar n × n Laplacian L₁, one per component (interlaced):
+  // no vertex slides and every vertex has all or none of its coordinates fixed, on every rank.
+  bool laplacian_is_scalar() const;
+  // With laplacian_is_scalar(): L as MatCreateMAIJ(L₁, dim), laid out like the other
+  // matrices; only L₁ is stored (1/dim of create_laplacian_matrix's entries). Throws Error
+  // otherwise.
+  OwnedMat create_scalar_laplacian_matrix() const;
+  // The Riesz Laplacian into a matrix made by create_laplacian_matrix, create_matrix or
+  // create_scalar_laplacian_matrix (into its L₁). `x` is used for RieszLaplacian::CurrentMesh
+  // and for the tangent spaces of sliding vertices.
   void assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const;
 
   // Untangling (docs/untangling.md): with ε > 0, value, gradient and H(α) are those of the

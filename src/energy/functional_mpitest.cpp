@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
 #include <map>
 
@@ -185,6 +186,38 @@ TEST_P(DistributedFunctional, MatricesEqualSerialEntryByEntry) {
   expect_no_difference_on_any_rank(
       "L (current mesh)",
       first_difference(distributed.current_laplacian, serial.current_laplacian, serial_dof));
+}
+
+// The scalar Laplacian's MAIJ is laid out like the DofMap on each rank (interlaced
+// components of the owned vertices) and applies the vector Laplacian. Made after H and L
+// (the pattern's columns are then read back from H).
+TEST_P(DistributedFunctional, ScalarLaplacianActsAsTheVectorLaplacian) {
+  ASSERT_EQ(mpi_size(), 2);
+  const Assembled a(GetParam().make(), PETSC_COMM_WORLD);
+  ASSERT_TRUE(a.functional->laplacian_is_scalar());
+  OwnedVec x = a.mesh.coordinates();
+  OwnedMat scalar = a.functional->create_scalar_laplacian_matrix();
+  a.functional->assemble_laplacian(RieszLaplacian::OptimalCells, x, scalar);
+  PetscInt rows = 0, columns = 0;
+  NM_PETSC(MatGetLocalSize(scalar, &rows, &columns));
+  EXPECT_EQ(rows, a.mesh.dofs().num_owned_dofs());
+  EXPECT_EQ(columns, a.mesh.dofs().num_owned_dofs());
+  OwnedVec v = a.mesh.dofs().create_global_vector(), expected, product;
+  NM_PETSC(VecDuplicate(v, expected.out()));
+  NM_PETSC(VecDuplicate(v, product.out()));
+  {
+    PetscInt first = 0;
+    NM_PETSC(VecGetOwnershipRange(v, &first, nullptr));
+    VecWriteView out(v);
+    for (PetscInt i = 0; i < out.size(); ++i) out[i] = std::sin(1.0 + first + i);
+  }
+  NM_PETSC(MatMult(a.optimal_laplacian, v, expected));
+  NM_PETSC(MatMult(scalar, v, product));
+  double size = 0.0, difference = 0.0;
+  NM_PETSC(VecNorm(expected, NORM_2, &size));
+  NM_PETSC(VecAXPY(product, -1.0, expected));
+  NM_PETSC(VecNorm(product, NORM_2, &difference));
+  EXPECT_LE(difference, 1e-14 * size);
 }
 
 // A box of n cells per direction with interior vertices moved by up to 20% of the cell size

@@ -208,6 +208,39 @@ TEST_P(Q1FunctionalTest, LaplaciansAgreeOnOptimalMesh) {
   EXPECT_EQ(diagonal, 1.0);
 }
 
+// L = L₁ ⊗ I: the scalar Laplacian's MAIJ applies exactly the vector Laplacian (the same
+// sums), with the identity at fixed vertices; for either kind of Laplacian.
+TEST_P(FunctionalTest, ScalarLaplacianActsAsTheVectorLaplacian) {
+  Problem p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 31));
+  p.set_volumes(0.3, 32);
+  ASSERT_TRUE(p.functional.laplacian_is_scalar());
+  OwnedVec v = p.dofs.create_global_vector(), expected = p.dofs.create_global_vector(),
+           product = p.dofs.create_global_vector();
+  {
+    VecWriteView out(v);
+    for (PetscInt i = 0; i < out.size(); ++i) out[i] = std::sin(1.0 + i);
+  }
+  for (RieszLaplacian kind : {RieszLaplacian::OptimalCells, RieszLaplacian::CurrentMesh}) {
+    OwnedMat vector = p.functional.create_laplacian_matrix();
+    OwnedMat scalar = p.functional.create_scalar_laplacian_matrix();
+    p.functional.assemble_laplacian(kind, p.x, vector);
+    p.functional.assemble_laplacian(kind, p.x, scalar);
+    NM_PETSC(MatMult(vector, v, expected));
+    NM_PETSC(MatMult(scalar, v, product));
+    NM_PETSC(VecAXPY(product, -1.0, expected));
+    EXPECT_LE(norm(product), 1e-14 * norm(expected));
+  }
+  // Some coordinates fixed, others not: no scalar Laplacian.
+  MeshData mesh = box(CellType::Quadrilateral, 2);
+  const MeshView view = serial_view(mesh);
+  const DofMap dofs = DofMap::serial(2, view.num_vertices);
+  FixedDofs fixed{std::vector<std::uint8_t>(2 * view.num_vertices, 0)};
+  fixed.flags[0] = 1;
+  const Functional partly(view, dofs, EnergyOptions{}, fixed);
+  EXPECT_FALSE(partly.laplacian_is_scalar());
+  EXPECT_THROW(partly.create_scalar_laplacian_matrix(), Error);
+}
+
 TEST(Functional, InvertedCellGivesInfiniteValueAndRejectsHessian) {
   MeshData mesh = box(CellType::Quadrilateral, 2);
   mesh.coords[2 * 4] = 1.5;  // the centre vertex (1,1 in lattice order) moves outside

@@ -5,6 +5,8 @@
 #include <memory>
 #include <tuple>
 
+#include "core/collective_error.hpp"
+
 namespace neomesh {
 
 namespace {
@@ -105,64 +107,99 @@ MatrixAssembler::MatrixAssembler(const MeshView& view, const DofMap& dofs,
     fail("MatrixAssembler: {} fixed flags for {} local dofs", fixed_.size(), d * view.num_vertices);
   for (PetscInt l = 0; l < d * view.num_vertices; ++l)
     if (fixed_[l]) vertex_fixed_[l / d] = 1;
+  for (PetscInt l = 0; l < d * view.num_vertices; ++l)
+    if (fixed_[l] != vertex_fixed_[l / d]) components_fixed_alike_ = false;
 }
 
 MatrixAssembler::~MatrixAssembler() = default;
 
-OwnedMat MatrixAssembler::create(MatrixLayout layout) {
-  const bool coupled = layout == MatrixLayout::Coupled;
+const std::vector<PetscInt>& MatrixAssembler::coupled_columns() {
+  if (coupled_columns_) return *coupled_columns_;
+  const Mat coupled = first_[static_cast<int>(MatrixLayout::Coupled)];
+  if (!pattern_.column.empty() || !coupled) return pattern_.column;
+  // Freed once the coupled matrix and a Laplacian's had them: read them back (MatGetRow
+  // gives global columns in order).
+  PetscInt first = 0, end = 0;
+  NM_PETSC(MatGetOwnershipRange(coupled, &first, &end));
+  pattern_.column.reserve(pattern_.row_start.back());
+  for (PetscInt row = first; row < end; ++row) {
+    PetscInt n = 0;
+    const PetscInt* columns = nullptr;
+    NM_PETSC(MatGetRow(coupled, row, &n, &columns, nullptr));
+    pattern_.column.insert(pattern_.column.end(), columns, columns + n);
+    NM_PETSC(MatRestoreRow(coupled, row, &n, &columns, nullptr));
+  }
+  return pattern_.column;
+}
+
+OwnedMat MatrixAssembler::create_first(MatrixLayout layout) {
   const int d = dofs_.dim();
+  if (layout == MatrixLayout::Scalar)
+    throw_if_any(dofs_.comm(), components_fixed_alike_
+                                   ? ""
+                                   : "internal error: a scalar Laplacian of a mesh whose vertices "
+                                     "have only some coordinates fixed");
+  const bool coupled = layout == MatrixLayout::Coupled;
+  // Entries per entry of the layout: the coupled pattern holds dim (Uncoupled) or dim² (Scalar).
+  const std::size_t shrink = coupled ? 1 : layout == MatrixLayout::Uncoupled ? d : d * d;
+  const PetscInt block_size = layout == MatrixLayout::Scalar ? 1 : d;  // rows per vertex
+  const PetscInt rows = dofs_.num_owned_dofs() / d * block_size;
+  const PetscInt global_rows = dofs_.num_global_dofs() / d * block_size;
+  std::vector<PetscInt> row_start, column;
+  if (layout == MatrixLayout::Uncoupled)
+    std::tie(row_start, column) = uncoupled_csr(pattern_.row_start, coupled_columns(), d);
+  else if (layout == MatrixLayout::Scalar)
+    std::tie(row_start, column) = scalar_csr(pattern_.row_start, coupled_columns(), d);
   OwnedMat m;
-  if (first_[coupled]) {
-    NM_PETSC(MatDuplicate(first_[coupled], MAT_SHARE_NONZERO_PATTERN, m.out()));
+  if (mpi_size(dofs_.comm()) == 1) {
+    if (coupled) {
+      row_start = pattern_.row_start;
+      column = std::move(pattern_.column);
+    }
+    const std::vector<PetscInt>* columns = nullptr;
+    std::tie(m, columns) = matrix_on_arrays(dofs_.comm(), std::move(row_start), std::move(column));
+    if (coupled) coupled_columns_ = columns;  // first_ keeps them
+    // hypre's BoomerAMG reads the block size as its number of functions.
+    NM_PETSC(MatSetBlockSize(m, block_size));
+  } else {
+    NM_PETSC(MatCreate(dofs_.comm(), m.out()));
+    NM_PETSC(MatSetSizes(m, rows, rows, global_rows, global_rows));
+    NM_PETSC(MatSetType(m, MATMPIAIJ));
+    NM_PETSC(MatSetBlockSize(m, block_size));
+    NM_PETSC(MatMPIAIJSetPreallocationCSR(m, coupled ? pattern_.row_start.data() : row_start.data(),
+                                          coupled ? pattern_.column.data() : column.data(),
+                                          nullptr));
+  }
+  // Values are written where assembly_pattern.hpp says PETSc keeps each entry; a different
+  // number of entries in A or B means a PETSc that stores them differently.
+  const auto [a, b] = aij_parts(m);
+  if (stored_entries(a) != pattern_.diagonal_entries / shrink ||
+      stored_entries(b) != pattern_.off_diagonal_entries / shrink)
+    fail("internal error: PETSc stores {} in {} + {} entries, not {} + {}", coupled ? "H" : "L",
+         stored_entries(a), stored_entries(b), pattern_.diagonal_entries / shrink,
+         pattern_.off_diagonal_entries / shrink);
+  return m;
+}
+
+OwnedMat MatrixAssembler::create(MatrixLayout layout) {
+  OwnedMat& first = first_[static_cast<int>(layout)];
+  OwnedMat m;
+  if (first) {
+    NM_PETSC(MatDuplicate(first, MAT_SHARE_NONZERO_PATTERN, m.out()));
     // A duplicate shares the first matrix's columns: it keeps them too.
     PetscObject arrays = nullptr;
-    NM_PETSC(PetscObjectQuery(reinterpret_cast<PetscObject>(first_[coupled].get()), kArraysName,
-                              &arrays));
+    NM_PETSC(PetscObjectQuery(reinterpret_cast<PetscObject>(first.get()), kArraysName, &arrays));
     if (arrays) compose(m, kArraysName, arrays);
   } else {
-    // The columns of the coupled pattern: the pattern's, or, on one rank, the coupled matrix's.
-    const std::vector<PetscInt>& all_columns =
-        coupled_columns_ ? *coupled_columns_ : pattern_.column;
-    std::vector<PetscInt> row_start, column;
-    if (!coupled) std::tie(row_start, column) = uncoupled_csr(pattern_.row_start, all_columns, d);
-    if (mpi_size(dofs_.comm()) == 1) {
-      if (coupled) {
-        row_start = pattern_.row_start;
-        column = std::move(pattern_.column);
-      }
-      const std::vector<PetscInt>* columns = nullptr;
-      std::tie(m, columns) =
-          matrix_on_arrays(dofs_.comm(), std::move(row_start), std::move(column));
-      if (coupled) coupled_columns_ = columns;  // first_[1] keeps them
-      // hypre's BoomerAMG reads the block size as its number of functions.
-      NM_PETSC(MatSetBlockSize(m, d));
-    } else {
-      NM_PETSC(MatCreate(dofs_.comm(), m.out()));
-      NM_PETSC(MatSetSizes(m, dofs_.num_owned_dofs(), dofs_.num_owned_dofs(),
-                           dofs_.num_global_dofs(), dofs_.num_global_dofs()));
-      NM_PETSC(MatSetType(m, MATMPIAIJ));
-      NM_PETSC(MatSetBlockSize(m, d));
-      NM_PETSC(
-          MatMPIAIJSetPreallocationCSR(m, coupled ? pattern_.row_start.data() : row_start.data(),
-                                       coupled ? pattern_.column.data() : column.data(), nullptr));
-    }
-    // Values are written where assembly_pattern.hpp says PETSc keeps each entry; a different
-    // number of entries in A or B means a PETSc that stores them differently.
-    const auto [a, b] = aij_parts(m);
-    const std::size_t shrink = coupled ? 1 : d;
-    if (stored_entries(a) != pattern_.diagonal_entries / shrink ||
-        stored_entries(b) != pattern_.off_diagonal_entries / shrink)
-      fail("internal error: PETSc stores {} in {} + {} entries, not {} + {}", coupled ? "H" : "L",
-           stored_entries(a), stored_entries(b), pattern_.diagonal_entries / shrink,
-           pattern_.off_diagonal_entries / shrink);
+    m = create_first(layout);
     NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(m.get())));
-    first_[coupled] = OwnedMat(m.get());
-    // Every later matrix is a duplicate: the matrices hold the columns from now on.
-    if (first_[0] && first_[1]) {
+    first = OwnedMat(m.get());
+    // Once H and a Laplacian have their matrices, every later matrix is a duplicate (or
+    // rare): the matrices hold the columns from now on.
+    if (first_[static_cast<int>(MatrixLayout::Coupled)] &&
+        (first_[static_cast<int>(MatrixLayout::Uncoupled)] ||
+         first_[static_cast<int>(MatrixLayout::Scalar)]))
       std::vector<PetscInt>().swap(pattern_.column);
-      coupled_columns_ = nullptr;
-    }
   }
   attach_tag(m, id_, layout);
   // H(α) and L are symmetric by construction (cell_kernels.hpp), exactly in floating point.
@@ -188,9 +225,12 @@ MatrixLayout MatrixAssembler::layout(Mat m) const {
 
 MatrixAssembler::Values::Values(const MatrixAssembler& assembler, Mat m)
     : assembler_(assembler), m_(m) {
-  coupled_ = assembler.layout(m) == MatrixLayout::Coupled;
+  layout_ = assembler.layout(m);
   const AssemblyPattern& p = assembler.pattern_;
-  const std::size_t shrink = coupled_ ? 1 : assembler.dofs_.dim();
+  const std::size_t d = assembler.dofs_.dim();
+  const std::size_t shrink = layout_ == MatrixLayout::Coupled     ? 1
+                             : layout_ == MatrixLayout::Uncoupled ? d
+                                                                  : d * d;
   std::tie(diagonal_part_, off_diagonal_part_) = aij_parts(m);
   NM_PETSC(MatSeqAIJGetArrayWrite(diagonal_part_, &diagonal_));
   if (off_diagonal_part_) NM_PETSC(MatSeqAIJGetArrayWrite(off_diagonal_part_, &off_diagonal_));
@@ -211,8 +251,9 @@ void MatrixAssembler::Values::restore() {
 
 void MatrixAssembler::Values::gather() {
   const AssemblyPattern& p = assembler_.pattern_;
-  if (p.ghost_to_diagonal[coupled_]) {
-    PetscSF to_a = p.ghost_to_diagonal[coupled_], to_b = p.ghost_to_off_diagonal[coupled_];
+  const int l = static_cast<int>(layout_);
+  if (p.ghost_to_diagonal[l]) {
+    PetscSF to_a = p.ghost_to_diagonal[l], to_b = p.ghost_to_off_diagonal[l];
     PetscScalar* const ghost = ghost_.data();
     NM_PETSC(PetscSFReduceBegin(to_a, MPIU_SCALAR, ghost, diagonal_, MPI_SUM));
     NM_PETSC(PetscSFReduceBegin(to_b, MPIU_SCALAR, ghost, off_diagonal_, MPI_SUM));
@@ -221,13 +262,25 @@ void MatrixAssembler::Values::gather() {
   }
   const int d = assembler_.dofs_.dim();
   const std::vector<std::uint8_t>& fixed = assembler_.fixed_;
-  for (PetscInt l = 0; l < static_cast<PetscInt>(fixed.size()); ++l)
-    if (fixed[l] && p.diagonal[l] >= 0)
-      diagonal_[coupled_ ? p.diagonal[l] : (p.diagonal[l] - l % d) / d] = 1.0;
+  for (PetscInt k = 0; k < static_cast<PetscInt>(fixed.size()); ++k) {
+    if (!fixed[k] || p.diagonal[k] < 0) continue;
+    switch (layout_) {
+      case MatrixLayout::Coupled:
+        diagonal_[p.diagonal[k]] = 1.0;
+        break;
+      case MatrixLayout::Uncoupled:
+        diagonal_[(p.diagonal[k] - k % d) / d] = 1.0;
+        break;
+      case MatrixLayout::Scalar:  // the vertex's row, once
+        if (k % d == 0) diagonal_[p.scalar_entry(k / d, p.diagonal[k], d)] = 1.0;
+        break;
+    }
+  }
 }
 
 void MatrixAssembler::Values::add_to_diagonal_block(PetscInt v, const double* block) {
-  if (!coupled_) fail("internal error: a diagonal block added to a matrix without couplings");
+  if (layout_ != MatrixLayout::Coupled)
+    fail("internal error: a diagonal block added to a matrix without couplings");
   const AssemblyPattern& p = assembler_.pattern_;
   const int d = assembler_.dofs_.dim();
   for (int a = 0; a < d; ++a)

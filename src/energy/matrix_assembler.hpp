@@ -4,7 +4,8 @@
 // of inferring it from the matrix; a matrix it did not create is refused.
 //
 // Fixed dofs are eliminated here: their rows and columns are left out of every cell block
-// and their diagonal entries set to 1 (docs/method.md §3).
+// and their diagonal entries set to 1 (docs/method.md §3). A Scalar matrix (one component of
+// the vector Laplacian) needs every vertex fixed in all or none of its components.
 #pragma once
 
 #include <cstdint>
@@ -18,11 +19,6 @@
 
 namespace neomesh {
 
-enum class MatrixLayout {
-  Uncoupled,  // only couplings within a component (1/dim of the entries): the vector Laplacian
-  Coupled,    // every coupling of two vertices' dofs: H(α), or L with projected vertices
-};
-
 class MatrixAssembler {
  public:
   // Collective: builds the pattern. `fixed`: per local dof (MeshView order), 1 if fixed.
@@ -33,6 +29,7 @@ class MatrixAssembler {
   MatrixAssembler& operator=(const MatrixAssembler&) = delete;
 
   // Collective. A matrix with the sparsity of `layout`, values not yet assembled; symmetric.
+  // Scalar: throws Error unless every vertex has all or none of its dofs fixed (on every rank).
   OwnedMat create(MatrixLayout layout);
   // The layout of a matrix made by create() of this assembler; throws Error for any other.
   MatrixLayout layout(Mat m) const;
@@ -51,16 +48,23 @@ class MatrixAssembler {
   class Values;
 
  private:
+  // The first matrix of `layout`.
+  OwnedMat create_first(MatrixLayout layout);
+  // The coupled pattern's columns: the pattern's, the coupled matrix's on one rank, or,
+  // after the pattern freed them, read back from the coupled matrix.
+  const std::vector<PetscInt>& coupled_columns();
+
   const MeshView& view_;
   const DofMap& dofs_;
   std::vector<std::uint8_t> fixed_;         // per local dof
   std::vector<std::uint8_t> vertex_fixed_;  // per local vertex: some dof of it is fixed
+  bool components_fixed_alike_ = true;      // no local vertex has only some dofs fixed
   AssemblyPattern pattern_;
   std::uint64_t id_;  // tells this assembler's matrices from those of others
   // The first matrix of each layout; later ones share its pattern (MAT_SHARE_NONZERO_PATTERN).
-  OwnedMat first_[2];
-  // On one rank, once the coupled matrix took the pattern's columns (and until both layouts
-  // have a matrix): the columns in that matrix.
+  OwnedMat first_[3];
+  // On one rank, once the coupled matrix took the pattern's columns: the columns in that
+  // matrix (first_ keeps it).
   const std::vector<PetscInt>* coupled_columns_ = nullptr;
 };
 
@@ -75,17 +79,25 @@ class MatrixAssembler::Values {
   Values(const Values&) = delete;
   Values& operator=(const Values&) = delete;
 
-  MatrixLayout layout() const { return coupled_ ? MatrixLayout::Coupled : MatrixLayout::Uncoupled; }
+  MatrixLayout layout() const { return layout_; }
 
   // Adds the (D·N) × (D·N) block of cell c of block b (column-major, dof D·i + a of local
   // vertex i), without the rows and columns of fixed dofs; an Uncoupled matrix takes only
-  // the entries within a component. Chunks of one colour may be added concurrently.
+  // the entries within a component, a Scalar one only those of component 0 (the block's
+  // components must then be equal). Chunks of one colour may be added concurrently.
   template <int D, int N>
   void add_cell(std::size_t b, PetscInt c, const double* block) {
-    if (coupled_)
-      add_cell<D, N, true>(b, c, block);
-    else
-      add_cell<D, N, false>(b, c, block);
+    switch (layout_) {
+      case MatrixLayout::Coupled:
+        add_cell<D, N, true>(b, c, block);
+        break;
+      case MatrixLayout::Uncoupled:
+        add_cell<D, N, false>(b, c, block);
+        break;
+      case MatrixLayout::Scalar:
+        add_scalar_cell<D, N>(b, c, block);
+        break;
+    }
   }
   // Collective: adds the rows of ghost vertices into their owners' rows and sets the
   // diagonal of fixed dofs to 1.
@@ -99,12 +111,14 @@ class MatrixAssembler::Values {
  private:
   template <int D, int N, bool Coupled>
   void add_cell(std::size_t b, PetscInt c, const double* block);
+  template <int D, int N>
+  void add_scalar_cell(std::size_t b, PetscInt c, const double* block);
   void restore();
 
   const MatrixAssembler& assembler_;
   Mat m_;
   Mat diagonal_part_ = nullptr, off_diagonal_part_ = nullptr;  // A and B; B null on one rank
-  bool coupled_ = true;
+  MatrixLayout layout_ = MatrixLayout::Coupled;
   PetscScalar* diagonal_ = nullptr;
   PetscScalar* off_diagonal_ = nullptr;
   std::vector<PetscScalar> ghost_;  // G of assembly_pattern.hpp
@@ -144,6 +158,26 @@ void MatrixAssembler::Values::add_cell(std::size_t b, PetscInt c, const double* 
             if (plain || !fixed[D * w + bb]) out[a * stride + bb] += in[bb * n + a];
         }
       }
+    }
+  }
+}
+
+template <int D, int N>
+void MatrixAssembler::Values::add_scalar_cell(std::size_t b, PetscInt c, const double* block) {
+  constexpr int n = D * N;  // leading dimension of `block`
+  const AssemblyPattern& p = assembler_.pattern_;
+  const std::vector<std::uint8_t>& vertex_fixed = assembler_.vertex_fixed_;
+  const PetscInt* vertex = assembler_.view_.blocks[b].cell(c);
+  const PetscInt* entry = p.block_entry[b].data() + c * N * N;
+  PetscScalar* const ghost = ghost_.data();
+  for (int vi = 0; vi < N; ++vi) {
+    const PetscInt v = vertex[vi];
+    if (vertex_fixed[v]) continue;  // and so are all its dofs
+    PetscScalar* const row = assembler_.view_.owned[v] ? diagonal_ : ghost;
+    for (int vj = 0; vj < N; ++vj) {
+      if (vertex_fixed[vertex[vj]]) continue;
+      const PetscInt e = p.scalar_entry(v, entry[vi * N + vj], D);
+      *(e >= 0 ? row + e : off_diagonal_ + ~e) += block[D * vj * n + D * vi];  // (D vi, D vj)
     }
   }
 }

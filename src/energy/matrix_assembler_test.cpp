@@ -12,7 +12,8 @@ namespace neomesh {
 namespace {
 
 // A serial mesh with some dofs fixed (every coordinate of the first vertex of each cell
-// block's first cell, and one coordinate of every fifth vertex) and its assembler.
+// block's first cell, and one coordinate of every fifth vertex, or all of its coordinates
+// with `whole_vertices`) and its assembler.
 struct TestMesh {
   MeshData data;
   MeshView view;
@@ -20,16 +21,18 @@ struct TestMesh {
   std::vector<std::uint8_t> fixed;
   MatrixAssembler assembler;
 
-  explicit TestMesh(MeshData mesh)
+  explicit TestMesh(MeshData mesh, bool whole_vertices = false)
       : data(std::move(mesh)),
         view(serial_view(data)),
         dofs(DofMap::serial(data.dim, static_cast<PetscInt>(data.num_vertices()))),
-        fixed(fixed_dofs(view)),
+        fixed(fixed_dofs(view, whole_vertices)),
         assembler(view, dofs, fixed) {}
 
-  static std::vector<std::uint8_t> fixed_dofs(const MeshView& view) {
+  static std::vector<std::uint8_t> fixed_dofs(const MeshView& view, bool whole_vertices) {
     std::vector<std::uint8_t> fixed(view.dim * view.num_vertices, 0);
-    for (PetscInt v = 0; v < view.num_vertices; v += 5) fixed[view.dim * v + v % view.dim] = 1;
+    for (PetscInt v = 0; v < view.num_vertices; v += 5)
+      for (int a = 0; a < view.dim; ++a)
+        if (whole_vertices || a == v % view.dim) fixed[view.dim * v + a] = 1;
     for (const CellBlock& block : view.blocks)
       for (int a = 0; a < view.dim; ++a) fixed[view.dim * block.cell(0)[0] + a] = 1;
     return fixed;
@@ -44,11 +47,13 @@ double value(Mat m, PetscInt row, PetscInt column) {
 
 // Adds a random block per cell through the assembler, and the same blocks entry by entry
 // into a dense reference with the rule of docs/method.md §3 (fixed rows and columns are
-// those of the identity; Uncoupled keeps entries within a component only).
+// those of the identity; Uncoupled keeps entries within a component only, Scalar those of
+// component 0, in a row and column per vertex).
 void check_assembly(const MeshData& mesh, MatrixLayout layout) {
-  TestMesh s(mesh);
+  const bool scalar = layout == MatrixLayout::Scalar;
+  TestMesh s(mesh, scalar);
   const int d = s.view.dim;
-  const PetscInt n = d * s.view.num_vertices;
+  const PetscInt n = (scalar ? 1 : d) * s.view.num_vertices;  // rows
   std::vector<double> reference(static_cast<std::size_t>(n * n), 0.0);
   OwnedMat m = s.assembler.create(layout);
   std::mt19937 rng(3);
@@ -72,7 +77,10 @@ void check_assembly(const MeshData& mesh, MatrixLayout layout) {
               const PetscInt column = d * block.cell(c)[j / d] + j % d;
               if (s.fixed[row] || s.fixed[column]) continue;
               if (layout == MatrixLayout::Uncoupled && i % d != j % d) continue;
-              reference[row * n + column] += cell_block[i + j * k];
+              if (scalar && (i % d != 0 || j % d != 0)) continue;
+              const PetscInt at_row = scalar ? row / d : row;
+              const PetscInt at_column = scalar ? column / d : column;
+              reference[at_row * n + at_column] += cell_block[i + j * k];
             }
         }
       });
@@ -81,7 +89,7 @@ void check_assembly(const MeshData& mesh, MatrixLayout layout) {
     values.finish();
   }
   for (PetscInt l = 0; l < n; ++l)
-    if (s.fixed[l]) reference[l * n + l] = 1.0;
+    if (s.fixed[scalar ? d * l : l]) reference[l * n + l] = 1.0;
   for (PetscInt row = 0; row < n; ++row)
     for (PetscInt column = 0; column < n; ++column)
       ASSERT_NEAR(value(m, row, column), reference[row * n + column], 1e-12)
@@ -92,7 +100,8 @@ void check_assembly(const MeshData& mesh, MatrixLayout layout) {
 }
 
 TEST(MatrixAssembler, AddsCellBlocksWhereTheMatrixKeepsThem) {
-  for (MatrixLayout layout : {MatrixLayout::Coupled, MatrixLayout::Uncoupled}) {
+  for (MatrixLayout layout :
+       {MatrixLayout::Coupled, MatrixLayout::Uncoupled, MatrixLayout::Scalar}) {
     check_assembly(square_random(4, 0.2, 1), layout);
     check_assembly(box(CellType::Triangle, 3), layout);
     check_assembly(box(CellType::Tetrahedron, 2), layout);
@@ -100,19 +109,33 @@ TEST(MatrixAssembler, AddsCellBlocksWhereTheMatrixKeepsThem) {
   }
 }
 
-TEST(MatrixAssembler, UncoupledMatricesHoldOneEntryInDim) {
-  TestMesh s(box(CellType::Tetrahedron, 2));
+double stored_entries(Mat m) {
+  MatInfo info;
+  NM_PETSC(MatGetInfo(m, MAT_GLOBAL_SUM, &info));
+  return info.nz_allocated;
+}
+
+// Uncoupled: 1/dim of the coupled entries; Scalar: one row per vertex, 1/dim² of them (made
+// last, from the columns the coupled matrix holds by then). A vertex with only some
+// coordinates fixed has no scalar row.
+TEST(MatrixAssembler, UncoupledAndScalarMatricesHoldFewerEntries) {
+  TestMesh s(box(CellType::Tetrahedron, 2), true);
   OwnedMat coupled = s.assembler.create(MatrixLayout::Coupled);
   OwnedMat uncoupled = s.assembler.create(MatrixLayout::Uncoupled);
-  MatInfo a, b;
-  NM_PETSC(MatGetInfo(coupled, MAT_GLOBAL_SUM, &a));
-  NM_PETSC(MatGetInfo(uncoupled, MAT_GLOBAL_SUM, &b));
-  EXPECT_EQ(a.nz_allocated, 3 * b.nz_allocated);
+  OwnedMat scalar = s.assembler.create(MatrixLayout::Scalar);
+  EXPECT_EQ(stored_entries(coupled), 3 * stored_entries(uncoupled));
+  EXPECT_EQ(stored_entries(coupled), 9 * stored_entries(scalar));
+  PetscInt rows = 0;
+  NM_PETSC(MatGetSize(scalar, &rows, nullptr));
+  EXPECT_EQ(rows, s.view.num_vertices);
   // Later matrices of a layout share the first one's pattern and keep their own tag.
   OwnedMat second = s.assembler.create(MatrixLayout::Uncoupled);
   EXPECT_EQ(s.assembler.layout(coupled), MatrixLayout::Coupled);
   EXPECT_EQ(s.assembler.layout(uncoupled), MatrixLayout::Uncoupled);
   EXPECT_EQ(s.assembler.layout(second), MatrixLayout::Uncoupled);
+  EXPECT_EQ(s.assembler.layout(scalar), MatrixLayout::Scalar);
+  TestMesh some_fixed(box(CellType::Tetrahedron, 2));
+  EXPECT_THROW(some_fixed.assembler.create(MatrixLayout::Scalar), Error);
 }
 
 // Whatever its pattern, a matrix the assembler did not create is refused: the assembler

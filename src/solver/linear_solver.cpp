@@ -70,7 +70,7 @@ class AmgDefaults {
 
 LinearSolver::LinearSolver(MPI_Comm comm, LinearSolverKind kind, const std::string& prefix, int dim,
                            double rtol)
-    : rtol_(rtol) {
+    : rtol_(rtol), kind_(kind), prefix_(prefix), dim_(dim) {
   NM_PETSC(KSPCreate(comm, ksp_.out()));
   NM_PETSC(KSPSetOptionsPrefix(ksp_, prefix.c_str()));
   PC pc = nullptr;
@@ -103,10 +103,33 @@ LinearSolver::LinearSolver(MPI_Comm comm, LinearSolverKind kind, const std::stri
 void LinearSolver::set_operator(Mat A, bool same_values) {
   NM_PETSC(KSPSetOperators(ksp_, A, A));
   NM_PETSC(KSPSetReusePreconditioner(ksp_, same_values ? PETSC_TRUE : PETSC_FALSE));
+  if (!components_) return;
+  const Mat scalar = maij_scalar(A);
+  if (!scalar) fail("internal error: a per-component preconditioner for a matrix that is no MAIJ");
+  components_->set_operator(scalar, same_values);
 }
 
 void LinearSolver::setup() {
   NM_PETSC(KSPSetUp(ksp_));
+  if (components_) components_->setup();
+}
+
+void LinearSolver::precondition_per_component() {
+  if (kind_ != LinearSolverKind::Amg)
+    fail("internal error: a per-component preconditioner for the {} solver", name(kind_));
+  OwnedPC scalar;
+  NM_PETSC(PCCreate(PetscObjectComm(reinterpret_cast<PetscObject>(ksp_.get())), scalar.out()));
+  NM_PETSC(PCSetOptionsPrefix(scalar, prefix_.c_str()));
+  NM_PETSC(PCSetType(scalar, PCHYPRE));
+  NM_PETSC(PCHYPRESetType(scalar, "boomeramg"));
+  {
+    const AmgDefaults defaults(prefix_, dim_);  // while it reads them
+    NM_PETSC(PCSetFromOptions(scalar));
+  }
+  components_ = std::make_unique<ComponentPreconditioner>(std::move(scalar), dim_);
+  PC pc = nullptr;
+  NM_PETSC(KSPGetPC(ksp_, &pc));
+  components_->install(pc);
 }
 
 namespace {
@@ -154,12 +177,11 @@ LinearSolver::Outcome LinearSolver::solve(Vec b, Vec x, double atol) {
   return out;
 }
 
-std::string LinearSolver::description() const {
-  KSPType ksp_type = nullptr;
-  PC pc = nullptr;
+namespace {
+
+// "hypre boomeramg", "cholesky (mumps)", "jacobi".
+std::string describe(PC pc) {
   PCType pc_type = nullptr;
-  NM_PETSC(KSPGetType(ksp_, &ksp_type));
-  NM_PETSC(KSPGetPC(ksp_, &pc));
   NM_PETSC(PCGetType(pc, &pc_type));
   std::string pc_name = pc_type ? pc_type : "none";
   if (pc_name == PCHYPRE) {
@@ -171,6 +193,20 @@ std::string LinearSolver::description() const {
     NM_PETSC(PCFactorGetMatSolverType(pc, &package));
     pc_name += fmt::format(" ({})", package ? package : "petsc");
   }
+  return pc_name;
+}
+
+}  // namespace
+
+std::string LinearSolver::description() const {
+  KSPType ksp_type = nullptr;
+  PC pc = nullptr;
+  NM_PETSC(KSPGetType(ksp_, &ksp_type));
+  NM_PETSC(KSPGetPC(ksp_, &pc));
+  std::string pc_name = describe(pc);
+  if (components_)
+    pc_name = fmt::format("{} of the scalar matrix, once for each of {} components",
+                          describe(components_->scalar()), components_->components());
   double rtol = 0.0;
   PetscInt max_it = 0;
   NM_PETSC(KSPGetTolerances(ksp_, &rtol, nullptr, nullptr, &max_it));

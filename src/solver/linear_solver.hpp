@@ -8,12 +8,14 @@
 //   direct  Cholesky (MUMPS, works in parallel; the thesis used UMFPACK)
 #pragma once
 
+#include <memory>
 #include <string>
 #include <string_view>
 
 #include <neomesh/options.hpp>
 
 #include "core/petsc.hpp"
+#include "solver/component_preconditioner.hpp"
 
 namespace neomesh {
 
@@ -27,6 +29,11 @@ class LinearSolver {
   // Uses `A` for the next solves. With `same_values` the preconditioner (AMG hierarchy,
   // factorization) of the previous operator is kept.
   void set_operator(Mat A, bool same_values);
+  // amg only, before set_operator: the operators will be MatCreateMAIJ(A₁, dim) of scalar
+  // matrices A₁ (Functional::create_scalar_laplacian_matrix), preconditioned by one BoomerAMG
+  // hierarchy of A₁ applied to each component (component_preconditioner.hpp). The -<prefix>pc_
+  // options, and the BoomerAMG defaults, apply to that scalar preconditioner.
+  void precondition_per_component();
   // Builds the preconditioner now (else the next solve does), for timing it on its own.
   void setup();
   // From now on, precondition with `other`'s preconditioner as it is at each solve (built for
@@ -47,12 +54,17 @@ class LinearSolver {
 
   KSP ksp() const { return ksp_; }
   // "KSP cg, PC hypre boomeramg, rtol 0.0001, at most 10000 iterations": what PETSc will run,
-  // after the options database's -<prefix> options.
+  // after the options database's -<prefix> options; per component: "PC hypre boomeramg of
+  // the scalar matrix, once for each of 3 components".
   std::string description() const;
 
  private:
   OwnedKSP ksp_;
   double rtol_;
+  LinearSolverKind kind_;
+  std::string prefix_;
+  int dim_;
+  std::unique_ptr<ComponentPreconditioner> components_;  // after precondition_per_component
 };
 
 }  // namespace neomesh

@@ -1,4 +1,5 @@
-// LinearSolver's BoomerAMG defaults reach hypre and leave the options database as it was.
+// LinearSolver's BoomerAMG defaults reach hypre and leave the options database as it was;
+// the per-component preconditioner of the scalar Laplacian solves as the block hierarchy does.
 #include "solver/linear_solver.hpp"
 
 #include <gmock/gmock.h>
@@ -8,6 +9,9 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+
+#include "mesh/serial_view.hpp"
+#include "solver/testing/riesz_solves.hpp"
 
 namespace neomesh {
 namespace {
@@ -53,6 +57,34 @@ TEST(LinearSolver, AnOptionTheCallerGaveWinsAndStays) {
   EXPECT_THAT(pc, Not(HasSubstr("HMIS")));
   EXPECT_TRUE(in_database("-given_pc_hypre_boomeramg_coarsen_type"));
   NM_PETSC(PetscOptionsClearValue(nullptr, "-given_pc_hypre_boomeramg_coarsen_type"));
+}
+
+// The scalar preconditioner reads the solver's options and the BoomerAMG defaults, which it
+// leaves behind as little as the block one does.
+TEST(LinearSolver, PerComponentPreconditionerReadsTheOptions) {
+  NM_PETSC(PetscOptionsSetValue(nullptr, "-percomp_pc_hypre_boomeramg_interp_type", "FF1"));
+  LinearSolver solver(PETSC_COMM_SELF, LinearSolverKind::Amg, "percomp_", 3, 1e-4);
+  solver.precondition_per_component();
+  const std::string pc = view_pc(solver);
+  EXPECT_THAT(pc, HasSubstr("applied to each of 3 components"));
+  EXPECT_THAT(pc, HasSubstr("HMIS"));
+  EXPECT_THAT(pc, HasSubstr("Chebyshev"));
+  EXPECT_THAT(pc, HasSubstr("FF1"));
+  EXPECT_FALSE(in_database("-percomp_pc_hypre_boomeramg_coarsen_type"));
+  EXPECT_FALSE(in_database("-percomp_pc_hypre_boomeramg_relax_type_all"));
+  NM_PETSC(PetscOptionsClearValue(nullptr, "-percomp_pc_hypre_boomeramg_interp_type"));
+  EXPECT_THROW(LinearSolver(PETSC_COMM_SELF, LinearSolverKind::Direct, "percomp_", 3, 1e-4)
+                   .precondition_per_component(),
+               Error);
+}
+
+// L s = g with the scalar Laplacian's MAIJ and one hierarchy per component gives the s of the
+// block hierarchy to the solve's tolerance, and the δ̃ solve's borrowed preconditioner works.
+TEST(LinearSolver, PerComponentRieszSolveMatchesTheBlockSolve) {
+  for (const MeshData& mesh : riesz_test_meshes()) {
+    const MeshView view = serial_view(mesh);
+    expect_same_riesz_representative(view, DofMap::serial(view.dim, view.num_vertices));
+  }
 }
 
 }  // namespace

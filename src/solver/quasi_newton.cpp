@@ -62,6 +62,10 @@ double energy_roundoff(const EnergyOptions& energy, int dim, double mesh_volume)
   return 1e-15 * (energy.lambda + energy.mu) * dim * mesh_volume;
 }
 
+bool riesz_per_component(const Functional& functional, const SolverOptions& options) {
+  return options.linear_solver == LinearSolverKind::Amg && functional.laplacian_is_scalar();
+}
+
 struct QuasiNewton::Impl {
   const Functional& functional;
   QuasiNewtonOptions options;
@@ -96,6 +100,7 @@ struct QuasiNewton::Impl {
         previous_defect(o.initial_previous_defect),
         alpha(o.alpha0) {
     Stopwatch watch(times.setup);
+    if (riesz_per_component(functional, options)) riesz_solver.precondition_per_component();
     if (laplacian_preconditions_hessian()) hessian_solver.precondition_with(riesz_solver);
     for (OwnedVec* v : {&gradient, &s, &delta_tilde, &delta, &trial, &work, &rhs})
       *v = functional.dofs().create_global_vector();
@@ -107,7 +112,9 @@ struct QuasiNewton::Impl {
     if (hessian) return;
     Stopwatch watch(times.setup);
     hessian = functional.create_matrix();
-    laplacian = functional.create_laplacian_matrix();
+    laplacian = riesz_per_component(functional, options)
+                    ? functional.create_scalar_laplacian_matrix()
+                    : functional.create_laplacian_matrix();
   }
 
   void evaluate_gradient(Vec x) {

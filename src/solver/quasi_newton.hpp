@@ -31,6 +31,11 @@ struct QuasiNewtonOptions : SolverOptions {
 // 1e-15 (λ + μ) d |Ω|: the round-off level of F for a mesh of volume |Ω| in `dim` dimensions.
 double energy_roundoff(const EnergyOptions& energy, int dim, double mesh_volume);
 
+// True if the Riesz solve runs on the scalar Laplacian: with the amg solver where L is one
+// scalar Laplacian per component (Functional::laplacian_is_scalar), L is MatCreateMAIJ(L₁, d)
+// and one BoomerAMG hierarchy of L₁ preconditions all d components (docs/method.md §4).
+bool riesz_per_component(const Functional& functional, const SolverOptions& options);
+
 struct QuasiNewtonResult {
   std::vector<IterationRecord> history;
   StopReason reason = StopReason::MaxIterations;
