@@ -27,15 +27,6 @@ bool valid(const Functional& functional, const MeshView& view, const DofMap& dof
   return ok == 1;
 }
 
-// Per local dof, the sum of every rank's `local` values of it (a vertex's cells may lie on
-// several ranks). Collective.
-void add_over_ranks(const DofMap& dofs, std::vector<double>& local) {
-  if (mpi_size(dofs.comm()) == 1) return;
-  OwnedVec global = dofs.create_global_vector();
-  dofs.add_local_to_global(local, global);
-  dofs.global_to_local(global, local);
-}
-
 // Sweeps that spread the interface's move over the vertices around it (one ring each).
 constexpr int kSpreadSweeps = 16;
 
@@ -74,8 +65,8 @@ void move_to_stage(const MeshView& view, const DofMap& dofs, const InterfaceCons
           }
       }
     }
-    add_over_ranks(dofs, sum);
-    add_over_ranks(dofs, count);
+    dofs.sum_over_ranks(sum);  // a vertex's cells may lie on several ranks
+    dofs.sum_over_ranks(count);
     for (PetscInt u = 0; u < view.num_vertices; ++u)
       if (!held[u] && count[u * d] > 0)
         for (int j = 0; j < d; ++j) move[u * d + j] = sum[u * d + j] / count[u * d];

@@ -207,9 +207,7 @@ void share_marks(const DofMap& dofs, std::vector<std::uint8_t>& marks) {
   const int d = dofs.dim();
   std::vector<double> local(marks.size() * d, 0.0);
   for (std::size_t u = 0; u < marks.size(); ++u) local[u * d] = marks[u];
-  OwnedVec global = dofs.create_global_vector();
-  dofs.add_local_to_global(local, global);
-  dofs.global_to_local(global, local);
+  dofs.sum_over_ranks(local);
   for (std::size_t u = 0; u < marks.size(); ++u) marks[u] = local[u * d] > 0 ? 1 : 0;
 }
 

@@ -48,4 +48,11 @@ void DofMap::add_local_to_global(std::span<const double> local, Vec global) cons
   NM_PETSC(PetscSFReduceEnd(sf_, MPIU_SCALAR, local.data(), roots.data(), MPI_SUM));
 }
 
+void DofMap::sum_over_ranks(std::span<double> local) const {
+  if (mpi_size(comm_) == 1) return;
+  OwnedVec global = create_global_vector();
+  add_local_to_global(local, global);
+  global_to_local(global, local);
+}
+
 }  // namespace neomesh

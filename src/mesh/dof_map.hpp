@@ -39,6 +39,10 @@ class DofMap {
   void global_to_local(Vec global, std::span<double> local) const;
   // global += sum over ranks of their local contributions (ghost entries are sent to owners).
   void add_local_to_global(std::span<const double> local, Vec global) const;
+  // local[i] = the sum over ranks of their local values of dof i, so that every rank holding
+  // a vertex ends with the same total (sums over a vertex's cells when its cells lie on
+  // several ranks). Collective; nothing to do on one process.
+  void sum_over_ranks(std::span<double> local) const;
 
  private:
   MPI_Comm comm_;

@@ -90,6 +90,8 @@ TEST_P(Distributed, DofMapSumsOverRanks) {
   const auto count = incidence(serial.view());
   for (PetscInt v = 0; v < view.num_vertices; ++v)
     for (int d = 0; d < view.dim; ++d) EXPECT_EQ(back[v * view.dim + d], count.at(point(view, v)));
+  dofs.sum_over_ranks(local);  // the same round trip in one call
+  EXPECT_EQ(local, back);
 }
 
 TEST_P(Distributed, CoordinatesRoundTripIncludingGhosts) {

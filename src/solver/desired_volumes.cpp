@@ -44,9 +44,7 @@ std::vector<double> average_over_neighbours(const MeshView& view, const DofMap& 
         local[block.cell(c)[i] * d] += values[block.first_cell + c];
         local[block.cell(c)[i] * d + 1] += 1.0;
       }
-  OwnedVec global = dofs.create_global_vector();
-  dofs.add_local_to_global(local, global);
-  dofs.global_to_local(global, local);
+  dofs.sum_over_ranks(local);
 
   std::vector<double> averaged(values.size());
   for (const CellBlock& block : view.blocks)
