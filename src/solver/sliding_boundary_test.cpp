@@ -178,7 +178,8 @@ TEST(SlidingBoundary, ShellHexesSpreadEvenlyAlongTheCirclesAndKeepTheirRidges) {
 }
 
 // On the bunched ring sliding on its input polygons, H(α) and L disagree enough that the
-// angle test rejects δ̃: blended, the direction passes the test with η_k = η exactly, and the
+// angle test rejects δ̃: blended, the direction passes the test with η_k = η exactly (and a δ̃
+// that CG truncated at negative curvature, which this run meets, is never blended), and the
 // thesis' choice (−s) never blends.
 TEST(SlidingBoundary, RejectedDirectionsAreTurnedJustEnoughTowardsTheAntigradient) {
   for (RejectedDirection choice : {RejectedDirection::Blend, RejectedDirection::Antigradient}) {
@@ -193,6 +194,7 @@ TEST(SlidingBoundary, RejectedDirectionsAreTurnedJustEnoughTowardsTheAntigradien
       ++blended;
       EXPECT_NEAR(r.eta, options.eta, 1e-12) << "iteration " << r.k;
       EXPECT_FALSE(r.used_s);
+      EXPECT_FALSE(r.delta_truncated) << "iteration " << r.k << ": negative curvature";
     }
     if (choice == RejectedDirection::Blend)
       EXPECT_GT(blended, 0);

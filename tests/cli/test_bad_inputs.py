@@ -70,6 +70,8 @@ CASES = [
     ("alpha0 out of range", ["smooth", GOOD, "-o", "out.msh", "--alpha0", "0"], ["--alpha0"]),
     ("unknown linear solver", ["smooth", GOOD, "-o", "out.msh", "--linear-solver", "umfpack"],
      ["--linear-solver", "umfpack", "amg"]),
+    ("unknown rejected direction", ["smooth", GOOD, "-o", "out.msh", "--rejected-direction",
+                                    "sideways"], ["--rejected-direction", "sideways", "blend"]),
     ("unknown sizes mode", ["smooth", GOOD, "-o", "out.msh", "--sizes", "tiny"],
      ["--sizes", "tiny"]),
     ("unknown PETSc type", ["smooth", GOOD, "-o", "out.msh", "-hess_ksp_type", "nosuchksp"],
