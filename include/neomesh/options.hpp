@@ -93,6 +93,10 @@ struct SolverOptions {
   bool practical = true;
   double energy_rtol = 1e-9;
   double move_rtol = 1e-6;
+  // Practical criterion, Newton's half: also stop after a full Newton step (α = 1, δ̃ taken
+  // unchanged, σ = 1) that moved no vertex more than newton_move_rtol times its local cell
+  // size; the next step would move them by about the square of that (0: off).
+  double newton_move_rtol = 1e-3;
   double armijo_beta = 1e-2;  // sufficient decrease (thesis (2.5.4))
   int max_halvings = 40;      // σ ≥ 0.5^40 ≈ 1e-12, then give up
   // ‖g_{-1}‖ for the first α update; 10 reproduces the thesis' tables (docs/method.md §4).

@@ -52,6 +52,7 @@ void SolverOptions::validate() const {
   require(defect_rtol >= 0, "solver.defect_rtol", defect_rtol, "0 or more");
   require(energy_rtol >= 0, "solver.energy_rtol", energy_rtol, "0 or more");
   require(move_rtol >= 0, "solver.move_rtol", move_rtol, "0 or more");
+  require(newton_move_rtol >= 0, "solver.newton_move_rtol", newton_move_rtol, "0 or more");
   require(armijo_beta > 0 && armijo_beta < 1, "solver.armijo_beta", armijo_beta, "in (0, 1)");
   require(max_halvings >= 1, "solver.max_halvings", max_halvings, "at least 1");
   require(initial_previous_defect > 0, "solver.initial_previous_defect", initial_previous_defect,

@@ -80,6 +80,11 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "... and no vertex moved more than this times its local cell size")
       ->capture_default_str()
       ->group(method);
+  cmd.add_option("--newton-move-rtol", o.solver.newton_move_rtol,
+                 "practical criterion: or a full Newton step (alpha 1, sigma 1) moved no vertex "
+                 "more than this times its local cell size (0: off)")
+      ->capture_default_str()
+      ->group(method);
   cmd.add_option("--alpha-start-defect", o.solver.initial_previous_defect,
                  "defect assumed before the first iteration for the α update (thesis: 10)")
       ->capture_default_str()
@@ -161,6 +166,7 @@ std::string cli_message(const std::string& message) {
       {"solver.defect_rtol", "--rtol"},
       {"solver.energy_rtol", "--energy-rtol"},
       {"solver.move_rtol", "--move-rtol"},
+      {"solver.newton_move_rtol", "--newton-move-rtol"},
       {"solver.initial_previous_defect", "--alpha-start-defect"},
       {"solver.hessian_rtol", "--hess-rtol"},
       {"solver.hessian_pc_reuse", "--hess-pc-reuse"},

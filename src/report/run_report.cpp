@@ -77,6 +77,7 @@ nlohmann::json to_json(const SolverOptions& o) {
       {"practical", o.practical},
       {"energy_rtol", o.energy_rtol},
       {"move_rtol", o.move_rtol},
+      {"newton_move_rtol", o.newton_move_rtol},
       {"armijo_beta", o.armijo_beta},
       {"max_halvings", o.max_halvings},
       {"initial_previous_defect", o.initial_previous_defect},

@@ -332,8 +332,13 @@ struct QuasiNewton::Impl {
 
     const double energy_change =
         std::abs(old_energy - energy) / std::max(std::abs(old_energy), 1e-300);
-    if (options.practical && energy_change < options.energy_rtol &&
-        rec.max_move < options.move_rtol)
+    // Near the minimum a full Newton step estimates the distance to it, and the step after it
+    // would move the vertices by about its square (docs/method.md §6).
+    const bool full_newton_step = rec.delta_solved && !rec.used_s && !rec.blended &&
+                                  !rec.delta_truncated && rec.armijo_steps == 0 && rec.alpha >= 1.0;
+    if (options.practical &&
+        ((energy_change < options.energy_rtol && rec.max_move < options.move_rtol) ||
+         (full_newton_step && rec.max_move < options.newton_move_rtol)))
       stop = StopReason::Practical;
     rec.seconds = MPI_Wtime() - start_time;
     return rec;
