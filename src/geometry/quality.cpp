@@ -199,8 +199,11 @@ double inverse_mean_ratio(const typename CellTraits<Type>::Coordinates& x) {
 template <CellType Type>
 void measure_block(const CellBlock& block, std::span<const double> coords, CellQuality& out) {
   using Traits = CellTraits<Type>;
-  typename Traits::Coordinates x;
+  // Cells are independent, and a quality is taken several times per run (before, for the
+  // guard, after, for the output's fields).
+#pragma omp parallel for schedule(static)
   for (PetscInt c = 0; c < block.size(); ++c) {
+    typename Traits::Coordinates x;
     const PetscInt* cell = block.cell(c);
     for (int i = 0; i < Traits::vertices; ++i)
       for (int k = 0; k < Traits::dim; ++k) x(k, i) = coords[Traits::dim * cell[i] + k];
