@@ -1,0 +1,39 @@
+// The `neomesh` command: starts the command line proper (neomesh-main, beside it in a build
+// tree, in libexec/neomesh once installed) with glibc's transparent huge pages for large
+// allocations. Its matrices' arrays are tens to hundreds of MB, first touched page by page;
+// with 4 KiB pages the page faults cost 15-25% of a run (docs/benchmarks.md, "Huge pages"). glibc
+// reads the tunable only when a process starts, hence this separate, dependency-free program:
+// re-executing neomesh-main itself would load its libraries twice (80 ms). A GLIBC_TUNABLES that
+// already names glibc.malloc.hugetlb is left as it is.
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+int main(int, char** argv) {
+  constexpr const char* kTunable = "glibc.malloc.hugetlb";
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  const std::string before = tunables ? tunables : "";
+  if (before.find(kTunable) == std::string::npos)
+    setenv("GLIBC_TUNABLES", ((before.empty() ? "" : before + ":") + kTunable + "=1").c_str(), 1);
+
+  std::string self(4096, '\0');
+  const ssize_t length = readlink("/proc/self/exe", self.data(), self.size());
+  if (length <= 0) {
+    std::fprintf(stderr, "neomesh: error: cannot find its own path: %s\n", std::strerror(errno));
+    return 1;
+  }
+  self.resize(static_cast<std::size_t>(length));
+  const std::string dir = self.substr(0, self.rfind('/'));
+  std::string tried;
+  for (const std::string& program :
+       {dir + "/neomesh-main", dir + "/../libexec/neomesh/neomesh-main"}) {
+    execv(program.c_str(), argv);  // returns only on failure
+    tried += (tried.empty() ? "" : ", ") + program + " (" + std::strerror(errno) + ")";
+  }
+  std::fprintf(stderr, "neomesh: error: cannot start the command line: %s\n", tried.c_str());
+  return 1;
+}
