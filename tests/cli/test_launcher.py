@@ -1,0 +1,65 @@
+"""`neomesh` is a launcher (src/launcher.cpp): it starts neomesh-main, beside it or in
+../libexec/neomesh/, with glibc.malloc.hugetlb=1 added to GLIBC_TUNABLES unless that already
+names it, and passes the arguments on unchanged. A stand-in neomesh-main that prints what it
+got shows it."""
+import os
+import shutil
+import subprocess
+
+from conftest import NEOMESH
+
+STAND_IN = '#!/bin/sh\nprintf "%s\\n" "$GLIBC_TUNABLES" "$0" "$@"\n'
+
+
+def launcher_with_stand_in(tmp_path, main_dir):
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    launcher = bin_dir / "neomesh"
+    shutil.copy(os.path.realpath(shutil.which(NEOMESH) or NEOMESH), launcher)
+    main_dir = tmp_path / main_dir
+    main_dir.mkdir(parents=True, exist_ok=True)
+    stand_in = main_dir / "neomesh-main"
+    stand_in.write_text(STAND_IN)
+    stand_in.chmod(0o755)
+    return launcher
+
+
+def run(launcher, env_tunables, *args):
+    env = dict(os.environ)
+    env.pop("GLIBC_TUNABLES", None)
+    if env_tunables is not None:
+        env["GLIBC_TUNABLES"] = env_tunables
+    return subprocess.run([str(launcher), *args], env=env, capture_output=True, text=True)
+
+
+def test_adds_huge_pages_and_passes_the_arguments_on(tmp_path):
+    launcher = launcher_with_stand_in(tmp_path, "bin")
+    out = run(launcher, None, "smooth", "a mesh.msh", "-o", "")
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split("\n")[:1] == ["glibc.malloc.hugetlb=1"]
+    assert out.stdout.split("\n")[2:6] == ["smooth", "a mesh.msh", "-o", ""]
+    out = run(launcher, "glibc.malloc.check=0")
+    assert out.stdout.split("\n")[0] == "glibc.malloc.check=0:glibc.malloc.hugetlb=1"
+
+
+def test_leaves_a_given_hugetlb_setting_alone(tmp_path):
+    launcher = launcher_with_stand_in(tmp_path, "bin")
+    out = run(launcher, "glibc.malloc.hugetlb=0")
+    assert out.stdout.split("\n")[0] == "glibc.malloc.hugetlb=0"
+
+
+def test_finds_the_installed_layout(tmp_path):
+    launcher = launcher_with_stand_in(tmp_path, "libexec/neomesh")
+    out = run(launcher, None, "--version")
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split("\n")[1].endswith("libexec/neomesh/neomesh-main")
+
+
+def test_without_neomesh_main_one_line_error(tmp_path):
+    lonely = tmp_path / "neomesh"
+    shutil.copy(os.path.realpath(shutil.which(NEOMESH) or NEOMESH), lonely)
+    out = run(lonely, None, "--version")
+    assert out.returncode == 1
+    assert out.stdout == ""
+    lines = out.stderr.strip().split("\n")
+    assert len(lines) == 1 and lines[0].startswith("neomesh: error: cannot start the command line")
