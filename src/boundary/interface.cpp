@@ -60,9 +60,7 @@ std::vector<PetscInt> facet_neighbours(const std::vector<LocalCell>& cells) {
       const int size = facet_size(cells[c], f);
       std::array<PetscInt, 4> key = {-1, -1, -1, -1};
       for (int k = 0; k < size; ++k) key[k] = facet_vertex(cells[c], f, k);
-      // Insertion sort: GCC 12 warns wrongly about std::sort on part of an array.
-      for (int k = 1; k < size; ++k)
-        for (int i = k; i > 0 && key[i - 1] > key[i]; --i) std::swap(key[i - 1], key[i]);
+      sort_facet_key(key, size);
       const auto [it, added] = first.emplace(key, c * kMaxFacets + f);
       if (added) continue;
       neighbour[c * kMaxFacets + f] = it->second / kMaxFacets;

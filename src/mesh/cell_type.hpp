@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 
 #include <neomesh/cell_type.hpp>
 
@@ -44,6 +45,15 @@ struct FacetVertices {
   std::uint8_t size;
   std::array<std::uint8_t, 4> vertices;
 };
+
+// A facet's vertex numbers as a key that two cells sharing the facet build alike: the first
+// `size` entries sorted ascending (the rest left as they are, e.g. -1). By insertion: GCC 12
+// warns wrongly about std::sort on part of an array.
+template <typename T>
+void sort_facet_key(std::array<T, 4>& key, int size) {
+  for (int k = 1; k < size; ++k)
+    for (int i = k; i > 0 && key[i - 1] > key[i]; --i) std::swap(key[i - 1], key[i]);
+}
 
 struct CellFacts {
   std::string_view name, plural;

@@ -86,9 +86,7 @@ PartitionFacets::PartitionFacets(const MeshView& view, MPI_Comm comm,
         Key key = {-1, -1, -1, -1};
         for (int k = 0; k < facet.size; ++k)
           key[k] = view.input_vertex[block.cell(c)[facet.vertices[k]]];
-        // Insertion sort: GCC 12 warns wrongly about std::sort on part of an array.
-        for (int k = 1; k < facet.size; ++k)
-          for (int i = k; i > 0 && key[i - 1] > key[i]; --i) std::swap(key[i - 1], key[i]);
+        sort_facet_key(key, facet.size);
         std::vector<std::int64_t>& to = requests[pairing_rank(key, size)];
         to.insert(to.end(), key.begin(), key.end());
         to.push_back(static_cast<std::int64_t>(keys.size()));
