@@ -6,6 +6,7 @@
 // the field.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -81,8 +82,10 @@ enum class RejectedDirection { Antigradient, Blend };
 
 // The quasi-Newton method of thesis §5.1 (docs/method.md §4).
 struct SolverOptions {
-  double alpha0 = 0.3;  // initial α of H(α) = B1 + α B2 + B3
-  double eta = 0.6;     // angle test: accept δ̃ if η_k ≥ η
+  // Initial α of H(α) = B1 + α B2 + B3. Unset: initial_alpha() picks it (docs/method.md §4).
+  std::optional<double> alpha0;
+  static constexpr double kThesisAlpha0 = 0.3;
+  double eta = 0.6;  // angle test: accept δ̃ if η_k ≥ η
   RejectedDirection rejected_direction = RejectedDirection::Blend;  // the thesis: Antigradient
   int kmin = 2;  // initial antigradient steps (thesis §5.5 recommends 2)
   int max_iterations = 200;
@@ -115,6 +118,10 @@ struct SolverOptions {
   double hessian_pc_reuse = 1.5;
   HessianPreconditioner hessian_pc = HessianPreconditioner::Laplacian;
   RieszLaplacian riesz = RieszLaplacian::OptimalCells;
+
+  // alpha0 if set; else 1 (start in the Newton regime) unless some vertex slides on a curved
+  // or oblique boundary, where the thesis' 0.3 measured better (docs/benchmarks.md).
+  double initial_alpha(bool slides) const { return alpha0.value_or(slides ? kThesisAlpha0 : 1.0); }
 
   // Throws OptionError ("solver.eta must be in (0, 1) (got 2)") for a field out of range.
   void validate() const;

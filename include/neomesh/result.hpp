@@ -68,6 +68,7 @@ struct BoundarySummary {
 struct ProblemSummary {
   std::int64_t free_coordinates = 0;  // over all processes
   BoundarySummary boundary;           // empty with fixed boundary vertices
+  double alpha0 = 0.0;                // the initial α the method starts with
   // The linear solvers of the δ̃ and Riesz solves as PETSc will run them, after the options
   // database's -hess_* and -riesz_* options: "KSP cg, PC hypre boomeramg, rtol 0.0001, ...".
   std::string hessian_solver, riesz_solver;

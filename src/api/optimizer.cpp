@@ -118,6 +118,7 @@ ProblemSummary Optimizer::Impl::problem(const SolverOptions& solver) const {
   ProblemSummary p;
   p.free_coordinates = static_cast<std::int64_t>(free);
   if (boundary_options->mode == BoundaryMode::Slide) p.boundary = boundary->summary();
+  p.alpha0 = solver.initial_alpha(functional->slides());
   const int dim = view().dim;
   p.hessian_solver =
       LinearSolver(mesh.comm(), solver.linear_solver, "hess_", dim, solver.hessian_rtol)

@@ -44,7 +44,7 @@ void BoundaryOptions::validate() const {
 }
 
 void SolverOptions::validate() const {
-  require(alpha0 > 0 && alpha0 <= 1, "solver.alpha0", alpha0, "in (0, 1]");
+  if (alpha0) require(*alpha0 > 0 && *alpha0 <= 1, "solver.alpha0", *alpha0, "in (0, 1]");
   require(eta > 0 && eta < 1, "solver.eta", eta, "in (0, 1)");
   require(kmin >= 0, "solver.kmin", kmin, "0 or more");
   require(max_iterations >= 1, "solver.max_iterations", max_iterations, "at least 1");
@@ -89,6 +89,7 @@ void use_thesis_method(EnergyOptions& energy, BoundaryOptions& boundary, SolverO
   energy.gauss_points = EnergyOptions().gauss_points;
   boundary.mode = BoundaryMode::Fixed;
   boundary.shapes.clear();
+  solver.alpha0 = SolverOptions::kThesisAlpha0;
   solver.practical = false;
   solver.riesz_rtol = SolverOptions::kThesisRieszRtol;
   solver.rejected_direction = RejectedDirection::Antigradient;

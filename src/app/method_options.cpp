@@ -42,8 +42,10 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
       ->group(energy);
 
   const char* method = "Quasi-Newton method (thesis §5.1)";
-  cmd.add_option("--alpha0", o.solver.alpha0, "initial α in H(α) = B1 + α B2 + B3, in (0, 1]")
-      ->capture_default_str()
+  cmd.add_option("--alpha0", o.solver.alpha0,
+                 "initial α in H(α) = B1 + α B2 + B3, in (0, 1]; auto: 1, or 0.3 where "
+                 "vertices slide on a curved or oblique boundary (--thesis: 0.3)")
+      ->default_str("auto")
       ->group(method);
   cmd.add_option("--eta", o.solver.eta,
                  "angle test: accept the quasi-Newton direction if η_k ≥ η, η in (0, 1)")

@@ -46,6 +46,7 @@ Options resolve(const MethodOptions& method, Options options) {
   resolve(method, options.energy, options.solver, options.boundary);
   if (method.thesis) options = Options::thesis(options);
   if (method.riesz_rtol) options.solver.riesz_rtol = *method.riesz_rtol;
+  if (method.solver.alpha0) options.solver.alpha0 = method.solver.alpha0;  // over --thesis' 0.3
   options.validate();
   return options;
 }

@@ -84,7 +84,7 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
       mesh.num_vertices(), problem.free_coordinates,
       ranks > 1 ? fmt::format(" on {} processes", ranks) : "");
   say("lambda {}, mu {}, alpha0 {}, eta {}, kmin {}, linear solver {}, boundary {}\n",
-      s.energy.lambda, s.energy.mu, s.solver.alpha0, s.solver.eta, s.solver.kmin,
+      s.energy.lambda, s.energy.mu, problem.alpha0, s.solver.eta, s.solver.kmin,
       name(s.solver.linear_solver), name(s.boundary.mode));
   const BoundarySummary& b = problem.boundary;
   if (s.boundary.mode == BoundaryMode::Slide) {

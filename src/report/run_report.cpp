@@ -68,7 +68,7 @@ nlohmann::json to_json(const PhaseTimes& t) {
 
 nlohmann::json to_json(const SolverOptions& o) {
   return {
-      {"alpha0", o.alpha0},
+      {"alpha0", o.alpha0 ? nlohmann::json(*o.alpha0) : nlohmann::json("auto")},
       {"eta", o.eta},
       {"kmin", o.kmin},
       {"max_iterations", o.max_iterations},

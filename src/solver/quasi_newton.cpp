@@ -98,7 +98,7 @@ struct QuasiNewton::Impl {
         hessian_solver(f.dofs().comm(), o.linear_solver, "hess_", f.dofs().dim(), o.hessian_rtol),
         riesz_solver(f.dofs().comm(), o.linear_solver, "riesz_", f.dofs().dim(), o.riesz_rtol),
         previous_defect(o.initial_previous_defect),
-        alpha(o.alpha0) {
+        alpha(o.initial_alpha(f.slides())) {
     Stopwatch watch(times.setup);
     if (riesz_per_component(functional, options)) riesz_solver.precondition_per_component();
     if (laplacian_preconditions_hessian()) hessian_solver.precondition_with(riesz_solver);

@@ -31,6 +31,7 @@ QuasiNewtonOptions ThesisProblem::thesis_options() const {
   QuasiNewtonOptions o;
   o.linear_solver = LinearSolverKind::Direct;
   o.kmin = 0;
+  o.alpha0 = QuasiNewtonOptions::kThesisAlpha0;
   o.riesz_rtol = QuasiNewtonOptions::kThesisRieszRtol;
   o.practical = false;
   o.rejected_direction = RejectedDirection::Antigradient;
