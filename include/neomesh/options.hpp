@@ -83,7 +83,7 @@ enum class RejectedDirection { Antigradient, Blend };
 // The quasi-Newton method of thesis §5.1 (docs/method.md §4).
 struct SolverOptions {
   // Initial α of H(α) = B1 + α B2 + B3. Unset: initial_alpha() picks it (docs/method.md §4).
-  std::optional<double> alpha0;
+  std::optional<double> alpha0 = std::nullopt;
   static constexpr double kThesisAlpha0 = 0.3;
   double eta = 0.6;  // angle test: accept δ̃ if η_k ≥ η
   RejectedDirection rejected_direction = RejectedDirection::Blend;  // the thesis: Antigradient
@@ -146,14 +146,18 @@ struct SizeFieldOptions {
   // are raised to max/ratio, because no mesh of fixed connectivity can shrink a cell on the
   // surface to the 1e-8-fold of its neighbours. 32 (edge lengths 1 : 3.2 in 3D) is what the
   // meshes of docs/adaptivity.md reach with good shapes; 100 squeezed cells to scaled
-  // Jacobians of 0.1.
-  double max_ratio = 32.0;
+  // Jacobians of 0.1. Fitting an interface moves the smallest cells once more: there 16 keeps
+  // fitted triangles above a scaled Jacobian of 0.3, where 32 left 0.27 (docs/adaptivity.md).
+  // Unset: kMaxRatio, or kFitMaxRatio when the mesh is fitted.
+  std::optional<double> max_ratio = std::nullopt;
+  static constexpr double kMaxRatio = 32.0, kFitMaxRatio = 16.0;
   // Passes of averaging log v over neighbouring cells (0: none, the thesis): limits how fast
   // the desired volume may change from a cell to its neighbour.
   int smoothing_passes = 1;
 
   // The thesis' field: v = 1e-8 + d, nothing bounded or smoothed.
   static SizeFieldOptions thesis() { return {.max_ratio = 0.0, .smoothing_passes = 0}; }
+  double ratio(bool fitted = false) const { return max_ratio.value_or(fitted ? kFitMaxRatio : kMaxRatio); }
   void validate() const;
 };
 

@@ -224,9 +224,9 @@ std::vector<double> desired_volumes(const SizeField& field, const SizeFieldOptio
                                     const MeshView& view, const DofMap& dofs,
                                     std::span<const double> coords, double total) {
   std::vector<double> v = field.relative_volumes(view, coords, options, dofs.comm());
-  if (options.max_ratio > 0) {
+  if (const double ratio = options.ratio(); ratio > 0) {
     const double largest = v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
-    const double smallest = global_max(largest, dofs.comm()) / options.max_ratio;
+    const double smallest = global_max(largest, dofs.comm()) / ratio;
     for (double& x : v) x = std::max(x, smallest);
   }
   if (options.smoothing_passes > 0) {

@@ -87,8 +87,8 @@ TEST(SizeField, DesiredVolumesSumToTheMeshVolume) {
     const std::vector<double> v = desired_volumes(circle, o, view, dofs, view.coords, 4.0);
     EXPECT_NEAR(std::accumulate(v.begin(), v.end(), 0.0), 4.0, 1e-12);
     const auto [min, max] = std::minmax_element(v.begin(), v.end());
-    if (o.max_ratio > 0) {
-      EXPECT_NEAR(*max / *min, o.max_ratio, 1e-9);
+    if (o.ratio() > 0) {
+      EXPECT_NEAR(*max / *min, o.ratio(), 1e-9);
     }
   }
 }

@@ -277,7 +277,9 @@ Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const Ad
   // goes on optimizing, and its start recomputes the desired volumes (one of the step's
   // updates). After a cold start the volumes follow the fitted cells once more.
   const bool warm = r.warm;
-  AdaptOptions adapting = options;
+  AdaptOptions fitting = options;
+  fitting.sizes.max_ratio = options.sizes.ratio(true);
+  AdaptOptions adapting = fitting;
   if (warm) {
     adapting.warm_updates = std::max(0, options.warm_updates - 1);
     adapting.solver.max_iterations = FitOptions().stage_iterations;
@@ -286,7 +288,7 @@ Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const Ad
   if (observer.fitting) observer.fitting(fit_to.expression());
   PicardOptions last_stage = options.picard;
   last_stage.min_updates = warm ? 0 : 1;
-  r.fit(fit_to, field, options, last_stage, observer, result);
+  r.fit(fit_to, field, fitting, last_stage, observer, result);
   r.finish(result);
   result.volume_ratio = r.volume_ratio();
   result.seconds = MPI_Wtime() - start;

@@ -67,8 +67,9 @@ void SolverOptions::validate() const {
 void SizeFieldOptions::validate() const {
   require(power > 0, "sizes.power", power, "positive");
   require(floor >= 0, "sizes.floor", floor, "0 or more");
-  require(max_ratio == 0 || max_ratio > 1, "sizes.max_ratio", max_ratio,
-          "above 1, or 0 for no bound");
+  if (max_ratio)
+    require(*max_ratio == 0 || *max_ratio > 1, "sizes.max_ratio", *max_ratio,
+            "above 1, or 0 for no bound");
   require(smoothing_passes >= 0, "sizes.smoothing_passes", smoothing_passes, "0 or more");
 }
 

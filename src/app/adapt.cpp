@@ -244,7 +244,7 @@ void adapt(AdaptCommand& o) {
               {"size_options",
                {{"floor", options.sizes.floor},
                 {"power", options.sizes.power},
-                {"max_ratio", options.sizes.max_ratio},
+                {"max_ratio", options.sizes.ratio(o.fit)},
                 {"smoothing_passes", options.sizes.smoothing_passes}}},
               {"picard",
                {{"min_updates", options.picard.min_updates},
@@ -310,8 +310,9 @@ Subcommand add_adapt(CLI::App& app) {
       ->capture_default_str()
       ->group(field);
   cmd->add_option("--max-ratio", o->sizes.max_ratio,
-                  "largest over smallest desired volume; smaller ones are raised (0: no bound)")
-      ->capture_default_str()
+                  "largest over smallest desired volume; smaller ones are raised (0: no bound; "
+                  "default 32, with --fit 16)")
+      ->default_str("auto")
       ->group(field);
   cmd->add_option("--smooth-sizes", o->sizes.smoothing_passes,
                   "passes of averaging log(desired volume) over neighbouring cells")
