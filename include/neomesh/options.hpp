@@ -157,7 +157,9 @@ struct SizeFieldOptions {
 
   // The thesis' field: v = 1e-8 + d, nothing bounded or smoothed.
   static SizeFieldOptions thesis() { return {.max_ratio = 0.0, .smoothing_passes = 0}; }
-  double ratio(bool fitted = false) const { return max_ratio.value_or(fitted ? kFitMaxRatio : kMaxRatio); }
+  double ratio(bool fitted = false) const {
+    return max_ratio.value_or(fitted ? kFitMaxRatio : kMaxRatio);
+  }
   void validate() const;
 };
 
