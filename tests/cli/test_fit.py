@@ -2,8 +2,8 @@
 facet group `interface` of the .msh is a closed chain/surface in one piece, every vertex of it
 within 1e-10 of the zero set, no inverted cell. The min scaled Jacobian >= 0.3 is printed, not
 required, for quads and hexahedra: where the interface turns they cannot reach it
-(docs/adaptivity.md); fitted triangles must reach it. On 2 processes too, where the interface crosses the partition: the same
-checks, and the same facets as on one. tests/cli/test_fit_in_time.py: the same with --time."""
+(docs/adaptivity.md); fitted triangles must reach it. On 2 processes too, where the interface
+crosses the partition: the same checks, and the same facets as on one. tests/cli/test_fit_in_time.py: the same with --time."""
 import os
 import sys
 

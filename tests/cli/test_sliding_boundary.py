@@ -182,3 +182,19 @@ def test_bad_input(tmp, options, mesh, words):
     out = os.path.join(tmp, "bad-out.msh")
     proc = run([NEOMESH, "smooth", mesh.format(tmp=tmp), "-o", out, *options], tmp, expect=None)
     expect_one_error_line(proc, words, unwritten=[out])
+
+
+@pytest.mark.parametrize("generate, options, alpha0", [
+    (["box-quad"], [], 1.0),  # its sides are axis-aligned: fixed normal coordinates
+    (["annulus-quad"], [], 0.3),  # vertices slide on the arcs
+    (["annulus-quad"], ["--boundary", "fixed"], 1.0),
+    (["box-quad"], ["--thesis"], 0.3),
+    (["box-quad"], ["--thesis", "--alpha0", "0.5"], 0.5),
+])
+def test_alpha0_is_1_unless_vertices_slide_on_a_curve(tmp, generate, options, alpha0):
+    # docs/method.md: α₀ = 1 starts in the Newton regime; on curved sliding boundaries the
+    # thesis' 0.3 took fewer iterations. The report gives the α₀ used, not "auto".
+    run([NEOMESH, "generate", *generate, "--cells", "12", "--jitter", "0.2", "-o", "in.msh"], tmp)
+    report = smooth(tmp, "in.msh", "out.msh", *options)
+    assert report["solver_options"]["alpha0"] == alpha0
+    assert report["result"]["history"][0]["alpha"] == alpha0
