@@ -37,7 +37,11 @@ namespace {
 // coarsening, ext+i interpolation with at most 4 entries per row, strong threshold 0.5) keeps the
 // hierarchies sparse: on cube-midpoint 32³ the Riesz Laplacian's operator complexity was 5.4 with
 // the 2D defaults, and both setups and V-cycles take half the time or less at the same CG
-// iterations. In 2D the same options do not help (same time, more iterations).
+// iterations. In 2D the same options do not help (same time, more iterations). Aggressive
+// coarsening on the finest level (2 paths) then halves the 3D setups again at the same
+// iterations (hexes 40³: Riesz setup 0.42 → 0.13 s, whole run 2.28 → 1.82 s; tets 40³: 0.17 →
+// 0.07 s, 2.04 → 1.88 s; docs/benchmarks.md); in 2D it slowed the V-cycles (quads 300²: 0.58
+// → 0.65 s).
 class AmgDefaults {
  public:
   AmgDefaults(const std::string& prefix, int dim) {
@@ -46,7 +50,9 @@ class AmgDefaults {
       defaults.insert(defaults.end(), {{"coarsen_type", "HMIS"},
                                        {"interp_type", "ext+i"},
                                        {"P_max", "4"},
-                                       {"strong_threshold", "0.5"}});
+                                       {"strong_threshold", "0.5"},
+                                       {"agg_nl", "1"},
+                                       {"agg_num_paths", "2"}});
     for (const auto& [name, value] : defaults) {
       std::string option = "-" + prefix + "pc_hypre_boomeramg_" + name;
       PetscBool given = PETSC_FALSE;
