@@ -20,6 +20,7 @@ typedef struct _p_DM* DM;  // PETSc's handle, as petscdm.h declares it
 namespace neomesh {
 
 class PlexMesh;          // the implementation (src/mesh/plex_mesh.hpp)
+struct CellQuality;      // per-cell quality (src/geometry/quality.hpp)
 struct GenerateOptions;  // neomesh/generate.hpp
 struct MeshArrays;       // below
 
@@ -153,10 +154,16 @@ class Mesh {
 
  private:
   friend class Optimizer;  // works on the implementation
+  // The implementation; the non-const one may move the vertices, so it drops the quality cache.
   PlexMesh& plex();
   const PlexMesh& plex() const;
   explicit Mesh(std::unique_ptr<PlexMesh> plex);
+  // The cells' quality at the current coordinates, computed once for quality(),
+  // quality_by_cell() and write() (a run asks for it three times after optimizing).
+  const CellQuality& cell_quality() const;
+  struct QualityCache;  // mesh.cpp
   std::unique_ptr<PlexMesh> plex_;
+  mutable std::unique_ptr<QualityCache> quality_cache_;
 };
 
 // A whole mesh as arrays (Mesh::gather), the inverse of Mesh::from_arrays:

@@ -81,6 +81,11 @@ Mesh Mesh::from_dm(DM dm, const std::string& name, InvertedCells inverted) {
   return Mesh(std::make_unique<PlexMesh>(PlexMesh::from_input(input, name, comm, inverted)));
 }
 
+struct Mesh::QualityCache {
+  std::uint64_t coordinates_version;
+  CellQuality quality;
+};
+
 Mesh::Mesh(std::unique_ptr<PlexMesh> plex) : plex_(std::move(plex)) {}
 Mesh::Mesh(Mesh&&) noexcept = default;
 Mesh& Mesh::operator=(Mesh&&) noexcept = default;
@@ -105,6 +110,7 @@ DM Mesh::dm() const {
   return plex_->dm();
 }
 PlexMesh& Mesh::plex() {
+  quality_cache_.reset();  // also frees it while an optimizer works on the mesh
   return *plex_;
 }
 const PlexMesh& Mesh::plex() const {
@@ -148,9 +154,18 @@ void Mesh::set_coordinates(std::span<const double> coordinates) {
   plex_->set_coordinates(x);
 }
 
+const CellQuality& Mesh::cell_quality() const {
+  const std::uint64_t version = plex_->coordinates_version();
+  if (!quality_cache_ || quality_cache_->coordinates_version != version) {
+    const MeshView& view = plex_->view();
+    quality_cache_ = std::make_unique<QualityCache>(
+        QualityCache{version, neomesh::cell_quality(view, view.coords)});
+  }
+  return quality_cache_->quality;
+}
+
 QualitySummary Mesh::quality() const {
-  const MeshView& view = plex_->view();
-  return summarize(cell_quality(view, view.coords), comm());
+  return summarize(cell_quality(), comm());
 }
 
 void Mesh::write(const std::filesystem::path& path, const std::vector<Field>& cell_fields,
@@ -158,7 +173,7 @@ void Mesh::write(const std::filesystem::path& path, const std::vector<Field>& ce
                  const std::vector<FacetGroup>& facet_groups) const {
   const MeshView& view = plex_->view();
   MeshFields fields;
-  fields.cell = quality_fields(cell_quality(view, view.coords));
+  fields.cell = quality_fields(cell_quality());
   fields.cell.insert(fields.cell.end(), cell_fields.begin(), cell_fields.end());
   collectively(comm(), [&] {
     for (const Field& f : vertex_fields) fields.vertex.push_back(local_vertex_field(view, f));
@@ -180,8 +195,7 @@ std::vector<std::int64_t> Mesh::cell_numbers() const {
 }
 
 std::vector<Field> Mesh::quality_by_cell() const {
-  const MeshView& view = plex_->view();
-  const CellQuality quality = neomesh::cell_quality(view, view.coords);
+  const CellQuality& quality = cell_quality();
   std::vector<Field> fields = quality_fields(quality);
   Field inverted{"inverted", std::vector<double>(quality.size(), 0.0)};
   for (std::size_t c = 0; c < quality.size(); ++c)
@@ -192,7 +206,7 @@ std::vector<Field> Mesh::quality_by_cell() const {
 
 double Mesh::volume() const {
   const MeshView& view = plex_->view();
-  const std::vector<double> volumes = neomesh::cell_quality(view, view.coords).volume;
+  const std::vector<double> volumes = neomesh::cell_volumes(view, view.coords);
   double sum = std::accumulate(volumes.begin(), volumes.end(), 0.0);
   MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, comm());
   return sum;

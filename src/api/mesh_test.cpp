@@ -98,6 +98,20 @@ TEST(MeshGather, FollowsTheCoordinates) {
     EXPECT_EQ(out.coordinates[i], 2 * input.coordinates[i]);
 }
 
+// The quality is computed once per set of coordinates (Mesh::cell_quality): after a move,
+// every view of it is the moved mesh's.
+TEST(MeshQuality, FollowsTheCoordinates) {
+  Mesh mesh = build(square_and_triangles());
+  const QualitySummary before = mesh.quality();
+  std::vector<double> x = mesh.coordinates();
+  for (double& c : x) c *= 2;
+  mesh.set_coordinates(x);
+  EXPECT_DOUBLE_EQ(mesh.quality().volume.mean, 4 * before.volume.mean);
+  const std::vector<Field> fields = mesh.quality_by_cell();
+  for (double v : field(fields, "volume")) EXPECT_NEAR(v, 4.0, 1e-14);
+  EXPECT_DOUBLE_EQ(mesh.volume(), 4 * before.volume.mean * before.cells);
+}
+
 // The DMPlex a caller gets has the coordinates the mesh has now, not those it was built with.
 TEST(MeshDm, HasTheCurrentCoordinates) {
   Mesh mesh = build(square_and_triangles());

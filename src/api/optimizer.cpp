@@ -136,7 +136,7 @@ QuasiNewtonOptions Optimizer::Impl::method(const SolverOptions& solver) const {
 }
 
 std::vector<double> Optimizer::Impl::cell_volumes() const {
-  return cell_quality(view(), view().coords).volume;
+  return neomesh::cell_volumes(view(), view().coords);
 }
 
 QualitySummary Optimizer::Impl::input_quality(bool untangle) const {

@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <neomesh/optimizer.hpp>
@@ -24,8 +25,9 @@ namespace neomesh {
 struct Optimizer::Impl {
   explicit Impl(Mesh& mesh);
 
-  const MeshView& view() const { return mesh.plex().view(); }
-  const DofMap& dofs() const { return mesh.plex().dofs(); }
+  // Read-only: the mesh keeps its quality cache (Mesh::plex()).
+  const MeshView& view() const { return std::as_const(mesh).plex().view(); }
+  const DofMap& dofs() const { return std::as_const(mesh).plex().dofs(); }
 
   // The mesh's quality where a call starts; throws Error if cells are inverted or degenerate
   // and `untangle` is false.

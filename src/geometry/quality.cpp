@@ -51,27 +51,75 @@ double edge_ratio(const typename CellTraits<Type>::Coordinates& x) {
   return shortest > 0.0 ? longest / shortest : kInfinity;
 }
 
+// The signed volume: det J integrated exactly (Q1: 2 Gauss points per direction, degree ≤ 1 in
+// 2D and ≤ 2 per axis in 3D; wedges and pyramids: the reference map's rule, see below).
+template <CellType Type>
+double signed_volume(const typename CellTraits<Type>::Coordinates& x) {
+  using Traits = CellTraits<Type>;
+  constexpr int d = Traits::dim;
+  if constexpr (Traits::shape == CellShape::Simplex) {
+    Matrix<d> edges;
+    for (int j = 0; j < d; ++j) edges.col(j) = x.col(j + 1) - x.col(0);
+    return edges.determinant() / (d == 2 ? 2.0 : 6.0);
+  } else if constexpr (Traits::shape == CellShape::Tensor) {
+    static const TensorGaussRule<d> rule(2);
+    double volume = 0.0;
+    for (int q = 0; q < rule.size; ++q)
+      volume += rule.weights[q] * (x * q1_gradients<d>(rule.points[q]).transpose()).determinant();
+    return volume;
+  } else {
+    // The wedge over the unit right triangle with height 1 (ζ = 2t − 1 halves it), the pyramid
+    // over the unit square with apex height 1.
+    static const ReferenceRule<Type> rule(2);
+    double volume = 0.0;
+    for (int q = 0; q < rule.size; ++q)
+      volume +=
+          rule.weights[q] * (x * shape_gradients<Type>(rule.points[q]).transpose()).determinant();
+    return volume;
+  }
+}
+
+// The minimum over the corners of det / (product of the corner's edge lengths), over its value
+// on the optimal cell (see quality.hpp); 0 at a corner with a zero-length edge.
+template <CellType Type>
+double scaled_jacobian(const typename CellTraits<Type>::Coordinates& x) {
+  using Traits = CellTraits<Type>;
+  constexpr int d = Traits::dim;
+  double lowest = kInfinity;
+  if constexpr (Traits::shape == CellShape::Simplex) {
+    Matrix<d> edges;
+    for (int j = 0; j < d; ++j) edges.col(j) = x.col(j + 1) - x.col(0);
+    const double det = edges.determinant();
+    for (int i = 0; i <= d; ++i) {
+      double product = 1.0;
+      for (int j = 0; j <= d; ++j)
+        if (j != i) product *= (x.col(j) - x.col(i)).norm();
+      lowest = std::min(lowest, product > 0.0 ? det / product : 0.0);
+    }
+  } else {
+    for (int k = 0; k < facts(Type).num_corners; ++k) {
+      const Matrix<d> edges = corner_jacobian<Type>(x, k);
+      double product = 1.0;
+      for (int j = 0; j < d; ++j) product *= edges.col(j).norm();
+      lowest = std::min(lowest, product > 0.0 ? edges.determinant() / product : 0.0);
+    }
+  }
+  return lowest / facts(Type).ideal_corner_sine;
+}
+
 template <CellType Type>
 Measures measure_simplex(const typename CellTraits<Type>::Coordinates& x) {
   constexpr int d = CellTraits<Type>::dim;
   Matrix<d> edges;
   for (int j = 0; j < d; ++j) edges.col(j) = x.col(j + 1) - x.col(0);
   const double det = edges.determinant();
-  // det / (product of the corner's edge lengths) on the equilateral / regular simplex.
-  const double ideal = d == 2 ? std::sqrt(3.0) / 2.0 : std::sqrt(2.0) / 2.0;
 
   Measures m{};
-  m.volume = det / (d == 2 ? 2.0 : 6.0);
+  m.volume = signed_volume<Type>(x);
   m.min_corner_det = m.min_gauss_det = det;
-  m.scaled_jacobian = kInfinity;
+  m.scaled_jacobian = scaled_jacobian<Type>(x);
   m.min_angle = kInfinity;
   m.max_angle = 0.0;
-  for (int i = 0; i <= d; ++i) {
-    double product = 1.0;
-    for (int j = 0; j <= d; ++j)
-      if (j != i) product *= (x.col(j) - x.col(i)).norm();
-    m.scaled_jacobian = std::min(m.scaled_jacobian, det / product / ideal);
-  }
   if constexpr (d == 2) {
     for (int i = 0; i < 3; ++i)
       m.record_angle(
@@ -96,16 +144,14 @@ template <CellType Type>
 Measures measure_q1(const typename CellTraits<Type>::Coordinates& x) {
   constexpr int d = CellTraits<Type>::dim, n = CellTraits<Type>::vertices;
   Measures m{};
-  m.min_corner_det = m.min_gauss_det = m.scaled_jacobian = m.min_angle = kInfinity;
+  m.min_corner_det = m.min_gauss_det = m.min_angle = kInfinity;
   m.max_angle = 0.0;
+  m.scaled_jacobian = scaled_jacobian<Type>(x);
+  m.volume = signed_volume<Type>(x);
   for (int c = 0; c < n; ++c) {
     // Edges along the reference axes, pointing the way the axes do (so the unit cell has J = I).
-    const Matrix<d> edges = corner_jacobian<Type>(x, c);
-    double product = 1.0;
-    for (int j = 0; j < d; ++j) product *= edges.col(j).norm();
-    const double det = edges.determinant();
+    const double det = corner_jacobian<Type>(x, c).determinant();
     m.min_corner_det = std::min(m.min_corner_det, det);
-    m.scaled_jacobian = std::min(m.scaled_jacobian, det / product);
     for (int j = 0; j < d; ++j)
       for (int k = j + 1; k < d; ++k) {
         // The actual edges leave the corner; the angle between them is the one inside the
@@ -116,11 +162,7 @@ Measures measure_q1(const typename CellTraits<Type>::Coordinates& x) {
         m.record_angle(angle);
       }
   }
-  // 2 Gauss points per direction integrate det J exactly (degree ≤ 1 in 2D, ≤ 2 per axis in 3D).
-  static const TensorGaussRule<d> volume_rule(2), det_rule(3);
-  for (int q = 0; q < volume_rule.size; ++q)
-    m.volume += volume_rule.weights[q] *
-                (x * q1_gradients<d>(volume_rule.points[q]).transpose()).determinant();
+  static const TensorGaussRule<d> det_rule(3);
   for (int q = 0; q < det_rule.size; ++q) {
     const Matrix<d> jacobian = 2.0 * x * q1_gradients<d>(det_rule.points[q]).transpose();
     m.min_gauss_det = std::min(m.min_gauss_det, jacobian.determinant());
@@ -135,16 +177,12 @@ template <CellType Type>
 Measures measure_wedge_or_pyramid(const typename CellTraits<Type>::Coordinates& x) {
   const CellFacts& cell = facts(Type);
   Measures m{};
-  m.min_corner_det = m.min_gauss_det = m.scaled_jacobian = m.min_angle = kInfinity;
+  m.min_corner_det = m.min_gauss_det = m.min_angle = kInfinity;
   m.max_angle = 0.0;
-  for (int k = 0; k < cell.num_corners; ++k) {
-    const Matrix<3> edges = corner_jacobian<Type>(x, k);
-    const double det = edges.determinant();
-    m.min_corner_det = std::min(m.min_corner_det, det);
-    m.scaled_jacobian = std::min(
-        m.scaled_jacobian, det / (edges.col(0).norm() * edges.col(1).norm() * edges.col(2).norm()) /
-                               cell.ideal_corner_sine);
-  }
+  m.scaled_jacobian = scaled_jacobian<Type>(x);
+  m.volume = signed_volume<Type>(x);
+  for (int k = 0; k < cell.num_corners; ++k)
+    m.min_corner_det = std::min(m.min_corner_det, corner_jacobian<Type>(x, k).determinant());
   for (int f = 0; f < cell.num_facets; ++f) {
     const FacetVertices& facet = cell.facets[f];
     for (int i = 0; i < facet.size; ++i) {
@@ -154,13 +192,9 @@ Measures measure_wedge_or_pyramid(const typename CellTraits<Type>::Coordinates& 
                            x.col(facet.vertices[(i + facet.size - 1) % facet.size]) - corner));
     }
   }
-  // det J relative to the unit reference cell: the wedge over the unit right triangle with
-  // height 1 (ζ = 2t − 1 halves it), the pyramid over the unit square with apex height 1 (its
-  // det J = (1 − ξ2)²/32 det[∂B/∂u, ∂B/∂v, apex − B] with u, v ∈ [0, 1]).
-  static const ReferenceRule<Type> volume_rule(2), det_rule(3);
-  for (int q = 0; q < volume_rule.size; ++q)
-    m.volume += volume_rule.weights[q] *
-                (x * shape_gradients<Type>(volume_rule.points[q]).transpose()).determinant();
+  // det J relative to the unit reference cell (see signed_volume): the pyramid's det J =
+  // (1 − ξ2)²/32 det[∂B/∂u, ∂B/∂v, apex − B] with u, v ∈ [0, 1].
+  static const ReferenceRule<Type> det_rule(3);
   for (int q = 0; q < det_rule.size; ++q) {
     const Vector<3>& xi = det_rule.points[q];
     const double scale = Type == CellType::Wedge ? 2.0 : 32.0 / ((1.0 - xi[2]) * (1.0 - xi[2]));
@@ -196,36 +230,37 @@ double inverse_mean_ratio(const typename CellTraits<Type>::Coordinates& x) {
   return sum / corners;
 }
 
-template <CellType Type>
-void measure_block(const CellBlock& block, std::span<const double> coords, CellQuality& out) {
-  using Traits = CellTraits<Type>;
-  // Cells are independent, and a quality is taken several times per run (before, for the
-  // guard, after, for the output's fields).
+// Calls per_cell.template operator()<Type>(i, x) with the coordinates x of every cell i (the
+// view's cell order), in parallel: cells are independent, and a run takes their quality
+// several times (before, for the guard, after).
+template <typename PerCell>
+void for_each_cell(const MeshView& view, std::span<const double> coords, PerCell&& per_cell) {
+  if (coords.size() != static_cast<std::size_t>(view.num_vertices) * view.dim)
+    fail("cell quality: {} coordinates given for {} vertices in {}D", coords.size(),
+         view.num_vertices, view.dim);
+  for (const CellBlock& block : view.blocks)
+    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
+      using Traits = CellTraits<Type>;
 #pragma omp parallel for schedule(static)
-  for (PetscInt c = 0; c < block.size(); ++c) {
-    typename Traits::Coordinates x;
-    const PetscInt* cell = block.cell(c);
-    for (int i = 0; i < Traits::vertices; ++i)
-      for (int k = 0; k < Traits::dim; ++k) x(k, i) = coords[Traits::dim * cell[i] + k];
-    Measures m;
-    if constexpr (Traits::shape == CellShape::Simplex) {
-      m = measure_simplex<Type>(x);
-    } else if constexpr (Traits::shape == CellShape::Tensor) {
-      m = measure_q1<Type>(x);
-    } else {
-      m = measure_wedge_or_pyramid<Type>(x);
-    }
-    const std::size_t i = block.first_cell + c;
-    out.type[i] = Type;
-    out.volume[i] = m.volume;
-    out.min_corner_det[i] = m.min_corner_det;
-    out.min_gauss_det[i] = m.min_gauss_det;
-    out.scaled_jacobian[i] = m.scaled_jacobian;
-    out.min_angle[i] = m.min_angle;
-    out.max_angle[i] = m.max_angle;
-    out.edge_ratio[i] = m.edge_ratio;
-    out.inverse_mean_ratio[i] = inverse_mean_ratio<Type>(x);
-  }
+      for (PetscInt c = 0; c < block.size(); ++c) {
+        typename Traits::Coordinates x;
+        const PetscInt* cell = block.cell(c);
+        for (int i = 0; i < Traits::vertices; ++i)
+          for (int k = 0; k < Traits::dim; ++k) x(k, i) = coords[Traits::dim * cell[i] + k];
+        per_cell.template operator()<Type>(static_cast<std::size_t>(block.first_cell + c), x);
+      }
+    });
+}
+
+template <CellType Type>
+Measures measure(const typename CellTraits<Type>::Coordinates& x) {
+  using Traits = CellTraits<Type>;
+  if constexpr (Traits::shape == CellShape::Simplex)
+    return measure_simplex<Type>(x);
+  else if constexpr (Traits::shape == CellShape::Tensor)
+    return measure_q1<Type>(x);
+  else
+    return measure_wedge_or_pyramid<Type>(x);
 }
 
 MetricStats reduce(const std::vector<double>& values, std::int64_t global_count, MPI_Comm comm) {
@@ -244,18 +279,40 @@ MetricStats reduce(const std::vector<double>& values, std::int64_t global_count,
 }  // namespace
 
 CellQuality cell_quality(const MeshView& view, std::span<const double> coords) {
-  if (coords.size() != static_cast<std::size_t>(view.num_vertices) * view.dim)
-    fail("cell_quality: {} coordinates given for {} vertices in {}D", coords.size(),
-         view.num_vertices, view.dim);
   CellQuality q;
   for (auto* field : {&q.volume, &q.min_corner_det, &q.min_gauss_det, &q.scaled_jacobian,
                       &q.min_angle, &q.max_angle, &q.edge_ratio, &q.inverse_mean_ratio})
     field->resize(view.num_cells);
   q.type.resize(view.num_cells);
-  for (const CellBlock& block : view.blocks)
-    visit_cell_type(block.type,
-                    [&]<CellType Type>(CellTag<Type>) { measure_block<Type>(block, coords, q); });
+  for_each_cell(view, coords, [&q]<CellType Type>(std::size_t i, const auto& x) {
+    const Measures m = measure<Type>(x);
+    q.type[i] = Type;
+    q.volume[i] = m.volume;
+    q.min_corner_det[i] = m.min_corner_det;
+    q.min_gauss_det[i] = m.min_gauss_det;
+    q.scaled_jacobian[i] = m.scaled_jacobian;
+    q.min_angle[i] = m.min_angle;
+    q.max_angle[i] = m.max_angle;
+    q.edge_ratio[i] = m.edge_ratio;
+    q.inverse_mean_ratio[i] = inverse_mean_ratio<Type>(x);
+  });
   return q;
+}
+
+std::vector<double> cell_volumes(const MeshView& view, std::span<const double> coords) {
+  std::vector<double> volume(view.num_cells);
+  for_each_cell(view, coords, [&volume]<CellType Type>(std::size_t i, const auto& x) {
+    volume[i] = signed_volume<Type>(x);
+  });
+  return volume;
+}
+
+std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const double> coords) {
+  std::vector<double> sj(view.num_cells);
+  for_each_cell(view, coords, [&sj]<CellType Type>(std::size_t i, const auto& x) {
+    sj[i] = scaled_jacobian<Type>(x);
+  });
+  return sj;
 }
 
 std::vector<std::pair<std::string_view, MetricStats>> QualitySummary::metrics() const {

@@ -57,6 +57,10 @@ struct CellQuality {
 // `coords` holds view.num_vertices × view.dim values in the view's local vertex order (e.g.
 // view.coords, or the current coordinates of a run).
 CellQuality cell_quality(const MeshView& view, std::span<const double> coords);
+// One metric of cell_quality alone, at a fraction of its cost (no angles, edge ratios or
+// inverse mean ratios): for the desired volumes and the quality guard, which need no more.
+std::vector<double> cell_volumes(const MeshView& view, std::span<const double> coords);
+std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const double> coords);
 
 // The metrics of `quality` as the per-cell fields of an output (.vtu), by the names the
 // reports and `--picture-field` use.

@@ -210,4 +210,27 @@ TEST(QualitySummary, BoxVolumesAddUpAndCollapsedCellsAreDegenerate) {
   EXPECT_EQ(s.inverted, 2);
 }
 
+// The one-metric passes give cell_quality's values, and a corner with a zero-length edge has
+// scaled Jacobian 0 (not the other corners' minimum), so that "scaled Jacobian > 0" means valid.
+TEST(CellQuality, OneMetricPassesAgreeWithTheFullOne) {
+  for (CellType type :
+       {CellType::Triangle, CellType::Quadrilateral, CellType::Tetrahedron, CellType::Hexahedron}) {
+    MeshData mesh = box(type, 2);
+    const int d = dimension(type);
+    mesh.coords[d * 1] = mesh.coords[0];  // vertex 1 onto vertex 0: cells with an edge 0
+    for (int k = 1; k < d; ++k) mesh.coords[d * 1 + k] = mesh.coords[k];
+    const MeshView view = serial_view(mesh);
+    const CellQuality q = cell_quality(view, view.coords);
+    EXPECT_EQ(cell_volumes(view, view.coords), q.volume) << name(type);
+    EXPECT_EQ(cell_scaled_jacobians(view, view.coords), q.scaled_jacobian) << name(type);
+    int collapsed = 0;
+    for (std::size_t c = 0; c < q.size(); ++c) {
+      if (q.edge_ratio[c] < INFINITY) continue;
+      ++collapsed;
+      EXPECT_LE(q.scaled_jacobian[c], 0.0) << name(type) << " cell " << c;
+    }
+    EXPECT_GT(collapsed, 0) << name(type);
+  }
+}
+
 }  // namespace neomesh

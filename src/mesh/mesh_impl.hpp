@@ -2,6 +2,7 @@
 // mesh.hpp only.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,6 +28,7 @@ struct PlexMesh::Impl {
   // someone asks for the DM (PlexMesh::dm()), not at every move.
   std::unique_ptr<MeshView> view;
   bool dm_coordinates_stale = false;
+  std::uint64_t coordinates_version = 0;  // set_coordinates calls so far
   std::unique_ptr<DofMap> dofs;
 };
 

@@ -337,6 +337,11 @@ OwnedVec PlexMesh::coordinates() const {
 void PlexMesh::set_coordinates(Vec coords) {
   impl_->dofs->global_to_local(coords, impl_->view->coords);
   impl_->dm_coordinates_stale = true;
+  ++impl_->coordinates_version;
+}
+
+std::uint64_t PlexMesh::coordinates_version() const {
+  return impl_->coordinates_version;
 }
 
 }  // namespace neomesh

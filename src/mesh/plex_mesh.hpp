@@ -5,6 +5,7 @@
 // cells over the ranks (DMPlexDistribute, no overlap).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <span>
@@ -60,6 +61,9 @@ class PlexMesh {
   // Moves the vertices: `coords` is a global Vec laid out by dofs(). view().coords is the one
   // place that holds them (dm() updates the DMPlex's when asked).
   void set_coordinates(Vec coords);
+  // Changes with every set_coordinates: what was computed from the coordinates at another
+  // version is stale.
+  std::uint64_t coordinates_version() const;
 
  private:
   struct Impl;

@@ -23,7 +23,7 @@ double global_min(const std::vector<double>& values, MPI_Comm comm) {
 std::vector<double> scaled_jacobians(const MeshView& view, const DofMap& dofs, Vec x) {
   std::vector<double> local(dofs.num_local_dofs());
   dofs.global_to_local(x, local);
-  return cell_quality(view, local).scaled_jacobian;
+  return cell_scaled_jacobians(view, local);
 }
 
 }  // namespace
