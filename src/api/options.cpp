@@ -60,6 +60,8 @@ void SolverOptions::validate() const {
   require(hessian_rtol > 0 && hessian_rtol < 1, "solver.hessian_rtol", hessian_rtol, "in (0, 1)");
   require(hessian_defect_factor > 0, "solver.hessian_defect_factor", hessian_defect_factor,
           "positive");
+  require(hessian_forcing_max >= 0 && hessian_forcing_max < 1, "solver.hessian_forcing_max",
+          hessian_forcing_max, "in [0, 1)");
   require(riesz_rtol > 0 && riesz_rtol < 1, "solver.riesz_rtol", riesz_rtol, "in (0, 1)");
   require(hessian_pc_reuse >= 0, "solver.hessian_pc_reuse", hessian_pc_reuse, "0 or more");
 }
@@ -85,7 +87,7 @@ namespace {
 
 // What smoothing and adaptation share of the thesis' conventions: its quadrature, fixed
 // boundary vertices (its H¹₀ setting), iterating to the defect tolerance, the Riesz solve to
-// 1e-8.
+// 1e-8, the δ̃ solve to the same tolerance at every step.
 void use_thesis_method(EnergyOptions& energy, BoundaryOptions& boundary, SolverOptions& solver) {
   energy.gauss_points = EnergyOptions().gauss_points;
   boundary.mode = BoundaryMode::Fixed;
@@ -93,6 +95,7 @@ void use_thesis_method(EnergyOptions& energy, BoundaryOptions& boundary, SolverO
   solver.alpha0 = SolverOptions::kThesisAlpha0;
   solver.practical = false;
   solver.riesz_rtol = SolverOptions::kThesisRieszRtol;
+  solver.hessian_forcing_max = 0.0;
   solver.rejected_direction = RejectedDirection::Antigradient;
 }
 

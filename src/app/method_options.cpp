@@ -108,6 +108,12 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "relative tolerance of the loose quasi-Newton solve")
       ->capture_default_str()
       ->group(linear);
+  cmd.add_option("--hess-forcing-max", o.hessian_forcing_max,
+                 "far from the minimum the quasi-Newton solve may stop at a residual of up to "
+                 "this times the defect, the closer the tighter (0: the thesis' solve throughout, "
+                 "as with --thesis)")
+      ->default_str(fmt::format("{:g}", SolverOptions{}.hessian_forcing_max))
+      ->group(linear);
   cmd.add_option("--hess-pc", o.hess_pc,
                  "amg: precondition the quasi-Newton solve with the Riesz solve's AMG hierarchy "
                  "of the Laplacian (laplacian: more CG iterations, cheaper ones, no hierarchy "
@@ -171,6 +177,7 @@ std::string cli_message(const std::string& message) {
       {"solver.newton_move_rtol", "--newton-move-rtol"},
       {"solver.initial_previous_defect", "--alpha-start-defect"},
       {"solver.hessian_rtol", "--hess-rtol"},
+      {"solver.hessian_forcing_max", "--hess-forcing-max"},
       {"solver.hessian_pc_reuse", "--hess-pc-reuse"},
       {"solver.riesz_rtol", "--riesz-rtol"},
       {"boundary.feature_angle", "--feature-angle"},

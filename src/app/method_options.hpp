@@ -22,7 +22,8 @@ struct MethodOptions {
   std::string rejected_direction = "blend";
   std::string riesz = "optimal";
   std::string hess_pc = "laplacian";
-  std::optional<double> riesz_rtol;  // unset: SolverOptions' default, the thesis' with --thesis
+  // Unset: SolverOptions' defaults, the thesis' with --thesis.
+  std::optional<double> riesz_rtol, hessian_forcing_max;
   std::string boundary = "fixed";
   std::vector<std::string> shapes;  // --shape PART=SPEC
   double feature_angle = BoundaryOptions().feature_angle;
@@ -46,6 +47,7 @@ Options resolve(const MethodOptions& method, Options options) {
   resolve(method, options.energy, options.solver, options.boundary);
   if (method.thesis) options = Options::thesis(options);
   if (method.riesz_rtol) options.solver.riesz_rtol = *method.riesz_rtol;
+  if (method.hessian_forcing_max) options.solver.hessian_forcing_max = *method.hessian_forcing_max;
   if (method.solver.alpha0) options.solver.alpha0 = method.solver.alpha0;  // over --thesis' 0.3
   options.validate();
   return options;

@@ -94,9 +94,10 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
     for (const std::string& g : b.patch_geometry) detail("  {}\n", g);
   }
   detail(
-      "quasi-Newton system H(alpha) delta~ = -g (options -hess_*): {}, or residual <= {:g} x "
-      "defect\n",
-      problem.hessian_solver, s.solver.hessian_defect_factor);
+      "quasi-Newton system H(alpha) delta~ = -g (options -hess_*): {}, or residual <= f x "
+      "defect, f = defect / first defect within [{:g}, {:g}]\n",
+      problem.hessian_solver, s.solver.hessian_defect_factor,
+      std::max(s.solver.hessian_defect_factor, s.solver.hessian_forcing_max));
   detail("Riesz representative L s = g (options -riesz_*): {}\n", problem.riesz_solver);
   // The first iteration assembles the matrices and builds the preconditioners: on a large
   // mesh the longest wait before the first row of the table.

@@ -84,6 +84,7 @@ nlohmann::json to_json(const SolverOptions& o) {
       {"linear_solver", std::string(name(o.linear_solver))},
       {"hessian_rtol", o.hessian_rtol},
       {"hessian_defect_factor", o.hessian_defect_factor},
+      {"hessian_forcing_max", o.hessian_forcing_max},
       {"riesz_rtol", o.riesz_rtol},
       {"hessian_pc_reuse", o.hessian_pc_reuse},
       {"hessian_pc", o.hessian_pc == HessianPreconditioner::Laplacian ? "laplacian" : "hessian"},

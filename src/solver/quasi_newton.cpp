@@ -150,6 +150,13 @@ struct QuasiNewton::Impl {
            options.hessian_pc == HessianPreconditioner::Laplacian;
   }
 
+  // The δ̃ solve's residual bound over ‖g‖ (SolverOptions::hessian_forcing_max).
+  double forcing() const {
+    const double low = options.hessian_defect_factor;
+    const double progress = initial_defect > 0.0 ? defect / initial_defect : 0.0;
+    return std::clamp(progress, low, std::max(low, options.hessian_forcing_max));
+  }
+
   // (u, v)_L = uᵀ L v
   double inner_L(Vec u, Vec v) {
     NM_PETSC(MatMult(laplacian, v, work));
@@ -178,7 +185,7 @@ struct QuasiNewton::Impl {
     {
       Stopwatch watch(times.hessian_solve);
       NM_PETSC(VecAXPBY(rhs, -1.0, 0.0, gradient));
-      out = hessian_solver.solve(rhs, delta_tilde, options.hessian_defect_factor * defect);
+      out = hessian_solver.solve(rhs, delta_tilde, forcing() * defect);
     }
     rec.delta_solved = true;
     rec.krylov_delta = out.iterations;

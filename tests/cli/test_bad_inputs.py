@@ -153,6 +153,8 @@ CASES = [
     ("infinite hess-pc-reuse", ["smooth", GOOD, "-o", "out.msh", "--hess-pc-reuse", "inf"],
      ["--hess-pc-reuse", "finite"]),
     ("riesz-rtol 1", ["smooth", GOOD, "-o", "out.msh", "--riesz-rtol", "1"], ["--riesz-rtol"]),
+    ("hess-forcing-max -1",
+     ["smooth", GOOD, "-o", "out.msh", "--hess-forcing-max", "-1"], ["--hess-forcing-max"]),
     ("adapt: infinite power", ["adapt", GOOD, "-o", "out.msh", "--circle", "0.5,0.5,0.2",
                                "--power", "inf"], ["--power", "finite"]),
     ("adapt: NaN relaxation", ["adapt", GOOD, "-o", "out.msh", "--circle", "0.5,0.5,0.2",

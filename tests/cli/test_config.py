@@ -53,12 +53,16 @@ def test_the_command_line_wins(smooth):
     # Defaults that --thesis changes back: the Riesz tolerance (1e-3 vs the thesis' 1e-8)
     # unless given; the δ̃ solve preconditioned by L's hierarchy unless --hess-pc hessian.
     assert report["solver_options"]["riesz_rtol"] == 1e-3, f"Riesz default: {report}"
+    assert report["solver_options"]["hessian_forcing_max"] == 1e-2, f"forcing: {report}"
     assert report["solver_options"]["hessian_pc"] == "laplacian", f"hess-pc: {report}"
 
 
 def test_thesis_defaults_and_what_wins_over_them(smooth):
     _, report = smooth("--linear-solver", "amg", "--thesis", "--hess-pc", "hessian")
     assert report["solver_options"]["riesz_rtol"] == 1e-8, f"--thesis Riesz: {report}"
+    assert report["solver_options"]["hessian_forcing_max"] == 0, f"--thesis forcing: {report}"
     assert report["solver_options"]["hessian_pc"] == "hessian", f"--hess-pc: {report}"
     _, report = smooth("--thesis", "--riesz-rtol", "1e-5")
     assert report["solver_options"]["riesz_rtol"] == 1e-5, f"--riesz-rtol wins: {report}"
+    _, report = smooth("--thesis", "--hess-forcing-max", "0.05")
+    assert report["solver_options"]["hessian_forcing_max"] == 0.05, f"forcing wins: {report}"
