@@ -102,6 +102,13 @@ struct SolverOptions {
   double newton_move_rtol = 1e-3;
   double armijo_beta = 1e-2;  // sufficient decrease (thesis (2.5.4))
   int max_halvings = 40;      // σ ≥ 0.5^40 ≈ 1e-12, then give up
+  // Along −s (antigradient steps), the line search's first trial σ is the largest of 1, 1/2,
+  // 1/4, ... that moves no vertex more than this many times its local cell size: larger trials
+  // of the same halving sequence are skipped, not tried. −s has L's scale, not the mesh's: the
+  // first antigradient steps of square-midpoint 1024² tried 11 and 7 σ before one moved the
+  // vertices by less than 50 cell sizes (docs/method.md §4). A quasi-Newton step's σ = 1 is
+  // its natural length and is always tried. 0: start at σ = 1 (the thesis).
+  double max_trial_move = 64.0;
   // ‖g_{-1}‖ for the first α update; 10 reproduces the thesis' tables (docs/method.md §4).
   double initial_previous_defect = 10.0;
   LinearSolverKind linear_solver = LinearSolverKind::Amg;

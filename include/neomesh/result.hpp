@@ -14,9 +14,10 @@ namespace neomesh {
 
 // One row of the thesis' iteration table (Tables 5.9 ff.).
 struct IterationRecord {
-  int k = 0;                    // 1-based, as the thesis prints it
-  int armijo_steps = 0;         // halvings: σ = 0.5^armijo_steps
-  double defect = 0.0;          // ‖g_k‖ over free dofs at the start of the iteration
+  int k = 0;             // 1-based, as the thesis prints it
+  int armijo_steps = 0;  // halvings: σ = 0.5^armijo_steps
+  int trials = 0;        // energies the line search evaluated (SolverOptions::max_trial_move)
+  double defect = 0.0;   // ‖g_k‖ over free dofs at the start of the iteration
   double direction_norm = 0.0;  // ‖δ‖ before scaling by σ
   double energy = 0.0;          // F after the step
   double eta = 1.0;             // η_k of the angle test (1 for antigradient steps)

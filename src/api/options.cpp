@@ -55,6 +55,7 @@ void SolverOptions::validate() const {
   require(newton_move_rtol >= 0, "solver.newton_move_rtol", newton_move_rtol, "0 or more");
   require(armijo_beta > 0 && armijo_beta < 1, "solver.armijo_beta", armijo_beta, "in (0, 1)");
   require(max_halvings >= 1, "solver.max_halvings", max_halvings, "at least 1");
+  require(max_trial_move >= 0, "solver.max_trial_move", max_trial_move, "0 or more");
   require(initial_previous_defect > 0, "solver.initial_previous_defect", initial_previous_defect,
           "positive");
   require(hessian_rtol > 0 && hessian_rtol < 1, "solver.hessian_rtol", hessian_rtol, "in (0, 1)");
@@ -96,6 +97,7 @@ void use_thesis_method(EnergyOptions& energy, BoundaryOptions& boundary, SolverO
   solver.practical = false;
   solver.riesz_rtol = SolverOptions::kThesisRieszRtol;
   solver.hessian_forcing_max = 0.0;
+  solver.max_trial_move = 0.0;
   solver.rejected_direction = RejectedDirection::Antigradient;
 }
 

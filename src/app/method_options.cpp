@@ -87,6 +87,12 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "more than this times its local cell size (0: off)")
       ->capture_default_str()
       ->group(method);
+  cmd.add_option("--max-trial-move", o.solver.max_trial_move,
+                 "line search: the first trial step moves no vertex more than this times its "
+                 "local cell size (the halving sequence from 1 is kept; 0: start at 1, the "
+                 "thesis)")
+      ->capture_default_str()
+      ->group(method);
   cmd.add_option("--alpha-start-defect", o.solver.initial_previous_defect,
                  "defect assumed before the first iteration for the α update (thesis: 10)")
       ->capture_default_str()
@@ -176,6 +182,7 @@ std::string cli_message(const std::string& message) {
       {"solver.move_rtol", "--move-rtol"},
       {"solver.newton_move_rtol", "--newton-move-rtol"},
       {"solver.initial_previous_defect", "--alpha-start-defect"},
+      {"solver.max_trial_move", "--max-trial-move"},
       {"solver.hessian_rtol", "--hess-rtol"},
       {"solver.hessian_forcing_max", "--hess-forcing-max"},
       {"solver.hessian_pc_reuse", "--hess-pc-reuse"},

@@ -18,6 +18,7 @@ nlohmann::json number(double x) {
 nlohmann::json to_json(const IterationRecord& r) {
   nlohmann::json row = {{"k", r.k},
                         {"armijo_steps", r.armijo_steps},
+                        {"trials", r.trials},
                         {"defect", number(r.defect)},
                         {"direction_norm", number(r.direction_norm)},
                         {"energy", number(r.energy)},
@@ -80,6 +81,7 @@ nlohmann::json to_json(const SolverOptions& o) {
       {"newton_move_rtol", o.newton_move_rtol},
       {"armijo_beta", o.armijo_beta},
       {"max_halvings", o.max_halvings},
+      {"max_trial_move", o.max_trial_move},
       {"initial_previous_defect", o.initial_previous_defect},
       {"linear_solver", std::string(name(o.linear_solver))},
       {"hessian_rtol", o.hessian_rtol},

@@ -249,11 +249,20 @@ struct QuasiNewton::Impl {
   bool line_search(Vec x, IterationRecord& rec, double& new_energy, double& sigma) {
     Stopwatch watch(times.line_search);
     const double predicted = -dot(gradient, delta);
-    sigma = 1.0;
-    for (int halvings = 0; halvings <= options.max_halvings; ++halvings, sigma *= 0.5) {
+    int halvings = 0;
+    // Only −s has no natural length (L's scale); a (quasi-)Newton step's σ = 1 is its own.
+    if (rec.used_s && options.max_trial_move > 0.0) {
+      const double move = max_relative_move(1.0);
+      while (halvings < options.max_halvings &&
+             std::ldexp(move, -halvings) > options.max_trial_move)
+        ++halvings;
+    }
+    sigma = std::ldexp(1.0, -halvings);
+    for (; halvings <= options.max_halvings; ++halvings, sigma *= 0.5) {
       NM_PETSC(VecWAXPY(trial, sigma, delta, x));
       functional.project_onto_boundary(trial);  // sliding vertices back onto the boundary
       new_energy = functional.value(trial);
+      ++rec.trials;
       rec.armijo_steps = halvings;
       if (!std::isfinite(new_energy)) continue;
       // Below round-off the test compares noise (docs/method.md §4): take the step.

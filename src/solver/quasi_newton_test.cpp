@@ -244,6 +244,28 @@ TEST(SquareRandom, LooserQuasiNewtonSolvesFarFromTheMinimumSaveKrylovIterations)
   EXPECT_LT(krylov(runs[1]), krylov(runs[0]));
 }
 
+// Along −s the line search skips the trial steps that would move a vertex by more than
+// max_trial_move cell sizes: the same σ in every iteration, fewer energies evaluated.
+TEST(SquareMidpoint, AntigradientTrialStepsBeyondTheMoveBoundAreSkipped) {
+  std::vector<QuasiNewtonResult> runs;
+  for (const double bound : {0.0, 64.0}) {
+    ThesisProblem p(square_midpoint(64));
+    QuasiNewtonOptions o;
+    o.linear_solver = LinearSolverKind::Amg;
+    o.max_trial_move = bound;
+    runs.push_back(p.minimize(o));
+  }
+  ASSERT_EQ(runs[1].history.size(), runs[0].history.size());
+  int trials[2] = {0, 0};
+  for (std::size_t i = 0; i < runs[0].history.size(); ++i) {
+    EXPECT_EQ(runs[1].history[i].armijo_steps, runs[0].history[i].armijo_steps) << "k " << i + 1;
+    // From σ = 1 every halving is a trial.
+    EXPECT_EQ(runs[0].history[i].trials, runs[0].history[i].armijo_steps + 1) << "k " << i + 1;
+    for (int r : {0, 1}) trials[r] += runs[r].history[i].trials;
+  }
+  EXPECT_LT(trials[1], trials[0]);  // 15 and 10 when written
+}
+
 // The cases whose meshes the thesis does not specify fully (generate.hpp documents the
 // meshes built here): each converges to defect < 1e-10 without stalling, with k_min = 2.
 // Where the mesh turned out to be the thesis' (transition and circle at level 4: 1280

@@ -34,6 +34,7 @@ QuasiNewtonOptions ThesisProblem::thesis_options() const {
   o.alpha0 = QuasiNewtonOptions::kThesisAlpha0;
   o.riesz_rtol = QuasiNewtonOptions::kThesisRieszRtol;
   o.hessian_forcing_max = 0.0;
+  o.max_trial_move = 0.0;
   o.practical = false;
   o.rejected_direction = RejectedDirection::Antigradient;
   o.defect_atol = 1e-10;
