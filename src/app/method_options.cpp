@@ -88,9 +88,9 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
       ->capture_default_str()
       ->group(method);
   cmd.add_option("--max-trial-move", o.solver.max_trial_move,
-                 "line search: the first trial step moves no vertex more than this times its "
-                 "local cell size (the halving sequence from 1 is kept; 0: start at 1, the "
-                 "thesis)")
+                 "line search along the antigradient: the first trial step moves no vertex more "
+                 "than this times its local cell size (the halving sequence from 1 is kept; 0: "
+                 "start at 1, as with --thesis)")
       ->capture_default_str()
       ->group(method);
   cmd.add_option("--alpha-start-defect", o.solver.initial_previous_defect,
