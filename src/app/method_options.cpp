@@ -87,11 +87,11 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "more than this times its local cell size (0: off)")
       ->capture_default_str()
       ->group(method);
-  cmd.add_option("--max-trial-move", o.solver.max_trial_move,
+  cmd.add_option("--max-trial-move", o.max_trial_move,
                  "line search along the antigradient: the first trial step moves no vertex more "
                  "than this times its local cell size (the halving sequence from 1 is kept; 0: "
                  "start at 1, as with --thesis)")
-      ->capture_default_str()
+      ->default_str(fmt::format("{:g}", SolverOptions{}.max_trial_move))
       ->group(method);
   cmd.add_option("--alpha-start-defect", o.solver.initial_previous_defect,
                  "defect assumed before the first iteration for the α update (thesis: 10)")

@@ -23,7 +23,7 @@ struct MethodOptions {
   std::string riesz = "optimal";
   std::string hess_pc = "laplacian";
   // Unset: SolverOptions' defaults, the thesis' with --thesis.
-  std::optional<double> riesz_rtol, hessian_forcing_max;
+  std::optional<double> riesz_rtol, hessian_forcing_max, max_trial_move;
   std::string boundary = "fixed";
   std::vector<std::string> shapes;  // --shape PART=SPEC
   double feature_angle = BoundaryOptions().feature_angle;
@@ -48,6 +48,7 @@ Options resolve(const MethodOptions& method, Options options) {
   if (method.thesis) options = Options::thesis(options);
   if (method.riesz_rtol) options.solver.riesz_rtol = *method.riesz_rtol;
   if (method.hessian_forcing_max) options.solver.hessian_forcing_max = *method.hessian_forcing_max;
+  if (method.max_trial_move) options.solver.max_trial_move = *method.max_trial_move;
   if (method.solver.alpha0) options.solver.alpha0 = method.solver.alpha0;  // over --thesis' 0.3
   options.validate();
   return options;

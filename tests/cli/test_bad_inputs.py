@@ -155,6 +155,8 @@ CASES = [
     ("riesz-rtol 1", ["smooth", GOOD, "-o", "out.msh", "--riesz-rtol", "1"], ["--riesz-rtol"]),
     ("hess-forcing-max -1",
      ["smooth", GOOD, "-o", "out.msh", "--hess-forcing-max", "-1"], ["--hess-forcing-max"]),
+    ("max-trial-move -1",
+     ["smooth", GOOD, "-o", "out.msh", "--max-trial-move", "-1"], ["--max-trial-move"]),
     ("adapt: infinite power", ["adapt", GOOD, "-o", "out.msh", "--circle", "0.5,0.5,0.2",
                                "--power", "inf"], ["--power", "finite"]),
     ("adapt: NaN relaxation", ["adapt", GOOD, "-o", "out.msh", "--circle", "0.5,0.5,0.2",

@@ -54,6 +54,7 @@ def test_the_command_line_wins(smooth):
     # unless given; the δ̃ solve preconditioned by L's hierarchy unless --hess-pc hessian.
     assert report["solver_options"]["riesz_rtol"] == 1e-3, f"Riesz default: {report}"
     assert report["solver_options"]["hessian_forcing_max"] == 1e-2, f"forcing: {report}"
+    assert report["solver_options"]["max_trial_move"] == 64, f"trial move: {report}"
     assert report["solver_options"]["hessian_pc"] == "laplacian", f"hess-pc: {report}"
 
 
@@ -61,8 +62,11 @@ def test_thesis_defaults_and_what_wins_over_them(smooth):
     _, report = smooth("--linear-solver", "amg", "--thesis", "--hess-pc", "hessian")
     assert report["solver_options"]["riesz_rtol"] == 1e-8, f"--thesis Riesz: {report}"
     assert report["solver_options"]["hessian_forcing_max"] == 0, f"--thesis forcing: {report}"
+    assert report["solver_options"]["max_trial_move"] == 0, f"--thesis trial move: {report}"
     assert report["solver_options"]["hessian_pc"] == "hessian", f"--hess-pc: {report}"
     _, report = smooth("--thesis", "--riesz-rtol", "1e-5")
     assert report["solver_options"]["riesz_rtol"] == 1e-5, f"--riesz-rtol wins: {report}"
     _, report = smooth("--thesis", "--hess-forcing-max", "0.05")
     assert report["solver_options"]["hessian_forcing_max"] == 0.05, f"forcing wins: {report}"
+    _, report = smooth("--thesis", "--max-trial-move", "8")
+    assert report["solver_options"]["max_trial_move"] == 8, f"trial move wins: {report}"
