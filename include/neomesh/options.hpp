@@ -124,6 +124,12 @@ struct SolverOptions {
   // half the Krylov iterations of 1e-8; docs/benchmarks.md). The thesis solves to 1e-8.
   double riesz_rtol = 1e-3;
   static constexpr double kThesisRieszRtol = 1e-8;
+  // A quasi-Newton step needs s only for the angle test's cosine η (and a blend): with AMG,
+  // η is first estimated without s, from (s, δ̃)_L = gᵀδ̃ and ‖s‖²_L ≈ gᵀM⁻¹g with one
+  // application M⁻¹ of L's hierarchy; s is solved only if the estimate does not pass the test
+  // with a margin that covers a V-cycle's error (docs/method.md §4). false: s every iteration
+  // (the thesis).
+  bool lazy_riesz = true;
   // With Amg and hessian_pc = Hessian: keep the AMG hierarchy of an earlier H(α) while the δ̃
   // solve needs at most this many times the Krylov iterations it needed when the hierarchy was
   // built (0: rebuild always).

@@ -29,6 +29,7 @@ struct IterationRecord {
   bool delta_truncated = false;   // CG stopped at negative curvature; its iterate was used
   bool hessian_pc_built = false;  // amg: the H(α) hierarchy was built for this solve
   int krylov_s = 0;               // Krylov iterations for s
+  bool s_solved = false;          // s was solved (SolverOptions::lazy_riesz: not always)
   bool used_s = false;            // the step went along −s
   bool blended = false;           // δ̃ failed the angle test and was turned towards −s
   bool roundoff_step = false;     // Armijo skipped: predicted decrease below round-off

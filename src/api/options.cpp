@@ -98,6 +98,7 @@ void use_thesis_method(EnergyOptions& energy, BoundaryOptions& boundary, SolverO
   solver.riesz_rtol = SolverOptions::kThesisRieszRtol;
   solver.hessian_forcing_max = 0.0;
   solver.max_trial_move = 0.0;
+  solver.lazy_riesz = false;
   solver.rejected_direction = RejectedDirection::Antigradient;
 }
 

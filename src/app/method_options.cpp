@@ -138,6 +138,10 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                              "{:g})",
                              SolverOptions{}.riesz_rtol, SolverOptions::kThesisRieszRtol))
       ->group(linear);
+  cmd.add_flag("--riesz-every-step", o.riesz_every_step,
+               "solve the Riesz system every iteration (default: in quasi-Newton steps only when "
+               "the angle test, estimated with one AMG V-cycle, needs s; always with --thesis)")
+      ->group(linear);
   const char* boundary = "Boundary (docs/boundary.md)";
   cmd.add_option("--boundary", o.boundary,
                  "fixed (boundary vertices stay put, the thesis) or slide (they move along the "
@@ -222,6 +226,7 @@ void resolve(const MethodOptions& o, EnergyOptions& energy, SolverOptions& solve
       "--rejected-direction", o.rejected_direction, {"blend", RejectedDirection::Blend},
       {"antigradient", RejectedDirection::Antigradient});
   solver.practical = !o.no_practical;
+  solver.lazy_riesz = !o.riesz_every_step;
   boundary.mode = parse_boundary_mode(o.boundary);
   boundary.feature_angle = o.feature_angle;
   boundary.shapes.clear();

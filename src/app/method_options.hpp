@@ -28,6 +28,7 @@ struct MethodOptions {
   std::vector<std::string> shapes;  // --shape PART=SPEC
   double feature_angle = BoundaryOptions().feature_angle;
   bool no_practical = false;
+  bool riesz_every_step = false;
   bool thesis = false;
 };
 

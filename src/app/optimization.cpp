@@ -71,10 +71,10 @@ void print_solver_details(const IterationRecord& rec) {
                         rec.delta_failed      ? ", did not converge: alpha cut to 0.1 alpha"
                         : rec.delta_truncated ? ", negative curvature: CG iterate used"
                                               : "");
-  detail(
-      "  k={}: delta~ {}; s: {} Krylov iterations; step 0.5^{}; largest move {:.2e} cell "
-      "sizes\n",
-      rec.k, delta, rec.krylov_s, rec.armijo_steps, rec.max_move);
+  detail("  k={}: delta~ {}; s: {}; step 0.5^{}; largest move {:.2e} cell sizes\n", rec.k, delta,
+         rec.s_solved ? fmt::format("{} Krylov iterations", rec.krylov_s)
+                      : std::string("not solved (angle test estimated with one V-cycle)"),
+         rec.armijo_steps, rec.max_move);
 }
 
 // The problem as the Optimizer set it up, and the settings it runs with.

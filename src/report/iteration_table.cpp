@@ -20,6 +20,8 @@ std::string iteration_table_header() {
 std::string iteration_table_row(const IterationRecord& rec) {
   const std::string ksp_delta = rec.delta_solved ? fmt::format("{}", rec.krylov_delta) : "-";
   const std::string res_delta = rec.delta_solved ? fmt::format("{:.2E}", rec.residual_delta) : "-";
+  // s not solved: η estimated with one V-cycle (SolverOptions::lazy_riesz).
+  const std::string ksp_s = rec.s_solved ? fmt::format("{}", rec.krylov_s) : "-";
   // s! : δ̃ failed and α was cut; delta~ : CG stopped at negative curvature (truncated δ̃);
   // +s: δ̃ turned towards −s to pass the angle test.
   const char* direction = rec.blended        ? (rec.delta_truncated ? "delta~+s" : "delta+s")
@@ -30,8 +32,8 @@ std::string iteration_table_row(const IterationRecord& rec) {
       "{:>4} {:>6} {:>10.2E} {:>10.2E} {:>10.2E} {:>5.2f} {:>5.2f} {:>6} {:>9} "
       "{:>6} {:>6}{}{}",
       rec.k, rec.armijo_steps, rec.defect, rec.direction_norm, rec.energy, rec.eta, rec.alpha,
-      ksp_delta, res_delta, rec.krylov_s, direction,
-      rec.roundoff_step ? "  (round-off: full step)" : "", untangling_note(rec));
+      ksp_delta, res_delta, ksp_s, direction, rec.roundoff_step ? "  (round-off: full step)" : "",
+      untangling_note(rec));
 }
 
 std::string untangling_phase_line(const IterationRecord& rec) {

@@ -30,6 +30,7 @@ nlohmann::json to_json(const IterationRecord& r) {
                         {"delta_failed", r.delta_failed},
                         {"delta_truncated", r.delta_truncated},
                         {"krylov_s", r.krylov_s},
+                        {"s_solved", r.s_solved},
                         {"used_s", r.used_s},
                         {"blended", r.blended},
                         {"roundoff_step", r.roundoff_step},
@@ -88,6 +89,7 @@ nlohmann::json to_json(const SolverOptions& o) {
       {"hessian_defect_factor", o.hessian_defect_factor},
       {"hessian_forcing_max", o.hessian_forcing_max},
       {"riesz_rtol", o.riesz_rtol},
+      {"lazy_riesz", o.lazy_riesz},
       {"hessian_pc_reuse", o.hessian_pc_reuse},
       {"hessian_pc", o.hessian_pc == HessianPreconditioner::Laplacian ? "laplacian" : "hessian"},
       {"riesz_laplacian", o.riesz == RieszLaplacian::OptimalCells ? "optimal" : "current"}};

@@ -175,14 +175,20 @@ LinearSolver::Outcome LinearSolver::solve(Vec b, Vec x, double atol) {
   out.indefinite = reason == KSP_DIVERGED_INDEFINITE_MAT || reason == KSP_DIVERGED_INDEFINITE_PC;
   out.iterations = static_cast<int>(its);
   // For preonly (direct) the residual is not computed by the KSP: compute it.
-  OwnedVec r;
-  NM_PETSC(VecDuplicate(b, r.out()));
+  if (!residual_) NM_PETSC(VecDuplicate(b, residual_.out()));
   Mat A = nullptr;
   NM_PETSC(KSPGetOperators(ksp_, &A, nullptr));
-  NM_PETSC(MatMult(A, x, r));
-  NM_PETSC(VecAYPX(r, -1.0, b));
-  NM_PETSC(VecNorm(r, NORM_2, &out.residual));
+  NM_PETSC(MatMult(A, x, residual_));
+  NM_PETSC(VecAYPX(residual_, -1.0, b));
+  NM_PETSC(VecNorm(residual_, NORM_2, &out.residual));
   return out;
+}
+
+void LinearSolver::apply_preconditioner(Vec b, Vec x) {
+  setup();
+  PC pc = nullptr;
+  NM_PETSC(KSPGetPC(ksp_, &pc));
+  NM_PETSC(PCApply(pc, b, x));
 }
 
 namespace {

@@ -51,6 +51,8 @@ class LinearSolver {
   };
   // Solves A x = b from x = 0; stops at rtol or when the residual is below `atol`.
   Outcome solve(Vec b, Vec x, double atol = 0.0);
+  // x = M⁻¹ b, one application of the preconditioner (built for the operator if it was not).
+  void apply_preconditioner(Vec b, Vec x);
 
   KSP ksp() const { return ksp_; }
   // "KSP cg, PC hypre boomeramg, rtol 0.0001, at most 10000 iterations": what PETSc will run,
@@ -65,6 +67,9 @@ class LinearSolver {
   std::string prefix_;
   int dim_;
   std::unique_ptr<ComponentPreconditioner> components_;  // after precondition_per_component
+  // The residual b − A x of the last solve; kept, not allocated per solve (a fresh vector's
+  // pages are faulted and zeroed again every time).
+  OwnedVec residual_;
 };
 
 }  // namespace neomesh

@@ -55,6 +55,7 @@ def test_the_command_line_wins(smooth):
     assert report["solver_options"]["riesz_rtol"] == 1e-3, f"Riesz default: {report}"
     assert report["solver_options"]["hessian_forcing_max"] == 1e-2, f"forcing: {report}"
     assert report["solver_options"]["max_trial_move"] == 64, f"trial move: {report}"
+    assert report["solver_options"]["lazy_riesz"] is True, f"lazy Riesz: {report}"
     assert report["solver_options"]["hessian_pc"] == "laplacian", f"hess-pc: {report}"
 
 
@@ -63,6 +64,7 @@ def test_thesis_defaults_and_what_wins_over_them(smooth):
     assert report["solver_options"]["riesz_rtol"] == 1e-8, f"--thesis Riesz: {report}"
     assert report["solver_options"]["hessian_forcing_max"] == 0, f"--thesis forcing: {report}"
     assert report["solver_options"]["max_trial_move"] == 0, f"--thesis trial move: {report}"
+    assert report["solver_options"]["lazy_riesz"] is False, f"--thesis lazy Riesz: {report}"
     assert report["solver_options"]["hessian_pc"] == "hessian", f"--hess-pc: {report}"
     _, report = smooth("--thesis", "--riesz-rtol", "1e-5")
     assert report["solver_options"]["riesz_rtol"] == 1e-5, f"--riesz-rtol wins: {report}"
@@ -70,3 +72,14 @@ def test_thesis_defaults_and_what_wins_over_them(smooth):
     assert report["solver_options"]["hessian_forcing_max"] == 0.05, f"forcing wins: {report}"
     _, report = smooth("--thesis", "--max-trial-move", "8")
     assert report["solver_options"]["max_trial_move"] == 8, f"trial move wins: {report}"
+
+
+def test_riesz_solve_every_step_or_when_the_angle_test_needs_it(smooth):
+    # Default (AMG): the quasi-Newton steps estimate η with one V-cycle and skip the solve.
+    _, report = smooth("--linear-solver", "amg")
+    history = report["result"]["history"]
+    assert any(not h["s_solved"] and not h["used_s"] for h in history), f"lazy: {history}"
+    assert all(h["s_solved"] for h in history if h["used_s"]), f"-s needs s: {history}"
+    _, report = smooth("--linear-solver", "amg", "--riesz-every-step")
+    assert report["solver_options"]["lazy_riesz"] is False, f"--riesz-every-step: {report}"
+    assert all(h["s_solved"] for h in report["result"]["history"]), f"s every step: {report}"

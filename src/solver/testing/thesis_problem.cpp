@@ -35,6 +35,7 @@ QuasiNewtonOptions ThesisProblem::thesis_options() const {
   o.riesz_rtol = QuasiNewtonOptions::kThesisRieszRtol;
   o.hessian_forcing_max = 0.0;
   o.max_trial_move = 0.0;
+  o.lazy_riesz = false;
   o.practical = false;
   o.rejected_direction = RejectedDirection::Antigradient;
   o.defect_atol = 1e-10;
