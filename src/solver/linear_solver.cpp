@@ -31,35 +31,45 @@ namespace {
 
 // BoomerAMG is tuned only through the options database: neomesh's defaults go there unless
 // the caller gave the option, for as long as the solver reads its options (the destructor
-// takes them out again, so the database is left as the caller made it). Chebyshev smoothing halves
-// the time of the δ̃ solve against PETSc's default hybrid SOR/Jacobi at the same CG iterations
-// (square-midpoint 512²: whole run 18.9 s → 14.1 s). In 3D, hypre's advice for 3D problems (HMIS
-// coarsening, ext+i interpolation with at most 4 entries per row, strong threshold 0.5) keeps the
-// hierarchies sparse: on cube-midpoint 32³ the Riesz Laplacian's operator complexity was 5.4 with
-// the 2D defaults, and both setups and V-cycles take half the time or less at the same CG
-// iterations. In 2D the same options do not help (same time, more iterations). Aggressive
-// coarsening on the finest level (2 paths) then halves the 3D setups again at the same
-// iterations (hexes 40³: Riesz setup 0.42 → 0.13 s, whole run 2.28 → 1.82 s; tets 40³: 0.17 →
-// 0.07 s, 2.04 → 1.88 s; docs/benchmarks.md); in 2D it slowed the V-cycles (quads 300²: 0.58
-// → 0.65 s). With it, a strong threshold of 0.6 rather than 0.5 took a third fewer CG
-// iterations on hexahedra (40³: Riesz and δ̃ solves and Riesz setup 0.80–0.89 → 0.56–0.65 s)
-// and as many or fewer on tetrahedra (0.62 → 0.52 s).
+// takes them out again, so the database is left as the caller made it).
+//
+// The smoother in 2D is one sweep of l1-Gauss-Seidel down and one backward up (a symmetric
+// V-cycle, as CG needs): PETSc's default symmetric SOR/Jacobi sweeps both ways on both legs,
+// twice the work, and Chebyshev needs two products per sweep and an eigenvalue estimate.
+// Square-midpoint 1024²: whole run 26.2 s (symmetric SOR/Jacobi), 20.9–23.5 s (Chebyshev),
+// 17.2–17.4 s (l1-Gauss-Seidel), the same quasi-Newton and about as many CG iterations. In 3D
+// Chebyshev stays: the same times on the fixed boxes, and the sliding annulus of hexahedra's
+// block hierarchy needed 111 instead of 77 Riesz CG iterations with Gauss-Seidel (whole run
+// 3.2–3.4 against 2.9–3.0 s; docs/benchmarks.md).
+//
+// In 3D, hypre's advice for 3D problems (HMIS coarsening, ext+i interpolation with at most 4
+// entries per row, strong threshold 0.5) keeps the hierarchies sparse: on cube-midpoint 32³ the
+// Riesz Laplacian's operator complexity was 5.4 with the 2D defaults, and both setups and
+// V-cycles take half the time or less at the same CG iterations. In 2D the same options do not
+// help (same time, more iterations). Aggressive coarsening on the finest level (2 paths) then
+// halves the 3D setups again at the same iterations (hexes 40³: Riesz setup 0.42 → 0.13 s, whole
+// run 2.28 → 1.82 s; tets 40³: 0.17 → 0.07 s, 2.04 → 1.88 s); in 2D it slowed the V-cycles
+// (quads 300²: 0.58 → 0.65 s). With it, a strong threshold of 0.6 rather than 0.5 took a third
+// fewer CG iterations on hexahedra (40³: Riesz and δ̃ solves and Riesz setup 0.80–0.89 →
+// 0.56–0.65 s) and as many or fewer on tetrahedra (0.62 → 0.52 s).
 class AmgDefaults {
  public:
   AmgDefaults(const std::string& prefix, int dim) {
-    std::vector<std::pair<const char*, const char*>> defaults = {{"relax_type_all", "Chebyshev"}};
+    std::vector<std::pair<const char*, const char*>> defaults;
     if (dim == 3)
-      defaults.insert(defaults.end(), {{"coarsen_type", "HMIS"},
-                                       {"interp_type", "ext+i"},
-                                       {"P_max", "4"},
-                                       {"strong_threshold", "0.6"},
-                                       {"agg_nl", "1"},
-                                       {"agg_num_paths", "2"}});
+      defaults = {{"relax_type_all", "Chebyshev"}, {"coarsen_type", "HMIS"},
+                  {"interp_type", "ext+i"},        {"P_max", "4"},
+                  {"strong_threshold", "0.6"},     {"agg_nl", "1"},
+                  {"agg_num_paths", "2"}};
+    else
+      defaults = {{"relax_type_down", "l1-Gauss-Seidel"},
+                  {"relax_type_up", "backward-l1-Gauss-Seidel"}};
+    // A smoother given for both legs (relax_type_all) is the caller's choice for each.
+    const bool smoother_given = has_option(prefix, "relax_type_all");
     for (const auto& [name, value] : defaults) {
+      const std::string_view key = name;
+      if (has_option(prefix, name) || (smoother_given && key.starts_with("relax_type_"))) continue;
       std::string option = "-" + prefix + "pc_hypre_boomeramg_" + name;
-      PetscBool given = PETSC_FALSE;
-      NM_PETSC(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &given));
-      if (given) continue;
       NM_PETSC(PetscOptionsSetValue(nullptr, option.c_str(), value));
       set_.push_back(std::move(option));
     }
@@ -71,6 +81,13 @@ class AmgDefaults {
   AmgDefaults& operator=(const AmgDefaults&) = delete;
 
  private:
+  static bool has_option(const std::string& prefix, const char* name) {
+    const std::string option = "-" + prefix + "pc_hypre_boomeramg_" + name;
+    PetscBool given = PETSC_FALSE;
+    NM_PETSC(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &given));
+    return given;
+  }
+
   std::vector<std::string> set_;  // the options this put in
 };
 

@@ -49,6 +49,27 @@ TEST(LinearSolver, AmgDefaultsReachHypreAndLeaveNoOptionBehind) {
   EXPECT_FALSE(in_database("-amgtest_pc_hypre_boomeramg_relax_type_all"));
 }
 
+TEST(LinearSolver, TwoDimensionalAmgSmoothsWithGaussSeidelBothWays) {
+  const LinearSolver solver(PETSC_COMM_SELF, LinearSolverKind::Amg, "amg2d_", 2, 1e-4);
+  const std::string pc = view_pc(solver);
+  EXPECT_THAT(pc, HasSubstr("Relax down          l1-Gauss-Seidel"));
+  EXPECT_THAT(pc, HasSubstr("Relax up            backward-l1-Gauss-Seidel"));
+  EXPECT_THAT(pc, Not(HasSubstr("HMIS")));
+  EXPECT_FALSE(in_database("-amg2d_pc_hypre_boomeramg_relax_type_down"));
+  EXPECT_FALSE(in_database("-amg2d_pc_hypre_boomeramg_relax_type_up"));
+}
+
+// A smoother given for both legs is used on both: the default legs do not override it.
+TEST(LinearSolver, ASmootherForBothLegsWinsOverTheDefaultLegs) {
+  NM_PETSC(PetscOptionsSetValue(nullptr, "-legs_pc_hypre_boomeramg_relax_type_all", "Jacobi"));
+  const LinearSolver solver(PETSC_COMM_SELF, LinearSolverKind::Amg, "legs_", 2, 1e-4);
+  const std::string pc = view_pc(solver);
+  EXPECT_THAT(pc, Not(HasSubstr("Gauss-Seidel")));
+  EXPECT_THAT(pc, HasSubstr("Relax up            Jacobi"));
+  EXPECT_FALSE(in_database("-legs_pc_hypre_boomeramg_relax_type_down"));
+  NM_PETSC(PetscOptionsClearValue(nullptr, "-legs_pc_hypre_boomeramg_relax_type_all"));
+}
+
 TEST(LinearSolver, AnOptionTheCallerGaveWinsAndStays) {
   NM_PETSC(PetscOptionsSetValue(nullptr, "-given_pc_hypre_boomeramg_coarsen_type", "PMIS"));
   const LinearSolver solver(PETSC_COMM_SELF, LinearSolverKind::Amg, "given_", 3, 1e-4);
