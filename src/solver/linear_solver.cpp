@@ -191,7 +191,12 @@ LinearSolver::Outcome LinearSolver::solve(Vec b, Vec x, double atol) {
   out.converged = reason > 0;
   out.indefinite = reason == KSP_DIVERGED_INDEFINITE_MAT || reason == KSP_DIVERGED_INDEFINITE_PC;
   out.iterations = static_cast<int>(its);
-  // For preonly (direct) the residual is not computed by the KSP: compute it.
+  if (kind_ != LinearSolverKind::Direct) {
+    // CG's own residual norm (unpreconditioned, KSPSetNormType): what its test compared.
+    NM_PETSC(KSPGetResidualNorm(ksp_, &out.residual));
+    return out;
+  }
+  // Preonly (direct) computes no residual: b − A x, in a vector kept for the next solve.
   if (!residual_) NM_PETSC(VecDuplicate(b, residual_.out()));
   Mat A = nullptr;
   NM_PETSC(KSPGetOperators(ksp_, &A, nullptr));

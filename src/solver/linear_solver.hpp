@@ -67,8 +67,8 @@ class LinearSolver {
   std::string prefix_;
   int dim_;
   std::unique_ptr<ComponentPreconditioner> components_;  // after precondition_per_component
-  // The residual b − A x of the last solve; kept, not allocated per solve (a fresh vector's
-  // pages are faulted and zeroed again every time).
+  // Direct solves: the residual b − A x of the last solve, kept rather than allocated per
+  // solve (a fresh vector's pages are faulted and zeroed again every time).
   OwnedVec residual_;
 };
 
