@@ -73,7 +73,7 @@ struct QuasiNewton::Impl {
   LinearSolver hessian_solver;
   LinearSolver riesz_solver;
   OwnedMat hessian, laplacian;
-  OwnedVec gradient, s, delta_tilde, delta, trial, work, rhs;
+  OwnedVec gradient, s, delta_tilde, delta, trial, work;
 
   double energy = 0.0;
   double defect = 0.0;
@@ -102,7 +102,7 @@ struct QuasiNewton::Impl {
     Stopwatch watch(times.setup);
     if (riesz_per_component(functional, options)) riesz_solver.precondition_per_component();
     if (laplacian_preconditions_hessian()) hessian_solver.precondition_with(riesz_solver);
-    for (OwnedVec* v : {&gradient, &s, &delta_tilde, &delta, &trial, &work, &rhs})
+    for (OwnedVec* v : {&gradient, &s, &delta_tilde, &delta, &trial, &work})
       *v = functional.dofs().create_global_vector();
   }
 
@@ -184,8 +184,10 @@ struct QuasiNewton::Impl {
     LinearSolver::Outcome out;
     {
       Stopwatch watch(times.hessian_solve);
-      NM_PETSC(VecAXPBY(rhs, -1.0, 0.0, gradient));
-      out = hessian_solver.solve(rhs, delta_tilde, forcing() * defect);
+      // H(α) δ̃ = −g as H(α) (−δ̃) = g: CG from zero is odd in its right-hand side, bit for bit,
+      // and g needs no negated copy.
+      out = hessian_solver.solve(gradient, delta_tilde, forcing() * defect);
+      NM_PETSC(VecScale(delta_tilde, -1.0));
     }
     rec.delta_solved = true;
     rec.krylov_delta = out.iterations;
