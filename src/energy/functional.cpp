@@ -92,7 +92,7 @@ struct Functional::Impl {
 
   // Work arrays reused between calls.
   mutable std::vector<double> local_x;
-  mutable std::vector<double> thread_gradients;  // one local gradient per OpenMP thread
+  mutable std::vector<double> thread_gradients;  // a local gradient per OpenMP thread after 0
   mutable std::vector<double> local_gradient;
   mutable std::vector<double> tangent_spaces;  // per sliding.vertices entry, at local_x
   mutable std::vector<double> bending_force;   // per sliding.vertices entry: g · w (owned)
@@ -181,12 +181,14 @@ double Functional::Impl::local_energy() const {
   return sum;
 }
 
-// Each thread adds its cells' gradients into its own local array; the arrays are summed
-// in thread order afterwards (deterministic for a fixed number of threads).
+// Each thread adds its cells' gradients into its own local array (thread 0 into `gradient`
+// itself); the arrays are summed in thread order afterwards (deterministic for a fixed number
+// of threads).
 double Functional::Impl::local_energy_and_gradient(std::vector<double>& gradient) const {
   const std::size_t n = local_x.size();
   const int threads = omp_get_max_threads();
-  thread_gradients.assign(n * threads, 0.0);
+  gradient.assign(n, 0.0);
+  thread_gradients.assign(n * (threads - 1), 0.0);
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
     visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
@@ -196,7 +198,8 @@ double Functional::Impl::local_energy_and_gradient(std::vector<double>& gradient
         double block_sum = 0.0;
 #pragma omp parallel reduction(+ : block_sum)
         {
-          double* mine = thread_gradients.data() + n * omp_get_thread_num();
+          const int t = omp_get_thread_num();
+          double* mine = t == 0 ? gradient.data() : thread_gradients.data() + n * (t - 1);
           typename CellKernel<Type>::Gradient g;
 #pragma omp for schedule(static)
           for (PetscInt c = 0; c < block.size(); ++c) {
@@ -211,13 +214,13 @@ double Functional::Impl::local_energy_and_gradient(std::vector<double>& gradient
       });
     });
   }
-  gradient.assign(n, 0.0);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    if (is_fixed_dof(static_cast<PetscInt>(i))) continue;  // gradient is zero at fixed dofs
-    double s = 0.0;
-    for (int t = 0; t < threads; ++t) s += thread_gradients[n * t + i];
-    gradient[i] = s;
+    if (is_fixed_dof(static_cast<PetscInt>(i))) {
+      gradient[i] = 0.0;  // the gradient is zero at fixed dofs
+      continue;
+    }
+    for (int t = 1; t < threads; ++t) gradient[i] += thread_gradients[n * (t - 1) + i];
   }
   return sum;
 }
