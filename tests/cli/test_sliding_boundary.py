@@ -198,3 +198,20 @@ def test_alpha0_is_1_unless_vertices_slide_on_a_curve(tmp, generate, options, al
     report = smooth(tmp, "in.msh", "out.msh", *options)
     assert report["solver_options"]["alpha0"] == alpha0
     assert report["result"]["history"][0]["alpha"] == alpha0
+
+
+@pytest.mark.parametrize("generate, options, lazy", [
+    (["box-quad"], [], True),  # axis-aligned sides: fixed normal coordinates, nothing slides
+    (["annulus-quad"], ["--boundary", "fixed"], True),
+    (["annulus-quad"], [], False),  # vertices slide on the arcs: L's hierarchy is its first one
+])
+def test_riesz_solve_skipped_only_where_nothing_slides_on_a_curve(tmp, generate, options, lazy):
+    # docs/method.md §4, the angle test without s: the quasi-Newton steps estimate η with one
+    # V-cycle of L's hierarchy, except where vertices slide on a curve (L follows their tangent
+    # spaces, its hierarchy does not, and the estimate was off by up to 2x there).
+    run([NEOMESH, "generate", *generate, "--cells", "12", "--jitter", "0.2", "-o", "in.msh"], tmp)
+    history = smooth(tmp, "in.msh", "out.msh", *options)["result"]["history"]
+    newton = [h for h in history if not h["used_s"]]
+    assert newton, f"no quasi-Newton step: {history}"
+    assert any(not h["s_solved"] for h in newton) == lazy, f"lazy {lazy}: {history}"
+    assert all(h["s_solved"] for h in history if h["used_s"]), f"-s needs s: {history}"
