@@ -65,11 +65,11 @@ class AmgDefaults {
       defaults = {{"relax_type_down", "l1-Gauss-Seidel"},
                   {"relax_type_up", "backward-l1-Gauss-Seidel"}};
     // A smoother given for both legs (relax_type_all) is the caller's choice for each.
-    const bool smoother_given = has_option(prefix, "relax_type_all");
+    const bool smoother_given = has_option(option_name(prefix, "relax_type_all"));
     for (const auto& [name, value] : defaults) {
       const std::string_view key = name;
-      if (has_option(prefix, name) || (smoother_given && key.starts_with("relax_type_"))) continue;
-      std::string option = "-" + prefix + "pc_hypre_boomeramg_" + name;
+      std::string option = option_name(prefix, name);
+      if (has_option(option) || (smoother_given && key.starts_with("relax_type_"))) continue;
       NM_PETSC(PetscOptionsSetValue(nullptr, option.c_str(), value));
       set_.push_back(std::move(option));
     }
@@ -81,8 +81,10 @@ class AmgDefaults {
   AmgDefaults& operator=(const AmgDefaults&) = delete;
 
  private:
-  static bool has_option(const std::string& prefix, const char* name) {
-    const std::string option = "-" + prefix + "pc_hypre_boomeramg_" + name;
+  static std::string option_name(const std::string& prefix, const char* name) {
+    return "-" + prefix + "pc_hypre_boomeramg_" + name;
+  }
+  static bool has_option(const std::string& option) {
     PetscBool given = PETSC_FALSE;
     NM_PETSC(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &given));
     return given;
