@@ -259,7 +259,7 @@ struct QuasiNewton::Impl {
     if (!out.converged)
       fail(
           "solver.linear_solver: the Riesz-representative solve (L s = g) did not converge in "
-          "{} iterations; the direct solver may",
+          "{} iterations; the direct solver may help",
           out.iterations);
     rec.krylov_s = out.iterations;
     rec.s_solved = true;
