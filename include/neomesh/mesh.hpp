@@ -57,7 +57,10 @@ class Mesh {
  public:
   // Reads .msh (Gmsh 2.2/4.1, ASCII or binary) or .xml (FEAT3) on the first process and
   // distributes it over `comm`. Throws Error naming the file (and cell) for anything neomesh
-  // cannot use: a missing file, a malformed mesh, an unsupported cell type, NaN coordinates.
+  // cannot use: a missing file, a malformed mesh, an unsupported cell type, NaN coordinates,
+  // 2D cells that do not lie in one plane (a surface mesh). A 2D mesh whose file places it in
+  // another plane than z = 0 is optimized in that plane (coordinates() are in-plane ones) and
+  // written back in it (docs/user-guide.md, "What a run never changes").
   static Mesh read(const std::filesystem::path& path, MPI_Comm comm = MPI_COMM_WORLD,
                    InvertedCells inverted = InvertedCells::Refuse);
 

@@ -164,6 +164,7 @@ GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
     out.mesh.add_cell(static_cast<CellType>(ints[cell_at[c]]), ints.data() + cell_at[c] + 1,
                       m.cell_tags[c]);
   out.mesh.points = m.points;
+  out.mesh.plane = m.plane;
   return out;
 }
 

@@ -452,17 +452,25 @@ constexpr std::optional<CellType> kCellType[kNumPolytopes] = {
     CellType::Tetrahedron, CellType::Hexahedron,    CellType::Wedge, CellType::Pyramid,
     CellType::Triangle,    CellType::Quadrilateral, std::nullopt,    std::nullopt};
 
-// Vertices are the nodes some element has as a corner, numbered in the order of $Nodes.
-std::vector<PetscInt> number_vertices(const Contents& c, InputMesh& mesh) {
+// Vertices are the nodes some element has as a corner, numbered in the order of $Nodes. A 2D
+// mesh gets the coordinates in its plane (plane_embedding.hpp).
+std::vector<PetscInt> number_vertices(const Contents& c, const std::string& file, InputMesh& mesh) {
   std::vector<PetscInt> vertex(c.node_tags.size(), -1);
   for (const Elements& e : c.elements)
     for (PetscInt n : e.corners) vertex[n] = 0;
-  mesh.coords.reserve(vertex.size() * mesh.dim);
+  std::vector<double> xyz;
+  xyz.reserve(vertex.size() * 3);
   PetscInt count = 0;
   for (std::size_t n = 0; n < vertex.size(); ++n) {
     if (vertex[n] < 0) continue;
     vertex[n] = count++;
-    mesh.coords.insert(mesh.coords.end(), c.xyz.begin() + 3 * n, c.xyz.begin() + 3 * n + mesh.dim);
+    xyz.insert(xyz.end(), c.xyz.begin() + 3 * n, c.xyz.begin() + 3 * n + 3);
+  }
+  if (mesh.dim == 3) {
+    mesh.coords = std::move(xyz);
+  } else {
+    auto plane = std::make_shared<PlaneEmbedding>(PlaneEmbedding::fit(xyz, mesh.coords, file));
+    if (!plane->is_xy()) mesh.plane = std::move(plane);
   }
   return vertex;
 }
@@ -542,7 +550,7 @@ InputMesh read_gmsh(const std::filesystem::path& path) {
   const Contents c = GmshParser(path).parse();
   InputMesh mesh;
   mesh.dim = cell_dimension(c, file);
-  const std::vector<PetscInt> vertex = number_vertices(c, mesh);
+  const std::vector<PetscInt> vertex = number_vertices(c, file, mesh);
   std::set<int> cell_tags, facet_tags;
   add_cells(c, file, vertex, mesh, cell_tags);
   add_facets(c, vertex, mesh, facet_tags);

@@ -29,6 +29,14 @@ InputMesh input_from_data(const MeshData& data) {
   return mesh;
 }
 
+std::vector<double> coordinates_in_space(const InputMesh& mesh) {
+  if (mesh.dim == 2 && mesh.plane) return mesh.plane->to_space(mesh.coords);
+  std::vector<double> xyz(3 * static_cast<std::size_t>(mesh.num_vertices()), 0.0);
+  for (PetscInt v = 0; v < mesh.num_vertices(); ++v)
+    std::copy_n(mesh.coords.begin() + v * mesh.dim, mesh.dim, xyz.begin() + 3 * v);
+  return xyz;
+}
+
 std::string describe_cell(const InputMesh& mesh, PetscInt c) {
   if (c >= 0 && c < static_cast<PetscInt>(mesh.element_tag.size()))
     return fmt::format("cell {} (0-based; element {} of the file)", c, mesh.element_tag[c]);

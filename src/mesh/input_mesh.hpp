@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 
 #include "mesh/cell_type.hpp"
 #include "mesh/mesh_data.hpp"
+#include "mesh/plane_embedding.hpp"
 
 namespace neomesh {
 
@@ -37,7 +39,9 @@ struct TaggedEntities {
 
 struct InputMesh {
   int dim = 2;
-  std::vector<double> coords;        // `dim` values per vertex
+  std::vector<double> coords;  // `dim` values per vertex (2D: in the mesh's plane)
+  // 2D: the plane the mesh lies in, when the file gave 3D coordinates off z = 0; null for z = 0.
+  std::shared_ptr<const PlaneEmbedding> plane;
   std::vector<CellType> cell_types;  // per cell
   std::vector<PetscInt> cell_offsets = {0};
   std::vector<PetscInt> cell_vertices;  // canonical order
@@ -65,6 +69,9 @@ struct InputMesh {
 };
 
 InputMesh input_from_data(const MeshData& data);
+
+// The vertices' coordinates in 3D space, 3 per vertex: a 2D mesh's put back in its plane.
+std::vector<double> coordinates_in_space(const InputMesh& mesh);
 
 // How messages name cell `c`: "cell 12 (0-based; element 40 of the file)", or "cell 12
 // (0-based)" without element numbers. Users find the element number in Gmsh.

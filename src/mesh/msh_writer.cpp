@@ -60,15 +60,11 @@ struct Block {
   std::vector<std::vector<PetscInt>> elements;
 };
 
-void write_entities(std::ostream& f, const GatheredMesh& g, const Entities& entities) {
-  const InputMesh& mesh = g.mesh;
-  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  for (int d = 0; d < mesh.dim; ++d) {
-    lo[d] = INFINITY, hi[d] = -INFINITY;
-    for (PetscInt v = 0; v < mesh.num_vertices(); ++v) {
-      lo[d] = std::min(lo[d], mesh.coords[v * mesh.dim + d]);
-      hi[d] = std::max(hi[d], mesh.coords[v * mesh.dim + d]);
-    }
+void write_entities(std::ostream& f, const std::vector<double>& xyz, const Entities& entities) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
   }
   fmt::print(f, "$Entities\n{} {} {} {}\n", entities.count(0), entities.count(1), entities.count(2),
              entities.count(3));
@@ -135,16 +131,15 @@ void write_msh(const GatheredMesh& g, std::ostream& f) {
 
   Entities entities;
   const std::vector<Block> blocks = element_blocks(g, groups, entities);
-  write_entities(f, g, entities);
+  const std::vector<double> xyz = coordinates_in_space(mesh);
+  write_entities(f, xyz, entities);
 
   // All nodes on the first cell entity; Gmsh and PETSc accept nodes classified there.
   const PetscInt nv = mesh.num_vertices();
   fmt::print(f, "$Nodes\n1 {} 1 {}\n{} {} 0 {}\n", nv, nv, mesh.dim, blocks.front().entity, nv);
   for (PetscInt v = 0; v < nv; ++v) fmt::print(f, "{}\n", v + 1);
-  for (PetscInt v = 0; v < nv; ++v) {
-    const double* x = mesh.coords.data() + v * mesh.dim;
-    fmt::print(f, "{:.17g} {:.17g} {:.17g}\n", x[0], x[1], mesh.dim == 3 ? x[2] : 0.0);
-  }
+  for (PetscInt v = 0; v < nv; ++v)
+    fmt::print(f, "{:.17g} {:.17g} {:.17g}\n", xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
   fmt::print(f, "$EndNodes\n");
 
   std::size_t total = 0;

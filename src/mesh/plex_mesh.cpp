@@ -247,6 +247,7 @@ PlexMesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
   m->groups = input.groups;
   broadcast_groups(comm, m->groups);
   m->cell_tags = std::move(input.cell_tags);
+  m->plane = std::move(input.plane);
   m->facets = std::move(root.facets);
   m->points = std::move(root.points);
 

@@ -101,10 +101,7 @@ void write_vtu(const GatheredMesh& gathered, std::ostream& f) {
   }
   doc.text("</CellData>\n<Points>\n");
 
-  std::vector<double> points(3 * static_cast<std::size_t>(nv), 0.0);
-  for (PetscInt v = 0; v < nv; ++v)
-    for (int d = 0; d < mesh.dim; ++d) points[3 * v + d] = mesh.coords[v * mesh.dim + d];
-  doc.array("Float64", " NumberOfComponents=\"3\"", points);
+  doc.array("Float64", " NumberOfComponents=\"3\"", coordinates_in_space(mesh));
   doc.text("</Points>\n<Cells>\n");
 
   std::vector<std::int64_t> connectivity(mesh.cell_vertices.size());

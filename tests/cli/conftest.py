@@ -85,6 +85,76 @@ def read_mesh(path):
         return meshio.read(path)
 
 
+CORPUS = os.path.abspath(os.path.join(SOURCE, "..", "shared", "corpus"))
+# Marks a test over the real meshes of ../shared/corpus; skipped, and said so, without them.
+needs_corpus = pytest.mark.skipif(not os.path.isdir(CORPUS),
+                                  reason=f"the real meshes are not at {CORPUS}")
+
+
+def vtk_to_msh(vtk, msh):
+    """A VTK legacy file as a Gmsh 2.2 file (every cell in physical group 1), through meshio."""
+    import meshio
+    import numpy as np
+    m = read_mesh(vtk)
+    cells = [(c.type, c.data) for c in m.cells if c.type != "vertex"]
+    tags = {k: [np.ones(len(d), int) for _, d in cells] for k in ("gmsh:physical", "gmsh:geometrical")}
+    with contextlib.redirect_stdout(io.StringIO()):
+        meshio.write(msh, meshio.Mesh(m.points, cells, cell_data=tags), file_format="gmsh22",
+                     binary=False)
+
+
+def boundary_vertices(mesh):
+    """The vertices of facets that belong to one cell only (meshio mesh of 2D or 3D cells)."""
+    import collections
+    faces = {"triangle": [(0, 1), (1, 2), (2, 0)], "quad": [(0, 1), (1, 2), (2, 3), (3, 0)],
+             "tetra": [(0, 1, 2), (0, 1, 3), (1, 2, 3), (0, 2, 3)],
+             "hexahedron": [(0, 1, 2, 3), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6),
+                            (3, 0, 4, 7)],
+             "wedge": [(0, 1, 2), (3, 4, 5), (0, 1, 4, 3), (1, 2, 5, 4), (2, 0, 3, 5)],
+             "pyramid": [(0, 1, 2, 3), (0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)]}
+    count = collections.Counter()
+    for block in mesh.cells:
+        for cell in block.data:
+            for face in faces.get(block.type, []):
+                count[frozenset(int(cell[i]) for i in face)] += 1
+    return sorted({v for face, n in count.items() if n == 1 for v in face})
+
+
+SOLIDS = ("tetra", "hexahedron", "wedge", "pyramid")
+
+
+def expect_nothing_else_changed(before, after, fixed_boundary=False):
+    """What a run must never change, for the output `after` of the input `before` (paths of files
+    meshio reads): the points (count and numbering), the cells (each the same vertices, in input
+    order), the physical groups of cells, the plane a 2D mesh lies in and, with
+    `fixed_boundary`, every coordinate of a boundary vertex, bit for bit."""
+    import numpy as np
+    a, b = read_mesh(before), read_mesh(after)
+    assert len(a.points) == len(b.points), "the number of points changed"
+    solid = any(c.type in SOLIDS for c in a.cells)
+    top = SOLIDS if solid else ("triangle", "quad")
+    cells = lambda m: sorted((c.type, tuple(sorted(cell))) for c in m.cells if c.type in top
+                             for cell in c.data.tolist())
+    assert cells(a) == cells(b), "the cells changed"
+    if "gmsh:physical" in a.cell_data and "gmsh:physical" in b.cell_data:
+        groups = lambda m: sorted((c.type, int(t)) for c, d in
+                                  zip(m.cells, m.cell_data["gmsh:physical"]) if c.type in top
+                                  for t in d)
+        assert groups(a) == groups(b), "the physical groups of the cells changed"
+    if not solid:
+        centre = a.points.mean(0)
+        normal = np.linalg.svd(a.points - centre, full_matrices=False)[2][-1]
+        scale = np.abs(a.points - centre).max()
+        off_in = np.abs((a.points - centre) @ normal).max()
+        off_out = np.abs((b.points - centre) @ normal).max()
+        assert off_out <= max(off_in, 1e-12 * scale), \
+            f"the mesh left its plane: {off_out:.3g} off it (input {off_in:.3g})"
+    if fixed_boundary:
+        fixed = boundary_vertices(a)
+        moved = [v for v in fixed if not np.array_equal(a.points[v], b.points[v])]
+        assert not moved, f"{len(moved)} fixed boundary vertices moved, e.g. {moved[:3]}"
+
+
 def fresh_directory():
     """A new empty directory, and a function that removes it."""
     path = tempfile.mkdtemp(prefix="neomesh-cli-")
