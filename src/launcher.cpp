@@ -5,6 +5,12 @@
 // reads the tunable only when a process starts, hence this separate, dependency-free program:
 // re-executing neomesh-main itself would load its libraries twice (80 ms). A GLIBC_TUNABLES that
 // already names glibc.malloc.hugetlb is left as it is.
+//
+// It also sets OMP_WAIT_POLICY=PASSIVE unless the user set a policy: OpenMP threads (neomesh's,
+// hypre's, OpenBLAS's) that wait by spinning make a run 5-30x slower when another process holds
+// a core (a shared workstation, a cluster node with other jobs), while sleeping costs a quiet
+// machine nothing measurable (docs/benchmarks.md, "Under load"). libgomp reads the variable
+// when it is loaded, so it has to be set before neomesh-main starts.
 #include <unistd.h>
 
 #include <cerrno>
@@ -19,6 +25,8 @@ int main(int, char** argv) {
   const std::string before = tunables ? tunables : "";
   if (before.find(kTunable) == std::string::npos)
     setenv("GLIBC_TUNABLES", ((before.empty() ? "" : before + ":") + kTunable + "=1").c_str(), 1);
+
+  setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0);
 
   std::string self(4096, '\0');
   const ssize_t length = readlink("/proc/self/exe", self.data(), self.size());

@@ -1,6 +1,7 @@
 """`neomesh` is a launcher (src/launcher.cpp): it starts neomesh-main, beside it or in
 ../libexec/neomesh/, with glibc.malloc.hugetlb=1 added to GLIBC_TUNABLES unless that already
-names it, and passes the arguments on unchanged. A stand-in neomesh-main that prints what it
+names it and OMP_WAIT_POLICY=PASSIVE unless a policy is set, and passes the arguments on
+unchanged. A stand-in neomesh-main that prints what it
 got shows it."""
 import os
 import shutil
@@ -8,7 +9,7 @@ import subprocess
 
 from conftest import NEOMESH
 
-STAND_IN = '#!/bin/sh\nprintf "%s\\n" "$GLIBC_TUNABLES" "$0" "$@"\n'
+STAND_IN = '#!/bin/sh\nprintf "%s\\n" "$GLIBC_TUNABLES" "$0" "$@" "wait:$OMP_WAIT_POLICY"\n'
 
 
 def launcher_with_stand_in(tmp_path, main_dir):
@@ -24,11 +25,14 @@ def launcher_with_stand_in(tmp_path, main_dir):
     return launcher
 
 
-def run(launcher, env_tunables, *args):
+def run(launcher, env_tunables, *args, wait_policy=None):
     env = dict(os.environ)
     env.pop("GLIBC_TUNABLES", None)
+    env.pop("OMP_WAIT_POLICY", None)
     if env_tunables is not None:
         env["GLIBC_TUNABLES"] = env_tunables
+    if wait_policy is not None:
+        env["OMP_WAIT_POLICY"] = wait_policy
     return subprocess.run([str(launcher), *args], env=env, capture_output=True, text=True)
 
 
@@ -46,6 +50,13 @@ def test_leaves_a_given_hugetlb_setting_alone(tmp_path):
     launcher = launcher_with_stand_in(tmp_path, "bin")
     out = run(launcher, "glibc.malloc.hugetlb=0")
     assert out.stdout.split("\n")[0] == "glibc.malloc.hugetlb=0"
+
+
+def test_openmp_threads_sleep_while_they_wait_unless_told_otherwise(tmp_path):
+    # Spinning threads collapse a run beside another busy process.
+    launcher = launcher_with_stand_in(tmp_path, "bin")
+    assert run(launcher, None, "quality").stdout.split("\n")[-2] == "wait:PASSIVE"
+    assert run(launcher, None, "quality", wait_policy="ACTIVE").stdout.split("\n")[-2] == "wait:ACTIVE"
 
 
 def test_finds_the_installed_layout(tmp_path):
