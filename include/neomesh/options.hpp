@@ -214,7 +214,9 @@ struct SmoothOptions {
   SizeMode sizes = SizeMode::Smoothed;
   // Inverted cells are untangled first (docs/untangling.md); false: they are an error.
   bool untangle = true;
-  // No cell of the result worse than the input's worst (vertices pulled back; solver docs).
+  // The worst cell: a corner left nearly flat by the thesis' optimum is lifted by going on with
+  // corner samples (docs/method.md, "Corners"), and no cell of the result is worse than the
+  // input's worst (vertices pulled back, solver/quality_guard.hpp). false: the thesis' optimum.
   bool quality_guard = true;
 
   // `base` with the thesis' conventions: uniform desired volumes, fixed boundary vertices, no

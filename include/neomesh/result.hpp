@@ -96,6 +96,16 @@ struct QualityGuardResult {
   bool gave_up = false;  // pulling back made the worst cell worse: the optimum was kept
 };
 
+// Smoothing's worst-cell phase (docs/method.md, "Corners"): the optimum of the thesis' energy
+// left a corner of a Q1 cell, wedge or pyramid nearly flat, so smoothing went on with the
+// corners sampled too.
+struct CornerPhaseSummary {
+  double min_scaled_jacobian_before = 0.0;  // of those cells, at the thesis' optimum
+  double min_scaled_jacobian_after = 0.0;
+  int iterations = 0;
+  bool gave_up = false;  // lifting stalled with a cell inverted: the optimum was kept
+};
+
 // Fitting to the zero set of a level set (Optimizer::adapt with a LevelSet, docs/adaptivity.md).
 struct FitSummary {
   std::string level_set;  // φ's expression
@@ -120,6 +130,7 @@ struct Result {
   // input's discretization), and the relative change of its volume.
   double boundary_distance = 0.0, volume_change = 0.0;
   std::optional<UntanglingSummary> untangling;      // smooth, if cells were inverted
+  std::optional<CornerPhaseSummary> corner_phase;   // smooth, if a corner had flattened
   std::optional<QualityGuardResult> quality_guard;  // smooth, unless switched off
   std::vector<int> update_iterations;  // adapt: iterations after which volumes were updated
   VolumeRatioStats volume_ratio;       // adapt: Q = actual / desired volume at the end

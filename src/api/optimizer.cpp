@@ -19,6 +19,7 @@
 #include "solver/quality_guard.hpp"
 #include "solver/quasi_newton.hpp"
 #include "solver/untangle.hpp"
+#include "solver/worst_cells.hpp"
 
 namespace neomesh {
 
@@ -243,8 +244,10 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   NM_PETSC(VecDuplicate(r.x, input.out()));
   NM_PETSC(VecCopy(r.x, input));
   if (options.untangle) result.untangling = r.untangle(method, observer);
-  const QuasiNewtonResult run =
-      minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
+  QuasiNewtonResult run = minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
+  if (options.quality_guard)
+    result.corner_phase = lift_flat_corners(*r.functional, r.view(), r.dofs(), r.x, method,
+                                            r.cell_size, run, observer.iteration);
   copy_run(run, result);
   if (options.quality_guard) {
     result.quality_guard = guard_worst_quality(

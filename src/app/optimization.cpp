@@ -324,6 +324,7 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
         {"peak_rss_mib_all_ranks", memory.sum_mib},
         {"seconds", MPI_Wtime() - r.start}};
     if (result.untangling) json["untangling"] = to_json(*result.untangling);
+    if (result.corner_phase) json["corner_phase"] = to_json(*result.corner_phase);
     if (result.quality_guard) json["quality_guard"] = to_json(*result.quality_guard);
     if (extra.is_object()) json.update(extra);
     on_root(r.mesh.comm(), [&] { write_json(json, outputs.report); });

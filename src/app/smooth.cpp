@@ -32,6 +32,18 @@ void print_quality_guard(const QualityGuardResult& guard) {
         guard.vertices_moved, guard.min_before, guard.min_after, guard.input_min);
 }
 
+// What the worst-cell phase did, if it ran (docs/method.md, "Corners").
+void print_corner_phase(const CornerPhaseSummary& phase) {
+  if (phase.gave_up)
+    say("worst cells: the optimum left a corner nearly flat (min scaled Jacobian {:.3g}); lifting "
+        "it failed after {} iterations, the optimum is kept\n",
+        phase.min_scaled_jacobian_before, phase.iterations);
+  else
+    say("worst cells: the optimum left a corner nearly flat (min scaled Jacobian {:.3g}); {} more "
+        "iterations with the corners in the energy lifted it to {:.3g}\n",
+        phase.min_scaled_jacobian_before, phase.iterations, phase.min_scaled_jacobian_after);
+}
+
 void smooth(SmoothCommand& o) {
   SmoothOptions options;
   options.sizes = parse_size_mode(o.sizes);
@@ -51,6 +63,7 @@ void smooth(SmoothCommand& o) {
   };
   const Result result = run.optimizer().smooth(
       options, run.observer(settings, o.outputs.progress_lines, picture_before));
+  if (result.corner_phase) print_corner_phase(*result.corner_phase);
   if (result.quality_guard) print_quality_guard(*result.quality_guard);
   run.finish(result, settings, o.output, o.outputs);
 }
@@ -76,8 +89,8 @@ Subcommand add_smooth(CLI::App& app) {
   cmd->add_flag("--force", o->force, "allow the output to overwrite the input file (default: off)");
   cmd->add_flag("--no-guard", o->no_guard,
                 "keep the energy's optimum even where a cell ends up worse than the input's worst "
-                "cell (default: off, i.e. such cells' vertices are pulled back; --thesis implies "
-                "it)");
+                "cell or with a corner nearly flat (default: off, i.e. flat corners are lifted "
+                "and such cells' vertices are pulled back; --thesis implies it)");
   cmd->add_flag("--no-untangle", o->no_untangle,
                 "refuse a mesh with inverted cells instead of untangling it first (default: off, "
                 "i.e. inverted cells are untangled, then the mesh is smoothed)");

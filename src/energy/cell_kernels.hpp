@@ -40,11 +40,18 @@ constexpr int max_quadrature_points() {
 // The quadrature rule on the optimal cell of unit volume: per point, the basis gradients
 // D̂_q (Dim × vertices) and the weight ŵ_q (Σ ŵ_q = 1). For desired volume v the optimal
 // cell is scaled by s = v^(1/d): D_q = D̂_q / s and the weights become v ŵ_q.
+//
+// Corner samples (not for simplices, whose G is constant): with `corner_weight` ω > 0 the
+// corner frames of the cell-type table come first, ω / corners each, and the Gauss points
+// share 1 − ω. At frame k, G = J_k J_k,opt⁻¹ (the frame's edges against the optimal cell's),
+// so the law's barrier acts at the corners too, where det J of a Q1 cell, wedge or pyramid
+// is smallest; Gauss points alone let a corner flatten (untangling_kernel.hpp, docs/method.md).
 template <CellType Type>
 struct OptimalCellQuadrature {
   static constexpr int dim = CellTraits<Type>::dim;
   static constexpr int vertices = CellTraits<Type>::vertices;
-  static constexpr int max_points = max_quadrature_points<Type>();
+  static constexpr int max_corners = CellTraits<Type>::simplex ? 0 : 8;
+  static constexpr int max_points = max_corners + max_quadrature_points<Type>();
   using Gradients = typename CellTraits<Type>::Coordinates;
 
   int size = 0;
@@ -52,36 +59,58 @@ struct OptimalCellQuadrature {
   std::array<double, max_points> unit_weights{};
 
   // `gauss_points` per direction for Q1 cells, wedges and pyramids (ReferenceRule); simplices
-  // need one point (G is constant).
-  explicit OptimalCellQuadrature(int gauss_points) {
+  // need one point (G is constant). `corner_weight` in [0, 1]: see above (1: corners only).
+  explicit OptimalCellQuadrature(int gauss_points, double corner_weight = 0.0) {
+    if constexpr (CellTraits<Type>::simplex) {
+      corner_weight = 0.0;
+    } else {
+      if (corner_weight > 0.0) add_corners(corner_weight);
+      if (corner_weight >= 1.0) return;
+    }
+    const int first = size;
+    add_gauss_points(gauss_points);
+    for (int q = first; q < size; ++q) unit_weights[q] *= 1.0 - corner_weight;
+  }
+
+ private:
+  void add_corners(double weight) {
+    const Gradients optimal = unit_optimal_cell<Type>();
+    const int corners = facts(Type).num_corners;
+    for (int k = 0; k < corners; ++k) {
+      // J_k = X C_kᵀ; G = J_k J_k,opt⁻¹ = X (J_k,opt⁻ᵀ C_k)ᵀ.
+      const Gradients frame = corner_frame_map<Type>(k);
+      const Matrix<dim> optimal_jacobian = optimal * frame.transpose();
+      unit_gradients[size] = optimal_jacobian.inverse().transpose() * frame;
+      unit_weights[size++] = weight / corners;
+    }
+  }
+
+  void add_gauss_points(int gauss_points) {
     if constexpr (CellTraits<Type>::simplex) {
       // Barycentric gradients on the reference simplex: ∇φ_0 = −Σ e_j, ∇φ_j = e_j; pulled back
       // to the optimal cell x = a0 + E_opt ξ: ∇φ̂ = E_opt⁻ᵀ ∇_ξ φ.
       Gradients reference = Gradients::Zero();
       reference.col(0).setConstant(-1.0);
       reference.template rightCols<dim>().setIdentity();
-      size = 1;
-      unit_gradients[0] = unit_optimal_simplex_edges<dim>().inverse().transpose() * reference;
-      unit_weights[0] = 1.0;
+      unit_gradients[size] = unit_optimal_simplex_edges<dim>().inverse().transpose() * reference;
+      unit_weights[size++] = 1.0;
     } else if constexpr (CellTraits<Type>::shape != CellShape::Tensor) {
       // The reference cell maps affinely onto neither, so pull back point by point:
       // ∇φ̂ = ∇τ_opt⁻ᵀ ∇_ξ N at ξ_q, weight w_q det ∇τ_opt (they sum to the volume, 1).
       const ReferenceRule<Type> rule(gauss_points);
       const Gradients optimal = unit_optimal_cell<Type>();
-      size = rule.size;
-      for (int q = 0; q < size; ++q) {
+      for (int q = 0; q < rule.size; ++q) {
         const Gradients reference = shape_gradients<Type>(rule.points[q]);
         const Matrix<dim> jacobian = optimal * reference.transpose();
-        unit_gradients[q] = jacobian.inverse().transpose() * reference;
-        unit_weights[q] = rule.weights[q] * jacobian.determinant();
+        unit_gradients[size] = jacobian.inverse().transpose() * reference;
+        unit_weights[size++] = rule.weights[q] * jacobian.determinant();
       }
     } else {
       // Unit cube [-1/2,1/2]^d (h = 1): ∇φ̂ = (2/h) ∇_ξ N, weight w_q (h/2)^d.
       const TensorGaussRule<dim> rule(gauss_points);
-      size = rule.size;
-      for (int q = 0; q < size; ++q) {
-        unit_gradients[q] = 2.0 * q1_gradients<dim>(rule.points[q]);
-        unit_weights[q] = rule.weights[q] / double(1 << dim);
+      for (int q = 0; q < rule.size; ++q) {
+        unit_gradients[size] = 2.0 * q1_gradients<dim>(rule.points[q]);
+        unit_weights[size++] = rule.weights[q] / double(1 << dim);
       }
     }
   }
@@ -103,7 +132,9 @@ class CellKernel {
   using Gradient = Coordinates;                                // ∂(cell energy)/∂X
   using Block = Eigen::Matrix<double, dofs, dofs>;             // (dof, dof) in local order
 
-  CellKernel(const NeoHooke<dim>& law, int gauss_points) : law_(law), rule_(gauss_points) {}
+  // `corner_weight`: the share of the corner samples (OptimalCellQuadrature; 0: the thesis').
+  CellKernel(const NeoHooke<dim>& law, int gauss_points, double corner_weight = 0.0)
+      : law_(law), rule_(gauss_points, corner_weight) {}
 
   // Whether the map is orientation-preserving at every corner frame of the cell-type table
   // (simplices: always true here; their single det G is checked at the quadrature point).

@@ -61,61 +61,67 @@ using CellTypes = ::testing::Types<CellTag<CellType::Triangle>, CellTag<CellType
                                    CellTag<CellType::Wedge>, CellTag<CellType::Pyramid>>;
 TYPED_TEST_SUITE(CellKernelTest, CellTypes);
 
+// `corner_weight` > 0: the worst-cell phase's energy, with corner samples.
 template <CellType Type>
-CellKernel<Type> thesis_kernel() {
-  return CellKernel<Type>(NeoHooke<CellTraits<Type>::dim>{1.0, 10.0, 1.0}, 3);
+CellKernel<Type> thesis_kernel(double corner_weight = 0.0) {
+  return CellKernel<Type>(NeoHooke<CellTraits<Type>::dim>{1.0, 10.0, 1.0}, 3, corner_weight);
 }
+
+constexpr double kCornerWeights[] = {0.0, 0.4};
 
 TYPED_TEST(CellKernelTest, OptimalCellHasZeroEnergyAndGradient) {
   constexpr CellType Type = TypeParam::value;
-  const CellKernel<Type> kernel = thesis_kernel<Type>();
-  for (double volume : {1.0, 0.01, 7.0}) {
-    const Coordinates<Type> x = optimal_cell<Type>(volume);
-    typename CellKernel<Type>::Gradient g;
-    EXPECT_NEAR(kernel.energy_and_gradient(x, volume, g), 0.0, 1e-14);
-    EXPECT_LT(g.norm(), 1e-13);
-    const CellMeasure m = kernel.measure(x, volume);
-    EXPECT_NEAR(m.volume, volume, 1e-14 * volume);
-    EXPECT_NEAR(m.min_det, 1.0, 1e-14);
-  }
+  for (double w : kCornerWeights)
+    for (double volume : {1.0, 0.01, 7.0}) {
+      const CellKernel<Type> kernel = thesis_kernel<Type>(w);
+      const Coordinates<Type> x = optimal_cell<Type>(volume);
+      typename CellKernel<Type>::Gradient g;
+      EXPECT_NEAR(kernel.energy_and_gradient(x, volume, g), 0.0, 1e-14);
+      EXPECT_LT(g.norm(), 1e-13);
+      const CellMeasure m = kernel.measure(x, volume);
+      EXPECT_NEAR(m.volume, volume, 1e-14 * volume);
+      EXPECT_NEAR(m.min_det, 1.0, 1e-14);
+    }
 }
 
 TYPED_TEST(CellKernelTest, GradientMatchesFiniteDifferencesOfEnergy) {
   constexpr CellType Type = TypeParam::value;
-  const CellKernel<Type> kernel = thesis_kernel<Type>();
   std::mt19937 rng(11);
-  for (int trial = 0; trial < 5; ++trial) {
-    const double volume = 0.5 + trial;
-    Coordinates<Type> x = perturbed_cell<Type>(volume, rng);
-    typename CellKernel<Type>::Gradient g;
-    kernel.energy_and_gradient(x, volume, g);
-    const double step = 1e-6 * std::pow(volume, 1.0 / CellTraits<Type>::dim);
-    const auto fd =
-        fd_gradient([&](const Coordinates<Type>& y) { return kernel.energy(y, volume); }, x, step);
-    EXPECT_LT(relative_error(g, fd), kFdTolerance) << "analytic\n" << g << "\nfd\n" << fd;
-  }
+  for (double w : kCornerWeights)
+    for (int trial = 0; trial < 5; ++trial) {
+      const CellKernel<Type> kernel = thesis_kernel<Type>(w);
+      const double volume = 0.5 + trial;
+      Coordinates<Type> x = perturbed_cell<Type>(volume, rng);
+      typename CellKernel<Type>::Gradient g;
+      kernel.energy_and_gradient(x, volume, g);
+      const double step = 1e-6 * std::pow(volume, 1.0 / CellTraits<Type>::dim);
+      const auto fd = fd_gradient(
+          [&](const Coordinates<Type>& y) { return kernel.energy(y, volume); }, x, step);
+      EXPECT_LT(relative_error(g, fd), kFdTolerance) << "analytic\n" << g << "\nfd\n" << fd;
+    }
 }
 
 TYPED_TEST(CellKernelTest, HessianMatchesFiniteDifferencesOfGradient) {
   constexpr CellType Type = TypeParam::value;
   using Kernel = CellKernel<Type>;
-  const Kernel kernel = thesis_kernel<Type>();
   std::mt19937 rng(12);
-  for (int trial = 0; trial < 5; ++trial) {
-    const double volume = 0.5 + trial;
-    Coordinates<Type> x = perturbed_cell<Type>(volume, rng);
-    typename Kernel::Block h;
-    ASSERT_TRUE(kernel.hessian(x, volume, 1.0, h));
-    const double step = 1e-6 * std::pow(volume, 1.0 / Kernel::dim);
-    const auto gradient = [&](const Coordinates<Type>& y) {
-      typename Kernel::Gradient g;
-      kernel.energy_and_gradient(y, volume, g);
-      return g;
-    };
-    const typename Kernel::Block fd = fd_jacobian(gradient, x, step);
-    EXPECT_LT(relative_error(h, fd), kFdTolerance);
-    EXPECT_EQ((h - h.transpose()).norm(), 0.0);  // exactly symmetric
-  }
+  for (double w : kCornerWeights)
+    for (int trial = 0; trial < 5; ++trial) {
+      const Kernel kernel = thesis_kernel<Type>(w);
+      const double volume = 0.5 + trial;
+      Coordinates<Type> x = perturbed_cell<Type>(volume, rng);
+      typename Kernel::Block h;
+      ASSERT_TRUE(kernel.hessian(x, volume, 1.0, h));
+      const double step = 1e-6 * std::pow(volume, 1.0 / Kernel::dim);
+      const auto gradient = [&](const Coordinates<Type>& y) {
+        typename Kernel::Gradient g;
+        kernel.energy_and_gradient(y, volume, g);
+        return g;
+      };
+      const typename Kernel::Block fd = fd_jacobian(gradient, x, step);
+      EXPECT_LT(relative_error(h, fd), kFdTolerance);
+      EXPECT_EQ((h - h.transpose()).norm(), 0.0);  // exactly symmetric
+    }
 }
 
 // H(α) = B1 + α B2 + B3 is affine in α, and B3/μ at any cell is the optimal-cell Laplacian.
@@ -183,6 +189,24 @@ TEST(QuadKernel, NonConvexQuadWithPositiveGaussPointsIsInfinite) {
 
 // A pyramid whose apex is pushed through its base is inverted; so is one whose base is folded
 // into a dart, though every Gauss point of a mildly folded base may look fine.
+// A quad whose corner at vertex 3 straightens (180°) keeps healthy Gauss points: the thesis'
+// energy hardly changes, while corner samples put the law's barrier there.
+TEST(QuadKernel, CornerSamplesMakeAFlatteningCornerCostly) {
+  constexpr CellType Type = CellType::Quadrilateral;
+  const auto flattened = [](double gap) {
+    Coordinates<Type> x = optimal_cell<Type>(1.0);  // vertices (0,0) (1,0) (0,1) (1,1)
+    x.col(3).setConstant(0.5 + gap);  // beyond the diagonal from (1,0) to (0,1) by `gap`
+    return x;
+  };
+  const CellKernel<Type> gauss = thesis_kernel<Type>(), corners = thesis_kernel<Type>(0.4);
+  const Coordinates<Type> near = flattened(1e-3), flat = flattened(1e-9);
+  EXPECT_LT(gauss.energy(flat, 1.0) - gauss.energy(near, 1.0), 0.1);
+  EXPECT_GT(corners.energy(flat, 1.0) - corners.energy(near, 1.0), 20.0);
+  typename CellKernel<Type>::Gradient g;
+  corners.energy_and_gradient(flat, 1.0, g);
+  EXPECT_LT(g.col(3).sum(), -1e6);  // descent (−g) pushes vertex 3 back out, hard
+}
+
 TEST(PyramidKernel, ApexBelowTheBaseOrFoldedBaseIsInfinite) {
   const auto kernel = thesis_kernel<CellType::Pyramid>();
   Coordinates<CellType::Pyramid> x = optimal_cell<CellType::Pyramid>(1.0);

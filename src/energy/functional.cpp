@@ -51,15 +51,16 @@ UntanglingKernels make_untangling_kernels(const EnergyOptions& options, double e
                            UntanglingKernel<CellType::Pyramid>(law3, n)};
 }
 
-Kernels make_kernels(const EnergyOptions& options) {
+Kernels make_kernels(const EnergyOptions& options, double corner_weight = 0.0) {
   const double kappa = options.kappa < 0.0 ? options.lambda : options.kappa;
   const NeoHooke<2> law2{options.lambda, options.mu, kappa};
   const NeoHooke<3> law3{options.lambda, options.mu, kappa};
   const int n = options.gauss_points;
+  const double w = corner_weight;
   return Kernels{
-      CellKernel<CellType::Triangle>(law2, n),    CellKernel<CellType::Quadrilateral>(law2, n),
-      CellKernel<CellType::Tetrahedron>(law3, n), CellKernel<CellType::Hexahedron>(law3, n),
-      CellKernel<CellType::Wedge>(law3, n),       CellKernel<CellType::Pyramid>(law3, n)};
+      CellKernel<CellType::Triangle>(law2, n),    CellKernel<CellType::Quadrilateral>(law2, n, w),
+      CellKernel<CellType::Tetrahedron>(law3, n), CellKernel<CellType::Hexahedron>(law3, n, w),
+      CellKernel<CellType::Wedge>(law3, n, w),    CellKernel<CellType::Pyramid>(law3, n, w)};
 }
 
 double sum_over_ranks(double local, MPI_Comm comm) {
@@ -74,7 +75,7 @@ struct Functional::Impl {
   const MeshView& view;
   const DofMap& dofs;
   EnergyOptions options;
-  Kernels kernels;
+  std::optional<Kernels> kernels;  // always set (optional: the laws' members are const)
   // While `untangling`, value, gradient and H(α) are those of the untangling energy; its
   // kernels also find inverted cells (their sample points are where det G must be > 0).
   UntanglingKernels untangling_kernels;
@@ -109,7 +110,7 @@ struct Functional::Impl {
 
   template <CellType Type>
   const CellKernel<Type>& kernel() const {
-    return std::get<CellKernel<Type>>(kernels);
+    return std::get<CellKernel<Type>>(*kernels);
   }
   // Calls f with the kernel of the energy being minimized: Neo-Hookean, or untangling.
   template <CellType Type, typename F>
@@ -505,13 +506,17 @@ CellFields Functional::cell_fields(Vec x) const {
   return fields;
 }
 
+void Functional::set_corner_weight(double weight) {
+  impl_->kernels.emplace(make_kernels(impl_->options, weight));
+}
+
 void Functional::set_untangling(double epsilon) {
   impl_->untangling = epsilon > 0.0;
   if (impl_->untangling)
     impl_->untangling_kernels = make_untangling_kernels(impl_->options, epsilon);
 }
 
-Inversion Functional::inversion(Vec x, int listed) const {
+Inversion Functional::inversion(Vec x, int listed, double below) const {
   impl_->load_coordinates(x);
   const MeshView& view = impl_->view;
   Inversion local{0, std::numeric_limits<double>::infinity(), {}};
@@ -523,7 +528,7 @@ Inversion Functional::inversion(Vec x, int listed) const {
         const double det = k.min_det(cell_coordinates<Type>(block, c, impl_->local_x.data()),
                                      impl_->volumes[cell]);
         local.min_det = std::min(local.min_det, det);
-        if (det > 0.0) continue;
+        if (det > below) continue;
         ++local.count;
         if (static_cast<int>(local.cells.size()) < listed)
           local.cells.push_back(view.global_cell.empty() ? cell : view.global_cell[cell]);

@@ -91,12 +91,18 @@ class Functional {
   // and for the tangent spaces of sliding vertices.
   void assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const;
 
+  // The share of the corner samples in the Neo-Hookean energy of cells other than simplices
+  // (OptimalCellQuadrature): 0, the thesis' Gauss rule, lets a corner of a Q1 cell, wedge or
+  // pyramid flatten while its Gauss points stay well; > 0 puts the law's barrier there too
+  // (the worst-cell phase of smoothing, docs/method.md).
+  void set_corner_weight(double weight);
   // Untangling (docs/untangling.md): with ε > 0, value, gradient and H(α) are those of the
   // untangling energy (regularized_neo_hooke.hpp), finite on inverted cells; ε = 0 switches
   // back to the Neo-Hookean energy. The Riesz Laplacian and cell_fields do not change.
   void set_untangling(double epsilon);
-  // The inverted cells at x, listing at most `listed` of them. Collective.
-  Inversion inversion(Vec x, int listed = 10) const;
+  // The inverted cells at x, listing at most `listed` of them. Collective. With `below` > 0,
+  // the cells whose det G is at most that at a sample point (nearly flat ones too).
+  Inversion inversion(Vec x, int listed = 10, double below = 0.0) const;
 
   // Moves the sliding vertices of x back onto the boundary after a step (no-op if none
   // slide). Not collective.

@@ -33,29 +33,17 @@ class UntanglingKernel {
   using Gradient = Coordinates;
   using Block = Eigen::Matrix<double, dofs, dofs>;
 
-  UntanglingKernel(const RegularizedNeoHooke<dim>& law, int gauss_points) : law_(law) {
-    // The corner frames of the cell-type table, then (3D, not simplices) the Gauss points.
-    const bool gauss_too = dim == 3 && !CellTraits<Type>::simplex;
-    const int corners = facts(Type).num_corners;
-    const Coordinates optimal = unit_optimal_cell<Type>();
-    for (int k = 0; k < corners; ++k) {
-      // J_k = X C_kᵀ (the frame's edges); G = J_k J_k,opt⁻¹ = X (J_k,opt⁻ᵀ C_k)ᵀ.
-      const Gradient edges = corner_edges(k);
-      const Matrix<dim> optimal_jacobian = optimal * edges.transpose();
-      add(optimal_jacobian.inverse().transpose() * edges, (gauss_too ? 0.5 : 1.0) / corners);
-    }
-    if (gauss_too) {
-      const OptimalCellQuadrature<Type> rule(gauss_points);
-      for (int q = 0; q < rule.size; ++q) add(rule.unit_gradients[q], 0.5 * rule.unit_weights[q]);
-    }
-  }
+  // The samples: OptimalCellQuadrature's corner frames and, in 3D, its Gauss points.
+  UntanglingKernel(const RegularizedNeoHooke<dim>& law, int gauss_points)
+      : law_(law), samples_(gauss_points, corner_weight()) {}
 
   // Σ_s v w_s W_ε(G_s); always finite.
   double energy(const Coordinates& x, double volume) const {
     const double scale = inverse_edge(volume);
     double sum = 0.0;
-    for (int s = 0; s < size_; ++s)
-      sum += volume * weights_[s] * law_.energy(x * (scale * gradients_[s]).transpose());
+    for (int s = 0; s < samples_.size; ++s)
+      sum += volume * samples_.unit_weights[s] *
+             law_.energy(x * (scale * samples_.unit_gradients[s]).transpose());
     return sum;
   }
 
@@ -64,11 +52,11 @@ class UntanglingKernel {
     const double scale = inverse_edge(volume);
     double sum = 0.0;
     gradient.setZero();
-    for (int s = 0; s < size_; ++s) {
-      const Gradient basis = scale * gradients_[s];
+    for (int s = 0; s < samples_.size; ++s) {
+      const Gradient basis = scale * samples_.unit_gradients[s];
       const Matrix<dim> G = x * basis.transpose();
       const RegularizedDeterminant r = law_.at(G.determinant());
-      const double weight = volume * weights_[s];
+      const double weight = volume * samples_.unit_weights[s];
       sum += weight * (r.phi + 0.5 * law_.mu * (G.squaredNorm() - dim));
       gradient.noalias() += weight * (r.dphi * cofactor(G) + law_.mu * G) * basis;
     }
@@ -82,11 +70,11 @@ class UntanglingKernel {
   bool hessian(const Coordinates& x, double volume, double alpha, Eigen::Ref<Block> block) const {
     const double scale = inverse_edge(volume);
     block.setZero();
-    for (int s = 0; s < size_; ++s) {
-      const Gradient basis = scale * gradients_[s];
+    for (int s = 0; s < samples_.size; ++s) {
+      const Gradient basis = scale * samples_.unit_gradients[s];
       const Matrix<dim> G = x * basis.transpose();
       const RegularizedDeterminant r = law_.at(G.determinant());
-      const double weight = volume * weights_[s];
+      const double weight = volume * samples_.unit_weights[s];
       const double volumetric = weight * (std::max(r.d2phi, 0.0) + alpha * std::min(r.d2phi, 0.0));
       const double twist = weight * alpha * r.dphi;
       const double mu = weight * law_.mu;
@@ -109,31 +97,16 @@ class UntanglingKernel {
   double min_det(const Coordinates& x, double volume) const {
     const double scale = inverse_edge(volume);
     double m = std::numeric_limits<double>::infinity();
-    for (int s = 0; s < size_; ++s)
-      m = std::min(m, (x * (scale * gradients_[s]).transpose()).determinant());
+    for (int s = 0; s < samples_.size; ++s)
+      m = std::min(m, (x * (scale * samples_.unit_gradients[s]).transpose()).determinant());
     return m;
   }
 
  private:
-  static constexpr int max_samples =
-      CellTraits<Type>::simplex ? 1 : 8 + (dim == 3 ? max_quadrature_points<Type>() : 0);
-
-  // C_k: the corner frame k as a map of the vertices, J_k = X C_kᵀ (corner_jacobian).
-  static Gradient corner_edges(int k) {
-    const CornerFrame& frame = facts(Type).corners[k];
-    Gradient c = Gradient::Zero();
-    for (int j = 0; j < dim; ++j) {
-      const double sign = ((frame.flip >> j) & 1) ? -1.0 : 1.0;
-      c(j, frame.ends[j]) += sign;
-      c(j, frame.vertex) -= sign;
-    }
-    return c;
-  }
-
-  void add(const Gradient& unit_gradients, double weight) {
-    gradients_[size_] = unit_gradients;
-    weights_[size_] = weight;
-    ++size_;
+  // Quadrilaterals: the corners alone; other non-simplices: corners and Gauss points, half
+  // each.
+  static constexpr double corner_weight() {
+    return CellTraits<Type>::simplex ? 0.0 : dim == 2 ? 1.0 : 0.5;
   }
 
   static double inverse_edge(double volume) { return std::pow(volume, -1.0 / dim); }
@@ -152,9 +125,7 @@ class UntanglingKernel {
   }
 
   RegularizedNeoHooke<dim> law_;
-  int size_ = 0;
-  std::array<Gradient, max_samples> gradients_;
-  std::array<double, max_samples> weights_{};
+  OptimalCellQuadrature<Type> samples_;
 };
 
 }  // namespace neomesh

@@ -48,6 +48,19 @@ Matrix<CellTraits<Type>::dim> corner_jacobian(const typename CellTraits<Type>::C
   return edges;
 }
 
+// C_k: corner frame k as a linear map of the vertices, corner_jacobian(x, k) = x C_kᵀ.
+template <CellType Type>
+typename CellTraits<Type>::Coordinates corner_frame_map(int k) {
+  const CornerFrame& frame = facts(Type).corners[k];
+  typename CellTraits<Type>::Coordinates c = CellTraits<Type>::Coordinates::Zero();
+  for (int j = 0; j < CellTraits<Type>::dim; ++j) {
+    const double sign = ((frame.flip >> j) & 1) ? -1.0 : 1.0;
+    c(j, frame.ends[j]) += sign;
+    c(j, frame.vertex) -= sign;
+  }
+  return c;
+}
+
 // Gauss–Legendre rule on [-1, 1] with n = 1..5 points (exact for degree 2n-1).
 struct GaussRule1D {
   int size = 0;

@@ -115,6 +115,13 @@ nlohmann::json to_json(const Result& r) {
           {"history", history}};
 }
 
+nlohmann::json to_json(const CornerPhaseSummary& phase) {
+  return {{"min_scaled_jacobian_before", phase.min_scaled_jacobian_before},
+          {"min_scaled_jacobian_after", phase.min_scaled_jacobian_after},
+          {"iterations", phase.iterations},
+          {"gave_up", phase.gave_up}};
+}
+
 nlohmann::json to_json(const QualityGuardResult& guard) {
   return {{"input_min_scaled_jacobian", guard.input_min},
           {"min_scaled_jacobian_before", guard.min_before},

@@ -18,6 +18,7 @@ nlohmann::json to_json(const EnergyOptions& options);
 // The run's iterations, stop reason, energies, defects and phase times (not its quality).
 nlohmann::json to_json(const Result& result);
 nlohmann::json to_json(const UntanglingSummary& untangling);
+nlohmann::json to_json(const CornerPhaseSummary& phase);
 nlohmann::json to_json(const QualityGuardResult& guard);
 
 // Writes `report` (pretty-printed) atomically; rank 0 only.

@@ -31,7 +31,8 @@ UntangleResult untangle(Functional& functional, Vec x, const QuasiNewtonOptions&
                         const std::function<void(const IterationRecord&)>& observe) {
   const double start = MPI_Wtime();
   UntangleResult result;
-  result.before = result.after = functional.inversion(x);
+  const double below = untangle_options.tangled_below;
+  result.before = result.after = functional.inversion(x, 10, below);
   if (result.before.count == 0) return result;
 
   // Every round restarts the method (k_min antigradient steps); the untangling energy is
@@ -39,8 +40,8 @@ UntangleResult untangle(Functional& functional, Vec x, const QuasiNewtonOptions&
   QuasiNewtonOptions method = options;
   method.max_iterations = untangle_options.max_rounds * untangle_options.steps_per_round + 1;
   method.practical = false;
-  double epsilon =
-      std::max(untangle_options.initial_epsilon * std::abs(result.before.min_det), 1e-6);
+  double epsilon = std::max(
+      {untangle_options.initial_epsilon * std::abs(result.before.min_det), below, 1e-6});
   functional.set_untangling(epsilon);
   QuasiNewton solver(functional, method, cell_size);
   Inversion best = result.before;
@@ -51,7 +52,7 @@ UntangleResult untangle(Functional& functional, Vec x, const QuasiNewtonOptions&
     const double energy_before = solver.energy();
     for (int step = 0; step < untangle_options.steps_per_round; ++step) {
       IterationRecord rec = solver.step(x);
-      result.after = functional.inversion(x);
+      result.after = functional.inversion(x, 10, below);
       rec.untangling_round = round;
       rec.epsilon = epsilon;
       rec.inverted = result.after.count;

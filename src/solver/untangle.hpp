@@ -22,6 +22,9 @@ struct UntangleOptions {
   // ε₀ = initial_epsilon · |min det G| (Garanzha et al.: 0.2); min det G is in units of the
   // optimal cell (1 = the desired volume).
   double initial_epsilon = 0.2;
+  // A cell counts as tangled while det G ≤ this at a sample point: 0 for inverted cells; > 0
+  // lifts nearly flat ones (the worst-cell phase, worst_cells.hpp), starting from ε₀ = it.
+  double tangled_below = 0.0;
 };
 
 struct UntangleResult {

@@ -8,7 +8,7 @@ import os
 
 import pytest
 
-from conftest import DATA, neomesh
+from conftest import DATA, neomesh, read_mesh
 
 PAIRS = [("feat_ring_quad.xml", "feat_ring_quad_mirrored.xml"),
          ("feat_cube_hex_jitter.xml", "feat_cube_hex_jitter_mirrored.xml")]
@@ -41,3 +41,26 @@ def test_mirrored_mesh_smooths_as_its_twin(tmp, twin, mirrored):
         assert not diff, f"{mirrored} vs {twin}, {key}:\n" + "\n".join(diff[:10])
     text = json.dumps(a["quality_after"])
     assert '"inverted": 0' in text, f"{twin}: inverted cells after smoothing: {text}"
+
+
+def test_a_mirrored_mesh_with_a_few_inverted_cells_is_untangled_as_its_twin(tmp):
+    # Most cells clockwise and some folded: the majority's orientation is the mesh's, and the
+    # folded cells are inverted ones to untangle (not a reason to refuse the mesh).
+    import meshio
+    twin = os.path.join(tmp, "tangled.msh")
+    neomesh("generate", "box-quad", "--cells", 30, "--jitter", 0.45, "--seed", 5, "-o", twin)
+    mesh = read_mesh(twin)
+    mesh.points[:, 0] *= -1
+    mirrored = os.path.join(tmp, "tangled-mirrored.msh")
+    meshio.write(mirrored, mesh, file_format="gmsh22", binary=False)
+    reports = []
+    for path in (twin, mirrored):
+        report = path.replace(".msh", ".json")
+        neomesh("smooth", path, "-o", path.replace(".msh", "-out.msh"), "--quiet", "--report", report)
+        with open(report) as f:
+            reports.append(json.load(f))
+    a, b = reports
+    assert a["quality_before"]["inverted"] == b["quality_before"]["inverted"] == 38
+    assert b["quality_after"]["inverted"] == 0
+    diff = differences(a["quality_after"], b["quality_after"])
+    assert not diff, "\n".join(diff[:10])
