@@ -48,10 +48,10 @@ void broadcast_vector(std::vector<T>& v, MPI_Datatype type, MPI_Comm comm) {
 }
 
 nlohmann::json to_json(const Chart& c) {
-  return {{"name", c.name},          {"kind", static_cast<int>(c.kind)},
-          {"centre", c.centre},      {"radius", c.radius},
-          {"points", c.points},      {"closed", c.closed},
-          {"triangles", c.triangles}};
+  return {{"name", c.name},         {"kind", static_cast<int>(c.kind)},
+          {"extruded", c.extruded}, {"centre", c.centre},
+          {"radius", c.radius},     {"points", c.points},
+          {"vertices", c.vertices}, {"triangles", c.triangles}};
 }
 
 Chart chart_from_json(const nlohmann::json& j) {
@@ -61,7 +61,8 @@ Chart chart_from_json(const nlohmann::json& j) {
   c.centre = j["centre"];
   c.radius = j["radius"];
   c.points = j["points"].get<std::vector<double>>();
-  c.closed = j["closed"];
+  c.extruded = j["extruded"];
+  c.vertices = j["vertices"].get<std::vector<std::int64_t>>();
   c.triangles = j["triangles"].get<std::vector<std::int64_t>>();
   return c;
 }
