@@ -68,7 +68,15 @@ std::unique_ptr<Surface> chart_surface(const Chart& chart, int dim, const std::s
   };
   if (chart.extruded) {
     need_dim(3, "a 2D curve extruded along z (3D)");
-    return make_extrusion(chart_curve(chart));
+    // FEAT3's angles are yaw, pitch and roll in revolutions.
+    const auto turn = [&](int i, const Point& axis) {
+      return Eigen::AngleAxisd(2 * M_PI * chart.angles[i], axis).toRotationMatrix();
+    };
+    const Matrix3 rotation =
+        turn(0, Point::UnitZ()) * turn(1, Point::UnitY()) * turn(2, Point::UnitX());
+    return make_extrusion(chart_curve(chart), rotation,
+                          {chart.origin[0], chart.origin[1], chart.origin[2]},
+                          {chart.offset[0], chart.offset[1], chart.offset[2]});
   }
   switch (chart.kind) {
     case Chart::Kind::Circle:

@@ -246,21 +246,27 @@ class BezierCurve final : public Surface {
   std::vector<Segment> segments_;
 };
 
-// A 2D curve swept along z: its closest point, normal and bending in the (x, y) plane, z kept.
+// A 2D curve swept along z: its closest point, normal and bending in the (x, y) plane, z kept;
+// all in the local frame, local = Rᵀ (world − offset) + origin.
 class Extrusion final : public Surface {
  public:
-  explicit Extrusion(std::unique_ptr<Surface> curve) : curve_(std::move(curve)) {}
+  Extrusion(std::unique_ptr<Surface> curve, const Matrix3& rotation, const Point& origin,
+            const Point& offset)
+      : curve_(std::move(curve)), rotation_(rotation), origin_(origin), offset_(offset) {}
   Point closest_point(const Point& p) const override {
-    Point q = curve_->closest_point(flat(p));
-    q.z() = p.z();
-    return q;
+    const Point local = to_local(p);
+    Point q = curve_->closest_point(flat(local));
+    q.z() = local.z();
+    return to_world(q);
   }
-  Point normal(const Point& q) const override { return flat(curve_->normal(flat(q))); }
+  Point normal(const Point& q) const override {
+    return rotation_ * flat(curve_->normal(flat(to_local(q))));
+  }
   Matrix3 shape_operator(const Point& q) const override {
-    Matrix3 s = curve_->shape_operator(flat(q));
+    Matrix3 s = curve_->shape_operator(flat(to_local(q)));
     s.row(2).setZero();
     s.col(2).setZero();
-    return s;
+    return rotation_ * s * rotation_.transpose();
   }
   std::string describe() const override {
     return fmt::format("{} extruded along z", curve_->describe());
@@ -268,7 +274,11 @@ class Extrusion final : public Surface {
 
  private:
   static Point flat(const Point& p) { return {p.x(), p.y(), 0.0}; }
+  Point to_local(const Point& p) const { return rotation_.transpose() * (p - offset_) + origin_; }
+  Point to_world(const Point& p) const { return rotation_ * (p - origin_) + offset_; }
   std::unique_ptr<Surface> curve_;
+  Matrix3 rotation_;
+  Point origin_, offset_;
 };
 
 // Newton's method on the two surfaces' tangent planes: each step moves to the point of the
@@ -435,8 +445,9 @@ std::unique_ptr<Surface> make_level_set(const std::string& expression, int dim) 
 std::unique_ptr<Surface> make_bezier(std::vector<Point> controls, std::vector<int> starts) {
   return std::make_unique<BezierCurve>(std::move(controls), std::move(starts));
 }
-std::unique_ptr<Surface> make_extrusion(std::unique_ptr<Surface> curve) {
-  return std::make_unique<Extrusion>(std::move(curve));
+std::unique_ptr<Surface> make_extrusion(std::unique_ptr<Surface> curve, const Matrix3& rotation,
+                                        const Point& origin, const Point& offset) {
+  return std::make_unique<Extrusion>(std::move(curve), rotation, origin, offset);
 }
 std::unique_ptr<Curve> make_line(const Point& point, const Point& direction) {
   return std::make_unique<Line>(point, direction);

@@ -89,8 +89,12 @@ std::unique_ptr<Surface> make_level_set(const std::string& expression, int dim);
 // points are exact (Newton's method on each segment, from the best of a few samples), not
 // those of a sampled polyline. Throws Error for fewer than two points or a degree above 5.
 std::unique_ptr<Surface> make_bezier(std::vector<Point> controls, std::vector<int> starts);
-// A 2D curve (circle, Bezier) extended along z: a surface in 3D (FEAT3's Extrude chart).
-std::unique_ptr<Surface> make_extrusion(std::unique_ptr<Surface> curve);
+// A 2D curve (circle, Bezier) extended along z, then placed by world = R (local − origin) +
+// offset (R a rotation): a surface in 3D (FEAT3's Extrude chart).
+std::unique_ptr<Surface> make_extrusion(std::unique_ptr<Surface> curve,
+                                        const Matrix3& rotation = Matrix3::Identity(),
+                                        const Point& origin = Point::Zero(),
+                                        const Point& offset = Point::Zero());
 
 // The straight line through `point` along `direction`.
 std::unique_ptr<Curve> make_line(const Point& point, const Point& direction);

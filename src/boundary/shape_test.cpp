@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "core/error.hpp"
 
 namespace neomesh {
@@ -104,6 +106,21 @@ TEST(Extrusion, OfABezierCurveBendsInThePlaneOnly) {
   EXPECT_NEAR((surface->closest_point(q + 0.01 * surface->normal(q)) - q).norm(), 0, 1e-14);
   expect_shape_operator_matches_differences(*surface, q, Point(1, 2 - 2 * x, 0).normalized());
   EXPECT_NEAR((surface->shape_operator(q) * Point(0, 0, 1)).norm(), 0.0, 1e-15);
+}
+
+// A quarter turn about y takes the extrusion's z axis to x: a pipe along x (FEAT3's
+// flowbench_p3d pipe: angles="0 0.25 0" offset="0 0.205 0.205").
+TEST(Extrusion, PlacedByRotationAndOffset) {
+  const Matrix3 rotation = Eigen::AngleAxisd(M_PI / 2, Point::UnitY()).toRotationMatrix();
+  const auto pipe =
+      make_extrusion(make_sphere({0, 0, 0}, 0.205, 2), rotation, Point::Zero(), {0, 0.205, 0.205});
+  const auto cylinder = make_cylinder({0, 0.205, 0.205}, {1, 0, 0}, 0.205);
+  for (const Point& p : {Point(0.765, 0.3485, 0.0615), Point(2, 0.1, 0.3)}) {
+    const Point q = pipe->closest_point(p);
+    EXPECT_NEAR((q - cylinder->closest_point(p)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR(std::abs(pipe->normal(q).dot(cylinder->normal(q))), 1.0, 1e-15);
+    EXPECT_NEAR((pipe->shape_operator(q) - cylinder->shape_operator(q)).norm(), 0.0, 1e-14);
+  }
 }
 
 }  // namespace

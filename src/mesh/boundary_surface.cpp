@@ -48,10 +48,12 @@ void broadcast_vector(std::vector<T>& v, MPI_Datatype type, MPI_Comm comm) {
 }
 
 nlohmann::json to_json(const Chart& c) {
-  return {{"name", c.name},         {"kind", static_cast<int>(c.kind)},
-          {"extruded", c.extruded}, {"centre", c.centre},
-          {"radius", c.radius},     {"points", c.points},
-          {"vertices", c.vertices}, {"triangles", c.triangles}};
+  return {{"name", c.name},          {"kind", static_cast<int>(c.kind)},
+          {"extruded", c.extruded},  {"origin", c.origin},
+          {"offset", c.offset},      {"angles", c.angles},
+          {"centre", c.centre},      {"radius", c.radius},
+          {"points", c.points},      {"vertices", c.vertices},
+          {"triangles", c.triangles}};
 }
 
 Chart chart_from_json(const nlohmann::json& j) {
@@ -62,6 +64,9 @@ Chart chart_from_json(const nlohmann::json& j) {
   c.radius = j["radius"];
   c.points = j["points"].get<std::vector<double>>();
   c.extruded = j["extruded"];
+  c.origin = j["origin"];
+  c.offset = j["offset"];
+  c.angles = j["angles"];
   c.vertices = j["vertices"].get<std::vector<std::int64_t>>();
   c.triangles = j["triangles"].get<std::vector<std::int64_t>>();
   return c;

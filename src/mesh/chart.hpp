@@ -24,7 +24,10 @@ struct Chart {
   std::string name;
   Kind kind = Kind::Circle;
   // FEAT3 <Extrude>: the 2D chart (Circle or Bezier) extended along z, for a 3D mesh.
+  // Its placement (attributes of <Extrude>): world = R (local − origin) + offset, R the
+  // rotations by `angles` (in revolutions) about z, y and x.
   bool extruded = false;
+  std::array<double, 3> origin{}, offset{}, angles{};
   std::array<double, 3> centre{};  // Circle, Sphere (z = 0 in 2D)
   double radius = 0.0;             // Circle, Sphere
   // Bezier: 2 values per point, the curve's vertices with the inner control points of the

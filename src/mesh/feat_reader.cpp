@@ -317,6 +317,14 @@ class FeatParser {
     if (std::string_view(shape.name()) == "Extrude") {
       // FEAT3 extrudes a 2D Circle, Bezier or Polyline along z.
       chart.extruded = true;
+      const auto placement = [&](const char* key, std::size_t n, std::array<double, 3>& out) {
+        if (!shape.attribute(key)) return;
+        const auto v = reals(shape, key, n);
+        std::copy(v.begin(), v.end(), out.begin());
+      };
+      placement("origin", 2, chart.origin);
+      placement("offset", 3, chart.offset);
+      placement("angles", 3, chart.angles);
       shape = first_element(shape);
       if (!shape) error(node, "<Chart name=\"{}\"> has an empty <Extrude>", shown(chart.name));
       const std::string_view inner = shape.name();
