@@ -66,6 +66,11 @@ def test_chart_file_in_either_order_moves_the_vertex_onto_its_circle(tmp):
 
 
 def test_missing_chart_is_a_notice(tmp):
+    # A part on a chart no file defines slides on the input's facets (FEAT3's
+    # scalexa_gendie_simple names a chart file that is not shipped).
+    p = neomesh("smooth", os.path.join(DATA, "feat_part_on_missing_chart.xml"), "-o",
+                os.path.join(tmp, "out.msh"))
+    assert "notice:" in p.stdout and "chart 'nowhere'" in p.stdout
     p = neomesh("convert", os.path.join(DATA, "feat_part_on_missing_chart.xml"), "-o",
                 os.path.join(tmp, "out.msh"))
     assert "notice:" in p.stdout and "chart 'nowhere'" in p.stdout
