@@ -63,6 +63,11 @@ class Mesh {
   // written back in it (docs/user-guide.md, "What a run never changes").
   static Mesh read(const std::filesystem::path& path, MPI_Comm comm = MPI_COMM_WORLD,
                    InvertedCells inverted = InvertedCells::Refuse);
+  // A FEAT3 mesh file together with the files holding its charts (FEAT3's chart files), in any
+  // order, as FEAT3's applications take them (`--mesh chart.xml mesh.xml`); one path: as above.
+  // The mesh is named after all of them ("chart.xml + mesh.xml").
+  static Mesh read(const std::vector<std::filesystem::path>& paths, MPI_Comm comm = MPI_COMM_WORLD,
+                   InvertedCells inverted = InvertedCells::Refuse);
 
   // Builds a mesh from arrays given on the communicator's first process (the others pass
   // empty spans) and distributes it. `coordinates`: `dim` values per vertex; `cells`: the

@@ -64,6 +64,10 @@ struct BoundarySummary {
   int patches = 0, ridges = 0;
   // Per patch: "part 'hole': circle ...", "unnamed: the input's boundary", ...
   std::vector<std::string> patch_geometry;
+  // Boundary vertices of parts with a FEAT3 chart that were off it and moved onto it before
+  // the first step, and the largest such move.
+  std::int64_t moved_onto_charts = 0;
+  double max_move_onto_charts = 0.0;
 };
 
 // The problem an optimization solves, once it is set up.

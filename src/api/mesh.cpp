@@ -65,6 +65,12 @@ Mesh Mesh::read(const std::filesystem::path& path, MPI_Comm comm, InvertedCells 
   return Mesh(std::make_unique<PlexMesh>(PlexMesh::load(path, comm, inverted)));
 }
 
+Mesh Mesh::read(const std::vector<std::filesystem::path>& paths, MPI_Comm comm,
+                InvertedCells inverted) {
+  if (paths.empty()) fail("no mesh file given");
+  return Mesh(std::make_unique<PlexMesh>(PlexMesh::load(paths, comm, inverted)));
+}
+
 Mesh Mesh::from_arrays(MPI_Comm comm, int dim, std::span<const double> coordinates,
                        std::span<const std::int64_t> cells, std::span<const CellType> types,
                        const std::string& name, InvertedCells inverted) {

@@ -79,7 +79,10 @@ void Optimizer::Impl::start(const EnergyOptions& e, const BoundaryOptions& b) {
   }
   if (!same_problem || fitted) constrain({});  // the boundary's sliding vertices alone
   fitted.reset();
-  boundary->project(x);  // onto given shapes and charts: they pass within 1e-6 h
+  // Onto the charts as FEAT3 does, before the inverted cells are counted (untangle() fixes
+  // what the move folds); then sliding vertices onto their geometry.
+  boundary->place_on_charts(x);
+  boundary->project(x);
 }
 
 void Optimizer::Impl::set_desired_volumes(std::vector<double> volumes) {

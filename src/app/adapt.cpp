@@ -22,7 +22,8 @@ namespace neomesh::app {
 namespace {
 
 struct AdaptCommand {
-  std::string input, output, levelset, sizes_file, time;
+  std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
+  std::string output, levelset, sizes_file, time;
   int step_updates = 1;  // Picard updates before a time step after the first may stop
   std::vector<double> circle, sphere, plane, box;
   bool force = false;
@@ -138,7 +139,8 @@ void adapt_in_time(const AdaptCommand& o, const AdaptOptions& options, SizeField
         describe(result.reason), 100 * q.within, min_sj, fitted, seconds, members.back().string());
     if (!o.outputs.picture_after.empty())
       run.draw(numbered_path("--picture", o.outputs.picture_after, static_cast<int>(i)),
-               o.outputs.picture_field, fmt::format("{}, t = {:.4g}", o.input, times[i]));
+               o.outputs.picture_field,
+               fmt::format("{}, t = {:.4g}", input_label(o.inputs), times[i]));
     steps.push_back({{"time", times[i]},
                      {"file", members.back().string()},
                      {"iterations", result.history.size()},
@@ -157,7 +159,7 @@ void adapt_in_time(const AdaptCommand& o, const AdaptOptions& options, SizeField
   }
   if (!o.outputs.report.empty())
     on_root(comm, [&] {
-      const nlohmann::json report = {{"input", o.input},
+      const nlohmann::json report = {{"input", input_label(o.inputs)},
                                      {"output", o.output},
                                      {"size_field", field.description()},
                                      {"steps", steps},
@@ -183,7 +185,7 @@ void adapt(AdaptCommand& o) {
   const std::filesystem::path output = o.output;
   if (times.empty() && output.extension() == ".pvd")
     fail("-o {}: a ParaView collection (.pvd) holds a time series; give --time", o.output);
-  check_output_path(o.input, times.empty() ? output : series_member(output, 0), o.force);
+  check_output_path(o.inputs, times.empty() ? output : series_member(output, 0), o.force);
   // Every output is checked before the run, so that a typo does not cost a long run.
   check_run_outputs(o.outputs);
   if (!times.empty()) {
@@ -197,7 +199,7 @@ void adapt(AdaptCommand& o) {
   std::optional<LevelSet> phi;
   if (o.fit) phi.emplace(fit_level_set(o));
 
-  OptimizationRun run(o.input, o.no_untangle ? InvertedCells::Refuse : InvertedCells::Keep);
+  OptimizationRun run(o.inputs, o.no_untangle ? InvertedCells::Refuse : InvertedCells::Keep);
   const Mesh& mesh = run.mesh();
   // Every time's interface must exist and lie inside the domain: fail before any output.
   if (phi)
@@ -214,7 +216,8 @@ void adapt(AdaptCommand& o) {
   const RunSettings settings{options.energy, options.solver, options.boundary};
   const auto picture_before = [&] {
     if (!o.outputs.picture_before.empty())
-      run.draw(o.outputs.picture_before, o.outputs.picture_field, "input: " + o.input);
+      run.draw(o.outputs.picture_before, o.outputs.picture_field,
+               "input: " + input_label(o.inputs));
   };
   const Observer observe = run.observer(settings, o.outputs.progress_lines, picture_before);
   const Result result = phi ? run.optimizer().adapt(field, *phi, options, observe)
@@ -270,7 +273,10 @@ Subcommand add_adapt(CLI::App& app) {
       "Move the vertices so that cells are small near a surface (circle, sphere, plane, box, "
       "level set) or follow given sizes: desired volume v = floor + d^p for the distance d of "
       "the cell's centre, recomputed from the moving mesh in Picard iterations (thesis §6).");
-  cmd->add_option("input", o->input, "mesh to adapt (.msh Gmsh 2.2/4.1, .xml FEAT3)")->required();
+  cmd->add_option("input", o->inputs,
+                  "mesh to adapt (.msh Gmsh 2.2/4.1, .xml FEAT3; a FEAT3 mesh may come with the "
+                  "files of its charts, in any order)")
+      ->required();
   cmd->add_option("-o,--output", o->output,
                   "adapted mesh (.vtu with per-cell energy, Q and quality fields, or .msh)")
       ->required();

@@ -11,6 +11,20 @@ void check_input_mesh(const std::string& path) {
   check_readable_format(path);
 }
 
+void check_input_mesh(const std::vector<std::string>& paths) {
+  for (const std::string& path : paths) check_input_mesh(path);
+}
+
+std::vector<std::filesystem::path> input_paths(const std::vector<std::string>& paths) {
+  return {paths.begin(), paths.end()};
+}
+
+std::string input_label(const std::vector<std::string>& paths) {
+  std::string label;
+  for (const std::string& path : paths) label += (label.empty() ? "" : " + ") + path;
+  return label;
+}
+
 void check_finite(const char* option, std::span<const double> values) {
   for (double v : values)
     if (!std::isfinite(v)) fail("{}: every value must be a finite number (got {})", option, v);

@@ -3,8 +3,10 @@
 #pragma once
 
 #include <cmath>
+#include <filesystem>
 #include <span>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -28,6 +30,12 @@ void check_finite(const char* option, std::span<const double> values);
 // Not collective: throws Error unless `path` has the extension of a mesh format neomesh reads
 // (.msh, .xml), before the (possibly long) read.
 void check_input_mesh(const std::string& path);
+void check_input_mesh(const std::vector<std::string>& paths);
+
+// A command's input files — a mesh, and for a FEAT3 mesh the files with its charts, in any
+// order — as Mesh::read takes them, and as messages name them ("charts.xml + mesh.xml").
+std::vector<std::filesystem::path> input_paths(const std::vector<std::string>& paths);
+std::string input_label(const std::vector<std::string>& paths);
 
 enum class OutputKind { Mesh, Picture, Json };
 

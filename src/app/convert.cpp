@@ -17,7 +17,7 @@ namespace neomesh::app {
 namespace {
 
 struct ConvertOptions {
-  std::string input;
+  std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
   std::string output;
   bool force = false;
 };
@@ -29,15 +29,16 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
 
 void run_convert(const ConvertOptions& o) {
   collectively(MPI_COMM_WORLD, [&] {
-    check_input_mesh(o.input);
+    check_input_mesh(o.inputs);
     check_output_file("-o/--output", o.output, OutputKind::Mesh);
-    if (!o.force && same_file(o.input, o.output))
-      fail("{}: output is the input file; choose another -o or pass --force", o.output);
+    for (const std::string& input : o.inputs)
+      if (!o.force && same_file(input, o.output))
+        fail("{}: output is the input file; choose another -o or pass --force", o.output);
   });
-  say("reading {} ...\n", o.input);
+  say("reading {} ...\n", input_label(o.inputs));
   const Mesh mesh = [&] {
-    const Activity reading("reading " + o.input);
-    return Mesh::read(o.input);
+    const Activity reading("reading " + input_label(o.inputs));
+    return Mesh::read(input_paths(o.inputs));
   }();
   const Activity writing("writing " + o.output);
   mesh.write_mesh_only(o.output);
@@ -52,7 +53,9 @@ Subcommand add_convert(CLI::App& app) {
       "convert",
       "Convert a mesh to .vtu (ParaView) or .msh. Reads Gmsh .msh 2.2/4.1 or FEAT3 .xml, checks\n"
       "it (no inverted or degenerate cells) and writes VTU or Gmsh 4.1 (keeping physical groups).");
-  cmd->add_option("input", options->input, "input mesh (.msh or .xml)")->required();
+  cmd->add_option("input", options->inputs,
+                  "input mesh (.msh or .xml; a FEAT3 mesh may come with its chart files)")
+      ->required();
   cmd->add_option("-o,--output", options->output, "output mesh (.vtu or .msh)")->required();
   cmd->add_flag("--force", options->force,
                 "allow the output to overwrite the input (default: off)");

@@ -20,15 +20,16 @@
 
 namespace neomesh::app {
 
-void check_output_path(const std::filesystem::path& input, const std::filesystem::path& output,
+void check_output_path(const std::vector<std::string>& inputs, const std::filesystem::path& output,
                        bool force) {
   collectively(PETSC_COMM_WORLD, [&] {
     // Fail now, not after a long run.
     check_output_file("-o/--output", output.string(), OutputKind::Mesh);
     std::error_code ignored;
-    if (!force && std::filesystem::equivalent(input, output, ignored))
-      fail("output {} is the input file; choose another name or pass --force to overwrite it",
-           output.string());
+    for (const std::string& input : inputs)
+      if (!force && std::filesystem::equivalent(input, output, ignored))
+        fail("output {} is the input file; choose another name or pass --force to overwrite it",
+             output.string());
   });
 }
 
@@ -92,6 +93,9 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
         "vertices slide\n",
         b.patches, b.ridges, b.corners, b.ridge_vertices, b.surface_vertices);
     for (const std::string& g : b.patch_geometry) detail("  {}\n", g);
+    if (b.moved_onto_charts > 0)
+      say("charts: {} boundary vertices moved onto their charts first (farthest by {:.3g})\n",
+          b.moved_onto_charts, b.max_move_onto_charts);
   }
   detail(
       "quasi-Newton system H(alpha) delta~ = -g (options -hess_*): {}, or residual <= f x "
@@ -112,18 +116,18 @@ struct OptimizationRun::Impl {
   Mesh mesh;
   Optimizer optimizer;
 
-  Impl(const std::filesystem::path& input, InvertedCells inverted)
+  Impl(const std::vector<std::string>& input, InvertedCells inverted)
       : mesh(read(input, inverted)), optimizer(mesh) {
     read_seconds = MPI_Wtime() - start;
     share_cores(mesh.comm());
   }
 
-  static Mesh read(const std::filesystem::path& input, InvertedCells inverted) {
+  static Mesh read(const std::vector<std::string>& input, InvertedCells inverted) {
     const int ranks = mpi_size(PETSC_COMM_WORLD);
-    say("reading {}{} ...\n", input.string(),
+    say("reading {}{} ...\n", input_label(input),
         ranks > 1 ? fmt::format(" and distributing it over {} processes", ranks) : "");
-    const Activity reading("reading " + input.string());
-    return Mesh::read(input, PETSC_COMM_WORLD, inverted);
+    const Activity reading("reading " + input_label(input));
+    return Mesh::read(input_paths(input), PETSC_COMM_WORLD, inverted);
   }
 
   // The cell fields of the outputs at the mesh's coordinates: the optimizer's and the quality.
@@ -135,7 +139,7 @@ struct OptimizationRun::Impl {
   }
 };
 
-OptimizationRun::OptimizationRun(const std::filesystem::path& input, InvertedCells inverted)
+OptimizationRun::OptimizationRun(const std::vector<std::string>& input, InvertedCells inverted)
     : impl_(std::make_unique<Impl>(input, inverted)) {}
 OptimizationRun::~OptimizationRun() = default;
 
@@ -288,7 +292,9 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
   // by the input's discretization (vertices stay on its facets or on the given shapes).
   const nlohmann::json boundary_change = {
       {"max_distance_from_input_boundary", result.boundary_distance},
-      {"relative_volume_change", result.volume_change}};
+      {"relative_volume_change", result.volume_change},
+      {"moved_onto_charts", result.problem.boundary.moved_onto_charts},
+      {"max_move_onto_charts", result.problem.boundary.max_move_onto_charts}};
   if (settings.boundary.mode == BoundaryMode::Slide)
     say("boundary: largest distance of a boundary vertex from the input's boundary {:.3g}, "
         "domain volume change {:+.3g}%\n",

@@ -19,7 +19,7 @@ namespace neomesh::app {
 
 // Throws Error unless `output` has a writable format and differs from `input` (or `force`).
 // Collective (every rank throws).
-void check_output_path(const std::filesystem::path& input, const std::filesystem::path& output,
+void check_output_path(const std::vector<std::string>& inputs, const std::filesystem::path& output,
                        bool force);
 
 // What a run writes besides the mesh, shared by smooth and adapt: the JSON report, the
@@ -49,7 +49,8 @@ struct RunSettings {
 
 class OptimizationRun {
  public:
-  OptimizationRun(const std::filesystem::path& input, InvertedCells inverted);
+  // `inputs`: the mesh file, with the chart files of a FEAT3 mesh (any order).
+  OptimizationRun(const std::vector<std::string>& inputs, InvertedCells inverted);
   ~OptimizationRun();
 
   Mesh& mesh();

@@ -17,7 +17,7 @@ namespace neomesh::app {
 namespace {
 
 struct QualityOptions {
-  std::string input;
+  std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
   std::string json;
   std::string reference;
 };
@@ -46,17 +46,17 @@ nlohmann::json compare_boundary(const Mesh& mesh, const std::string& reference_f
 
 void run_quality(const QualityOptions& o) {
   collectively(MPI_COMM_WORLD, [&] {
-    check_input_mesh(o.input);
+    check_input_mesh(o.inputs);
     if (!o.reference.empty()) check_input_mesh(o.reference);
     if (!o.json.empty()) check_output_file("--json", o.json, OutputKind::Json);
   });
   // Inverted and degenerate cells are what this command counts, not a reason to refuse.
   const Mesh mesh = [&] {
-    const Activity reading("reading " + o.input);
-    return Mesh::read(o.input, MPI_COMM_WORLD, InvertedCells::Keep);
+    const Activity reading("reading " + input_label(o.inputs));
+    return Mesh::read(input_paths(o.inputs), MPI_COMM_WORLD, InvertedCells::Keep);
   }();
   const QualitySummary summary = mesh.quality();
-  always("{}\n{}", o.input, format_table(summary));
+  always("{}\n{}", input_label(o.inputs), format_table(summary));
   nlohmann::json json = to_json(summary);
   if (!o.reference.empty()) json["boundary_change"] = compare_boundary(mesh, o.reference);
   if (!o.json.empty())
@@ -76,7 +76,9 @@ Subcommand add_quality(CLI::App& app) {
       "Print the quality of a mesh: cells by type, min/mean/max of the cell volume, det J at "
       "corners and Gauss points, scaled Jacobian (1 = ideal, <= 0 = inverted), angles and edge "
       "ratio, and the number of inverted and degenerate cells.");
-  cmd->add_option("mesh", options->input, "mesh file (.msh or .xml)")->required();
+  cmd->add_option("mesh", options->inputs,
+                  "mesh file (.msh or .xml; a FEAT3 mesh may come with its chart files)")
+      ->required();
   cmd->add_option("--reference", options->reference,
                   "compare the boundary with this mesh's (e.g. the input of smooth): the largest "
                   "distance of a boundary vertex from its boundary and the domain volume change "

@@ -24,7 +24,8 @@ namespace neomesh::app {
 namespace {
 
 struct RenderCommandOptions {
-  std::string input, output, field = "scaled_jacobian", sizes = "smoothed", title;
+  std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
+  std::string output, field = "scaled_jacobian", sizes = "smoothed", title;
   int width = 1200;
   std::vector<double> range;
   bool log_scale = false;
@@ -89,17 +90,20 @@ void run_render(const RenderCommandOptions& o) {
   // Fail before the (possibly long) load.
   collectively(MPI_COMM_WORLD, [&] {
     check_output_file("-o/--output", o.output, OutputKind::Picture);
-    check_input_mesh(o.input);
+    check_input_mesh(o.inputs);
   });
   // Inverted cells are drawn in red and counted, not refused.
   Mesh mesh = [&] {
-    const Activity reading("reading " + o.input);
-    return Mesh::read(o.input, MPI_COMM_WORLD, InvertedCells::Keep);
+    const Activity reading("reading " + input_label(o.inputs));
+    return Mesh::read(input_paths(o.inputs), MPI_COMM_WORLD, InvertedCells::Keep);
   }();
 
   RenderOptions options;
   options.width = o.width;
-  options.title = o.title.empty() ? std::filesystem::path(o.input).filename().string() : o.title;
+  std::string files;
+  for (const std::string& input : o.inputs)
+    files += (files.empty() ? "" : " + ") + std::filesystem::path(input).filename().string();
+  options.title = o.title.empty() ? files : o.title;
   options.field_name = field_info(o.field).legend;
   options.log_scale = o.log_scale;
   if (!o.range.empty()) options.min = o.range[0], options.max = o.range[1];
@@ -116,7 +120,9 @@ Subcommand add_render(CLI::App& app) {
       "Draw a 2D mesh as a .png or .svg picture. Every cell is coloured by a quality metric,\n"
       "its energy or its volume ratio Q, with a colour bar; inverted cells are drawn in red\n"
       "and counted. For 3D meshes, open a .vtu output in ParaView instead.");
-  cmd->add_option("mesh", options->input, "mesh file (.msh or .xml)")->required();
+  cmd->add_option("mesh", options->inputs,
+                  "mesh file (.msh or .xml; a FEAT3 mesh may come with its chart files)")
+      ->required();
   cmd->add_option("-o,--output", options->output, "picture file (.png or .svg)")->required();
   std::vector<std::string> fields;
   for (const FieldInfo& f : kFields) fields.emplace_back(f.option);

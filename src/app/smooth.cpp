@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "app/checks.hpp"
 #include "app/method_options.hpp"
 #include "app/optimization.hpp"
 #include "app/subcommand.hpp"
@@ -14,7 +15,8 @@ namespace neomesh::app {
 namespace {
 
 struct SmoothCommand {
-  std::string input, output, sizes = "smoothed";
+  std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
+  std::string output, sizes = "smoothed";
   bool force = false, no_guard = false, no_untangle = false;
   MethodOptions method;
   RunOutputs outputs;
@@ -50,16 +52,17 @@ void smooth(SmoothCommand& o) {
   options.untangle = !o.no_untangle;
   options.quality_guard = !o.no_guard;
   options = resolve(o.method, options);
-  check_output_path(o.input, o.output, o.force);
+  check_output_path(o.inputs, o.output, o.force);
   // Every output is checked before the run, so that a typo does not cost a long run.
   check_run_outputs(o.outputs);
 
-  OptimizationRun run(o.input, o.no_untangle ? InvertedCells::Refuse : InvertedCells::Keep);
+  OptimizationRun run(o.inputs, o.no_untangle ? InvertedCells::Refuse : InvertedCells::Keep);
   check_run_outputs(o.outputs, run.mesh().dim());  // pictures of a 3D mesh: before the run
   const RunSettings settings{options.energy, options.solver, options.boundary};
   const auto picture_before = [&] {
     if (!o.outputs.picture_before.empty())
-      run.draw(o.outputs.picture_before, o.outputs.picture_field, "input: " + o.input);
+      run.draw(o.outputs.picture_before, o.outputs.picture_field,
+               "input: " + input_label(o.inputs));
   };
   const Result result = run.optimizer().smooth(
       options, run.observer(settings, o.outputs.progress_lines, picture_before));
@@ -83,7 +86,10 @@ Subcommand add_smooth(CLI::App& app) {
       "vertices slide along the boundary, corners stay) to minimize the Neo-Hookean energy with\n"
       "the quasi-Newton method of the thesis; prints one row per iteration and the quality\n"
       "before and after. A mesh with inverted cells is untangled first.");
-  cmd->add_option("input", o->input, "mesh to smooth (.msh Gmsh 2.2/4.1, .xml FEAT3)")->required();
+  cmd->add_option("input", o->inputs,
+                  "mesh to smooth (.msh Gmsh 2.2/4.1, .xml FEAT3; a FEAT3 mesh may come with the "
+                  "files of its charts, in any order)")
+      ->required();
   cmd->add_option("-o,--output", o->output, "smoothed mesh (.vtu with quality fields, or .msh)")
       ->required();
   cmd->add_flag("--force", o->force, "allow the output to overwrite the input file (default: off)");

@@ -18,9 +18,17 @@ namespace neomesh {
 
 namespace {
 
-// How far (relative to the local mesh size) a vertex of a part may lie from the shape or chart
-// the part is said to lie on.
+// How far (relative to the local mesh size) a vertex of a part may lie from the shape the user
+// says the part lies on (--shape).
 constexpr double kShapeTolerance = 1e-6;
+// FEAT3 projects the vertices of a part with a chart onto it when it loads a mesh (coarse
+// meshes are off their curved charts by up to a fifth of a cell; coordinates have 6 digits),
+// and so does neomesh. A vertex farther than this many local mesh sizes from its chart is not
+// meant to lie on it (a wrong chart file): the part is refused.
+constexpr double kChartReach = 4.0;
+// Alternating projections onto the charts of a vertex on several (a corner between two
+// charts) stop after this many rounds or when a round moves it by less than 1e-15 of its size.
+constexpr int kChartRounds = 100;
 // A patch is flat if its vertices lie within this (relative to its size) of one plane; a
 // plane's normal this close to an axis is taken as that axis, exactly.
 constexpr double kFlatTolerance = 1e-12;
@@ -43,31 +51,45 @@ int axis_of(const Point& v) {
   return -1;
 }
 
+std::unique_ptr<Surface> chart_curve(const Chart& chart) {
+  if (chart.kind == Chart::Kind::Circle)
+    return make_sphere({chart.centre[0], chart.centre[1], 0.0}, chart.radius, 2);
+  std::vector<Point> controls;
+  for (std::size_t i = 0; i + 1 < chart.points.size(); i += 2)
+    controls.emplace_back(chart.points[i], chart.points[i + 1], 0.0);
+  return make_bezier(std::move(controls),
+                     std::vector<int>(chart.vertices.begin(), chart.vertices.end()));
+}
+
 std::unique_ptr<Surface> chart_surface(const Chart& chart, int dim, const std::string& part) {
+  const auto need_dim = [&](int d, const char* what) {
+    if (dim != d)
+      fail("chart '{}' of part '{}' is {}, but the mesh is {}D", chart.name, part, what, dim);
+  };
+  if (chart.extruded) {
+    need_dim(3, "a 2D curve extruded along z (3D)");
+    // FEAT3's angles are yaw, pitch and roll in revolutions.
+    const auto turn = [&](int i, const Point& axis) {
+      return Eigen::AngleAxisd(2 * M_PI * chart.angles[i], axis).toRotationMatrix();
+    };
+    const Matrix3 rotation =
+        turn(0, Point::UnitZ()) * turn(1, Point::UnitY()) * turn(2, Point::UnitX());
+    return make_extrusion(chart_curve(chart), rotation,
+                          {chart.origin[0], chart.origin[1], chart.origin[2]},
+                          {chart.offset[0], chart.offset[1], chart.offset[2]});
+  }
   switch (chart.kind) {
     case Chart::Kind::Circle:
+      need_dim(2, "a circle");
+      return chart_curve(chart);
+    case Chart::Kind::Bezier:
+      need_dim(2, "a 2D curve");
+      return chart_curve(chart);
     case Chart::Kind::Sphere:
-      if ((chart.kind == Chart::Kind::Circle) != (dim == 2))
-        fail("chart '{}' of part '{}' is a {}, but the mesh is {}D", chart.name, part,
-             chart.kind == Chart::Kind::Circle ? "circle" : "sphere", dim);
-      return make_sphere({chart.centre[0], chart.centre[1], chart.centre[2]}, chart.radius, dim);
-    case Chart::Kind::Polyline: {
-      if (dim != 2)
-        fail("chart '{}' of part '{}' is a 2D curve, but the mesh is 3D", chart.name, part);
-      std::vector<Point> points;
-      for (std::size_t i = 0; i + 1 < chart.points.size(); i += 2)
-        points.emplace_back(chart.points[i], chart.points[i + 1], 0.0);
-      std::vector<std::array<int, 3>> segments;
-      const int n = static_cast<int>(points.size());
-      for (int i = 0; i + 1 < n; ++i) segments.push_back({i, i + 1, 0});
-      if (chart.closed && n > 2) segments.push_back({n - 1, 0, 0});
-      if (segments.empty())
-        fail("chart '{}' of part '{}' has fewer than two points", chart.name, part);
-      return std::make_unique<DiscreteSurface>(std::move(points), std::move(segments), 2);
-    }
+      need_dim(3, "a sphere");
+      return make_sphere({chart.centre[0], chart.centre[1], chart.centre[2]}, chart.radius, 3);
     case Chart::Kind::SurfaceMesh: {
-      if (dim != 3)
-        fail("chart '{}' of part '{}' is a surface, but the mesh is 2D", chart.name, part);
+      need_dim(3, "a surface");
       std::vector<Point> points;
       for (std::size_t i = 0; i + 2 < chart.points.size(); i += 3)
         points.emplace_back(chart.points[i], chart.points[i + 1], chart.points[i + 2]);
@@ -90,6 +112,17 @@ std::unique_ptr<Surface> chart_surface(const Chart& chart, int dim, const std::s
   fail("chart '{}': unknown kind", chart.name);
 }
 
+// Exact charts are analytic: their ridges follow the exact intersection. A SurfaceMesh is a
+// triangulation (exact as given, but with kinks Newton's method cannot cross).
+bool is_analytic(const Chart& chart) {
+  return chart.kind != Chart::Kind::SurfaceMesh;
+}
+
+// Circles, spheres and their extrusions have no kinks: a part on one is one patch.
+bool is_smooth(const Chart& chart) {
+  return chart.kind == Chart::Kind::Circle || chart.kind == Chart::Kind::Sphere;
+}
+
 }  // namespace
 
 BoundaryMode parse_boundary_mode(std::string_view name) {
@@ -109,7 +142,11 @@ struct Boundary::Impl {
   const BoundarySurface& surface;
   BoundaryFeatures features;
   std::vector<std::unique_ptr<Surface>> patch_surface;
-  std::vector<std::uint8_t> patch_analytic;  // shape, circle/sphere chart or plane
+  std::vector<std::uint8_t> patch_analytic;  // shape, exact chart or plane
+  std::vector<const Chart*> patch_chart;     // the chart the patch lies on, or null
+  // Per boundary vertex of a part with a chart: where it is moved before the first step.
+  std::vector<std::uint8_t> on_chart;
+  std::vector<Point> chart_position;
   std::vector<std::unique_ptr<Curve>> ridge_curve;
   std::vector<std::uint8_t> fixed;  // per local dof
   // The vertices that slide in tangent spaces, with what they slide on (one of the two).
@@ -127,8 +164,9 @@ struct Boundary::Impl {
         if (view.on_boundary[u]) std::fill_n(fixed.begin() + u * view.dim, view.dim, 1);
       return;
     }
-    features = find_features(surface, options.feature_angle);
+    features = find_features(surface, options.feature_angle, smooth_parts());
     build_patches();
+    place_on_charts();
     build_ridges();
     assign_vertices();
     summary.corners = features.count(VertexFeature::Corner);
@@ -164,6 +202,27 @@ struct Boundary::Impl {
       out[found] = spec;
     }
     return out;
+  }
+
+  // The chart part `part` lies on, or null; fails for a chart the mesh does not define.
+  const Chart* chart_of(int part) const {
+    if (part < 0 || surface.part_chart[part].empty()) return nullptr;
+    const std::string& name = surface.part_chart[part];
+    const auto c = std::find_if(surface.charts.begin(), surface.charts.end(),
+                                [&](const Chart& x) { return x.name == name; });
+    if (c == surface.charts.end())
+      fail("part '{}' is attached to chart '{}', which the mesh file does not define",
+           part_name(part), name);
+    return &*c;
+  }
+
+  // Per part: 1 if it lies on one smooth shape or chart (features.hpp).
+  std::vector<std::uint8_t> smooth_parts() const {
+    std::vector<std::uint8_t> smooth(view.parts.size(), 0);
+    for (std::size_t p = 0; p < smooth.size(); ++p)
+      if (const Chart* c = chart_of(static_cast<int>(p))) smooth[p] = is_smooth(*c);
+    for (const auto& [part, spec] : shapes_by_part()) smooth[part] = !spec.starts_with("levelset:");
+    return smooth;
   }
 
   // The plane the facets lie in, or null.
@@ -231,6 +290,7 @@ struct Boundary::Impl {
     const std::vector<double> size = vertex_sizes();
     patch_surface.resize(np);
     patch_analytic.assign(np, 0);
+    patch_chart.assign(np, nullptr);
     for (int p = 0; p < np; ++p) {
       const int part = features.patch_part[p];
       const std::string name = part_name(part);
@@ -242,16 +302,10 @@ struct Boundary::Impl {
         check_on_surface(*patch_surface[p], facets[p], size,
                          fmt::format("boundary.shapes: {}={}", name, it->second));
       } else if (!chart.empty()) {
-        const auto c = std::find_if(surface.charts.begin(), surface.charts.end(),
-                                    [&](const Chart& x) { return x.name == chart; });
-        if (c == surface.charts.end())
-          fail("part '{}' is attached to chart '{}', which the mesh file does not define", name,
-               chart);
+        const Chart* c = chart_of(part);
         patch_surface[p] = chart_surface(*c, surface.dim, name);
-        patch_analytic[p] =
-            c->kind == Chart::Kind::Circle || c->kind == Chart::Kind::Sphere ? 1 : 0;
-        check_on_surface(*patch_surface[p], facets[p], size,
-                         fmt::format("chart '{}' of part '{}'", chart, name));
+        patch_analytic[p] = is_analytic(*c);
+        patch_chart[p] = c;
       } else if (auto plane = plane_through(facets[p])) {
         patch_surface[p] = std::move(plane);
         patch_analytic[p] = 1;
@@ -262,6 +316,69 @@ struct Boundary::Impl {
       }
       summary.patch_geometry.push_back(fmt::format("{}: {}", label, patch_surface[p]->describe()));
     }
+  }
+
+  // FEAT3's adapt(): every vertex of a part with a chart onto the chart (a corner between two
+  // charts onto both, by alternating projections). Fails for a vertex too far from its chart
+  // to be meant to lie on it (kChartReach).
+  void place_on_charts() {
+    const PetscInt nv = surface.num_vertices();
+    std::vector<std::vector<int>> patches_at(nv);  // the chart patches of each vertex's facets
+    for (PetscInt f = 0; f < surface.num_facets(); ++f) {
+      const int p = features.facet_patch[f];
+      if (!patch_chart[p]) continue;
+      for (PetscInt b : surface.facet(f))
+        if (std::find(patches_at[b].begin(), patches_at[b].end(), p) == patches_at[b].end())
+          patches_at[b].push_back(p);
+    }
+    const std::vector<double> size = vertex_sizes();
+    on_chart.assign(nv, 0);
+    chart_position.assign(nv, Point::Zero());
+    for (PetscInt b = 0; b < nv; ++b) {
+      if (patches_at[b].empty()) continue;
+      const Point p = surface_point(surface, b);
+      Point q = p;
+      for (int round = 0; round < kChartRounds; ++round) {
+        const Point before = q;
+        for (int patch : patches_at[b]) q = patch_surface[patch]->closest_point(q);
+        if (patches_at[b].size() == 1 || (q - before).norm() <= 1e-15 * size[b]) break;
+      }
+      const double distance = (q - p).norm();
+      if (!(distance <= kChartReach * size[b])) {
+        const int part = features.patch_part[patches_at[b][0]];
+        fail(
+            "chart '{}' of part '{}': the vertex at ({:g}, {:g}{}) (number {} in input order) is "
+            "{:.3g} from it, {:.3g} times the local mesh size {:.3g} (at most {:g}); is it the "
+            "right chart for this mesh?",
+            patch_chart[patches_at[b][0]]->name, part_name(part), p[0], p[1],
+            surface.dim == 3 ? fmt::format(", {:g}", p[2]) : "", surface.input_vertex[b] + 1,
+            distance, distance / size[b], size[b], kChartReach);
+      }
+      on_chart[b] = 1;
+      chart_position[b] = q;
+      if (distance > 0) {
+        ++summary.moved_onto_charts;
+        summary.max_move_onto_charts = std::max(summary.max_move_onto_charts, distance);
+      }
+    }
+  }
+
+  // Moves the owned boundary vertices of parts with charts (global Vec x) onto them.
+  void place_on_charts(Vec x) const {
+    if (on_chart.empty()) return;
+    const int d = view.dim;
+    PetscInt first = 0;
+    NM_PETSC(VecGetOwnershipRange(x, &first, nullptr));
+    double* a = nullptr;
+    NM_PETSC(VecGetArray(x, &a));
+    for (PetscInt u = 0; u < view.num_vertices; ++u) {
+      if (!view.on_boundary[u] || !view.owned[u]) continue;
+      const PetscInt b = surface.find(view.input_vertex[u]);
+      if (b < 0 || !on_chart[b]) continue;
+      double* at = a + dofs.global_dof()[u * d] - first;
+      for (int j = 0; j < d; ++j) at[j] = chart_position[b][j];
+    }
+    NM_PETSC(VecRestoreArray(x, &a));
   }
 
   void build_ridges() {
@@ -413,6 +530,10 @@ SlidingVertices Boundary::sliding_vertices() const {
 
 void Boundary::project(Vec x) const {
   impl_->project(x);
+}
+
+void Boundary::place_on_charts(Vec x) const {
+  impl_->place_on_charts(x);
 }
 
 const BoundarySummary& Boundary::summary() const {

@@ -49,6 +49,10 @@ class Boundary {
   SlidingVertices sliding_vertices() const;
   // Moves the owned sliding vertices of the global Vec x onto their geometry.
   void project(Vec x) const;
+  // Moves the owned boundary vertices of parts with a FEAT3 chart (corners too) onto it, as
+  // FEAT3 does when it loads a mesh; summary() counts them. The constructor throws Error for a
+  // vertex more than a few local mesh sizes off its chart (docs/boundary.md).
+  void place_on_charts(Vec x) const;
   const BoundarySummary& summary() const;
 
   // The largest distance of a boundary vertex of x (global Vec) from the input's boundary,

@@ -67,7 +67,19 @@ Incidence incidence(const BoundarySurface& s) {
   return in;
 }
 
-void features_2d(const BoundarySurface& s, double angle, BoundaryFeatures& out) {
+// True if facets f and g lie in one part that is one smooth shape: no feature between them.
+struct SmoothParts {
+  const BoundarySurface& s;
+  std::span<const std::uint8_t> smooth;
+  bool same_smooth(PetscInt f, PetscInt g) const {
+    const int p = s.facet_part[f];
+    return p >= 0 && p == s.facet_part[g] && static_cast<std::size_t>(p) < smooth.size() &&
+           smooth[p];
+  }
+};
+
+void features_2d(const BoundarySurface& s, double angle, const SmoothParts& parts,
+                 BoundaryFeatures& out) {
   const Incidence in = incidence(s);
   const PetscInt nv = s.num_vertices();
   auto other_end = [&](PetscInt f, PetscInt v) {
@@ -78,8 +90,9 @@ void features_2d(const BoundarySurface& s, double angle, BoundaryFeatures& out) 
   for (PetscInt v = 0; v < nv; ++v) {
     const auto edges = in.of(v);
     corner[v] = edges.size() != 2 || s.facet_part[edges[0]] != s.facet_part[edges[1]] ||
-                turning_angle(surface_point(s, other_end(edges[0], v)), surface_point(s, v),
-                              surface_point(s, other_end(edges[1], v))) > angle;
+                (!parts.same_smooth(edges[0], edges[1]) &&
+                 turning_angle(surface_point(s, other_end(edges[0], v)), surface_point(s, v),
+                               surface_point(s, other_end(edges[1], v))) > angle);
   }
   UnionFind patches(s.num_facets());
   for (PetscInt v = 0; v < nv; ++v)
@@ -91,7 +104,8 @@ void features_2d(const BoundarySurface& s, double angle, BoundaryFeatures& out) 
   }
 }
 
-void features_3d(const BoundarySurface& s, double angle, BoundaryFeatures& out) {
+void features_3d(const BoundarySurface& s, double angle, const SmoothParts& parts,
+                 BoundaryFeatures& out) {
   const PetscInt nv = s.num_vertices();
   // Every facet's edges as (smaller vertex, larger vertex, facet, 1 if the facet runs from the
   // larger to the smaller), sorted so that the facets of an edge are neighbours.
@@ -129,7 +143,8 @@ void features_3d(const BoundarySurface& s, double angle, BoundaryFeatures& out) 
       const Point ny = x.reversed != y.reversed ? normal[y.facet] : Point(-normal[y.facet]);
       const double between =
           std::acos(std::clamp(normal[x.facet].dot(ny), -1.0, 1.0)) * 180.0 / M_PI;
-      ridge = s.facet_part[x.facet] != s.facet_part[y.facet] || between > angle;
+      ridge = s.facet_part[x.facet] != s.facet_part[y.facet] ||
+              (between > angle && !parts.same_smooth(x.facet, y.facet));
       if (!ridge) patches.join(x.facet, y.facet);
     }
     edges.push_back(
@@ -206,16 +221,18 @@ PetscInt BoundaryFeatures::count(VertexFeature k) const {
   return static_cast<PetscInt>(std::count(kind.begin(), kind.end(), k));
 }
 
-BoundaryFeatures find_features(const BoundarySurface& surface, double feature_angle_degrees) {
+BoundaryFeatures find_features(const BoundarySurface& surface, double feature_angle_degrees,
+                               std::span<const std::uint8_t> smooth_part) {
+  const SmoothParts parts{surface, smooth_part};
   BoundaryFeatures out;
   const PetscInt nv = surface.num_vertices();
   out.kind.assign(nv, VertexFeature::Corner);
   out.patch.assign(nv, -1);
   out.ridge.assign(nv, -1);
   if (surface.dim == 2)
-    features_2d(surface, feature_angle_degrees, out);
+    features_2d(surface, feature_angle_degrees, parts, out);
   else
-    features_3d(surface, feature_angle_degrees, out);
+    features_3d(surface, feature_angle_degrees, parts, out);
   out.patch_part.assign(out.num_patches, -1);
   for (PetscInt f = 0; f < surface.num_facets(); ++f)
     out.patch_part[out.facet_patch[f]] = surface.facet_part[f];

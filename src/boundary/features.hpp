@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <petscsys.h>
@@ -53,6 +54,11 @@ struct BoundaryFeatures {
   PetscInt count(VertexFeature k) const;
 };
 
-BoundaryFeatures find_features(const BoundarySurface& surface, double feature_angle_degrees);
+// `smooth_part` (per MeshView::parts entry, may be empty): 1 for a part on one smooth shape or
+// chart (circle, sphere, plane, ...). Such a part is one patch: its facets are never split by
+// the feature angle (the coarse facets of a sphere meet at large angles, but there is no ridge
+// between a surface and itself).
+BoundaryFeatures find_features(const BoundarySurface& surface, double feature_angle_degrees,
+                               std::span<const std::uint8_t> smooth_part = {});
 
 }  // namespace neomesh

@@ -1,7 +1,9 @@
 #include "boundary/shape.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <muParser.h>
@@ -120,6 +122,163 @@ class Line final : public Curve {
 
  private:
   Point point_, direction_;
+};
+
+// FEAT3's Bezier chart: the closest point of each segment by Newton's method on
+// f(t) = B'(t)·(B(t) − p) = 0, started at the best of kBezierSamples + 1 samples (a segment of
+// degree ≤ 5 bends too little for two local minima between neighbouring samples); segments
+// whose control polygon's box is farther than the best point so far are skipped.
+class BezierCurve final : public Surface {
+ public:
+  BezierCurve(std::vector<Point> controls, std::vector<int> starts) {
+    if (starts.size() < 2) fail("a Bezier curve needs at least two points");
+    for (std::size_t i = 0; i + 1 < starts.size(); ++i) {
+      const int n = starts[i + 1] - starts[i];
+      if (n < 1 || n > kMaxDegree || starts[i + 1] >= static_cast<int>(controls.size()))
+        fail("Bezier segment {} has degree {}; expected 1 to {}", i, n, kMaxDegree);
+      Segment s;
+      s.control.assign(controls.begin() + starts[i], controls.begin() + starts[i + 1] + 1);
+      s.lo = s.hi = s.control[0];
+      for (const Point& c : s.control) {
+        s.lo = s.lo.cwiseMin(c);
+        s.hi = s.hi.cwiseMax(c);
+      }
+      segments_.push_back(std::move(s));
+    }
+  }
+  Point closest_point(const Point& p) const override {
+    const Hit h = closest(p);
+    return value(segments_[h.segment], h.t, 0);
+  }
+  Point normal(const Point& q) const override {
+    const Point t = unit_tangent(closest(q));
+    return {t.y(), -t.x(), 0.0};
+  }
+  // For the normal (T_y, −T_x): dn/ds is dT/ds turned the same way, and S = (T · dn/ds) T Tᵀ.
+  Matrix3 shape_operator(const Point& q) const override {
+    const Hit h = closest(q);
+    const Segment& s = segments_[h.segment];
+    const Point d1 = value(s, h.t, 1), d2 = value(s, h.t, 2);
+    const double speed = d1.norm();
+    if (!(speed > 0)) return Matrix3::Zero();
+    const Point t = d1 / speed;
+    const Point bend = (d2 - d2.dot(t) * t) / (speed * speed);  // dT/ds
+    const double curvature = t.x() * bend.y() - t.y() * bend.x();
+    return curvature * t * t.transpose();
+  }
+  std::string describe() const override {
+    return fmt::format("Bezier curve of {} segments (exact)", segments_.size());
+  }
+
+ private:
+  static constexpr int kMaxDegree = 5;
+  static constexpr int kBezierSamples = 16;
+  static constexpr int kNewtonSteps = 50;
+  struct Segment {
+    std::vector<Point> control;
+    Point lo, hi;  // box of the control polygon, which holds the segment
+  };
+  struct Hit {
+    int segment = 0;
+    double t = 0.0;
+    double distance = std::numeric_limits<double>::infinity();
+  };
+
+  // The k-th derivative (k ≤ 2) of the segment at t, by de Casteljau on the differenced
+  // control points.
+  static Point value(const Segment& s, double t, int k) {
+    std::vector<Point> c = s.control;
+    for (int j = 0; j < k; ++j) {
+      const int n = static_cast<int>(c.size()) - 1;
+      if (n == 0) return Point::Zero();
+      for (int i = 0; i < n; ++i) c[i] = n * (c[i + 1] - c[i]);
+      c.pop_back();
+    }
+    for (std::size_t n = c.size(); n > 1; --n)
+      for (std::size_t i = 0; i + 1 < n; ++i) c[i] = (1 - t) * c[i] + t * c[i + 1];
+    return c[0];
+  }
+
+  Point unit_tangent(const Hit& h) const {
+    const Segment& s = segments_[h.segment];
+    Point d = value(s, h.t, 1);
+    if (!(d.norm() > 0)) d = s.control.back() - s.control.front();  // a cusp: the chord
+    return d.normalized();
+  }
+
+  static Hit closest_on(const Segment& s, const Point& p) {
+    Hit best;
+    for (int k = 0; k <= kBezierSamples; ++k) {
+      const double t = static_cast<double>(k) / kBezierSamples;
+      const double d = (value(s, t, 0) - p).norm();
+      if (d < best.distance) best.t = t, best.distance = d;
+    }
+    double t = best.t;
+    for (int it = 0; it < kNewtonSteps; ++it) {
+      const Point r = value(s, t, 0) - p, d1 = value(s, t, 1), d2 = value(s, t, 2);
+      const double f = d1.dot(r), df = d2.dot(r) + d1.dot(d1);
+      if (!(df > 0)) break;  // not near a minimum: keep the sample
+      const double next = std::clamp(t - f / df, 0.0, 1.0);
+      const bool done = std::abs(next - t) <= 1e-16;
+      t = next;
+      if (done) break;
+    }
+    const double d = (value(s, t, 0) - p).norm();
+    if (d <= best.distance) best.t = t, best.distance = d;
+    return best;
+  }
+
+  Hit closest(const Point& p) const {
+    Hit best;
+    for (int i = 0; i < static_cast<int>(segments_.size()); ++i) {
+      const Segment& s = segments_[i];
+      const Point gap = (s.lo - p).cwiseMax(p - s.hi).cwiseMax(0.0);
+      if (gap.norm() > best.distance) continue;
+      Hit h = closest_on(s, p);
+      if (h.distance < best.distance) {
+        h.segment = i;
+        best = h;
+      }
+    }
+    return best;
+  }
+
+  std::vector<Segment> segments_;
+};
+
+// A 2D curve swept along z: its closest point, normal and bending in the (x, y) plane, z kept;
+// all in the local frame, local = Rᵀ (world − offset) + origin.
+class Extrusion final : public Surface {
+ public:
+  Extrusion(std::unique_ptr<Surface> curve, const Matrix3& rotation, const Point& origin,
+            const Point& offset)
+      : curve_(std::move(curve)), rotation_(rotation), origin_(origin), offset_(offset) {}
+  Point closest_point(const Point& p) const override {
+    const Point local = to_local(p);
+    Point q = curve_->closest_point(flat(local));
+    q.z() = local.z();
+    return to_world(q);
+  }
+  Point normal(const Point& q) const override {
+    return rotation_ * flat(curve_->normal(flat(to_local(q))));
+  }
+  Matrix3 shape_operator(const Point& q) const override {
+    Matrix3 s = curve_->shape_operator(flat(to_local(q)));
+    s.row(2).setZero();
+    s.col(2).setZero();
+    return rotation_ * s * rotation_.transpose();
+  }
+  std::string describe() const override {
+    return fmt::format("{} extruded along z", curve_->describe());
+  }
+
+ private:
+  static Point flat(const Point& p) { return {p.x(), p.y(), 0.0}; }
+  Point to_local(const Point& p) const { return rotation_.transpose() * (p - offset_) + origin_; }
+  Point to_world(const Point& p) const { return rotation_ * (p - origin_) + offset_; }
+  std::unique_ptr<Surface> curve_;
+  Matrix3 rotation_;
+  Point origin_, offset_;
 };
 
 // Newton's method on the two surfaces' tangent planes: each step moves to the point of the
@@ -282,6 +441,13 @@ std::unique_ptr<Surface> make_cylinder(const Point& point, const Point& axis, do
 }
 std::unique_ptr<Surface> make_level_set(const std::string& expression, int dim) {
   return std::make_unique<LevelSet>(expression, dim);
+}
+std::unique_ptr<Surface> make_bezier(std::vector<Point> controls, std::vector<int> starts) {
+  return std::make_unique<BezierCurve>(std::move(controls), std::move(starts));
+}
+std::unique_ptr<Surface> make_extrusion(std::unique_ptr<Surface> curve, const Matrix3& rotation,
+                                        const Point& origin, const Point& offset) {
+  return std::make_unique<Extrusion>(std::move(curve), rotation, origin, offset);
 }
 std::unique_ptr<Curve> make_line(const Point& point, const Point& direction) {
   return std::make_unique<Line>(point, direction);

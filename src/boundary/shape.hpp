@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -82,6 +83,18 @@ std::unique_ptr<Surface> make_cylinder(const Point& point, const Point& axis, do
 // The zero level set of a muparser expression in x, y (and z); throws Error if it does not
 // parse or uses other variables.
 std::unique_ptr<Surface> make_level_set(const std::string& expression, int dim);
+
+// A composite Bezier curve in the plane (z = 0), FEAT3's Bezier chart: segment i has the
+// control points controls[starts[i]] .. controls[starts[i + 1]] (degree 1 to 5). Closest
+// points are exact (Newton's method on each segment, from the best of a few samples), not
+// those of a sampled polyline. Throws Error for fewer than two points or a degree above 5.
+std::unique_ptr<Surface> make_bezier(std::vector<Point> controls, std::vector<int> starts);
+// A 2D curve (circle, Bezier) extended along z, then placed by world = R (local − origin) +
+// offset (R a rotation): a surface in 3D (FEAT3's Extrude chart).
+std::unique_ptr<Surface> make_extrusion(std::unique_ptr<Surface> curve,
+                                        const Matrix3& rotation = Matrix3::Identity(),
+                                        const Point& origin = Point::Zero(),
+                                        const Point& offset = Point::Zero());
 
 // The straight line through `point` along `direction`.
 std::unique_ptr<Curve> make_line(const Point& point, const Point& direction);

@@ -49,8 +49,10 @@ void broadcast_vector(std::vector<T>& v, MPI_Datatype type, MPI_Comm comm) {
 
 nlohmann::json to_json(const Chart& c) {
   return {{"name", c.name},          {"kind", static_cast<int>(c.kind)},
+          {"extruded", c.extruded},  {"origin", c.origin},
+          {"offset", c.offset},      {"angles", c.angles},
           {"centre", c.centre},      {"radius", c.radius},
-          {"points", c.points},      {"closed", c.closed},
+          {"points", c.points},      {"vertices", c.vertices},
           {"triangles", c.triangles}};
 }
 
@@ -61,7 +63,11 @@ Chart chart_from_json(const nlohmann::json& j) {
   c.centre = j["centre"];
   c.radius = j["radius"];
   c.points = j["points"].get<std::vector<double>>();
-  c.closed = j["closed"];
+  c.extruded = j["extruded"];
+  c.origin = j["origin"];
+  c.offset = j["offset"];
+  c.angles = j["angles"];
+  c.vertices = j["vertices"].get<std::vector<std::int64_t>>();
   c.triangles = j["triangles"].get<std::vector<std::int64_t>>();
   return c;
 }

@@ -5,14 +5,17 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
+#include <span>
 #include <string_view>
 
 #include <petscsys.h>
 #include <pugixml.hpp>
 
 #include "core/error.hpp"
+#include "core/log.hpp"
 #include "mesh/input_file.hpp"
 
 namespace neomesh {
@@ -20,11 +23,10 @@ namespace neomesh {
 namespace {
 
 // FEAT3 chart types neomesh does not use: skipped (a part on one of them has no chart).
-constexpr std::string_view kSkippedCharts[] = {"Extrude", "Tube", "Spline", "Polyline",
-                                               "CGALSurfaceMesh"};
+constexpr std::string_view kSkippedCharts[] = {"Tube", "Spline", "Polyline", "CGALSurfaceMesh"};
 
-// A curved Bezier segment becomes this many straight pieces (its points lie on the curve).
-constexpr int kBezierPieces = 8;
+// FEAT3's Bezier segments have degree 5 at most.
+constexpr std::int64_t kMaxBezierDegree = 5;
 
 // Vertex indices must fit PetscInt (and were once silently wrapped at 2^32).
 constexpr std::int64_t kMaxIndex = PETSC_MAX_INT;
@@ -58,15 +60,51 @@ std::optional<T> number(std::string_view word) {
   return value;
 }
 
+// FEAT3's own XML parser splits a tag's attributes at their quotes, so it reads
+// `chart="inner"parent="root"` (no blank between two attributes), which pugixml refuses: such
+// a blank is put in. Comments, CDATA and text between tags are left alone; no newline is added,
+// so line numbers stay those of the file.
+void separate_attributes(InputText& text) {
+  std::size_t i = 0;
+  const auto skip_past = [&](std::string_view end) {
+    const std::size_t at = text.find(end.data(), i, end.size());
+    i = at == InputText::npos ? text.size() : at + end.size();
+  };
+  while ((i = text.find('<', i)) != InputText::npos) {
+    const std::string_view rest(text.data() + i, text.size() - i);
+    if (rest.starts_with("<!--")) {
+      skip_past("-->");
+      continue;
+    }
+    if (rest.starts_with("<![CDATA[")) {
+      skip_past("]]>");
+      continue;
+    }
+    for (++i; i < text.size() && text[i] != '>' && text[i] != '<'; ++i) {
+      const char quote = text[i];
+      if (quote != '"' && quote != '\'') continue;
+      const std::size_t close = text.find(quote, i + 1);
+      if (close == InputText::npos) return;  // pugixml reports it
+      i = close;
+      const char next = close + 1 < text.size() ? text[close + 1] : ' ';
+      if (std::isalpha(static_cast<unsigned char>(next)) || next == '_' || next == ':')
+        text.insert(close + 1, 1, ' ');
+    }
+  }
+}
+
 class FeatParser {
  public:
   explicit FeatParser(const std::filesystem::path& path)
       : file_(path.string()), text_(read_input_file(path)) {
+    separate_attributes(text_);
     for (std::size_t i = 0; i < text_.size(); ++i)
       if (text_[i] == '\n') newlines_.push_back(static_cast<std::ptrdiff_t>(i));
   }
 
-  MeshData parse() {
+  // The file's mesh (if it has one: a chart file has none), charts and parts; parts keep the
+  // name of their chart whether or not this file declares it (read_feat resolves them).
+  FeatFile parse() {
     const pugi::xml_parse_result result =
         doc_.load_buffer(text_.data(), text_.size(), pugi::parse_default, pugi::encoding_utf8);
     if (!result) {
@@ -83,11 +121,18 @@ class FeatParser {
       if (mesh) error(node, "a second <Mesh> block (neomesh reads one mesh per file)");
       mesh = node;
     }
-    if (!mesh) error_at(static_cast<std::ptrdiff_t>(text_.size()), "no <Mesh> block");
-    read_mesh(mesh);
+    FeatFile out;
+    out.path = file_;
+    out.has_mesh = static_cast<bool>(mesh);
+    if (mesh) read_mesh(mesh);
     for (pugi::xml_node chart : root.children("Chart")) read_chart(chart);
-    for (pugi::xml_node part : root.children("MeshPart")) read_part(part);
-    return std::move(data_);
+    if (mesh)
+      for (pugi::xml_node part : root.children("MeshPart")) read_part(part);
+    if (!mesh && data_.charts.empty() && skipped_charts_.empty())
+      error_at(static_cast<std::ptrdiff_t>(text_.size()), "no <Mesh> block and no <Chart>");
+    out.data = std::move(data_);
+    out.skipped_charts = std::move(skipped_charts_);
+    return out;
   }
 
  private:
@@ -267,13 +312,32 @@ class FeatParser {
     chart.name = attribute(node, "name");
     if (!chart_names_.insert(chart.name).second)
       error(node, "a second chart named '{}'", shown(chart.name));
-    const pugi::xml_node shape =
-        node.find_child([](pugi::xml_node n) { return n.type() == pugi::node_element; });
+    pugi::xml_node shape = first_element(node);
     if (!shape) error(node, "<Chart name=\"{}\"> has no shape inside", shown(chart.name));
+    if (std::string_view(shape.name()) == "Extrude") {
+      // FEAT3 extrudes a 2D Circle, Bezier or Polyline along z.
+      chart.extruded = true;
+      const auto placement = [&](const char* key, std::size_t n, std::array<double, 3>& out) {
+        if (!shape.attribute(key)) return;
+        const auto v = reals(shape, key, n);
+        std::copy(v.begin(), v.end(), out.begin());
+      };
+      placement("origin", 2, chart.origin);
+      placement("offset", 3, chart.offset);
+      placement("angles", 3, chart.angles);
+      shape = first_element(shape);
+      if (!shape) error(node, "<Chart name=\"{}\"> has an empty <Extrude>", shown(chart.name));
+      const std::string_view inner = shape.name();
+      if (inner != "Circle" && inner != "Bezier" && inner != "Polyline")
+        error(shape, "chart '{}' extrudes a <{}>; FEAT3 extrudes Circle, Bezier or Polyline",
+              shown(chart.name), shown(inner));
+    }
     const std::string_view type = shape.name();
     if (std::find(std::begin(kSkippedCharts), std::end(kSkippedCharts), type) !=
-        std::end(kSkippedCharts))
+        std::end(kSkippedCharts)) {
+      skipped_charts_.push_back(chart.name);
       return;
+    }
     if (type == "Circle" || type == "Sphere") {
       const std::size_t dim = type == "Circle" ? 2 : 3;
       chart.kind = type == "Circle" ? Chart::Kind::Circle : Chart::Kind::Sphere;
@@ -298,78 +362,57 @@ class FeatParser {
               chart.triangles.size() / 3);
     } else {
       error(shape,
-            "chart '{}' is a <{}>; neomesh reads Circle, Sphere, Bezier and SurfaceMesh charts",
+            "chart '{}' is a <{}>; neomesh reads Circle, Sphere, Bezier, SurfaceMesh and Extrude "
+            "charts",
             shown(chart.name), shown(type));
     }
     data_.charts.push_back(std::move(chart));
-    usable_charts_.insert(data_.charts.back().name);
   }
 
-  // <Points> lines "k x y" followed by k inner control points (x y each): the curve passes
-  // through the first point of each line; a line's segment to the next line's point is a
-  // Bezier curve of degree k + 1, sampled into kBezierPieces straight pieces when curved.
+  static pugi::xml_node first_element(pugi::xml_node parent) {
+    return parent.find_child([](pugi::xml_node n) { return n.type() == pugi::node_element; });
+  }
+
+  // <Points> lines "k c1x c1y ... ckx cky x y" (FEAT3's BezierPointsParser): the segment from
+  // the previous line's vertex to this line's vertex (x, y) is a Bezier curve with the k inner
+  // control points before it (degree k + 1); the first line is "0 x y". A closed curve's file
+  // repeats its first vertex at the end, so the segments are those between consecutive lines.
   void read_bezier(pugi::xml_node shape, Chart& chart) {
-    chart.kind = Chart::Kind::Polyline;
+    chart.kind = Chart::Kind::Bezier;
     if (number<int>(attribute(shape, "dim")) != 2)
       error(shape, "<Bezier dim=\"...\"> must be 2 (a curve in the plane)");
     const std::string_view type = shape.attribute("type").value();
     if (type != "" && type != "open" && type != "closed")
       error(shape, "<Bezier type=\"{}\">: expected open or closed", shown(type));
-    chart.closed = type == "closed";
     const std::int64_t size = count_attribute(shape, "size");
     const pugi::xml_node points = child(shape, "Points");
-    std::vector<std::vector<double>> segments;  // per line: its point, then its controls
     for_each_line(points, 0, [&](int line, const std::vector<std::string_view>& w) {
-      const auto degree = number<std::int64_t>(w[0]);
-      if (!degree || *degree < 0 || w.size() != 3 + 2 * static_cast<std::size_t>(*degree))
-        error_line(line, "a <Points> line of a Bezier chart is 'k x y' and k more points");
-      std::vector<double> values;
+      const auto inner = number<std::int64_t>(w[0]);
+      const bool first = chart.vertices.empty();
+      if (!inner || *inner < 0 || *inner >= kMaxBezierDegree || (first && *inner != 0) ||
+          w.size() != 3 + 2 * static_cast<std::size_t>(*inner))
+        error_line(line,
+                   "a <Points> line of a Bezier chart is 'k', k control points and the vertex "
+                   "'x y' (k < {}; 0 on the first line)",
+                   kMaxBezierDegree);
       for (std::size_t i = 1; i < w.size(); ++i) {
         const auto value = number<double>(w[i]);
         if (!value || !std::isfinite(*value))
           error_line(line, "'{}' in <Points> is not a finite number", shown(w[i]));
-        values.push_back(*value);
+        chart.points.push_back(*value);
       }
-      segments.push_back(std::move(values));
+      chart.vertices.push_back(static_cast<std::int64_t>(chart.points.size() / 2) - 1);
     });
-    if (static_cast<std::int64_t>(segments.size()) != size || size < 2)
+    if (static_cast<std::int64_t>(chart.vertices.size()) != size || size < 2)
       error(points, "<Bezier size=\"{}\"> has {} points (at least 2 needed)", size,
-            segments.size());
-    for (std::size_t s = 0; s < segments.size(); ++s) {
-      const std::vector<double>& p = segments[s];
-      chart.points.insert(chart.points.end(), p.begin(), p.begin() + 2);
-      if (p.size() == 2 || s + 1 == segments.size()) continue;
-      std::vector<double> control(p);  // de Casteljau on point, controls, next point
-      control.insert(control.end(), segments[s + 1].begin(), segments[s + 1].begin() + 2);
-      for (int piece = 1; piece < kBezierPieces; ++piece)
-        append_bezier_point(control, static_cast<double>(piece) / kBezierPieces, chart.points);
-    }
-    // A closed curve's file repeats its first point at the end.
-    const std::size_t n = chart.points.size();
-    if (chart.closed && n >= 4 && chart.points[n - 2] == chart.points[0] &&
-        chart.points[n - 1] == chart.points[1])
-      chart.points.resize(n - 2);
-  }
-
-  static void append_bezier_point(std::vector<double> control, double t, std::vector<double>& out) {
-    for (std::size_t n = control.size() / 2; n > 1; --n)
-      for (std::size_t i = 0; i + 1 < n; ++i)
-        for (int d = 0; d < 2; ++d)
-          control[2 * i + d] = (1 - t) * control[2 * i + d] + t * control[2 * (i + 1) + d];
-    out.push_back(control[0]);
-    out.push_back(control[1]);
+            chart.vertices.size());
   }
 
   void read_part(pugi::xml_node part) {
     VertexSet set;
     set.name = attribute(part, "name");
     set.tag = static_cast<int>(data_.boundary_parts.size()) + 1;
-    if (const pugi::xml_attribute chart = part.attribute("chart")) {
-      if (!chart_names_.count(chart.value()))
-        error(part, "<MeshPart name=\"{}\"> lies on chart '{}', which the file does not declare",
-              shown(set.name), shown(chart.value()));
-      if (usable_charts_.count(chart.value())) set.chart = chart.value();
-    }
+    set.chart = part.attribute("chart").value();  // "" (or no attribute): on no chart
     for (pugi::xml_node mapping : part.children("Mapping"))
       if (number<int>(attribute(mapping, "dim")) == 0)
         set.vertices = read_indices(mapping, 1, data_.num_vertices(), "vertex");
@@ -380,14 +423,65 @@ class FeatParser {
   InputText text_;
   std::vector<std::ptrdiff_t> newlines_;  // byte offsets of the file's '\n's
   pugi::xml_document doc_;
-  std::set<std::string, std::less<>> chart_names_, usable_charts_;
+  std::set<std::string, std::less<>> chart_names_;
+  std::vector<std::string> skipped_charts_;
   MeshData data_;
 };
 
+std::string list(std::span<const std::filesystem::path> paths) {
+  std::string out;
+  for (const auto& p : paths) out += (out.empty() ? "" : ", ") + p.string();
+  return out;
+}
+
 }  // namespace
 
-MeshData read_feat(const std::filesystem::path& path) {
+FeatFile read_feat_file(const std::filesystem::path& path) {
   return FeatParser(path).parse();
+}
+
+MeshData read_feat(std::span<const std::filesystem::path> paths) {
+  std::vector<FeatFile> files;
+  for (const auto& path : paths) files.push_back(read_feat_file(path));
+  const FeatFile* mesh = nullptr;
+  for (const FeatFile& f : files)
+    if (f.has_mesh) {
+      if (mesh)
+        fail("{} and {} both hold a <Mesh>; give one mesh file and its chart files", mesh->path,
+             f.path);
+      mesh = &f;
+    }
+  if (!mesh)
+    fail("{}: no <Mesh> block in {}", list(paths),
+         paths.size() > 1 ? "any of these files" : "the file");
+  MeshData data = mesh->data;
+  // The charts of all files, once each; a part's chart in none of them means no chart.
+  std::map<std::string, std::string, std::less<>> defined_in;  // chart name → file
+  data.charts.clear();
+  for (const FeatFile& f : files) {
+    std::vector<std::string> names = f.skipped_charts;
+    for (const Chart& c : f.data.charts) names.push_back(c.name);
+    for (const std::string& name : names)
+      if (const auto [it, added] = defined_in.emplace(name, f.path); !added)
+        fail("{}: chart '{}' is defined in {} too; give each chart once", f.path, name, it->second);
+    data.charts.insert(data.charts.end(), f.data.charts.begin(), f.data.charts.end());
+  }
+  for (VertexSet& part : data.boundary_parts) {
+    if (part.chart.empty()) continue;
+    const bool usable = std::any_of(data.charts.begin(), data.charts.end(),
+                                    [&](const Chart& c) { return c.name == part.chart; });
+    if (!usable && !defined_in.count(part.chart))
+      say("notice: {}: part '{}' lies on chart '{}', which {} does not define; it is read as a "
+          "part without chart\n",
+          mesh->path, part.name, part.chart,
+          paths.size() > 1 ? "none of the given files" : "the file");
+    if (!usable) part.chart.clear();
+  }
+  return data;
+}
+
+MeshData read_feat(const std::filesystem::path& path) {
+  return read_feat(std::span<const std::filesystem::path>(&path, 1));
 }
 
 }  // namespace neomesh

@@ -269,6 +269,24 @@ PlexMesh PlexMesh::load(const std::filesystem::path& path, MPI_Comm comm, Invert
   return create(comm, input, path.string(), inverted);
 }
 
+PlexMesh PlexMesh::load(const std::vector<std::filesystem::path>& paths, MPI_Comm comm,
+                        InvertedCells inverted) {
+  if (paths.size() == 1) return load(paths[0], comm, inverted);
+  InputMesh input;
+  std::string source;
+  for (const auto& path : paths) source += (source.empty() ? "" : " + ") + path.string();
+  on_root(comm, [&] {
+    for (const auto& path : paths) {
+      check_input_file(path);
+      if (path.extension() != ".xml")
+        fail("{}: only FEAT3 .xml meshes are read together with other files (chart files)",
+             path.string());
+    }
+    input = input_from_data(read_feat(paths));
+  });
+  return create(comm, input, source, inverted);
+}
+
 PlexMesh PlexMesh::from_data(const MeshData& data, const std::string& source, MPI_Comm comm,
                              InvertedCells inverted) {
   InputMesh input = mpi_rank(comm) == 0 ? input_from_data(data) : InputMesh{};

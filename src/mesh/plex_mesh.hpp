@@ -29,6 +29,10 @@ class PlexMesh {
   // validate.hpp): throws Error naming the file (and cell) for anything neomesh cannot use.
   static PlexMesh load(const std::filesystem::path& path, MPI_Comm comm = PETSC_COMM_WORLD,
                        InvertedCells inverted = InvertedCells::Refuse);
+  // A FEAT3 mesh file with its chart files, in any order (one path: as above).
+  static PlexMesh load(const std::vector<std::filesystem::path>& paths,
+                       MPI_Comm comm = PETSC_COMM_WORLD,
+                       InvertedCells inverted = InvertedCells::Refuse);
   // Builds a mesh from arrays given on rank 0 (other ranks pass an empty MeshData).
   static PlexMesh from_data(const MeshData& data, const std::string& source,
                             MPI_Comm comm = PETSC_COMM_WORLD,
