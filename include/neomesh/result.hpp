@@ -87,6 +87,9 @@ struct UntanglingSummary {
   std::vector<IterationRecord> history;              // its iterations (rows with a round)
   int rounds = 0;
   double seconds = 0.0;
+  // Untangling with the boundary sliding stalled, so the input's boundary was kept fixed while
+  // untangling (and then slides in the smoothing).
+  bool boundary_fixed = false;
 };
 
 // The quality guard of smoothing: vertices pulled back toward the input so that no cell is

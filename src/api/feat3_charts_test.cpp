@@ -39,8 +39,11 @@ TEST(Feat3Charts, SmoothMovesAVertexOffItsCircleOntoIt) {
   EXPECT_NEAR(result.problem.boundary.max_move_onto_charts, 0.02, 1e-15);
   const std::vector<double> x = mesh.coordinates();
   const std::vector<std::int64_t> numbers = mesh.vertex_numbers();
-  for (std::size_t i = 0; i < numbers.size(); ++i)
-    if (numbers[i] < 4) EXPECT_NEAR(std::hypot(x[2 * i], x[2 * i + 1]), 1.0, 1e-12) << numbers[i];
+  for (std::size_t i = 0; i < numbers.size(); ++i) {
+    if (numbers[i] < 4) {
+      EXPECT_NEAR(std::hypot(x[2 * i], x[2 * i + 1]), 1.0, 1e-12) << numbers[i];
+    }
+  }
   EXPECT_EQ(result.quality_after.inverted, 0);
 }
 
@@ -49,8 +52,11 @@ TEST(Feat3Charts, ReadingAloneLeavesTheVertexWhereItIs) {
   const Mesh mesh = Mesh::read(kCircleFiles, MPI_COMM_WORLD);
   const std::vector<double> x = mesh.coordinates();
   const std::vector<std::int64_t> numbers = mesh.vertex_numbers();
-  for (std::size_t i = 0; i < numbers.size(); ++i)
-    if (numbers[i] == 1) EXPECT_EQ(x[2 * i + 1], 1.02);
+  for (std::size_t i = 0; i < numbers.size(); ++i) {
+    if (numbers[i] == 1) {
+      EXPECT_EQ(x[2 * i + 1], 1.02);
+    }
+  }
 }
 
 TEST(Feat3Charts, AChartFarFromItsPartIsRefusedWithTheDistance) {

@@ -173,8 +173,11 @@ Observer OptimizationRun::observer(const RunSettings& settings, bool progress_on
           },
       .untangled =
           [](const UntanglingSummary& u) {
-            say("untangled {} cells in {} iterations ({:.2f} s)\n", u.inverted_before,
-                u.history.size(), u.seconds);
+            say("untangled {} cells in {} iterations ({:.2f} s){}\n", u.inverted_before,
+                u.history.size(), u.seconds,
+                u.boundary_fixed ? "; with the boundary sliding it stalled, so the boundary "
+                                   "was kept fixed while untangling"
+                                 : "");
           },
       .iteration =
           [table, progress_only](const IterationRecord& rec) {

@@ -54,6 +54,7 @@ nlohmann::json to_json(const UntanglingSummary& result) {
           {"iterations", result.history.size()},
           {"rounds", result.rounds},
           {"seconds", result.seconds},
+          {"boundary_fixed", result.boundary_fixed},
           {"history", history}};
 }
 

@@ -29,9 +29,11 @@ std::vector<double> scaled_jacobians(const MeshView& view, const DofMap& dofs, V
 }  // namespace
 
 QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs, Vec input, Vec x,
-                                       const std::function<void(Vec)>& project) {
+                                       const std::function<void(Vec)>& project,
+                                       std::optional<double> threshold) {
   QualityGuardResult result;
-  result.input_min = global_min(scaled_jacobians(view, dofs, input), dofs.comm());
+  result.input_min =
+      threshold ? *threshold : global_min(scaled_jacobians(view, dofs, input), dofs.comm());
   OwnedVec optimum;  // x as the method left it
   NM_PETSC(VecDuplicate(x, optimum.out()));
   NM_PETSC(VecCopy(x, optimum));

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 
 #include <neomesh/result.hpp>
 
@@ -21,8 +22,10 @@ namespace neomesh {
 
 // `input` and `x` are global coordinate Vecs laid out by `dofs`; x is changed in place, and
 // `project` (if given) puts sliding boundary vertices back onto the boundary after each round.
-// Collective.
+// `threshold`: the worst scaled Jacobian no cell may fall below, if not the input's (the file's
+// own, when `input` has vertices placed on their charts). Collective.
 QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs, Vec input, Vec x,
-                                       const std::function<void(Vec)>& project = {});
+                                       const std::function<void(Vec)>& project = {},
+                                       std::optional<double> threshold = {});
 
 }  // namespace neomesh
