@@ -89,6 +89,10 @@ struct SolverOptions {
   RejectedDirection rejected_direction = RejectedDirection::Blend;  // the thesis: Antigradient
   int kmin = 2;  // initial antigradient steps (thesis §5.5 recommends 2)
   int max_iterations = 200;
+  // Wall-clock seconds for a whole smooth() or adapt() call; 0: no limit. When it runs out the
+  // call ends with the mesh as it is (every iterate is valid, and better than the last), the
+  // stop reason says so; a mesh still tangled then is an error.
+  double time_limit = 0.0;
   double defect_atol = 1e-10;  // stop when ‖g‖ ≤ defect_atol
   double defect_rtol = 1e-10;  // ... or ‖g‖ ≤ defect_rtol · ‖g_0‖
   // Practical criterion (docs/method.md §6): stop when the relative energy decrease is below

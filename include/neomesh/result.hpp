@@ -47,6 +47,7 @@ enum class StopReason {
   Practical,       // energy and vertices stopped changing
   MaxIterations,
   LineSearchFailed,  // no step size in max_halvings halvings gave a finite, decreasing F
+  TimeLimit,         // SolverOptions::time_limit ran out
 };
 // "Newton defect below the absolute tolerance", ...
 std::string describe(StopReason reason);

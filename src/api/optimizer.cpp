@@ -126,6 +126,11 @@ std::optional<UntanglingSummary> Optimizer::Impl::untangle(const QuasiNewtonOpti
     u.seconds += retry.seconds;
     boundary_fixed = true;
   }
+  if (u.after.count > 0 && past_deadline(method.deadline, mesh.comm()))
+    fail(
+        "{}: the time limit ran out while untangling ({} of {} inverted cells are still "
+        "inverted after {} iterations); a longer --time-limit may help",
+        mesh.name(), u.after.count, u.before.count, u.history.size());
   if (u.after.count > 0)
     fail(
         "{}: the mesh cannot be untangled with its boundary as it is: {} of {} inverted cells "
@@ -157,6 +162,7 @@ ProblemSummary Optimizer::Impl::problem(const SolverOptions& solver) const {
 QuasiNewtonOptions Optimizer::Impl::method(const SolverOptions& solver) const {
   QuasiNewtonOptions o{solver};
   o.energy_roundoff = energy_roundoff(*energy, view().dim, mesh_volume);
+  if (solver.time_limit > 0) o.deadline = started + solver.time_limit;
   return o;
 }
 
@@ -269,7 +275,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   NM_PETSC(VecCopy(r.x, input));
   if (options.untangle) result.untangling = r.untangle(method, observer);
   QuasiNewtonResult run = minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
-  if (options.quality_guard)
+  if (options.quality_guard && run.reason != StopReason::TimeLimit)
     result.corner_phase = lift_flat_corners(*r.functional, r.view(), r.dofs(), r.x, method,
                                             r.cell_size, run, observer.iteration);
   copy_run(run, result);

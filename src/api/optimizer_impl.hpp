@@ -40,6 +40,7 @@ struct Optimizer::Impl {
   template <typename Options>
   Result start(const Options& options) {
     options.validate();
+    started = MPI_Wtime();
     Result result;
     result.quality_before = input_quality(options.untangle);
     start(options.energy, options.boundary);
@@ -77,6 +78,7 @@ struct Optimizer::Impl {
   void finish(Result& result);
 
   Mesh& mesh;
+  double started = 0.0;      // MPI_Wtime() at the call's start, for the time limit
   OwnedVec x;                // set by start()
   double mesh_volume = 0.0;  // of the mesh when the functional was built
   std::optional<EnergyOptions> energy;

@@ -48,6 +48,7 @@ void SolverOptions::validate() const {
   require(eta > 0 && eta < 1, "solver.eta", eta, "in (0, 1)");
   require(kmin >= 0, "solver.kmin", kmin, "0 or more");
   require(max_iterations >= 1, "solver.max_iterations", max_iterations, "at least 1");
+  require(time_limit >= 0, "solver.time_limit", time_limit, "0 (none) or more seconds");
   require(defect_atol >= 0, "solver.defect_atol", defect_atol, "0 or more");
   require(defect_rtol >= 0, "solver.defect_rtol", defect_rtol, "0 or more");
   require(energy_rtol >= 0, "solver.energy_rtol", energy_rtol, "0 or more");

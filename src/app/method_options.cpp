@@ -63,6 +63,10 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
   cmd.add_option("--max-iter", o.solver.max_iterations, "maximum number of iterations")
       ->capture_default_str()
       ->group(method);
+  cmd.add_option("--time-limit", o.solver.time_limit,
+                 "end the run after this many seconds with the best mesh so far (0: no limit)")
+      ->capture_default_str()
+      ->group(method);
   cmd.add_option("--tol", o.solver.defect_atol, "stop when the Newton defect ‖g‖ is below this")
       ->capture_default_str()
       ->group(method);
@@ -180,6 +184,7 @@ std::string cli_message(const std::string& message) {
       {"solver.eta", "--eta"},
       {"solver.kmin", "--kmin"},
       {"solver.max_iterations", "--max-iter"},
+      {"solver.time_limit", "--time-limit"},
       {"solver.defect_atol", "--tol"},
       {"solver.defect_rtol", "--rtol"},
       {"solver.energy_rtol", "--energy-rtol"},

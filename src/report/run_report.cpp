@@ -75,6 +75,7 @@ nlohmann::json to_json(const SolverOptions& o) {
       {"eta", o.eta},
       {"kmin", o.kmin},
       {"max_iterations", o.max_iterations},
+      {"time_limit", o.time_limit},
       {"defect_atol", o.defect_atol},
       {"defect_rtol", o.defect_rtol},
       {"practical", o.practical},

@@ -54,8 +54,17 @@ std::string describe(StopReason reason) {
       return "maximum number of iterations reached";
     case StopReason::LineSearchFailed:
       return "line search failed: no step along the direction decreases the energy";
+    case StopReason::TimeLimit:
+      return "time limit reached: the mesh is the best one so far";
   }
   return "?";
+}
+
+bool past_deadline(double deadline, MPI_Comm comm) {
+  if (!std::isfinite(deadline)) return false;
+  int past = MPI_Wtime() > deadline;  // the first rank's clock decides, for all
+  MPI_Bcast(&past, 1, MPI_INT, 0, comm);
+  return past != 0;
 }
 
 double energy_roundoff(const EnergyOptions& energy, int dim, double mesh_volume) {
@@ -335,6 +344,7 @@ struct QuasiNewton::Impl {
     if (defect <= options.defect_atol) return StopReason::DefectAbsolute;
     if (defect <= options.defect_rtol * initial_defect) return StopReason::DefectRelative;
     if (k >= options.max_iterations) return StopReason::MaxIterations;
+    if (past_deadline(options.deadline, functional.dofs().comm())) return StopReason::TimeLimit;
     return std::nullopt;
   }
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,7 +27,13 @@ struct QuasiNewtonOptions : SolverOptions {
   // below it, the Armijo test is decided by noise, so the step is taken as it is. About
   // 1e-15 (λ+μ) d |Ω|; see energy_roundoff().
   double energy_roundoff = 0.0;
+  // MPI_Wtime() after which no step starts (SolverOptions::time_limit from the call's start).
+  double deadline = std::numeric_limits<double>::infinity();
 };
+
+// Whether MPI_Wtime() is past `deadline` (never for +∞), by the first rank's clock. Collective
+// unless the deadline is +∞.
+bool past_deadline(double deadline, MPI_Comm comm);
 
 // 1e-15 (λ + μ) d |Ω|: the round-off level of F for a mesh of volume |Ω| in `dim` dimensions.
 double energy_roundoff(const EnergyOptions& energy, int dim, double mesh_volume);

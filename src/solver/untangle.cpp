@@ -40,13 +40,14 @@ UntangleResult untangle(Functional& functional, Vec x, const QuasiNewtonOptions&
   QuasiNewtonOptions method = options;
   method.max_iterations = untangle_options.max_rounds * untangle_options.steps_per_round + 1;
   method.practical = false;
-  double epsilon = std::max(
-      {untangle_options.initial_epsilon * std::abs(result.before.min_det), below, 1e-6});
+  double epsilon =
+      std::max({untangle_options.initial_epsilon * std::abs(result.before.min_det), below, 1e-6});
   functional.set_untangling(epsilon);
   QuasiNewton solver(functional, method, cell_size);
   Inversion best = result.before;
   int stalled = 0;
   for (int round = 1; round <= untangle_options.max_rounds; ++round) {
+    if (past_deadline(options.deadline, functional.dofs().comm())) break;
     result.rounds = round;
     solver.restart(x);
     const double energy_before = solver.energy();

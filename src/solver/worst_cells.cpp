@@ -37,8 +37,9 @@ std::optional<CornerPhaseSummary> lift_flat_corners(
   OwnedVec start;
   NM_PETSC(VecDuplicate(x, start.out()));
   NM_PETSC(VecCopy(x, start));
-  const UntangleResult lifted =
-      untangle(functional, x, options, cell_size, {.max_rounds = kLiftRounds, .stalled_rounds = 3, .tangled_below = kLiftedDet}, observe);
+  const UntangleResult lifted = untangle(
+      functional, x, options, cell_size,
+      {.max_rounds = kLiftRounds, .stalled_rounds = 3, .tangled_below = kLiftedDet}, observe);
   run.history.insert(run.history.end(), lifted.history.begin(), lifted.history.end());
   // The regularized energy is finite on inverted cells too: if it stalled with one, the phase
   // gives up and keeps the thesis' optimum.
