@@ -1,6 +1,13 @@
 #include "mesh/plex_builder.hpp"
 
+#include <metis.h>
 #include <petscpartitioner.h>
+
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "core/error.hpp"
 
 #include "mesh/cell_order.hpp"
 
@@ -59,34 +66,75 @@ OwnedDM build_plex(MPI_Comm comm, const InputMesh& mesh) {
   return dm;
 }
 
+namespace {
+
+// Rank 0's cells by part (METIS k-way, fixed seed), and the part sizes; empty elsewhere.
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> metis_parts(const CellGraph& graph,
+                                                                    int parts) {
+  const idx_t nc = static_cast<idx_t>(graph.offsets.size()) - 1;
+  std::vector<PetscInt> sizes(parts, 0), points;
+  if (nc == 0) return {points, sizes};
+  std::vector<idx_t> part(nc, 0);
+  if (parts > 1 && nc > parts) {
+    std::vector<idx_t> xadj(graph.offsets.begin(), graph.offsets.end());
+    std::vector<idx_t> adjncy(graph.neighbours.begin(), graph.neighbours.end());
+    idx_t options[METIS_NOPTIONS], constraints = 1, nparts = parts, cut = 0;
+    METIS_SetDefaultOptions(options);
+    options[METIS_OPTION_SEED] = 1;
+    idx_t vertices = nc;
+    if (METIS_PartGraphKway(&vertices, &constraints, xadj.data(), adjncy.data(), nullptr, nullptr,
+                            nullptr, &nparts, nullptr, nullptr, options, &cut,
+                            part.data()) != METIS_OK)
+      fail("METIS could not partition the {} cells into {} parts", nc, parts);
+  } else {
+    for (idx_t c = 0; c < nc; ++c) part[c] = static_cast<idx_t>(c * parts / nc);
+  }
+  for (idx_t c = 0; c < nc; ++c) ++sizes[part[c]];
+  std::vector<PetscInt> at(parts + 1, 0);
+  for (int p = 0; p < parts; ++p) at[p + 1] = at[p] + sizes[p];
+  points.resize(nc);
+  for (idx_t c = 0; c < nc; ++c) points[at[part[c]]++] = c;
+  return {points, sizes};
+}
+
+}  // namespace
+
 void set_partition(DM dm, CellGraph& graph) {
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
   const int size = mpi_size(comm);
-  const PetscInt nc = static_cast<PetscInt>(graph.offsets.size()) - 1;
-  PetscPartitioner partitioner;
-  NM_PETSC(DMPlexGetPartitioner(dm, &partitioner));
-  NM_PETSC(PetscPartitionerSetFromOptions(partitioner));
-  // Unit cell weights, as DMPlexDistribute passes them.
-  OwnedSection weights, part_sizes;
-  NM_PETSC(PetscSectionCreate(PETSC_COMM_SELF, weights.out()));
-  NM_PETSC(PetscSectionSetChart(weights, 0, nc));
-  for (PetscInt c = 0; c < nc; ++c) NM_PETSC(PetscSectionSetDof(weights, c, 1));
-  NM_PETSC(PetscSectionSetUp(weights));
-  NM_PETSC(PetscSectionCreate(comm, part_sizes.out()));
-  OwnedIS cells;  // by part
-  NM_PETSC(PetscPartitionerPartition(partitioner, size, nc, graph.offsets.data(),
-                                     graph.neighbours.data(), weights, nullptr, part_sizes,
-                                     cells.out()));
-
-  std::vector<PetscInt> sizes(size);
-  for (int r = 0; r < size; ++r) NM_PETSC(PetscSectionGetDof(part_sizes, r, &sizes[r]));
-  const PetscInt* points;
-  NM_PETSC(ISGetIndices(cells, &points));
+  PetscBool named = PETSC_FALSE;
+  NM_PETSC(PetscOptionsHasName(nullptr, nullptr, "-petscpartitioner_type", &named));
+  std::vector<PetscInt> sizes(size), points;
+  if (named) {
+    PetscPartitioner partitioner;
+    NM_PETSC(DMPlexGetPartitioner(dm, &partitioner));
+    NM_PETSC(PetscPartitionerSetFromOptions(partitioner));
+    const PetscInt nc = static_cast<PetscInt>(graph.offsets.size()) - 1;
+    // Unit cell weights, as DMPlexDistribute passes them.
+    OwnedSection weights, part_sizes;
+    NM_PETSC(PetscSectionCreate(PETSC_COMM_SELF, weights.out()));
+    NM_PETSC(PetscSectionSetChart(weights, 0, nc));
+    for (PetscInt c = 0; c < nc; ++c) NM_PETSC(PetscSectionSetDof(weights, c, 1));
+    NM_PETSC(PetscSectionSetUp(weights));
+    NM_PETSC(PetscSectionCreate(comm, part_sizes.out()));
+    OwnedIS cells;  // by part
+    NM_PETSC(PetscPartitionerPartition(partitioner, size, nc, graph.offsets.data(),
+                                       graph.neighbours.data(), weights, nullptr, part_sizes,
+                                       cells.out()));
+    for (int r = 0; r < size; ++r) NM_PETSC(PetscSectionGetDof(part_sizes, r, &sizes[r]));
+    const PetscInt* by_part;
+    PetscInt n = 0;
+    NM_PETSC(ISGetLocalSize(cells, &n));
+    NM_PETSC(ISGetIndices(cells, &by_part));
+    points.assign(by_part, by_part + n);
+    NM_PETSC(ISRestoreIndices(cells, &by_part));
+  } else {
+    std::tie(points, sizes) = metis_parts(graph, size);
+  }
   PetscOwner<PetscPartitioner, PetscPartitionerDestroy> shell;
   NM_PETSC(PetscPartitionerCreate(comm, shell.out()));
   NM_PETSC(PetscPartitionerSetType(shell, PETSCPARTITIONERSHELL));
-  NM_PETSC(PetscPartitionerShellSetPartition(shell, size, sizes.data(), points));
-  NM_PETSC(ISRestoreIndices(cells, &points));
+  NM_PETSC(PetscPartitionerShellSetPartition(shell, size, sizes.data(), points.data()));
   NM_PETSC(DMPlexSetPartitioner(dm, shell));
 }
 

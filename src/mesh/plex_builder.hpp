@@ -14,9 +14,12 @@ namespace neomesh {
 // Collective; `mesh` is read on rank 0 only.
 OwnedDM build_plex(MPI_Comm comm, const InputMesh& mesh);
 
-// Collective: makes DMPlexDistribute split `dm` as PETSc's partitioner splits `graph` (rank 0's
-// cells, empty elsewhere). On a mesh without faces PETSc would build another graph and
-// partition differently; this one is the graph of the interpolated mesh.
+// Collective: makes DMPlexDistribute split `dm` as METIS splits `graph` (rank 0's cells, empty
+// elsewhere), the same way in every run: PT-Scotch, PETSc's default here, seeds its random
+// generator anew each time, so two runs on the same ranks got different partitions and, through
+// the AMG hierarchies, results that differed beyond round-off. A partitioner the user names
+// (-petscpartitioner_type) is used instead. On a mesh without faces PETSc would build another
+// graph; this one is the graph of the interpolated mesh.
 void set_partition(DM dm, CellGraph& graph);
 
 }  // namespace neomesh
