@@ -50,16 +50,24 @@ PeakMemory peak_memory(MPI_Comm comm) {
   return m;
 }
 
+// Below this many vertices × dim² per rank a second OpenMP thread gains nothing (quads 100²,
+// tets 12³, the DFG channel's 5,878 quads under adapt: the same time or slower), above it it
+// does (quads 170²: 12% faster, hexahedra 20³: 20%); docs/benchmarks.md, "Threads".
+constexpr double kThreadedWork = 6e4;
+
 // Unless OMP_NUM_THREADS says otherwise, the ranks on a node share its cores: P ranks times
-// T threads must not oversubscribe them (each rank would start one thread per core).
-void share_cores(MPI_Comm comm) {
+// T threads must not oversubscribe them (each rank would start one thread per core). A mesh
+// too small for threads to pay runs on one per rank.
+void share_cores(const Mesh& mesh) {
   if (std::getenv("OMP_NUM_THREADS")) return;
   MPI_Comm node = MPI_COMM_NULL;
-  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  MPI_Comm_split_type(mesh.comm(), MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
   int ranks = 1;
   MPI_Comm_size(node, &ranks);
   MPI_Comm_free(&node);
-  omp_set_num_threads(std::max(1, omp_get_num_procs() / ranks));
+  const double work = static_cast<double>(mesh.num_vertices()) * mesh.dim() * mesh.dim() /
+                      mpi_size(mesh.comm());
+  omp_set_num_threads(work < kThreadedWork ? 1 : std::max(1, omp_get_num_procs() / ranks));
 }
 
 // --verbose: the linear solves of one iteration.
@@ -119,7 +127,7 @@ struct OptimizationRun::Impl {
   Impl(const std::vector<std::string>& input, InvertedCells inverted)
       : mesh(read(input, inverted)), optimizer(mesh) {
     read_seconds = MPI_Wtime() - start;
-    share_cores(mesh.comm());
+    share_cores(mesh);
   }
 
   static Mesh read(const std::vector<std::string>& input, InvertedCells inverted) {
