@@ -246,6 +246,9 @@ struct AdaptOptions {
   // Inverted cells are untangled first, towards the size field's volumes (a geometry that
   // moved through the mesh); false: they are an error.
   bool untangle = true;
+  // As SmoothOptions::quality_guard: flat corners lifted, no cell worse than the input's worst
+  // (not with a fit to a level set, whose interface vertices must stay on it).
+  bool quality_guard = true;
 
   // `base` with the thesis' scheme (§6.1): the raw field, λ = 1, μ = 10, 3×3(×3) Gauss points,
   // fixed boundary vertices, the thesis' Picard updates and stopping rule, the Riesz solve to

@@ -191,6 +191,20 @@ void Optimizer::Impl::finish(Result& result) {
   result.volume_change = (volume - mesh_volume) / mesh_volume;
 }
 
+void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& method,
+                                          const Observer& observer, Result& result) {
+  if (result.reason != StopReason::TimeLimit)
+    result.corner_phase = lift_flat_corners(*functional, view(), dofs(), x, method, cell_size,
+                                            result, observer.iteration);
+  // The threshold is the file's worst cell, before vertices were placed on their charts.
+  result.quality_guard = guard_worst_quality(
+      view(), dofs(), input, x, [this](Vec y) { functional->project_onto_boundary(y); },
+      result.quality_before.inverted > 0
+          ? std::nullopt
+          : std::optional(result.quality_before.scaled_jacobian.min));
+  if (result.quality_guard->vertices_moved > 0) result.final_energy = functional->value(x);
+}
+
 VolumeRatioStats Optimizer::Impl::volume_ratio() const {
   return volume_ratio_stats(functional->cell_fields(x).volume_ratio, mesh.comm());
 }
@@ -274,20 +288,8 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   NM_PETSC(VecDuplicate(r.x, input.out()));
   NM_PETSC(VecCopy(r.x, input));
   if (options.untangle) result.untangling = r.untangle(method, observer);
-  QuasiNewtonResult run = minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
-  if (options.quality_guard && run.reason != StopReason::TimeLimit)
-    result.corner_phase = lift_flat_corners(*r.functional, r.view(), r.dofs(), r.x, method,
-                                            r.cell_size, run, observer.iteration);
-  copy_run(run, result);
-  if (options.quality_guard) {
-    // The threshold is the file's worst cell, before vertices were placed on their charts.
-    result.quality_guard = guard_worst_quality(
-        r.view(), r.dofs(), input, r.x, [&r](Vec x) { r.functional->project_onto_boundary(x); },
-        result.quality_before.inverted > 0
-            ? std::nullopt
-            : std::optional(result.quality_before.scaled_jacobian.min));
-    if (result.quality_guard->vertices_moved > 0) result.final_energy = r.functional->value(r.x);
-  }
+  copy_run(minimize(*r.functional, r.x, method, r.cell_size, observer.iteration), result);
+  if (options.quality_guard) r.protect_worst_cells(input, method, observer, result);
   r.finish(result);
   result.seconds = MPI_Wtime() - start;
   return result;
@@ -298,7 +300,12 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
   Impl& r = *impl_;
   const double start = MPI_Wtime();
   Result result = r.start(options);
+  OwnedVec input;  // where the adaptation starts (vertices placed on their charts)
+  NM_PETSC(VecDuplicate(r.x, input.out()));
+  NM_PETSC(VecCopy(r.x, input));
   r.adapt(field, options, observer, result);
+  if (options.quality_guard)
+    r.protect_worst_cells(input, r.method(options.solver), observer, result);
   r.finish(result);
   result.volume_ratio = r.volume_ratio();
   result.seconds = MPI_Wtime() - start;

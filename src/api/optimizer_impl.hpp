@@ -60,6 +60,11 @@ struct Optimizer::Impl {
   // adapting with `last_stage`; appends the fit's iterations to `result`.
   void fit(const LevelSet& level_set, const SizeField& field, const AdaptOptions& options,
            const PicardOptions& last_stage, const Observer& observer, Result& result);
+  // The worst cells once the method has stopped (smooth, adapt): corners it left nearly flat
+  // are lifted (worst_cells.hpp), then no cell stays below the input's worst (quality_guard.hpp;
+  // `input`: x where the call started).
+  void protect_worst_cells(Vec input, const QuasiNewtonOptions& method, const Observer& observer,
+                           Result& result);
   // Q = actual / desired volume at x.
   VolumeRatioStats volume_ratio() const;
   // If cells are inverted at x, untangles them (docs/untangling.md) towards the current desired

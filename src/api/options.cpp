@@ -125,6 +125,7 @@ AdaptOptions AdaptOptions::thesis(AdaptOptions o) {
   o.energy.mu = 10.0;
   use_thesis_method(o.energy, o.boundary, o.solver);
   o.picard = PicardOptions::thesis();
+  o.quality_guard = false;
   return o;
 }
 

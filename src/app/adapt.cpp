@@ -28,7 +28,7 @@ struct AdaptCommand {
   std::vector<double> circle, sphere, plane, box;
   bool force = false;
   bool fit = false;
-  bool no_untangle = false;
+  bool no_untangle = false, no_guard = false;
   SizeFieldOptions sizes;
   PicardOptions picard;
   MethodOptions method;
@@ -174,6 +174,7 @@ void adapt(AdaptCommand& o) {
   options.picard = o.picard;
   options.warm_updates = o.step_updates;
   options.untangle = !o.no_untangle;
+  options.quality_guard = !o.no_guard && !o.fit;
   options = resolve(o.method, options);
   check_finite("--circle", o.circle);
   check_finite("--sphere", o.sphere);
@@ -281,6 +282,11 @@ Subcommand add_adapt(CLI::App& app) {
                   "adapted mesh (.vtu with per-cell energy, Q and quality fields, or .msh)")
       ->required();
   cmd->add_flag("--force", o->force, "allow the output to overwrite the input file");
+  cmd->add_flag("--no-guard", o->no_guard,
+                "keep the adaptation's optimum even where a cell ends up worse than the input's "
+                "worst cell or with a corner nearly flat (default: off, i.e. flat corners are "
+                "lifted and such cells' vertices are pulled back; not with --fit; --thesis "
+                "implies it)");
   cmd->add_flag("--no-untangle", o->no_untangle,
                 "refuse a mesh with inverted cells instead of untangling it first (default: off, "
                 "i.e. inverted cells are untangled towards the size field's volumes, then the mesh "

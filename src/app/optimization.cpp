@@ -65,8 +65,8 @@ void share_cores(const Mesh& mesh) {
   int ranks = 1;
   MPI_Comm_size(node, &ranks);
   MPI_Comm_free(&node);
-  const double work = static_cast<double>(mesh.num_vertices()) * mesh.dim() * mesh.dim() /
-                      mpi_size(mesh.comm());
+  const double work =
+      static_cast<double>(mesh.num_vertices()) * mesh.dim() * mesh.dim() / mpi_size(mesh.comm());
   omp_set_num_threads(work < kThreadedWork ? 1 : std::max(1, omp_get_num_procs() / ranks));
 }
 
@@ -114,6 +114,30 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
   // The first iteration assembles the matrices and builds the preconditioners: on a large
   // mesh the longest wait before the first row of the table.
   say("assembling the matrices and setting up the linear solvers ...\n");
+}
+
+// What the quality guard did, if anything (the report has its record).
+void print_quality_guard(const QualityGuardResult& guard) {
+  if (guard.gave_up)
+    say("quality guard: pulling cells back toward the input made the worst cell worse; the "
+        "optimized mesh is kept (min scaled Jacobian {:.4f}; input {:.4f})\n",
+        guard.min_before, guard.input_min);
+  if (guard.vertices_moved > 0)
+    say("quality guard: {} vertices pulled back toward the input so that no cell is worse than "
+        "the input's worst (min scaled Jacobian {:.4f} -> {:.4f}; input {:.4f})\n",
+        guard.vertices_moved, guard.min_before, guard.min_after, guard.input_min);
+}
+
+// What the worst-cell phase did, if it ran (docs/method.md, "Corners").
+void print_corner_phase(const CornerPhaseSummary& phase) {
+  if (phase.gave_up)
+    say("worst cells: the optimum left a corner nearly flat (min scaled Jacobian {:.3g}); lifting "
+        "it failed after {} iterations, the optimum is kept\n",
+        phase.min_scaled_jacobian_before, phase.iterations);
+  else
+    say("worst cells: the optimum left a corner nearly flat (min scaled Jacobian {:.3g}); {} more "
+        "iterations with the corners in the energy lifted it to {:.3g}\n",
+        phase.min_scaled_jacobian_before, phase.iterations, phase.min_scaled_jacobian_after);
 }
 
 }  // namespace
@@ -293,6 +317,8 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
                              const std::filesystem::path& output, const RunOutputs& outputs,
                              const nlohmann::json& extra) {
   Impl& r = *impl_;
+  if (result.corner_phase) print_corner_phase(*result.corner_phase);
+  if (result.quality_guard) print_quality_guard(*result.quality_guard);
   always("stopped after {} iterations: {}\nF {:.6g} -> {:.6g}, Newton defect {:.3e} -> {:.3e}\n",
          result.history.size(), describe(result.reason), result.initial_energy, result.final_energy,
          result.initial_defect, result.final_defect);

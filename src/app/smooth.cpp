@@ -22,30 +22,6 @@ struct SmoothCommand {
   RunOutputs outputs;
 };
 
-// What the quality guard did, if anything (the report has its record).
-void print_quality_guard(const QualityGuardResult& guard) {
-  if (guard.gave_up)
-    say("quality guard: pulling cells back toward the input made the worst cell worse; the "
-        "optimized mesh is kept (min scaled Jacobian {:.4f}; input {:.4f})\n",
-        guard.min_before, guard.input_min);
-  if (guard.vertices_moved > 0)
-    say("quality guard: {} vertices pulled back toward the input so that no cell is worse than "
-        "the input's worst (min scaled Jacobian {:.4f} -> {:.4f}; input {:.4f})\n",
-        guard.vertices_moved, guard.min_before, guard.min_after, guard.input_min);
-}
-
-// What the worst-cell phase did, if it ran (docs/method.md, "Corners").
-void print_corner_phase(const CornerPhaseSummary& phase) {
-  if (phase.gave_up)
-    say("worst cells: the optimum left a corner nearly flat (min scaled Jacobian {:.3g}); lifting "
-        "it failed after {} iterations, the optimum is kept\n",
-        phase.min_scaled_jacobian_before, phase.iterations);
-  else
-    say("worst cells: the optimum left a corner nearly flat (min scaled Jacobian {:.3g}); {} more "
-        "iterations with the corners in the energy lifted it to {:.3g}\n",
-        phase.min_scaled_jacobian_before, phase.iterations, phase.min_scaled_jacobian_after);
-}
-
 void smooth(SmoothCommand& o) {
   SmoothOptions options;
   options.sizes = parse_size_mode(o.sizes);
@@ -66,8 +42,6 @@ void smooth(SmoothCommand& o) {
   };
   const Result result = run.optimizer().smooth(
       options, run.observer(settings, o.outputs.progress_lines, picture_before));
-  if (result.corner_phase) print_corner_phase(*result.corner_phase);
-  if (result.quality_guard) print_quality_guard(*result.quality_guard);
   run.finish(result, settings, o.output, o.outputs);
 }
 

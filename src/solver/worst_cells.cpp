@@ -28,7 +28,7 @@ double min_non_simplex_jacobian(const MeshView& view, const DofMap& dofs, Vec x)
 
 std::optional<CornerPhaseSummary> lift_flat_corners(
     Functional& functional, const MeshView& view, const DofMap& dofs, Vec x,
-    const QuasiNewtonOptions& options, Vec cell_size, QuasiNewtonResult& run,
+    const QuasiNewtonOptions& options, Vec cell_size, Result& run,
     const std::function<void(const IterationRecord&)>& observe) {
   const double before = min_non_simplex_jacobian(view, dofs, x);
   if (!(before < kFlatCellJacobian)) return std::nullopt;

@@ -33,11 +33,12 @@ constexpr int kLiftRounds = 12;
 
 // If some cell other than a simplex has a scaled Jacobian below kFlatCellJacobian at x,
 // minimizes again from x with corner samples and returns what that did (its iterations go to
-// `observe` and into `run`, whose final energy is the thesis' energy again); else nullopt.
+// `observe` and are appended to `run`'s, whose stop reason, final energy (the thesis' energy)
+// and defect become the phase's); else nullopt.
 // The functional is left on the Gauss rule. Collective.
 std::optional<CornerPhaseSummary> lift_flat_corners(
     Functional& functional, const MeshView& view, const DofMap& dofs, Vec x,
-    const QuasiNewtonOptions& options, Vec cell_size, QuasiNewtonResult& run,
+    const QuasiNewtonOptions& options, Vec cell_size, Result& run,
     const std::function<void(const IterationRecord&)>& observe = {});
 
 }  // namespace neomesh

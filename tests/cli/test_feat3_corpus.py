@@ -19,13 +19,13 @@ CHARTS = {"screws_2d_mesh_quad_smaller_360_1": "screws_2d_chart_bezier_24_28_sma
           "screws_2d_mesh_quad_opt_ss_360_1": "screws_2d_chart_bezier_24_28.xml",
           "screws_2d_mesh_tria_360_1": "screws_2d_chart_bezier_24_28.xml",
           "screws_3d_mesh_hexa_360_1": "screws_3d_chart_surfacemesh_7200_7200.xml"}
-# The worst cell ends up worse than the input's: the quality guard compares with the mesh after
-# its vertices moved onto their charts (unit-axe-tria: 0.161 off its circle), or a rotor's thin
-# gap degenerates as its vertices slide along the screws.
-KNOWN_WORSE = {"contract_3d_01_hexa_800", "contract_4to1_full_quad_86", "flowbench_c2d_07_quad_72",
-               "flowbench_q3d_02_hexa_192", "unit_shell_hexa_24", "venturi-pipe-tria",
-               "unit-axe-tria", "screws_2d_mesh_quad_360_1", "screws_2d_mesh_quad_opt_ss_360_1",
-               "screws_3d_mesh_hexa_360_1"}
+# The worst cell ends up below the file's, at most down to this: the vertices placed on their
+# charts (FEAT3's semantics) lower it, and the quality guard cannot pull a cell back above where
+# the placement left it (6-digit coordinates: 1e-4 and less; unit-axe-tria: vertices up to 0.161
+# off its circle); FEAT3's own optimized rotor loses a cell in the thin gap between the screws.
+KNOWN_WORSE = {"contract_3d_01_hexa_800": 0.8320, "contract_4to1_full_quad_86": 0.9999,
+               "unit_shell_hexa_24": 0.7865, "venturi-pipe-tria": 0.2437,
+               "unit-axe-tria": 0.477, "screws_2d_mesh_quad_opt_ss_360_1": 0.398}
 
 
 def meshes():
@@ -46,8 +46,8 @@ def test_smooth_every_feat3_mesh(name, tmp):
     assert r["quality_after"]["inverted"] == 0
     before = r["quality_before"]["metrics"]["scaled_jacobian"]["min"]
     after = r["quality_after"]["metrics"]["scaled_jacobian"]["min"]
-    if name not in KNOWN_WORSE:
-        assert after >= before - 1e-12, f"min scaled Jacobian {before} -> {after}"
+    assert after >= min(before - 1e-12, KNOWN_WORSE.get(name, 1)), \
+        f"min scaled Jacobian {before} -> {after}"
 
 
 def test_chart_file_in_either_order_moves_the_vertex_onto_its_circle(tmp):
@@ -74,3 +74,29 @@ def test_missing_chart_is_a_notice(tmp):
     p = neomesh("convert", os.path.join(DATA, "feat_part_on_missing_chart.xml"), "-o",
                 os.path.join(tmp, "out.msh"))
     assert "notice:" in p.stdout and "chart 'nowhere'" in p.stdout
+
+
+# adapt around each flowbench obstacle: its circle, the cylinder of the 3D channels, its sphere.
+OBSTACLES = {**{f"flowbench_c2d_0{i}": ["--circle", "0.2,0.2,0.05"] for i in (0, 1, 2, 3, 4, 7, 8, 9)},
+             "flowbench_c3d_01_hexa_128": ["--levelset", "sqrt((x-0.5)^2+(y-0.2)^2)-0.05"],
+             "flowbench_s3d_02_hexa_80": ["--sphere", "0.5,0.2,0.205,0.05"]}
+
+
+@pytest.mark.skipif(not os.path.isdir(CORPUS), reason=f"no corpus at {CORPUS}")
+@pytest.mark.parametrize("prefix", sorted(OBSTACLES))
+def test_adapt_around_every_flowbench_obstacle(prefix, tmp):
+    # It used to end in a failed line search before the first update of the desired volumes,
+    # with the worst cell worse than the input's.
+    path = glob.glob(os.path.join(CORPUS, prefix + "*.xml"))[0]
+    report = os.path.join(tmp, "r.json")
+    neomesh("adapt", path, "-o", os.path.join(tmp, "out.msh"), "--quiet", "--report", report,
+            *OBSTACLES[prefix], timeout=120)
+    r = json.load(open(report))
+    assert not r["result"]["stop_reason"].startswith("line search failed")
+    assert len(r["picard"]["update_iterations"]) >= 1
+    assert r["quality_after"]["inverted"] == 0
+    before = r["quality_before"]["metrics"]["scaled_jacobian"]["min"]
+    after = r["quality_after"]["metrics"]["scaled_jacobian"]["min"]
+    # flowbench_c2d_07: its 6-digit coordinates placed on the circle cost 1e-5.
+    assert after >= before - (1e-4 if prefix == "flowbench_c2d_07" else 1e-12), \
+        f"min scaled Jacobian {before} -> {after}"
