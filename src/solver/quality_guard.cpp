@@ -12,6 +12,10 @@ namespace {
 // After this many halvings (displacement / 2^20) the marked vertices are reset to their
 // input positions, which restores the input's cells exactly.
 constexpr int kHalvings = 20;
+// Then cells that mix reset and optimized vertices may still be below the threshold: their
+// vertices are reset too, round by round, for at most this many rounds; after that every
+// vertex is (the input itself meets the threshold).
+constexpr int kResetRounds = 50;
 
 double global_min(const std::vector<double>& values, MPI_Comm comm) {
   double local = std::numeric_limits<double>::infinity(), result = 0.0;
@@ -45,7 +49,7 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
     const std::vector<double> sj = scaled_jacobians(view, dofs, x);
     if (round == 0) result.min_before = global_min(sj, dofs.comm());
     result.min_after = global_min(sj, dofs.comm());
-    if (result.min_after >= result.input_min || round > kHalvings) break;
+    if (result.min_after >= result.input_min || round > kHalvings + kResetRounds) break;
     result.rounds = round + 1;
 
     // Mark every coordinate of every vertex of a cell below the threshold (on any rank).
@@ -60,7 +64,7 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
     dofs.add_local_to_global(local_marks, marked);
 
     // x ← input + ½ (x − input) on marked coordinates; input itself after the last round.
-    const double keep = round == kHalvings ? 0.0 : 0.5;
+    const double keep = round >= kHalvings ? 0.0 : 0.5;
     {
       VecReadView x0(input), m(marked);
       VecWriteView xv(x), ever(ever_marked);
@@ -72,6 +76,18 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
     }
     // A chord between two points of a curved boundary leaves it: back onto the boundary.
     if (project) project(x);
+  }
+  // Still below: the whole input, which meets the threshold unless its vertices were placed on
+  // their charts (docs/boundary.md).
+  if (result.min_after < result.input_min) {
+    NM_PETSC(VecCopy(input, x));
+    {
+      VecReadView x0(optimum), xv(x);
+      VecWriteView ever(ever_marked);
+      for (PetscInt i = 0; i < xv.size(); ++i)
+        if (xv[i] != x0[i]) ever[i] = 1.0;
+    }
+    result.min_after = global_min(scaled_jacobians(view, dofs, x), dofs.comm());
   }
   // Moving some vertices of a cell back and not others can make it worse still, even invert
   // it, when the input is far from the optimum: then the guard gives up rather than harm.

@@ -5,9 +5,11 @@
 // after the optimization the guard pulls the vertices of every cell whose scaled Jacobian
 // fell below the input's minimum back toward their input positions, halving their
 // displacement round by round (and resetting them after the last round), until no cell is
-// below it. Vertices of good cells keep their optimized positions. If that leaves the worst
-// cell worse than the optimized mesh's (the input far from the optimum: mixing old and new
-// positions folds cells), the guard gives up and keeps the optimized mesh.
+// below it. Vertices of good cells keep their optimized positions. Cells that mix reset and
+// optimized vertices can fall below it in turn (the input far from the optimum: Mesquite's
+// shashkov_opt, an anisotropic mesh already optimized): their vertices are reset too, and in
+// the end, if need be, all are: the output is then the input. Only if even that is worse than
+// the optimized mesh (vertices placed on their charts) does the guard give up and keep it.
 #pragma once
 
 #include <functional>
