@@ -33,21 +33,39 @@ std::optional<CornerPhaseSummary> lift_flat_corners(
   const double before = min_non_simplex_jacobian(view, dofs, x);
   if (!(before < kFlatCellJacobian)) return std::nullopt;
   // From a corner at det G ≈ 1e-10 the barrier's gradient is too steep for a line search:
-  // the untangling energy, regularized at ε = kLiftedDet, first lifts such corners above it.
+  // the untangling energy, regularized at ε = kLiftedDet, first lifts such corners above it,
+  // towards the desired volumes and, if that stalls, towards each cell's own volume (det G then
+  // measures the shape alone: the small cells of a graded mesh are not taken for flat ones).
   OwnedVec start;
   NM_PETSC(VecDuplicate(x, start.out()));
   NM_PETSC(VecCopy(x, start));
-  const UntangleResult lifted = untangle(
-      functional, x, options, cell_size,
-      {.max_rounds = kLiftRounds, .stalled_rounds = 3, .tangled_below = kLiftedDet}, observe);
-  run.history.insert(run.history.end(), lifted.history.begin(), lifted.history.end());
-  // The regularized energy is finite on inverted cells too: if it stalled with one, the phase
-  // gives up and keeps the thesis' optimum.
-  if (functional.inversion(x, 0).count > 0) {
+  const std::vector<double> desired = functional.desired_volumes();
+  const std::vector<double> own = [&] {
+    std::vector<double> v = functional.cell_fields(x).volume_ratio;  // actual / desired
+    for (std::size_t c = 0; c < v.size(); ++c) v[c] *= desired[c];
+    return v;
+  }();
+  int iterations = 0;
+  bool lifted = false;
+  for (const std::vector<double>* volumes : {&desired, &own}) {
+    NM_PETSC(VecCopy(start, x));
+    functional.set_desired_volumes(*volumes);
+    const UntangleResult lift = untangle(
+        functional, x, options, cell_size,
+        {.max_rounds = kLiftRounds, .stalled_rounds = 3, .tangled_below = kLiftedDet}, observe);
+    run.history.insert(run.history.end(), lift.history.begin(), lift.history.end());
+    iterations += static_cast<int>(lift.history.size());
+    // The regularized energy is finite on inverted cells too: a lift that stalled with one
+    // failed.
+    lifted = functional.inversion(x, 0).count == 0;
+    if (lifted) break;
+  }
+  functional.set_desired_volumes(desired);
+  if (!lifted) {  // the thesis' optimum is kept
     NM_PETSC(VecCopy(start, x));
     return CornerPhaseSummary{.min_scaled_jacobian_before = before,
                               .min_scaled_jacobian_after = before,
-                              .iterations = static_cast<int>(lifted.history.size()),
+                              .iterations = iterations,
                               .gave_up = true};
   }
   functional.set_corner_weight(kWorstCellCornerWeight);
@@ -57,10 +75,9 @@ std::optional<CornerPhaseSummary> lift_flat_corners(
   run.reason = polish.reason;
   run.final_energy = functional.value(x);
   run.final_defect = polish.final_defect;
-  return CornerPhaseSummary{
-      .min_scaled_jacobian_before = before,
-      .min_scaled_jacobian_after = min_non_simplex_jacobian(view, dofs, x),
-      .iterations = static_cast<int>(lifted.history.size() + polish.history.size())};
+  return CornerPhaseSummary{.min_scaled_jacobian_before = before,
+                            .min_scaled_jacobian_after = min_non_simplex_jacobian(view, dofs, x),
+                            .iterations = iterations + static_cast<int>(polish.history.size())};
 }
 
 }  // namespace neomesh
