@@ -196,7 +196,7 @@ void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& m
   if (result.reason != StopReason::TimeLimit)
     result.corner_phase = lift_flat_corners(*functional, view(), dofs(), x, method, cell_size,
                                             result, observer.iteration);
-  // The threshold is the file's worst cell, before vertices were placed on their charts.
+  // The threshold is the file's worst cell, or where placing vertices on their charts left it.
   result.quality_guard = guard_worst_quality(
       view(), dofs(), input, x, [this](Vec y) { functional->project_onto_boundary(y); },
       result.quality_before.inverted > 0

@@ -36,8 +36,8 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
                                        const std::function<void(Vec)>& project,
                                        std::optional<double> threshold) {
   QualityGuardResult result;
-  result.input_min =
-      threshold ? *threshold : global_min(scaled_jacobians(view, dofs, input), dofs.comm());
+  result.input_min = global_min(scaled_jacobians(view, dofs, input), dofs.comm());
+  if (threshold) result.input_min = std::min(result.input_min, *threshold);
   OwnedVec optimum;  // x as the method left it
   NM_PETSC(VecDuplicate(x, optimum.out()));
   NM_PETSC(VecCopy(x, optimum));

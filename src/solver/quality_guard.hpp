@@ -24,8 +24,9 @@ namespace neomesh {
 
 // `input` and `x` are global coordinate Vecs laid out by `dofs`; x is changed in place, and
 // `project` (if given) puts sliding boundary vertices back onto the boundary after each round.
-// `threshold`: the worst scaled Jacobian no cell may fall below, if not the input's (the file's
-// own, when `input` has vertices placed on their charts). Collective.
+// `threshold`: a lower worst scaled Jacobian than `input`'s to hold, if given (the file's own,
+// when `input` has vertices placed on their charts that lowered it: no cell can be pulled back
+// above where the placement left it). Collective.
 QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs, Vec input, Vec x,
                                        const std::function<void(Vec)>& project = {},
                                        std::optional<double> threshold = {});
