@@ -9,6 +9,7 @@
 #include "adapt/size_field.hpp"
 #include "adapt/volume_ratio.hpp"
 #include "api/fitting.hpp"
+#include "api/memory_check.hpp"
 #include "api/optimizer_impl.hpp"
 #include "api/vertex_order.hpp"
 #include "boundary/interface.hpp"
@@ -69,6 +70,7 @@ Optimizer::Impl::Impl(Mesh& m) : mesh(m) {}
 void Optimizer::Impl::start(const EnergyOptions& e, const BoundaryOptions& b) {
   x = mesh.plex().coordinates();
   const bool same_problem = functional && same(*energy, e) && same(*boundary_options, b);
+  if (!functional) check_memory_fits(mesh.comm(), view().dim, view().num_vertices, mesh.name());
   if (!same_problem) {
     double local = 0.0;
     for (double v : cell_volumes()) local += v;

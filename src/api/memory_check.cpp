@@ -1,0 +1,70 @@
+#include "api/memory_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "core/collective_error.hpp"
+#include "core/error.hpp"
+
+namespace neomesh {
+
+namespace {
+
+constexpr double kKiB = 1024.0, kMiB = 1024.0 * kKiB, kGiB = 1024.0 * kMiB;
+constexpr double kLibraries = 60 * kMiB;
+constexpr double kPerVertex2D = 2.0 * kKiB, kPerVertex3D = 6.5 * kKiB;
+
+// The first number in `path` (bytes), or +∞ if there is none ("max", no such file).
+double number_in(const char* path) {
+  std::ifstream in(path);
+  double value = 0;
+  return in >> value ? value : std::numeric_limits<double>::infinity();
+}
+
+double mem_available() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kib = 0;
+  while (in >> key >> kib) {
+    if (key == "MemAvailable:") return kib * kKiB;
+    in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+double estimated_peak_bytes(int dim, std::int64_t vertices) {
+  return kLibraries + static_cast<double>(vertices) * (dim == 2 ? kPerVertex2D : kPerVertex3D);
+}
+
+double available_bytes() {
+  if (const char* given = std::getenv("NEOMESH_MEMORY_AVAILABLE_MIB"))
+    return std::atof(given) * kMiB;
+  const double limit = number_in("/sys/fs/cgroup/memory.max");  // +∞ for "max"
+  const double used = number_in("/sys/fs/cgroup/memory.current");
+  return std::min(mem_available(), std::isfinite(used) ? limit - used : limit);
+}
+
+void check_memory_fits(MPI_Comm comm, int dim, std::int64_t local_vertices,
+                       const std::string& name) {
+  MPI_Comm node = MPI_COMM_NULL;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  double need = estimated_peak_bytes(dim, local_vertices);
+  MPI_Allreduce(MPI_IN_PLACE, &need, 1, MPI_DOUBLE, MPI_SUM, node);
+  MPI_Comm_free(&node);
+  const double have = available_bytes();
+  std::string message;
+  if (need > have)
+    message = fmt::format(
+        "{}: the run needs about {:.1f} GiB of memory on this machine and {:.1f} GiB are "
+        "available; run it on more machines (mpiexec over several nodes) or a larger one",
+        name, need / kGiB, have / kGiB);
+  throw_if_any(comm, message);
+}
+
+}  // namespace neomesh
