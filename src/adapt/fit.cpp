@@ -113,9 +113,7 @@ FitResult fit_interface(const MeshView& view, const DofMap& dofs, Vec x,
       std::make_shared<InterfaceConstraint>(view, dofs, phi, result.interface.vertices, x);
   const Functional& functional = hooks.constrain(sliding_vertices(result.constraint));
 
-  OwnedVec accepted;
-  NM_PETSC(VecDuplicate(x, accepted.out()));
-  NM_PETSC(VecCopy(x, accepted));
+  OwnedVec accepted = copy_of(x);
   const double smallest = std::ldexp(1.0, -options.max_halvings);
   double step = 1.0;  // the whole way at once if the cells allow it
   while (result.constraint->stage() < 1.0) {

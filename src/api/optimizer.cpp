@@ -106,9 +106,7 @@ std::optional<UntanglingSummary> Optimizer::Impl::untangle(const QuasiNewtonOpti
   const PetscInt inverted = functional->inversion(x, 0).count;
   if (inverted == 0) return std::nullopt;
   if (observer.untangling) observer.untangling(inverted);
-  OwnedVec start;
-  NM_PETSC(VecDuplicate(x, start.out()));
-  NM_PETSC(VecCopy(x, start));
+  const OwnedVec start = copy_of(x);
   UntangleResult u = neomesh::untangle(*functional, x, method, cell_size, {}, observer.iteration);
   // Sliding boundary vertices can fold a boundary cell further (tangled_horse1 stalled in 248
   // iterations; fixed, it untangles in 30): then again from the start with the boundary fixed.
@@ -286,9 +284,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
 
   // The guard's promise is about the input: a tangled input's worst cell is inverted, so any
   // untangled output keeps it.
-  OwnedVec input;
-  NM_PETSC(VecDuplicate(r.x, input.out()));
-  NM_PETSC(VecCopy(r.x, input));
+  const OwnedVec input = copy_of(r.x);
   if (options.untangle) result.untangling = r.untangle(method, observer);
   copy_run(minimize(*r.functional, r.x, method, r.cell_size, observer.iteration), result);
   if (options.quality_guard) r.protect_worst_cells(input, method, observer, result);
@@ -302,9 +298,8 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
   Impl& r = *impl_;
   const double start = MPI_Wtime();
   Result result = r.start(options);
-  OwnedVec input;  // where the adaptation starts (vertices placed on their charts)
-  NM_PETSC(VecDuplicate(r.x, input.out()));
-  NM_PETSC(VecCopy(r.x, input));
+  const OwnedVec input =
+      copy_of(r.x);  // where the adaptation starts (vertices placed on their charts)
   r.adapt(field, options, observer, result);
   if (options.quality_guard)
     r.protect_worst_cells(input, r.method(options.solver), observer, result);

@@ -111,4 +111,11 @@ void configure_singleton_mpi() {
   });
 }
 
+OwnedVec copy_of(Vec v) {
+  OwnedVec copy;
+  NM_PETSC(VecDuplicate(v, copy.out()));
+  NM_PETSC(VecCopy(v, copy));
+  return copy;
+}
+
 }  // namespace neomesh

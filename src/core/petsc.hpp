@@ -69,6 +69,9 @@ using OwnedSection = PetscOwner<PetscSection, PetscSectionDestroy>;
 using OwnedSF = PetscOwner<PetscSF, PetscSFDestroy>;
 using OwnedScatter = PetscOwner<VecScatter, VecScatterDestroy>;
 
+// A new Vec with v's layout and values (a state to go back to).
+OwnedVec copy_of(Vec v);
+
 // Read-only / read-write views of a Vec's local array, restored on scope exit.
 class VecReadView {
  public:

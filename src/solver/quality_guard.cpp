@@ -38,9 +38,7 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
   QualityGuardResult result;
   result.input_min = global_min(scaled_jacobians(view, dofs, input), dofs.comm());
   if (threshold) result.input_min = std::min(result.input_min, *threshold);
-  OwnedVec optimum;  // x as the method left it
-  NM_PETSC(VecDuplicate(x, optimum.out()));
-  NM_PETSC(VecCopy(x, optimum));
+  const OwnedVec optimum = copy_of(x);  // x as the method left it
   OwnedVec marked = dofs.create_global_vector(), ever_marked = dofs.create_global_vector();
   std::vector<double> local_marks(dofs.num_local_dofs());
   const int d = view.dim;

@@ -36,9 +36,7 @@ std::optional<CornerPhaseSummary> lift_flat_corners(
   // the untangling energy, regularized at ε = kLiftedDet, first lifts such corners above it,
   // towards the desired volumes and, if that stalls, towards each cell's own volume (det G then
   // measures the shape alone: the small cells of a graded mesh are not taken for flat ones).
-  OwnedVec start;
-  NM_PETSC(VecDuplicate(x, start.out()));
-  NM_PETSC(VecCopy(x, start));
+  const OwnedVec start = copy_of(x);
   const std::vector<double> desired = functional.desired_volumes();
   const std::vector<double> own = [&] {
     std::vector<double> v = functional.cell_fields(x).volume_ratio;  // actual / desired
