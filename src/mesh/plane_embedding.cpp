@@ -36,6 +36,9 @@ PlaneEmbedding PlaneEmbedding::fit(std::span<const double> xyz, std::vector<doub
   uv.resize(2 * n);
   PlaneEmbedding plane;
   if (n == 0) return plane;
+  for (std::size_t i = 0; i < xyz.size(); ++i)
+    if (!std::isfinite(xyz[i]))
+      fail("{}: vertex {} (0-based) has a non-finite coordinate ({})", file, i / 3, xyz[i]);
 
   // A plane normal to an axis: the other two coordinates are the plane's, unchanged.
   if (const int k = constant_axis(xyz); k >= 0) {

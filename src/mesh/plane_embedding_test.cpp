@@ -85,5 +85,19 @@ TEST(PlaneEmbedding, DigitsOfAFileAreNoiseButACurvedSurfaceIsRefused) {
   }
 }
 
+TEST(PlaneEmbedding, ANonFiniteCoordinateIsNamedNotTakenForASurface) {
+  std::vector<double> uv;
+  auto xyz = grid({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  xyz[3 * 5 + 2] = std::nan("");
+  try {
+    PlaneEmbedding::fit(xyz, uv, "nan.msh");
+    FAIL() << "a NaN coordinate was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("nan.msh: vertex 5 (0-based) has a non-finite"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace neomesh
