@@ -91,6 +91,8 @@ struct UntanglingSummary {
   // Untangling with the boundary sliding stalled, so the input's boundary was kept fixed while
   // untangling (and then slides in the smoothing).
   bool boundary_fixed = false;
+  // ... and towards equal cell volumes, which untangled where the desired ones stalled.
+  bool equal_volumes = false;
 };
 
 // The quality guard of smoothing: vertices pulled back toward the input so that no cell is

@@ -205,11 +205,14 @@ Observer OptimizationRun::observer(const RunSettings& settings, bool progress_on
           },
       .untangled =
           [](const UntanglingSummary& u) {
-            say("untangled {} cells in {} iterations ({:.2f} s){}\n", u.inverted_before,
+            say("untangled {} cells in {} iterations ({:.2f} s){}{}\n", u.inverted_before,
                 u.history.size(), u.seconds,
                 u.boundary_fixed ? "; with the boundary sliding it stalled, so the boundary "
                                    "was kept fixed while untangling"
-                                 : "");
+                                 : "",
+                u.equal_volumes ? "; towards the desired volumes it stalled, so it aimed at "
+                                  "equal cell volumes"
+                                : "");
           },
       .iteration =
           [table, progress_only](const IterationRecord& rec) {

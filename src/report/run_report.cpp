@@ -55,6 +55,7 @@ nlohmann::json to_json(const UntanglingSummary& result) {
           {"rounds", result.rounds},
           {"seconds", result.seconds},
           {"boundary_fixed", result.boundary_fixed},
+          {"equal_volumes", result.equal_volumes},
           {"history", history}};
 }
 
