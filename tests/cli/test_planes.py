@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from conftest import (CORPUS, expect_nothing_else_changed, expect_one_error_line, needs_corpus,
-                      neomesh, read_mesh, vtk_to_msh)
+                      needs_mpi, neomesh, read_mesh, vtk_to_msh)
 
 
 def placed(tmp, name, transform, cell="box-quad"):
@@ -88,3 +88,15 @@ def test_mesquites_planes_off_xy_stay_in_place(tmp, name):
     out, before, after = smooth(tmp, path)
     assert after >= before
     expect_nothing_else_changed(path, out)
+
+
+@needs_mpi
+def test_a_tilted_plane_on_two_ranks_is_written_back_in_it(tmp):
+    path = placed(tmp, "tilted", tilt, "box-tri")
+    outputs = []
+    for ranks in (1, 2):
+        out = path.replace(".msh", f"-{ranks}.msh")
+        neomesh("smooth", path, "-o", out, "--quiet", "--boundary", "fixed", ranks=ranks)
+        expect_nothing_else_changed(path, out, fixed_boundary=True)
+        outputs.append(read_mesh(out).points)
+    assert np.abs(outputs[0] - outputs[1]).max() < 1e-6
