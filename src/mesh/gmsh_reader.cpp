@@ -452,26 +452,12 @@ constexpr std::optional<CellType> kCellType[kNumPolytopes] = {
     CellType::Tetrahedron, CellType::Hexahedron,    CellType::Wedge, CellType::Pyramid,
     CellType::Triangle,    CellType::Quadrilateral, std::nullopt,    std::nullopt};
 
-// Vertices are the nodes some element has as a corner, numbered in the order of $Nodes. A 2D
-// mesh gets the coordinates in its plane (plane_embedding.hpp).
+// Vertices are the nodes some element has as a corner, numbered in the order of $Nodes.
 std::vector<PetscInt> number_vertices(const Contents& c, const std::string& file, InputMesh& mesh) {
   std::vector<PetscInt> vertex(c.node_tags.size(), -1);
   for (const Elements& e : c.elements)
     for (PetscInt n : e.corners) vertex[n] = 0;
-  std::vector<double> xyz;
-  xyz.reserve(vertex.size() * 3);
-  PetscInt count = 0;
-  for (std::size_t n = 0; n < vertex.size(); ++n) {
-    if (vertex[n] < 0) continue;
-    vertex[n] = count++;
-    xyz.insert(xyz.end(), c.xyz.begin() + 3 * n, c.xyz.begin() + 3 * n + 3);
-  }
-  if (mesh.dim == 3) {
-    mesh.coords = std::move(xyz);
-  } else {
-    auto plane = std::make_shared<PlaneEmbedding>(PlaneEmbedding::fit(xyz, mesh.coords, file));
-    if (!plane->is_xy()) mesh.plane = std::move(plane);
-  }
+  number_used_vertices(vertex, c.xyz, file, mesh);
   return vertex;
 }
 
