@@ -127,12 +127,7 @@ class GmshParser {
   [[noreturn]] void truncated() { invalid("truncated: the file ends inside {}", shown(section_)); }
 
   // A word of the file for a message: short, printable.
-  static std::string shown(std::string_view word) {
-    std::string out(word.substr(0, 24));
-    for (char& c : out)
-      if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
-    return word.size() > 24 ? out + "..." : out;
-  }
+  static std::string shown(std::string_view word) { return shown_text(word, 24); }
 
   void skip_space() {
     while (pos_ < end_ && (*pos_ == ' ' || *pos_ == '\n' || *pos_ == '\r' || *pos_ == '\t')) ++pos_;
