@@ -48,14 +48,15 @@ struct FacetGroup {
 
 class LevelSet;  // level_set.hpp
 
-// Throws Error unless `path` has an extension neomesh reads (.msh, .xml) / writes (.msh,
-// .vtu): a check before a long run.
+// Throws Error unless `path` has an extension neomesh reads (.msh, .xml, .vtk) / writes
+// (.msh, .vtu): a check before a long run.
 void check_readable_format(const std::filesystem::path& path);
 void check_writable_format(const std::filesystem::path& path);
 
 class Mesh {
  public:
-  // Reads .msh (Gmsh 2.2/4.1, ASCII or binary) or .xml (FEAT3) on the first process and
+  // Reads .msh (Gmsh 2.2/4.1, ASCII or binary), .xml (FEAT3) or .vtk (VTK legacy, ASCII or
+  // binary, UNSTRUCTURED_GRID or POLYDATA) on the first process and
   // distributes it over `comm`. Throws Error naming the file (and cell) for anything neomesh
   // cannot use: a missing file, a malformed mesh, an unsupported cell type, NaN coordinates,
   // 2D cells that do not lie in one plane (a surface mesh). A 2D mesh whose file places it in

@@ -275,7 +275,8 @@ Subcommand add_adapt(CLI::App& app) {
       "level set) or follow given sizes: desired volume v = floor + d^p for the distance d of "
       "the cell's centre, recomputed from the moving mesh in Picard iterations (thesis §6).");
   cmd->add_option("input", o->inputs,
-                  "mesh to adapt (.msh Gmsh 2.2/4.1, .xml FEAT3; a FEAT3 mesh may come with the "
+                  "mesh to adapt (.msh Gmsh 2.2/4.1, .xml FEAT3, .vtk VTK legacy; a FEAT3 mesh may "
+                  "come with the "
                   "files of its charts, in any order)")
       ->required();
   cmd->add_option("-o,--output", o->output,

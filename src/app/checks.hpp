@@ -28,7 +28,7 @@ void check_option(const char* option, T value, bool in_range, const char* range)
 void check_finite(const char* option, std::span<const double> values);
 
 // Not collective: throws Error unless `path` has the extension of a mesh format neomesh reads
-// (.msh, .xml), before the (possibly long) read.
+// (.msh, .xml, .vtk), before the (possibly long) read.
 void check_input_mesh(const std::string& path);
 void check_input_mesh(const std::vector<std::string>& paths);
 

@@ -51,10 +51,12 @@ Subcommand add_convert(CLI::App& app) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* cmd = app.add_subcommand(
       "convert",
-      "Convert a mesh to .vtu (ParaView) or .msh. Reads Gmsh .msh 2.2/4.1 or FEAT3 .xml, checks\n"
-      "it (no inverted or degenerate cells) and writes VTU or Gmsh 4.1 (keeping physical groups).");
+      "Convert a mesh to .vtu (ParaView) or .msh. Reads Gmsh .msh 2.2/4.1, FEAT3 .xml or VTK "
+      ".vtk,\n"
+      "checks it (no inverted or degenerate cells) and writes VTU or Gmsh 4.1 (keeping physical\n"
+      "groups).");
   cmd->add_option("input", options->inputs,
-                  "input mesh (.msh or .xml; a FEAT3 mesh may come with its chart files)")
+                  "input mesh (.msh, .xml or .vtk; a FEAT3 mesh may come with its chart files)")
       ->required();
   cmd->add_option("-o,--output", options->output, "output mesh (.vtu or .msh)")->required();
   cmd->add_flag("--force", options->force,

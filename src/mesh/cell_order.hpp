@@ -7,8 +7,9 @@
 // from the top face, wedges with the bottom triangle clockwise seen from the top (the top
 // vertex above bottom position i at cone position 3, 5, 4 for i = 0, 1, 2) and pyramids with
 // the base clockwise seen from the apex; Gmsh/VTK list quadrilaterals and both hexahedron
-// faces counter-clockwise, tetrahedra positively oriented, and wedge bottoms and pyramid bases
-// counter-clockwise seen from the top/apex.
+// faces counter-clockwise, tetrahedra positively oriented and pyramid bases counter-clockwise
+// seen from the apex. Gmsh lists wedge bottoms counter-clockwise seen from the top, VTK
+// clockwise (vtkWedge: the normal of 0 1 2 points away from 3 4 5; Mesquite's wedges agree).
 #pragma once
 
 #include <array>
@@ -26,6 +27,12 @@ constexpr const VertexOrder& plex_from_canonical(CellType t) {
 }
 constexpr const VertexOrder& gmsh_from_canonical(CellType t) {
   return facts(t).gmsh_order;
+}
+
+// VTK's linear orders are Gmsh's but for the wedge, whose triangles VTK lists the other way round.
+inline constexpr VertexOrder kVtkWedgeOrder = {0, 2, 1, 3, 5, 4};
+constexpr const VertexOrder& vtk_from_canonical(CellType t) {
+  return t == CellType::Wedge ? kVtkWedgeOrder : gmsh_from_canonical(t);
 }
 
 namespace detail {

@@ -9,7 +9,7 @@
 //   converts at its boundary.)
 // - wedge (triangular prism): a positively oriented bottom triangle 0 1 2 (counter-clockwise
 //   seen from the top), then the top triangle 3 4 5 with vertex i + 3 joined to vertex i —
-//   the Gmsh and VTK order;
+//   the Gmsh order (VTK lists both triangles the other way round);
 // - pyramid: the base quadrilateral 0 1 2 3 in tensor order, counter-clockwise seen from the
 //   apex 4 when read 0 1 3 2 (the hexahedron's bottom face with its top face collapsed).
 #pragma once

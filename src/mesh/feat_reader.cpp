@@ -159,12 +159,7 @@ class FeatParser {
   }
 
   // A piece of the file for a message: short, printable, on one line.
-  static std::string shown(std::string_view text) {
-    std::string out(text.substr(0, 40));
-    for (char& c : out)
-      if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
-    return text.size() > 40 ? out + "..." : out;
-  }
+  static std::string shown(std::string_view text) { return shown_text(text, 40); }
 
   std::string_view attribute(pugi::xml_node node, const char* key) {
     const pugi::xml_attribute a = node.attribute(key);

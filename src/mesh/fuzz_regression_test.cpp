@@ -10,6 +10,7 @@
 #include "core/testing/test_data.hpp"
 #include "mesh/feat_reader.hpp"
 #include "mesh/gmsh_reader.hpp"
+#include "mesh/vtk_reader.hpp"
 
 namespace neomesh {
 namespace {
@@ -18,7 +19,8 @@ std::vector<std::filesystem::path> regressions() {
   std::vector<std::filesystem::path> files;
   for (const auto& entry :
        std::filesystem::directory_iterator(testing::data_path("fuzz-regressions")))
-    if (entry.path().extension() == ".msh" || entry.path().extension() == ".xml")
+    if (entry.path().extension() == ".msh" || entry.path().extension() == ".xml" ||
+        entry.path().extension() == ".vtk")
       files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   return files;
@@ -31,6 +33,8 @@ TEST(FuzzRegressions, EveryFileIsAnErrorNamingIt) {
     try {
       if (path.extension() == ".msh")
         read_gmsh(path);
+      else if (path.extension() == ".vtk")
+        read_vtk(path);
       else
         read_feat(path);
       ADD_FAILURE() << path << " was read without an error";

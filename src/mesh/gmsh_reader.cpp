@@ -127,12 +127,7 @@ class GmshParser {
   [[noreturn]] void truncated() { invalid("truncated: the file ends inside {}", shown(section_)); }
 
   // A word of the file for a message: short, printable.
-  static std::string shown(std::string_view word) {
-    std::string out(word.substr(0, 24));
-    for (char& c : out)
-      if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
-    return word.size() > 24 ? out + "..." : out;
-  }
+  static std::string shown(std::string_view word) { return shown_text(word, 24); }
 
   void skip_space() {
     while (pos_ < end_ && (*pos_ == ' ' || *pos_ == '\n' || *pos_ == '\r' || *pos_ == '\t')) ++pos_;
@@ -452,26 +447,12 @@ constexpr std::optional<CellType> kCellType[kNumPolytopes] = {
     CellType::Tetrahedron, CellType::Hexahedron,    CellType::Wedge, CellType::Pyramid,
     CellType::Triangle,    CellType::Quadrilateral, std::nullopt,    std::nullopt};
 
-// Vertices are the nodes some element has as a corner, numbered in the order of $Nodes. A 2D
-// mesh gets the coordinates in its plane (plane_embedding.hpp).
+// Vertices are the nodes some element has as a corner, numbered in the order of $Nodes.
 std::vector<PetscInt> number_vertices(const Contents& c, const std::string& file, InputMesh& mesh) {
   std::vector<PetscInt> vertex(c.node_tags.size(), -1);
   for (const Elements& e : c.elements)
     for (PetscInt n : e.corners) vertex[n] = 0;
-  std::vector<double> xyz;
-  xyz.reserve(vertex.size() * 3);
-  PetscInt count = 0;
-  for (std::size_t n = 0; n < vertex.size(); ++n) {
-    if (vertex[n] < 0) continue;
-    vertex[n] = count++;
-    xyz.insert(xyz.end(), c.xyz.begin() + 3 * n, c.xyz.begin() + 3 * n + 3);
-  }
-  if (mesh.dim == 3) {
-    mesh.coords = std::move(xyz);
-  } else {
-    auto plane = std::make_shared<PlaneEmbedding>(PlaneEmbedding::fit(xyz, mesh.coords, file));
-    if (!plane->is_xy()) mesh.plane = std::move(plane);
-  }
+  number_used_vertices(vertex, c.xyz, file, mesh);
   return vertex;
 }
 

@@ -2,6 +2,7 @@
 
 #include <sys/mman.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <new>
@@ -58,6 +59,13 @@ InputText read_input_file(const std::filesystem::path& path) {
   }
   if (in.bad()) fail("{}: cannot be read", path.string());
   return text;
+}
+
+std::string shown_text(std::string_view text, std::size_t max) {
+  std::string out(text.substr(0, max));
+  for (char& c : out)
+    if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+  return text.size() > max ? out + "..." : out;
 }
 
 }  // namespace neomesh

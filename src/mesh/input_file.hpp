@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace neomesh {
 
@@ -34,6 +35,10 @@ struct LargeBufferAllocator {
 };
 
 using InputText = std::basic_string<char, std::char_traits<char>, LargeBufferAllocator<char>>;
+
+// A piece of an input file for a message, on one line: its first `max` characters (then
+// "..."), each that is not printable as '?'.
+std::string shown_text(std::string_view text, std::size_t max);
 
 // The file's bytes, after check_regular_file.
 InputText read_input_file(const std::filesystem::path& path);

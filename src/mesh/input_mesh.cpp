@@ -29,6 +29,24 @@ InputMesh input_from_data(const MeshData& data) {
   return mesh;
 }
 
+void number_used_vertices(std::vector<PetscInt>& vertex, std::span<const double> xyz,
+                          const std::string& file, InputMesh& mesh) {
+  std::vector<double> used;
+  used.reserve(vertex.size() * 3);
+  PetscInt count = 0;
+  for (std::size_t n = 0; n < vertex.size(); ++n) {
+    if (vertex[n] < 0) continue;
+    vertex[n] = count++;
+    used.insert(used.end(), xyz.begin() + 3 * n, xyz.begin() + 3 * n + 3);
+  }
+  if (mesh.dim == 3) {
+    mesh.coords = std::move(used);
+  } else {
+    auto plane = std::make_shared<PlaneEmbedding>(PlaneEmbedding::fit(used, mesh.coords, file));
+    if (!plane->is_xy()) mesh.plane = std::move(plane);
+  }
+}
+
 std::vector<double> coordinates_in_space(const InputMesh& mesh) {
   if (mesh.dim == 2 && mesh.plane) return mesh.plane->to_space(mesh.coords);
   std::vector<double> xyz(3 * static_cast<std::size_t>(mesh.num_vertices()), 0.0);

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,13 @@ struct InputMesh {
 };
 
 InputMesh input_from_data(const MeshData& data);
+
+// For the readers: numbers the file's nodes marked used (`vertex[n] >= 0`) in file order, into
+// `vertex`, and sets mesh.coords from their 3D coordinates `xyz` (3 per node). A 2D mesh
+// (mesh.dim) gets coordinates in its plane, and mesh.plane unless that is z = 0
+// (plane_embedding.hpp); throws Error naming `file` if it is not planar.
+void number_used_vertices(std::vector<PetscInt>& vertex, std::span<const double> xyz,
+                          const std::string& file, InputMesh& mesh);
 
 // The vertices' coordinates in 3D space, 3 per vertex: a 2D mesh's put back in its plane.
 std::vector<double> coordinates_in_space(const InputMesh& mesh);

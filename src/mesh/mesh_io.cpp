@@ -9,9 +9,9 @@ namespace neomesh {
 
 void check_readable_format(const std::filesystem::path& path) {
   const auto ext = path.extension();
-  if (ext != ".msh" && ext != ".xml")
-    fail("{}: unknown mesh format '{}' (neomesh reads Gmsh .msh and FEAT3 .xml)", path.string(),
-         ext.string());
+  if (ext != ".msh" && ext != ".xml" && ext != ".vtk")
+    fail("{}: unknown mesh format '{}' (neomesh reads Gmsh .msh, FEAT3 .xml and VTK legacy .vtk)",
+         path.string(), ext.string());
 }
 
 void check_writable_format(const std::filesystem::path& path) {

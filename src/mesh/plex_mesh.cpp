@@ -15,6 +15,7 @@
 #include "mesh/mesh_io.hpp"
 #include "mesh/plex_builder.hpp"
 #include "mesh/validate.hpp"
+#include "mesh/vtk_reader.hpp"
 
 namespace neomesh {
 
@@ -264,7 +265,10 @@ PlexMesh PlexMesh::load(const std::filesystem::path& path, MPI_Comm comm, Invert
   on_root(comm, [&] {
     check_input_file(path);
     check_readable_format(path);
-    input = path.extension() == ".msh" ? read_gmsh(path) : input_from_data(read_feat(path));
+    const auto ext = path.extension();
+    input = ext == ".msh"   ? read_gmsh(path)
+            : ext == ".vtk" ? read_vtk(path)
+                            : input_from_data(read_feat(path));
   });
   return create(comm, input, path.string(), inverted);
 }

@@ -109,7 +109,7 @@ void write_vtu(const GatheredMesh& gathered, std::ostream& f) {
     const CellType t = mesh.cell_types[c];
     const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
     for (int i = 0; i < num_vertices(t); ++i)
-      connectivity[mesh.cell_offsets[c] + i] = cell[gmsh_from_canonical(t)[i]];
+      connectivity[mesh.cell_offsets[c] + i] = cell[vtk_from_canonical(t)[i]];
   }
   doc.array("Int64", " Name=\"connectivity\"", connectivity);
   const std::vector<std::int64_t> offsets(mesh.cell_offsets.begin() + 1, mesh.cell_offsets.end());

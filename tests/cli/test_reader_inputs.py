@@ -41,7 +41,7 @@ def run_case(path, directory, ranks):
 
 # The inputs: the regression files, a FIFO (made in the test's directory) and /dev/zero.
 INPUTS = sorted(os.path.join(REGRESSIONS, f) for f in os.listdir(REGRESSIONS)
-                if f.endswith((".msh", ".xml"))) + ["{tmp}/fifo.msh", "/dev/zero"]
+                if f.endswith((".msh", ".xml", ".vtk"))) + ["{tmp}/fifo.msh", "/dev/zero"]
 CASES = [pytest.param(path, 1, id=os.path.basename(path)) for path in INPUTS] + \
         [pytest.param(path, 2, id=f"{os.path.basename(path)} (-n 2)", marks=needs_mpi)
          for path in INPUTS if os.path.basename(path) in MPI_CASES]

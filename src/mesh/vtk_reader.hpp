@@ -1,0 +1,31 @@
+// Reading VTK legacy files (.vtk, "# vtk DataFile Version 2.0 ... 5.1", ASCII and BINARY) on one
+// process into an InputMesh:
+//
+//   DATASET UNSTRUCTURED_GRID   POINTS, then CELLS n size (each cell "k i0 .. ik-1") or the
+//                               5.1 layout (CELLS with OFFSETS and CONNECTIVITY), CELL_TYPES
+//   DATASET POLYDATA            POINTS, then POLYGONS of 3 or 4 vertices (VERTICES and LINES
+//                               are skipped)
+//
+// Cells: triangles, quadrilaterals (and pixels), tetrahedra, hexahedra (and voxels), wedges and
+// pyramids; polygons of 3 and 4 vertices are triangles and quadrilaterals. Vertices and lines
+// are skipped: the cells are the elements of the highest dimension, as for Gmsh files. Cells
+// keep their file order, vertices are the points some cell uses, in file order. A 2D mesh
+// gets coordinates in its plane (plane_embedding.hpp). The whole mesh is one domain: the file
+// has no physical groups. POINT_DATA, CELL_DATA, FIELD and METADATA sections are skipped.
+//
+// Binary files are big-endian (as VTK writes them). Errors name the line (ASCII) or the byte
+// offset (binary) where the file stops making sense.
+#pragma once
+
+#include <filesystem>
+
+#include "mesh/input_mesh.hpp"
+
+namespace neomesh {
+
+// Not collective (call it on rank 0). Throws Error naming the file for anything that is not a
+// valid VTK legacy file or that neomesh cannot use (structured grids, second-order cells,
+// polygons of more than 4 vertices, 1D cells only).
+InputMesh read_vtk(const std::filesystem::path& path);
+
+}  // namespace neomesh
