@@ -1,5 +1,5 @@
-"""Real meshes from Mesquite's test suite (../shared/corpus/mesquite, VTK legacy read through
-meshio): the defects they showed, each smoothed with the defaults and checked for what must not
+"""Real meshes from Mesquite's test suite (../shared/corpus/mesquite, VTK legacy files read as
+they are): the defects they showed, each smoothed with the defaults and checked for what must not
 change (conftest.expect_nothing_else_changed). Skipped without the corpus.
 Run with NEOMESH=path/to/neomesh."""
 import json
@@ -7,15 +7,15 @@ import os
 
 import pytest
 
-from conftest import CORPUS, expect_nothing_else_changed, needs_corpus, neomesh, vtk_to_msh
+from conftest import CORPUS, expect_nothing_else_changed, needs_corpus, neomesh
 
 pytestmark = needs_corpus
 
 
 def smooth(tmp, name):
-    path = os.path.join(tmp, os.path.basename(name) + ".msh")
-    vtk_to_msh(os.path.join(CORPUS, "mesquite", name + ".vtk"), path)
-    out, report = path.replace(".msh", "-out.msh"), path.replace(".msh", ".json")
+    path = os.path.join(CORPUS, "mesquite", name + ".vtk")
+    base = os.path.join(tmp, os.path.basename(name))
+    out, report = base + "-out.msh", base + ".json"
     proc = neomesh("smooth", path, "-o", out, "--quiet", "--report", report)
     with open(report) as f:
         r = json.load(f)
