@@ -103,7 +103,9 @@ struct QualityGuardResult {
   double min_after = 0.0;           // ... after it (≥ input_min)
   std::int64_t vertices_moved = 0;  // vertices the guard pulled back (global count)
   int rounds = 0;
-  bool gave_up = false;  // pulling back made the worst cell worse: the optimum was kept
+  // Always false: the guard falls back to the input, which meets its threshold (the report
+  // keeps the field).
+  bool gave_up = false;
 };
 
 // Smoothing's worst-cell phase (docs/method.md, "Corners"): the optimum of the thesis' energy

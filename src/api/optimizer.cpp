@@ -116,9 +116,7 @@ std::optional<UntanglingSummary> Optimizer::Impl::untangle(const QuasiNewtonOpti
   // the boundary and the volumes asked for.
   const auto retry = [&](const std::vector<double>& volumes) {
     NM_PETSC(VecCopy(start, x));
-    std::vector<std::uint8_t> fixed(static_cast<std::size_t>(view().num_vertices), 0);
-    for (PetscInt v = 0; v < view().num_vertices; ++v) fixed[v] = view().on_boundary[v];
-    Functional pinned(view(), dofs(), *energy, fixed);
+    Functional pinned(view(), dofs(), *energy, view().on_boundary);  // every boundary vertex
     pinned.set_desired_volumes(volumes);
     const UntangleResult again =
         neomesh::untangle(pinned, x, method, cell_size, {}, observer.iteration);
@@ -287,7 +285,6 @@ Optimizer::Impl& Optimizer::impl() {
 
 Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer) {
   Impl& r = *impl_;
-  const double start = MPI_Wtime();
   Result result = r.start(options);
   r.warm = false;  // the desired volumes are smoothing's now
   r.set_desired_volumes(desired_volumes(options.sizes, r.view(), r.dofs(), r.cell_volumes()));
@@ -302,14 +299,13 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   copy_run(minimize(*r.functional, r.x, method, r.cell_size, observer.iteration), result);
   if (options.quality_guard) r.protect_worst_cells(input, method, observer, result);
   r.finish(result);
-  result.seconds = MPI_Wtime() - start;
+  result.seconds = MPI_Wtime() - r.started;
   return result;
 }
 
 Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
                         const Observer& observer) {
   Impl& r = *impl_;
-  const double start = MPI_Wtime();
   Result result = r.start(options);
   const OwnedVec input =
       copy_of(r.x);  // where the adaptation starts (vertices placed on their charts)
@@ -318,14 +314,13 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
     r.protect_worst_cells(input, r.method(options.solver), observer, result);
   r.finish(result);
   result.volume_ratio = r.volume_ratio();
-  result.seconds = MPI_Wtime() - start;
+  result.seconds = MPI_Wtime() - r.started;
   return result;
 }
 
 Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const AdaptOptions& options,
                         const Observer& observer) {
   Impl& r = *impl_;
-  const double start = MPI_Wtime();
   Result result = r.start(options);
   // A warm step adapts only until the small cells have moved along with the geometry: the fit
   // goes on optimizing, and its start recomputes the desired volumes (one of the step's
@@ -345,7 +340,7 @@ Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const Ad
   r.fit(fit_to, field, fitting, last_stage, observer, result);
   r.finish(result);
   result.volume_ratio = r.volume_ratio();
-  result.seconds = MPI_Wtime() - start;
+  result.seconds = MPI_Wtime() - r.started;
   return result;
 }
 

@@ -83,7 +83,7 @@ struct Optimizer::Impl {
   void finish(Result& result);
 
   Mesh& mesh;
-  double started = 0.0;      // MPI_Wtime() at the call's start, for the time limit
+  double started = 0.0;      // MPI_Wtime() at the call's start: its time, and the time limit
   OwnedVec x;                // set by start()
   double mesh_volume = 0.0;  // of the mesh when the functional was built
   std::optional<EnergyOptions> energy;

@@ -118,10 +118,6 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
 
 // What the quality guard did, if anything (the report has its record).
 void print_quality_guard(const QualityGuardResult& guard) {
-  if (guard.gave_up)
-    say("quality guard: pulling cells back toward the input made the worst cell worse; the "
-        "optimized mesh is kept (min scaled Jacobian {:.4f}; input {:.4f})\n",
-        guard.min_before, guard.input_min);
   if (guard.vertices_moved > 0)
     say("quality guard: {} vertices pulled back toward the input so that no cell is worse than "
         "the input's worst (min scaled Jacobian {:.4f} -> {:.4f}; input {:.4f})\n",

@@ -38,7 +38,7 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
   QualityGuardResult result;
   result.input_min = global_min(scaled_jacobians(view, dofs, input), dofs.comm());
   if (threshold) result.input_min = std::min(result.input_min, *threshold);
-  const OwnedVec optimum = copy_of(x);  // x as the method left it
+  const OwnedVec optimum = copy_of(x);  // x as the method left it, to count what moved
   OwnedVec marked = dofs.create_global_vector(), ever_marked = dofs.create_global_vector();
   std::vector<double> local_marks(dofs.num_local_dofs());
   const int d = view.dim;
@@ -61,7 +61,7 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
     NM_PETSC(VecZeroEntries(marked));
     dofs.add_local_to_global(local_marks, marked);
 
-    // x ← input + ½ (x − input) on marked coordinates; input itself after the last round.
+    // x ← input + ½ (x − input) on marked coordinates; from round kHalvings on, input itself.
     const double keep = round >= kHalvings ? 0.0 : 0.5;
     {
       VecReadView x0(input), m(marked);
@@ -75,8 +75,7 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
     // A chord between two points of a curved boundary leaves it: back onto the boundary.
     if (project) project(x);
   }
-  // Still below: the whole input, which meets the threshold unless its vertices were placed on
-  // their charts (docs/boundary.md).
+  // Still below: the whole input, which meets the threshold (at most the input's worst cell).
   if (result.min_after < result.input_min) {
     NM_PETSC(VecCopy(input, x));
     {
@@ -86,14 +85,6 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
         if (xv[i] != x0[i]) ever[i] = 1.0;
     }
     result.min_after = global_min(scaled_jacobians(view, dofs, x), dofs.comm());
-  }
-  // Moving some vertices of a cell back and not others can make it worse still, even invert
-  // it, when the input is far from the optimum: then the guard gives up rather than harm.
-  if (result.min_after < result.min_before) {
-    NM_PETSC(VecCopy(optimum, x));
-    result.min_after = result.min_before;
-    result.gave_up = true;
-    return result;
   }
   double moved_dofs = 0.0;
   NM_PETSC(VecSum(ever_marked, &moved_dofs));

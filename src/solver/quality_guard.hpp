@@ -8,8 +8,8 @@
 // below it. Vertices of good cells keep their optimized positions. Cells that mix reset and
 // optimized vertices can fall below it in turn (the input far from the optimum: Mesquite's
 // shashkov_opt, an anisotropic mesh already optimized): their vertices are reset too, and in
-// the end, if need be, all are: the output is then the input. Only if even that is worse than
-// the optimized mesh (vertices placed on their charts) does the guard give up and keep it.
+// the end, if need be, all are: the output is then the input, which meets the threshold (at
+// most the input's worst cell), so the guard always ends at or above it.
 #pragma once
 
 #include <functional>
