@@ -159,6 +159,19 @@ enum class SizeMode { Uniform, Input, Smoothed };
 // "uniform", "input" or "smoothed" (the command line's --sizes); throws Error for another name.
 SizeMode parse_size_mode(std::string_view name);
 
+// The cells smoothing pulls each cell towards (docs/method.md, "Target cells"):
+//   Ideal     the thesis' isotropic cell (square, cube, equilateral simplex, ...) of the
+//             desired volume (SizeMode)
+//   Input     the input cell itself, shape and volume: the input is the energy's minimum, so
+//             only untangling and the worst-cell repair move vertices
+//   Smoothed  the input's design where a neighbourhood is stretched coherently (boundary
+//             layers, graded CAD meshes: kept), ideal cells where the stretching is noise
+//             (the default)
+enum class TargetMode { Ideal, Input, Smoothed };
+// "ideal", "input" or "smoothed" (the command line's --targets); throws Error for another name.
+TargetMode parse_target_mode(std::string_view name);
+std::string_view name(TargetMode mode);
+
 // How a size field becomes desired volumes (docs/adaptivity.md): v_K = floor + d(c_K)^p, made
 // consistent.
 struct SizeFieldOptions {
@@ -216,6 +229,7 @@ struct SmoothOptions {
   BoundaryOptions boundary{BoundaryMode::Slide};
   SolverOptions solver;
   SizeMode sizes = SizeMode::Smoothed;
+  TargetMode targets = TargetMode::Smoothed;
   // Inverted cells are untangled first (docs/untangling.md); false: they are an error.
   bool untangle = true;
   // The worst cell: a corner left nearly flat by the thesis' optimum is lifted by going on with

@@ -72,6 +72,16 @@ struct BoundarySummary {
 };
 
 // The problem an optimization solves, once it is set up.
+// The target cells of smoothing (TargetMode): how many cells keep all of their input cell, part
+// of it, or none (the ideal cell).
+struct TargetSummary {
+  std::string mode;  // "ideal", "input" or "smoothed"; empty for adaptation (ideal cells)
+  std::int64_t input = 0, blended = 0, ideal = 0;
+  // The input has inverted cells: the targets are ideal whatever was asked (its cells around
+  // the inverted ones are no design to keep).
+  bool ideal_because_tangled = false;
+};
+
 struct ProblemSummary {
   std::int64_t free_coordinates = 0;  // over all processes
   BoundarySummary boundary;           // empty with fixed boundary vertices
@@ -79,6 +89,7 @@ struct ProblemSummary {
   // The linear solvers of the δ̃ and Riesz solves as PETSc will run them, after the options
   // database's -hess_* and -riesz_* options: "KSP cg, PC hypre boomeramg, rtol 0.0001, ...".
   std::string hessian_solver, riesz_solver;
+  TargetSummary targets;
 };
 
 // Untangling before smoothing (docs/untangling.md).

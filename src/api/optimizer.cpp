@@ -19,6 +19,7 @@
 #include "solver/linear_solver.hpp"
 #include "solver/quality_guard.hpp"
 #include "solver/quasi_newton.hpp"
+#include "solver/targets.hpp"
 #include "solver/untangle.hpp"
 #include "solver/worst_cells.hpp"
 
@@ -92,12 +93,31 @@ void Optimizer::Impl::set_desired_volumes(std::vector<double> volumes) {
   cell_size = local_cell_size(view(), dofs(), volumes);
 }
 
+CellTargets Optimizer::Impl::smoothing_targets(TargetMode mode, SizeMode sizes) const {
+  const std::vector<double> volumes = cell_volumes();
+  std::vector<double> ideal = desired_volumes(sizes, view(), dofs(), volumes);
+  if (mode == TargetMode::Ideal) return ideal_targets(std::move(ideal));
+  return input_targets(mode == TargetMode::Input ? KeptInput::All : KeptInput::Coherent, view(),
+                       dofs(), volumes, functional->cell_jacobians(x), std::move(ideal));
+}
+
+void Optimizer::Impl::set_targets(const CellTargets& targets) {
+  set_desired_volumes(targets.volumes);
+  functional->set_target_shapes(targets.shapes, targets.weights);
+  input_share = targets.shapes.empty() ? std::vector<double>{} : targets.kept;
+}
+
 const Functional& Optimizer::Impl::constrain(SlidingVertices extra) {
   const std::vector<double> volumes =
       functional ? functional->desired_volumes() : std::vector<double>{};
+  const std::vector<double> shapes =
+      functional ? functional->target_shapes() : std::vector<double>{};
+  const std::vector<double> weights =
+      functional ? functional->target_weights() : std::vector<double>{};
   functional = std::make_unique<Functional>(view(), dofs(), *energy, boundary->fixed_dofs(),
                                             join(boundary->sliding_vertices(), std::move(extra)));
   if (!volumes.empty()) functional->set_desired_volumes(volumes);
+  functional->set_target_shapes(shapes, weights);
   return *functional;
 }
 
@@ -118,6 +138,7 @@ std::optional<UntanglingSummary> Optimizer::Impl::untangle(const QuasiNewtonOpti
     NM_PETSC(VecCopy(start, x));
     Functional pinned(view(), dofs(), *energy, view().on_boundary);  // every boundary vertex
     pinned.set_desired_volumes(volumes);
+    pinned.set_target_shapes(functional->target_shapes(), functional->target_weights());
     const UntangleResult again =
         neomesh::untangle(pinned, x, method, cell_size, {}, observer.iteration);
     u.history.insert(u.history.end(), again.history.begin(), again.history.end());
@@ -224,7 +245,10 @@ void Optimizer::Impl::adapt(const SizeField& field, const AdaptOptions& options,
                             const Observer& observer, Result& result) {
   const auto target_volumes = size_field_volumes(field, options.sizes, view(), dofs(), mesh_volume);
   // The size field's volumes at the start: what the observer sees, and what untangling aims at.
+  // Adaptation's targets are ideal cells (a smoothing before may have left others).
   set_desired_volumes(target_volumes(x));
+  functional->set_target_shapes({});
+  input_share.clear();
   result.problem = problem(options.solver);
   if (observer.started) observer.started(result.problem);
   if (options.untangle) result.untangling = untangle(method(options.solver), observer);
@@ -287,9 +311,17 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   Impl& r = *impl_;
   Result result = r.start(options);
   r.warm = false;  // the desired volumes are smoothing's now
-  r.set_desired_volumes(desired_volumes(options.sizes, r.view(), r.dofs(), r.cell_volumes()));
+  // Targets from the input cells — not from a tangled input, whose cells around the inverted
+  // ones are distorted by whatever tangled it: that is no design to keep.
+  const bool tangled = result.quality_before.inverted > 0 || result.quality_before.degenerate > 0;
+  const TargetMode mode = tangled ? TargetMode::Ideal : options.targets;
+  const CellTargets targets = r.smoothing_targets(mode, options.sizes);
+  r.set_targets(targets);
   const QuasiNewtonOptions method = r.method(options.solver);
   result.problem = r.problem(options.solver);
+  const KeptCells kept = count_kept(targets.kept, r.mesh.comm());
+  result.problem.targets = {std::string(name(mode)), kept.all, kept.part, kept.none,
+                            tangled && options.targets != TargetMode::Ideal};
   if (observer.started) observer.started(result.problem);
 
   // The guard's promise is about the input: a tangled input's worst cell is inverted, so any
@@ -356,6 +388,7 @@ std::vector<Field> Optimizer::cell_fields() const {
                             {"det_G_min", fields.min_det},
                             {"Q", fields.volume_ratio},
                             {"desired_volume", r.functional->desired_volumes()}};
+  if (!r.input_share.empty()) out.push_back({"target_input_share", r.input_share});
   if (r.fitted)
     out.push_back({"inside", std::vector<double>(r.fitted->interface.inside.begin(),
                                                  r.fitted->interface.inside.end())});
@@ -389,7 +422,7 @@ double Optimizer::evaluate(const SmoothOptions& options) {
   r.start(options.energy, options.boundary);
   r.x = r.mesh.plex().coordinates();  // as they are: sliding vertices not projected
   r.warm = false;
-  r.set_desired_volumes(desired_volumes(options.sizes, r.view(), r.dofs(), r.cell_volumes()));
+  r.set_targets(r.smoothing_targets(options.targets, options.sizes));
   return r.functional->value(r.x);
 }
 

@@ -19,6 +19,7 @@
 #include "energy/functional.hpp"
 #include "mesh/plex_mesh.hpp"
 #include "solver/quasi_newton.hpp"
+#include "solver/targets.hpp"
 
 namespace neomesh {
 
@@ -49,6 +50,9 @@ struct Optimizer::Impl {
   void start(const EnergyOptions& energy, const BoundaryOptions& boundary);
   // Absolute desired volumes per local cell (MeshView order), summing to mesh_volume.
   void set_desired_volumes(std::vector<double> volumes);
+  // Smoothing's targets (solver/targets.hpp) from the input cells at x, and setting them.
+  CellTargets smoothing_targets(TargetMode mode, SizeMode sizes) const;
+  void set_targets(const CellTargets& targets);
   // Rebuilds the functional with `extra` vertices sliding besides the boundary's (an interface
   // fitted to a level set; none: the boundary's alone), keeping the desired volumes.
   const Functional& constrain(SlidingVertices extra);
@@ -90,8 +94,9 @@ struct Optimizer::Impl {
   std::optional<BoundaryOptions> boundary_options;
   std::unique_ptr<Boundary> boundary;
   std::unique_ptr<Functional> functional;
-  OwnedVec cell_size;                     // local cell size per dof, for the practical criterion
-  bool warm = false;                      // an adapt() ran: the next one starts from its volumes
+  std::vector<double> input_share;  // per local cell: the share of its input cell its target keeps
+  OwnedVec cell_size;               // local cell size per dof, for the practical criterion
+  bool warm = false;                // an adapt() ran: the next one starts from its volumes
   std::unique_ptr<LevelSetFunction> phi;  // of the last fit; its constraint refers to it
   std::optional<FitResult> fitted;        // the last fit, until the next call
 };

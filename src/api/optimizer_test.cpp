@@ -25,6 +25,7 @@ SmoothOptions fixed_uniform() {
   SmoothOptions options;
   options.boundary = BoundaryOptions{BoundaryMode::Fixed};
   options.sizes = SizeMode::Uniform;
+  options.targets = TargetMode::Ideal;
   return options;
 }
 

@@ -7,7 +7,28 @@
 
 #include <neomesh/error.hpp>
 
+#include "core/error.hpp"
+
 namespace neomesh {
+
+TargetMode parse_target_mode(std::string_view name) {
+  if (name == "ideal") return TargetMode::Ideal;
+  if (name == "input") return TargetMode::Input;
+  if (name == "smoothed") return TargetMode::Smoothed;
+  fail("unknown target mode '{}' (use ideal, input or smoothed)", name);
+}
+
+std::string_view name(TargetMode mode) {
+  switch (mode) {
+    case TargetMode::Ideal:
+      return "ideal";
+    case TargetMode::Input:
+      return "input";
+    case TargetMode::Smoothed:
+      return "smoothed";
+  }
+  return "?";
+}
 
 namespace {
 
@@ -108,6 +129,7 @@ void use_thesis_method(EnergyOptions& energy, BoundaryOptions& boundary, SolverO
 SmoothOptions SmoothOptions::thesis(SmoothOptions o) {
   use_thesis_method(o.energy, o.boundary, o.solver);
   o.sizes = SizeMode::Uniform;
+  o.targets = TargetMode::Ideal;
   o.quality_guard = false;
   return o;
 }

@@ -96,6 +96,12 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
   say("lambda {}, mu {}, alpha0 {}, eta {}, kmin {}, linear solver {}, boundary {}\n",
       s.energy.lambda, s.energy.mu, problem.alpha0, s.solver.eta, s.solver.kmin,
       name(s.solver.linear_solver), name(s.boundary.mode));
+  const TargetSummary& t = problem.targets;
+  if (t.ideal_because_tangled)
+    say("targets ideal: the input has inverted cells, its cells are no design to keep\n");
+  else if (!t.mode.empty() && t.mode != "ideal")
+    say("targets {}: {} cells keep their input cell, {} in part, {} are ideal\n", t.mode, t.input,
+        t.blended, t.ideal);
   const BoundarySummary& b = problem.boundary;
   if (s.boundary.mode == BoundaryMode::Slide) {
     say("sliding boundary: {} patches, {} ridges; {} corners fixed, {} ridge and {} surface "
@@ -366,6 +372,12 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
         {"peak_rss_mib", memory.max_rank_mib},
         {"peak_rss_mib_all_ranks", memory.sum_mib},
         {"seconds", MPI_Wtime() - r.start}};
+    if (!result.problem.targets.mode.empty())
+      json["targets"] = {{"mode", result.problem.targets.mode},
+                         {"cells_input", result.problem.targets.input},
+                         {"cells_blended", result.problem.targets.blended},
+                         {"cells_ideal", result.problem.targets.ideal},
+                         {"ideal_because_tangled", result.problem.targets.ideal_because_tangled}};
     if (result.untangling) json["untangling"] = to_json(*result.untangling);
     if (result.corner_phase) json["corner_phase"] = to_json(*result.corner_phase);
     if (result.quality_guard) json["quality_guard"] = to_json(*result.quality_guard);

@@ -67,6 +67,7 @@ std::vector<double> energy_field(Mesh& mesh, const RenderCommandOptions& o) {
   options.energy = EnergyOptions{};
   options.boundary = BoundaryOptions{BoundaryMode::Fixed};
   options.sizes = parse_size_mode(o.sizes);
+  options.targets = TargetMode::Ideal;
   Optimizer optimizer(mesh);
   optimizer.evaluate(options);
   return values_of(optimizer.cell_fields(), o.field == "energy" ? "energy" : "Q");

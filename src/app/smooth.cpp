@@ -16,7 +16,7 @@ namespace {
 
 struct SmoothCommand {
   std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
-  std::string output, sizes = "smoothed";
+  std::string output, sizes = "smoothed", targets = "smoothed";
   bool force = false, no_guard = false, no_untangle = false;
   MethodOptions method;
   RunOutputs outputs;
@@ -25,6 +25,7 @@ struct SmoothCommand {
 void smooth(SmoothCommand& o) {
   SmoothOptions options;
   options.sizes = parse_size_mode(o.sizes);
+  options.targets = parse_target_mode(o.targets);
   options.untangle = !o.no_untangle;
   options.quality_guard = !o.no_guard;
   options = resolve(o.method, options);
@@ -79,6 +80,14 @@ Subcommand add_smooth(CLI::App& app) {
                   "desired cell volumes: smoothed (input volumes averaged over neighbours: keeps "
                   "the grading), input (each cell's own volume) or uniform (all equal, the thesis)")
       ->check(CLI::IsMember({"smoothed", "input", "uniform"}))
+      ->capture_default_str();
+  cmd->add_option("--targets", o->targets,
+                  "the cell each cell is pulled towards: smoothed (the input's own cell where its "
+                  "neighbourhood is stretched on purpose, as boundary layers and graded meshes "
+                  "are; the ideal cell where the stretching is noise), ideal (square, cube, "
+                  "equilateral simplex, ... of the desired volume: the thesis) or input (the input "
+                  "cell: only untangle and repair the worst cells)")
+      ->check(CLI::IsMember({"smoothed", "ideal", "input"}))
       ->capture_default_str();
   add_run_output_options(*cmd, o->outputs, "scaled_jacobian");
   add_method_options(*cmd, o->method);

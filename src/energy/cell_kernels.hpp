@@ -126,14 +126,20 @@ struct OptimalCellQuadrature {
 // The target of one cell: its desired volume v and its shape S (det S = 1), given as S⁻ᵀ
 // (column-major Dim × Dim, where the basis gradients need it); null: S = I, the thesis' ideal
 // cell. Only SᵀS counts (docs/method.md, "Target cells"): W is isotropic, so S and Q S give
-// the same energy for every rotation Q.
+// the same energy for every rotation Q. `stiffness` k weighs the cell's energy, k ∫ W: a
+// stretched cell kept from the input is as small as its shortest edge, and without k its
+// neighbours would squash it (solver/targets.hpp).
 template <int Dim>
 struct CellTarget {
   double volume;
   const double* shape_inverse_t = nullptr;
+  double stiffness = 1.0;
 
   // The ideal cell of `volume` (implicit: a volume is the thesis' target).
-  CellTarget(double v, const double* s = nullptr) : volume(v), shape_inverse_t(s) {}
+  CellTarget(double v, const double* s = nullptr, double k = 1.0)
+      : volume(v), shape_inverse_t(s), stiffness(k) {}
+  // The weight of the cell's integrals: k v (v, exactly, for k = 1).
+  double weight() const { return stiffness == 1.0 ? volume : volume * stiffness; }
 
   // D = T⁻ᵀ D̂ for the unit cell's gradients D̂, given 1/s = v^(−1/d).
   template <int N>
@@ -199,7 +205,7 @@ class CellKernel {
     for (int q = 0; q < rule_.size; ++q) {
       const auto p = law_.point(x * target.pull_back(rule_.unit_gradients[q], scale).transpose());
       if (!Law::admissible(p)) return std::numeric_limits<double>::infinity();
-      sum += target.volume * rule_.unit_weights[q] * law_.energy(p);
+      sum += target.weight() * rule_.unit_weights[q] * law_.energy(p);
     }
     return sum;
   }
@@ -215,7 +221,7 @@ class CellKernel {
       const Gradient basis = target.pull_back(rule_.unit_gradients[q], scale);
       const auto p = law_.point(x * basis.transpose());
       if (!Law::admissible(p)) return std::numeric_limits<double>::infinity();
-      const double weight = target.volume * rule_.unit_weights[q];
+      const double weight = target.weight() * rule_.unit_weights[q];
       sum += weight * law_.energy(p);
       gradient.noalias() += weight * law_.stress(p) * basis;
     }
@@ -233,7 +239,7 @@ class CellKernel {
       const Gradient basis = target.pull_back(rule_.unit_gradients[q], scale);
       const auto p = law_.point(x * basis.transpose());
       if (!Law::admissible(p)) return false;
-      const auto tangent = law_.tangent(p, alpha, target.volume * rule_.unit_weights[q], basis);
+      const auto tangent = law_.tangent(p, alpha, target.weight() * rule_.unit_weights[q], basis);
       for (int j = 0; j < vertices; ++j)
         for (int i = j; i < vertices; ++i)  // lower blocks; the upper ones are their transposes
           block.template block<dim, dim>(dim * i, dim * j) += tangent.block(i, j);
@@ -248,7 +254,7 @@ class CellKernel {
     block.setZero();
     for (int q = 0; q < rule_.size; ++q) {
       const Gradient basis = target.pull_back(rule_.unit_gradients[q], scale);
-      add_scalar_laplacian(target.volume * rule_.unit_weights[q] * basis.transpose() * basis,
+      add_scalar_laplacian(target.weight() * rule_.unit_weights[q] * basis.transpose() * basis,
                            block);
     }
     make_exactly_symmetric(block);
@@ -265,7 +271,7 @@ class CellKernel {
       const Deformation<dim> d(x * basis.transpose());
       if (!d.admissible()) return false;
       const Gradient m = d.inv_t * basis;
-      add_scalar_laplacian(target.volume * rule_.unit_weights[q] * d.det * m.transpose() * m,
+      add_scalar_laplacian(target.weight() * rule_.unit_weights[q] * d.det * m.transpose() * m,
                            block);
     }
     make_exactly_symmetric(block);

@@ -86,6 +86,7 @@ struct Functional::Impl {
   std::vector<double> volumes;       // desired volume per local cell
   std::vector<double> shapes;        // per local cell S (dim² each) as given; empty: ideal
   std::vector<double> shapes_inv_t;  // per local cell S⁻ᵀ with det S = 1, for the kernels
+  std::vector<double> weights;       // per local cell with shapes: its energy's weight
   OwnedVec free_mask;
   SlidingVertices sliding;
   std::vector<PetscInt> projector_of;  // per local vertex: its index in sliding.vertices, or -1
@@ -126,7 +127,8 @@ struct Functional::Impl {
   // The target of local cell `cell` (cell_kernels.hpp).
   template <int Dim>
   CellTarget<Dim> target(PetscInt cell) const {
-    return {volumes[cell], shapes_inv_t.empty() ? nullptr : shapes_inv_t.data() + Dim * Dim * cell};
+    if (shapes_inv_t.empty()) return {volumes[cell]};
+    return {volumes[cell], shapes_inv_t.data() + Dim * Dim * cell, weights[cell]};
   }
 
   bool is_fixed_dof(PetscInt local_dof) const { return fixed[local_dof] != 0; }
@@ -408,19 +410,27 @@ const std::vector<double>& Functional::desired_volumes() const {
   return impl_->volumes;
 }
 
-void Functional::set_target_shapes(std::span<const double> shapes) {
+void Functional::set_target_shapes(std::span<const double> shapes,
+                                   std::span<const double> weights) {
   const int d = impl_->view.dim;
   const std::size_t n = static_cast<std::size_t>(d * d);
-  if (!shapes.empty() && shapes.size() != n * impl_->view.num_cells)
-    fail("Functional: {} target shape entries for {} cells of dimension {}", shapes.size(),
-         impl_->view.num_cells, d);
+  const std::size_t cells = static_cast<std::size_t>(impl_->view.num_cells);
+  if (!shapes.empty() && shapes.size() != n * cells)
+    fail("Functional: {} target shape entries for {} cells of dimension {}", shapes.size(), cells,
+         d);
+  if (!weights.empty() && (shapes.empty() || weights.size() != cells))
+    fail("Functional: {} target weights for {} cells", weights.size(), cells);
   impl_->shapes.assign(shapes.begin(), shapes.end());
+  impl_->weights.assign(weights.begin(), weights.end());
+  if (impl_->weights.empty() && !shapes.empty()) impl_->weights.assign(cells, 1.0);
   impl_->shapes_inv_t.resize(shapes.size());
   for (std::size_t c = 0; c * n < shapes.size(); ++c) {
     const Eigen::Map<const Eigen::MatrixXd> S(shapes.data() + c * n, d, d);
     const double det = S.determinant();
     if (!(det > 0.0) || !std::isfinite(det))
       fail("the target shape of local cell {} has determinant {} (must be positive)", c, det);
+    if (!(impl_->weights[c] > 0.0) || !std::isfinite(impl_->weights[c]))
+      fail("the target weight of local cell {} is {} (must be positive)", c, impl_->weights[c]);
     Eigen::Map<Eigen::MatrixXd>(impl_->shapes_inv_t.data() + c * n, d, d) =
         std::pow(det, 1.0 / d) * S.inverse().transpose();
   }
@@ -428,6 +438,10 @@ void Functional::set_target_shapes(std::span<const double> shapes) {
 
 const std::vector<double>& Functional::target_shapes() const {
   return impl_->shapes;
+}
+
+const std::vector<double>& Functional::target_weights() const {
+  return impl_->weights;
 }
 
 std::vector<double> Functional::cell_jacobians(Vec x) const {

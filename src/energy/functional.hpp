@@ -64,9 +64,11 @@ class Functional {
   const std::vector<double>& desired_volumes() const;
   // The shape S of each local cell's target (docs/method.md, "Target cells"), MeshView order:
   // dim² numbers per cell, column-major, scaled here to det S = 1 (the volume is the desired
-  // volume). Empty: the thesis' ideal cells. Throws Error for det S ≤ 0 or a wrong length.
-  void set_target_shapes(std::span<const double> shapes);
-  const std::vector<double>& target_shapes() const;  // as given (empty: ideal)
+  // volume); and the weight of each cell's energy (empty: 1). Empty shapes: the thesis' ideal
+  // cells. Throws Error for det S ≤ 0, a weight ≤ 0 or a wrong length.
+  void set_target_shapes(std::span<const double> shapes, std::span<const double> weights = {});
+  const std::vector<double>& target_shapes() const;   // as given (empty: ideal)
+  const std::vector<double>& target_weights() const;  // empty with ideal targets
   // Each local cell's Jacobian at x, at its centre, relative to its unit ideal cell (dim² per
   // cell, column-major, MeshView order): the shape an `input` target takes.
   std::vector<double> cell_jacobians(Vec x) const;

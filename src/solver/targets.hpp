@@ -1,0 +1,68 @@
+// Target cells for smoothing from the input cells (`--targets input|smoothed`; docs/method.md,
+// "Target cells"): per cell a desired volume, a shape S (det S = 1) of the cell the energy
+// pulls it towards, and a weight k of its energy. (`--targets ideal` needs none of this: the
+// thesis' isotropic cells of the volumes `--sizes` asks for, k = 1.)
+//   KeptInput::All        the input cell itself: its stretch and volume at its centre ("only
+//                         untangle or repair": the input is the energy's minimum)
+//   KeptInput::Coherent   the input's design where it is coherent, ideal cells where it is
+//                         noise (`--targets smoothed`). Each
+//             cell's Jacobian at its centre, relative to its ideal cell, is J = s V R (det V =
+//             1, R a rotation). A neighbourhood stretched on purpose — a boundary layer, a
+//             graded CAD mesh — has its cells stretched alike: the anisotropy of the mean of
+//             log V over the cells sharing a vertex is close to the mean of their own
+//             anisotropies (coherence near 1). Noise stretches cells in scattered directions,
+//             which cancel in the mean. A cell keeps the share
+//               w = ramp(coherence; kCoherence) · ramp(own anisotropy; kStretched)
+//             of its input cell: S = V^w R, v = v_input^w v_sizes^(1−w) (then all volumes are
+//             scaled to the mesh volume).
+// A kept cell is as thin as its shortest edge, so its energy is small against that of its
+// neighbours, which would squash it (a boundary layer's first height: −26 % with k = 1):
+// its weight k = (C a)^w, with a = σ_max(V)^d the volume of the isotropic cell spanning its
+// longest edge over its own, C = kKeptStiffness (docs/method.md has the measurements).
+// Inverted input cells have no shape of their own: their targets are ideal (Optimizer::smooth
+// takes ideal targets for every cell of a tangled input).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "mesh/dof_map.hpp"
+#include "mesh/mesh_view.hpp"
+
+namespace neomesh {
+
+enum class KeptInput { All, Coherent };
+
+// The constants of Smoothed (docs/method.md, "Target cells"): the ramps' ends, coherence and
+// own anisotropy (a right triangle is 1.73 from the equilateral one: it is never kept), and C.
+struct Ramp {
+  double from, to;
+};
+inline constexpr Ramp kCoherence{0.5, 0.8}, kStretched{2.0, 3.5};
+inline constexpr double kKeptStiffness = 7.0;
+
+struct CellTargets {
+  std::vector<double> volumes;  // per local cell, summing to the mesh volume over all ranks
+  std::vector<double> shapes;   // per local cell dim² (column-major, det 1); empty: all ideal
+  std::vector<double> weights;  // per local cell k (with shapes)
+  std::vector<double> kept;     // per local cell: the share w of the input cell kept
+};
+
+// Ideal targets of the given volumes.
+CellTargets ideal_targets(std::vector<double> volumes);
+
+// `cell_volumes`: each local cell's actual volume; `jacobians`: each local cell's Jacobian at
+// its centre relative to its unit ideal cell (Functional::cell_jacobians); `ideal_volumes`: the
+// desired volumes of the ideal targets (desired_volumes.hpp), for the cells not kept.
+// Collective.
+CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& dofs,
+                          std::span<const double> cell_volumes, std::span<const double> jacobians,
+                          std::vector<double> ideal_volumes);
+
+// How many local cells keep all of their input cell (w = 1), part of it, or none.
+struct KeptCells {
+  long long all = 0, part = 0, none = 0;
+};
+KeptCells count_kept(std::span<const double> kept, MPI_Comm comm);
+
+}  // namespace neomesh
