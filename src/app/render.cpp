@@ -27,7 +27,7 @@ struct RenderCommandOptions {
   std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
   std::string output, field = "scaled_jacobian", sizes = "smoothed", title;
   int width = 1200;
-  std::vector<double> range;
+  std::vector<double> range, window;
   bool log_scale = false;
 };
 
@@ -88,6 +88,9 @@ void run_render(const RenderCommandOptions& o) {
   if (!o.range.empty() && o.range.size() != 2)
     fail("--range takes MIN,MAX (got {} numbers)", o.range.size());
   check_finite("--range", o.range);
+  if (!o.window.empty() && o.window.size() != 4)
+    fail("--window takes XMIN,XMAX,YMIN,YMAX (got {} numbers)", o.window.size());
+  check_finite("--window", o.window);
   // Fail before the (possibly long) load.
   collectively(MPI_COMM_WORLD, [&] {
     check_output_file("-o/--output", o.output, OutputKind::Picture);
@@ -108,6 +111,7 @@ void run_render(const RenderCommandOptions& o) {
   options.field_name = field_info(o.field).legend;
   options.log_scale = o.log_scale;
   if (!o.range.empty()) options.min = o.range[0], options.max = o.range[1];
+  if (!o.window.empty()) options.window = {o.window[0], o.window[1], o.window[2], o.window[3]};
   render_mesh(mesh, field_values(mesh, o), o.output, options);
   say("wrote {}: {} of {} cells\n", o.output, o.field, mesh.num_cells());
 }
@@ -145,6 +149,11 @@ Subcommand add_render(CLI::App& app) {
                   "the end colours")
       ->delimiter(',')
       ->expected(2);
+  cmd->add_option("--window", options->window,
+                  "draw only XMIN,XMAX,YMIN,YMAX (a zoom, e.g. into a boundary layer; default: "
+                  "the whole mesh)")
+      ->delimiter(',')
+      ->expected(4);
   cmd->add_flag("--log", options->log_scale,
                 "colour by the logarithm of the value (default: linear)");
   return {cmd, [options] { run_render(*options); }};

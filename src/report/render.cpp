@@ -104,6 +104,7 @@ struct Layout {
   double margin = 0, font = 0, title_font = 0, title_y = 0;
   double scale = 0, x0 = 0, y0 = 0;  // a point (x, y) goes to (x0 + scale x, y0 − scale y)
   double legend_x = 0, legend_top = 0, bar_width = 0, bar_height = 0;
+  std::array<double, 4> frame{};  // the part drawn: left, top, width, height
 
   double px(double x) const { return x0 + scale * x; }
   double py(double y) const { return y0 - scale * y; }
@@ -116,6 +117,13 @@ Layout layout(std::span<const double> coords, const RenderOptions& o, const Lege
   for (std::size_t i = 0; i + 1 < coords.size(); i += 2) {
     xmin = std::min(xmin, coords[i]), xmax = std::max(xmax, coords[i]);
     ymin = std::min(ymin, coords[i + 1]), ymax = std::max(ymax, coords[i + 1]);
+  }
+  if (o.window) {
+    const auto& [x0, x1, y0, y1] = *o.window;
+    if (!(x0 < x1 && y0 < y1) || !std::isfinite(x1 - x0) || !std::isfinite(y1 - y0))
+      fail("render window {},{},{},{} is empty (give x_min < x_max, y_min < y_max)", x0, x1, y0,
+           y1);
+    xmin = x0, xmax = x1, ymin = y0, ymax = y1;
   }
   // A degenerate extent (all vertices on a line) gets the other one, so that scale is finite.
   double w = xmax - xmin, h = ymax - ymin;
@@ -146,6 +154,7 @@ Layout layout(std::span<const double> coords, const RenderOptions& o, const Lege
   l.scale = std::min(map_width / w, map_height / h);
   l.x0 = l.margin + 0.5 * (map_width - l.scale * w) - l.scale * xmin;
   l.y0 = top + 0.5 * (map_height + l.scale * h) + l.scale * ymin;
+  l.frame = {l.px(xmin), l.py(ymax), l.scale * w, l.scale * h};
 
   l.legend_x = l.margin + map_width + 0.035 * W;
   l.legend_top = top + 2.4 * l.font;
@@ -209,6 +218,22 @@ double mean_cell_pixels(std::span<const Outline> cells, const Layout& l,
     area += 0.5 * std::abs(twice);
   }
   return l.scale * std::sqrt(area / static_cast<double>(std::max<std::size_t>(cells.size(), 1)));
+}
+
+// The cells with a vertex inside the frame, or whose bounding box overlaps it.
+std::vector<Outline> inside(std::span<const Outline> cells, const Layout& l,
+                            std::span<const double> coords) {
+  std::vector<Outline> out;
+  const auto& [left, top, width, height] = l.frame;
+  for (const Outline& cell : cells) {
+    double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+    for (std::int64_t v : cell.vertices) {
+      const double x = l.px(coords[2 * v]), y = l.py(coords[2 * v + 1]);
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+    if (x1 >= left && x0 <= left + width && y1 >= top && y0 <= top + height) out.push_back(cell);
+  }
+  return out;
 }
 
 void draw_cells(cairo_t* cr, std::span<const Outline> cells, const Layout& l,
@@ -304,10 +329,16 @@ void render_mesh(const MeshArrays& mesh, std::span<const double> cell_values,
     set_colour(cr, kInk);
     draw_text(cr, options.title, l.margin, l.title_y, l.title_font, Anchor::Left, true);
   }
-  draw_cells(cr, cells, l, coords, cell_values, scale);
-  const double cell_pixels = mean_cell_pixels(cells, l, coords);
+  // With a window, the cells that reach into it, clipped at its frame.
+  const std::vector<Outline> shown = options.window ? inside(cells, l, coords) : cells;
+  cairo_save(cr);
+  cairo_rectangle(cr, l.frame[0], l.frame[1], l.frame[2], l.frame[3]);
+  cairo_clip(cr);
+  draw_cells(cr, shown, l, coords, cell_values, scale);
+  const double cell_pixels = mean_cell_pixels(shown, l, coords);
   if (options.draw_edges && cell_pixels >= kMinCellPixelsForEdges)
-    draw_edges(cr, cells, l, coords, cell_pixels);
+    draw_edges(cr, shown, l, coords, cell_pixels);
+  cairo_restore(cr);
   draw_colour_bar(cr, l, g);
   canvas.finish();
 }

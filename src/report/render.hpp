@@ -2,6 +2,7 @@
 // (a quality metric, the energy, ...), with a colour bar, written as PNG or SVG.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <span>
@@ -20,6 +21,9 @@ struct RenderOptions {
   bool draw_edges = true;          // skipped anyway when cells are too small to show them
   // What non-finite values mean, for the legend ("3 inverted").
   std::string invalid_label = "inverted";
+  // The part drawn, {x_min, x_max, y_min, y_max} (a zoom; cells are clipped at its frame);
+  // default: the whole mesh.
+  std::optional<std::array<double, 4>> window;
 };
 
 // Draws a whole 2D mesh (Mesh::gather's arrays; its cell_fields are not used) coloured by

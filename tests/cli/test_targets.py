@@ -1,0 +1,129 @@
+"""Target cells (`--targets`, docs/method.md §9): the default keeps what the mesh's author meant
+— boundary layers, graded CAD meshes — and still repairs the rest; `ideal` is the thesis'
+model, which fights that design. Run with NEOMESH=path/to/neomesh."""
+import json
+import os
+
+import numpy as np
+import pytest
+
+import boundary_layers
+from conftest import (CORPUS, expect_nothing_else_changed, needs_corpus, needs_mpi, neomesh,
+                      read_mesh)
+
+
+def smooth(tmp, mesh, *options, name="out"):
+    out = os.path.join(tmp, name + ".vtu")
+    report = os.path.join(tmp, name + ".json")
+    neomesh("smooth", mesh, "-o", out, "--quiet", "--report", report, *options)
+    with open(report) as f:
+        return out, json.load(f)
+
+
+@pytest.fixture(scope="module")
+def channel(module_tmp):
+    return boundary_layers.channel(module_tmp)
+
+
+@pytest.fixture(scope="module")
+def sphere(module_tmp):
+    return boundary_layers.sphere(module_tmp)
+
+
+def test_the_default_keeps_a_2d_boundary_layer_and_repairs_the_rest(tmp, channel):
+    out, report = smooth(tmp, channel)
+    change = boundary_layers.layer_change_2d(channel, out)
+    assert max(map(abs, change["first_height"])) < 0.01, change
+    assert max(map(abs, change["thickness"])) < 0.01, change
+    assert report["targets"]["mode"] == "smoothed"
+    assert report["targets"]["cells_input"] == 320  # exactly the layer's quads
+    # The triangles outside improve as much as with ideal targets (within 0.002 at the worst).
+    ideal, _ = smooth(tmp, channel, "--targets", "ideal", name="ideal")
+    before = boundary_layers.rest_quality(smooth(tmp, channel, "--targets", "input",
+                                                 name="input")[0])
+    worst, mean = boundary_layers.rest_quality(out)
+    ideal_worst, ideal_mean = boundary_layers.rest_quality(ideal)
+    assert worst > before[0] + 0.06 and worst > ideal_worst - 0.002
+    assert mean > ideal_mean
+    expect_nothing_else_changed(channel, out)
+
+
+def test_ideal_targets_squash_the_layer(tmp, channel):
+    """What the default prevents: the thesis' square target thins first layer cells by 10 % and
+    thickens the layer by a third to a half."""
+    out, _ = smooth(tmp, channel, "--targets", "ideal")
+    change = boundary_layers.layer_change_2d(channel, out)
+    assert change["first_height"][0] < -0.05 and change["thickness"][0] > 0.25, change
+
+
+def test_input_targets_leave_a_valid_mesh_as_it_is(tmp, channel):
+    out, report = smooth(tmp, channel, "--targets", "input")
+    assert report["targets"]["cells_input"] == 3179
+    # A quad's target is its Jacobian at its centre: a trapezoid is not quite its own minimum.
+    change = boundary_layers.layer_change_2d(channel, out)
+    assert max(map(abs, change["first_height"] + change["thickness"])) < 0.002, change
+
+
+def test_the_default_keeps_a_3d_prism_layer_far_better_than_ideal_targets(tmp, sphere):
+    """Within 4 % of the first height and 5 % of the thickness, where ideal targets change them
+    by 30 % and 70-180 % (the acceptance asks for 1 %: docs/method.md §9 says what is left)."""
+    out, report = smooth(tmp, sphere)
+    assert report["targets"]["cells_input"] == 2320  # exactly the prisms
+    change = boundary_layers.layer_change_3d(sphere, out)
+    assert max(map(abs, change["first_height"])) < 0.04, change
+    assert max(map(abs, change["thickness"])) < 0.05, change
+    ideal, _ = smooth(tmp, sphere, "--targets", "ideal", name="ideal")
+    change = boundary_layers.layer_change_3d(sphere, ideal)
+    assert change["thickness"][0] > 0.5, change
+
+
+@needs_mpi
+def test_two_ranks_keep_the_same_cells_as_one(tmp, channel):
+    out, report = smooth(tmp, channel)
+    out2 = os.path.join(tmp, "two.vtu")
+    report2 = os.path.join(tmp, "two.json")
+    neomesh("smooth", channel, "-o", out2, "--quiet", "--report", report2, ranks=2)
+    with open(report2) as f:
+        assert json.load(f)["targets"] == report["targets"]
+    # The same minimizer to the stopping tolerance: the layer kept as well.
+    change = boundary_layers.layer_change_2d(channel, out2)
+    assert max(map(abs, change["first_height"] + change["thickness"])) < 0.01, change
+
+
+@needs_corpus
+def test_a_graded_cad_mesh_ends_fast_and_no_worse(tmp):
+    """Mesquite's cub_fru (10,752 hexes, edge ratios up to 531): ideal targets did not end in
+    900 s; kept, it ends in ≤ 15 iterations with a better worst cell."""
+    mesh = os.path.join(CORPUS, "mesquite", "3D", "vtk", "hexes", "untangled", "cub_fru.vtk")
+    out, report = smooth(tmp, mesh)
+    assert len(report["result"]["history"]) <= 15
+    before = report["quality_before"]["metrics"]["scaled_jacobian"]["min"]
+    after = report["quality_after"]["metrics"]["scaled_jacobian"]["min"]
+    assert after >= before and report["quality_after"]["inverted"] == 0
+
+
+@needs_corpus
+def test_an_optimized_graded_mesh_is_not_made_worse(tmp):
+    """Mesquite's shashkov_opt (8,192 graded triangles, already optimized): ideal targets took
+    its min scaled Jacobian from 0.086 to 0.069 and its mean from 0.330 to 0.259."""
+    mesh = os.path.join(CORPUS, "mesquite", "2D", "vtk", "tris", "untangled", "shashkov_opt.vtk")
+    out, report = smooth(tmp, mesh)
+    sj = lambda q: q["metrics"]["scaled_jacobian"]
+    before, after = sj(report["quality_before"]), sj(report["quality_after"])
+    assert after["min"] >= before["min"] and after["mean"] >= before["mean"]
+
+
+def test_a_tangled_input_gets_ideal_targets(tmp):
+    """A tangled mesh's cells around the inverted ones are no design to keep."""
+    mesh = os.path.join(tmp, "box.msh")
+    neomesh("generate", "box-quad", "--cells", 6, "--jitter", 0.2, "-o", mesh)
+    m = read_mesh(mesh)
+    inner = np.where((m.points[:, 0] > 0.3) & (m.points[:, 0] < 0.7) &
+                     (m.points[:, 1] > 0.3) & (m.points[:, 1] < 0.7))[0]
+    m.points[inner[0], 0] += 0.4  # folds its cells over their neighbours
+    import meshio
+    meshio.write(mesh, m, file_format="gmsh22", binary=False)
+    out, report = smooth(tmp, mesh)
+    assert report["targets"]["mode"] == "ideal"
+    assert report["targets"]["ideal_because_tangled"] is True
+    assert report["quality_after"]["inverted"] == 0
