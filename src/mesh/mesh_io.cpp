@@ -9,9 +9,11 @@ namespace neomesh {
 
 void check_readable_format(const std::filesystem::path& path) {
   const auto ext = path.extension();
-  if (ext != ".msh" && ext != ".xml" && ext != ".vtk")
-    fail("{}: unknown mesh format '{}' (neomesh reads Gmsh .msh, FEAT3 .xml and VTK legacy .vtk)",
-         path.string(), ext.string());
+  if (ext != ".msh" && ext != ".xml" && ext != ".vtk" && ext != ".vtu" && ext != ".pvtu")
+    fail(
+        "{}: unknown mesh format '{}' (neomesh reads Gmsh .msh, FEAT3 .xml, VTK legacy .vtk and "
+        "VTK XML .vtu/.pvtu)",
+        path.string(), ext.string());
 }
 
 void check_writable_format(const std::filesystem::path& path) {

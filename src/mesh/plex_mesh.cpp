@@ -16,6 +16,7 @@
 #include "mesh/plex_builder.hpp"
 #include "mesh/validate.hpp"
 #include "mesh/vtk_reader.hpp"
+#include "mesh/vtu_reader.hpp"
 
 namespace neomesh {
 
@@ -266,9 +267,11 @@ PlexMesh PlexMesh::load(const std::filesystem::path& path, MPI_Comm comm, Invert
     check_input_file(path);
     check_readable_format(path);
     const auto ext = path.extension();
-    input = ext == ".msh"   ? read_gmsh(path)
-            : ext == ".vtk" ? read_vtk(path)
-                            : input_from_data(read_feat(path));
+    input = ext == ".msh"    ? read_gmsh(path)
+            : ext == ".vtk"  ? read_vtk(path)
+            : ext == ".vtu"  ? read_vtu(path)
+            : ext == ".pvtu" ? read_pvtu(path)
+                             : input_from_data(read_feat(path));
   });
   return create(comm, input, path.string(), inverted);
 }
