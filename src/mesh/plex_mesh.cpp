@@ -11,6 +11,7 @@
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/input_file.hpp"
 #include "mesh/input_topology.hpp"
+#include "mesh/medit_reader.hpp"
 #include "mesh/mesh_impl.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/plex_builder.hpp"
@@ -271,6 +272,7 @@ PlexMesh PlexMesh::load(const std::filesystem::path& path, MPI_Comm comm, Invert
             : ext == ".vtk"  ? read_vtk(path)
             : ext == ".vtu"  ? read_vtu(path)
             : ext == ".pvtu" ? read_pvtu(path)
+            : ext == ".mesh" ? read_medit(path)
                              : input_from_data(read_feat(path));
   });
   return create(comm, input, path.string(), inverted);
