@@ -9,8 +9,8 @@
 // It also sets OMP_WAIT_POLICY=PASSIVE unless the user set a policy: OpenMP threads (neomesh's,
 // hypre's, OpenBLAS's) that wait by spinning make a run 5-30x slower when another process holds
 // a core (a shared workstation, a cluster node with other jobs), while sleeping costs a quiet
-// machine nothing measurable (docs/benchmarks.md, "Under load"). libgomp reads the variable
-// when it is loaded, so it has to be set before neomesh-main starts.
+// machine nothing measurable (docs/benchmarks.md, "Threads and a shared machine"). libgomp
+// reads the variable when it is loaded, so it has to be set before neomesh-main starts.
 #include <unistd.h>
 
 #include <cerrno>

@@ -52,7 +52,8 @@ PeakMemory peak_memory(MPI_Comm comm) {
 
 // Below this many vertices × dim² per rank a second OpenMP thread gains nothing (quads 100²,
 // tets 12³, the DFG channel's 5,878 quads under adapt: the same time or slower), above it it
-// does (quads 170²: 12% faster, hexahedra 20³: 20%); docs/benchmarks.md, "Threads".
+// does (quads 170²: 12% faster, hexahedra 20³: 20%); docs/benchmarks.md, "Threads and a shared
+// machine".
 constexpr double kThreadedWork = 6e4;
 
 // Unless OMP_NUM_THREADS says otherwise, the ranks on a node share its cores: P ranks times

@@ -1,14 +1,20 @@
-// energy/cell_kernels.hpp — the energy of one cell and its derivatives (docs/method.md §1–3).
+// energy/cell_kernels.hpp — the energy of one cell and its derivatives (docs/method.md §1–3),
+// for any material law: one skeleton (the loop over sample points, the weights, the block fill
+// and its symmetry) with the law plugged in — the Neo-Hookean law of the thesis
+// (NeoHookeKernel) or the regularized one of untangling (UntanglingKernel).
 //
 // A cell K is given by its vertex coordinates X (Dim × vertices, one column per vertex, in
-// canonical local order) and its desired volume v. Its optimal cell has volume v; γ_K maps
-// the optimal cell onto K, G = ∇γ_K:
+// canonical local order) and its target (CellTarget): the optimal cell of the desired volume v,
+// mapped by the target's shape S (identity: the thesis' ideal cell). γ_K maps the target cell
+// onto K, G = ∇γ_K. For the ideal cell:
 // - simplex: G = E_K · E_opt⁻¹ (constant), one quadrature point of weight v;
 // - Q1 cell: G(ξ) = ∇τ(ξ) · (2/h), h = v^(1/d), Gauss points ξ_q with weights w_q (h/2)^d;
 // - wedge, pyramid: G(ξ) = ∇τ(ξ) · ∇τ_opt(ξ)⁻¹ with τ, τ_opt the maps of the reference cell
 //   onto K and onto the optimal cell (ReferenceRule's points, weights w_q det ∇τ_opt(ξ_q)).
 // In every case G = X · D_qᵀ where column i of D_q is ∇φ̂_i, the gradient of basis function
 // i with respect to the optimal cell's coordinates at point q (the same chain rule as G).
+// A shaped target T = v^(1/d) S maps the unit optimal cell onto the target cell, so
+// D_q = T⁻ᵀ D̂_q with D̂_q the unit cell's gradients, and the weights are v ŵ_q as before.
 //
 // Local dofs are numbered vertex-major, dof = Dim · vertex + component (the DofMap's order);
 // a cell gradient is a Dim × vertices matrix whose column-major storage is in that order.
@@ -21,6 +27,7 @@
 #include <type_traits>
 
 #include "energy/neo_hooke.hpp"
+#include "energy/regularized_neo_hooke.hpp"
 #include "geometry/reference_cell.hpp"
 
 namespace neomesh {
@@ -45,7 +52,7 @@ constexpr int max_quadrature_points() {
 // corner frames of the cell-type table come first, ω / corners each, and the Gauss points
 // share 1 − ω. At frame k, G = J_k J_k,opt⁻¹ (the frame's edges against the optimal cell's),
 // so the law's barrier acts at the corners too, where det J of a Q1 cell, wedge or pyramid
-// is smallest; Gauss points alone let a corner flatten (untangling_kernel.hpp, docs/method.md).
+// is smallest; Gauss points alone let a corner flatten (docs/untangling.md, docs/method.md).
 template <CellType Type>
 struct OptimalCellQuadrature {
   static constexpr int dim = CellTraits<Type>::dim;
@@ -116,24 +123,54 @@ struct OptimalCellQuadrature {
   }
 };
 
+// The target of one cell: its desired volume v and its shape S (det S = 1), given as S⁻ᵀ
+// (column-major Dim × Dim, where the basis gradients need it); null: S = I, the thesis' ideal
+// cell. Only SᵀS counts (docs/method.md, "Target cells"): W is isotropic, so S and Q S give
+// the same energy for every rotation Q.
+template <int Dim>
+struct CellTarget {
+  double volume;
+  const double* shape_inverse_t = nullptr;
+
+  // The ideal cell of `volume` (implicit: a volume is the thesis' target).
+  CellTarget(double v, const double* s = nullptr) : volume(v), shape_inverse_t(s) {}
+
+  // D = T⁻ᵀ D̂ for the unit cell's gradients D̂, given 1/s = v^(−1/d).
+  template <int N>
+  Eigen::Matrix<double, Dim, N> pull_back(const Eigen::Matrix<double, Dim, N>& unit,
+                                          double inverse_edge) const {
+    if (!shape_inverse_t) return inverse_edge * unit;
+    return inverse_edge * (Eigen::Map<const Matrix<Dim>>(shape_inverse_t) * unit);
+  }
+};
+
 // Actual volume of a cell and the smallest det G over its quadrature points.
 struct CellMeasure {
   double volume;
   double min_det;
 };
 
-template <CellType Type>
+// The skeleton. `Law` gives, per sample point (neo_hooke.hpp, regularized_neo_hooke.hpp):
+//   Point point(G)                          the quantities of W at G, computed once
+//   static bool admissible(Point)           whether W is finite there
+//   double energy(Point), Matrix stress(Point)    W and P = ∂W/∂G
+//   tangent(Point, α, weight, D)            ∂²W/∂G² (B1 + α B2 + B3) contracted with the basis
+//                                           gradients D: .block(i, j) is the (i, j) block
+//   static constexpr bool barrier           W = +∞ where det G ≤ 0 (checked at the corners too)
+template <CellType Type, typename Law>
 class CellKernel {
  public:
+  static constexpr CellType type = Type;
   static constexpr int dim = CellTraits<Type>::dim;
   static constexpr int vertices = CellTraits<Type>::vertices;
   static constexpr int dofs = dim * vertices;
   using Coordinates = typename CellTraits<Type>::Coordinates;  // X, one column per vertex
   using Gradient = Coordinates;                                // ∂(cell energy)/∂X
   using Block = Eigen::Matrix<double, dofs, dofs>;             // (dof, dof) in local order
+  using Target = CellTarget<dim>;
 
   // `corner_weight`: the share of the corner samples (OptimalCellQuadrature; 0: the thesis').
-  CellKernel(const NeoHooke<dim>& law, int gauss_points, double corner_weight = 0.0)
+  CellKernel(const Law& law, int gauss_points, double corner_weight = 0.0)
       : law_(law), rule_(gauss_points, corner_weight) {}
 
   // Whether the map is orientation-preserving at every corner frame of the cell-type table
@@ -153,110 +190,107 @@ class CellKernel {
     }
   }
 
-  // ∫_{optimal cell} W(G) dx = Σ_q v ŵ_q W(G_q); +∞ if det G ≤ 0 at some point or corner.
-  double energy(const Coordinates& x, double volume) const {
-    if (!corners_admissible(x)) return std::numeric_limits<double>::infinity();
-    const double scale = inverse_edge(volume);
+  // ∫_{target cell} W(G) dx = Σ_q v ŵ_q W(G_q); for a barrier law +∞ if det G ≤ 0 at some
+  // point or corner.
+  double energy(const Coordinates& x, const Target& target) const {
+    if (!barrier_holds(x)) return std::numeric_limits<double>::infinity();
+    const double scale = inverse_edge(target.volume);
     double sum = 0.0;
     for (int q = 0; q < rule_.size; ++q) {
-      const Deformation<dim> d(x * (scale * rule_.unit_gradients[q]).transpose());
-      if (!d.admissible()) return std::numeric_limits<double>::infinity();
-      sum += volume * rule_.unit_weights[q] * law_.energy(d);
+      const auto p = law_.point(x * target.pull_back(rule_.unit_gradients[q], scale).transpose());
+      if (!Law::admissible(p)) return std::numeric_limits<double>::infinity();
+      sum += target.volume * rule_.unit_weights[q] * law_.energy(p);
     }
     return sum;
   }
 
   // The cell energy and its gradient: ∂/∂X_ai = Σ_q v ŵ_q (P(G_q) D_q)_ai, i.e.
-  // F′[φ] = ∫ P(G) : ∇φ̂ for φ = e_a φ_i. Returns +∞ (gradient unspecified) if inverted.
-  double energy_and_gradient(const Coordinates& x, double volume, Gradient& gradient) const {
+  // F′[φ] = ∫ P(G) : ∇φ̂ for φ = e_a φ_i. Returns +∞ (gradient unspecified) if inadmissible.
+  double energy_and_gradient(const Coordinates& x, const Target& target, Gradient& gradient) const {
     gradient.setZero();
-    if (!corners_admissible(x)) return std::numeric_limits<double>::infinity();
-    const double scale = inverse_edge(volume);
+    if (!barrier_holds(x)) return std::numeric_limits<double>::infinity();
+    const double scale = inverse_edge(target.volume);
     double sum = 0.0;
     for (int q = 0; q < rule_.size; ++q) {
-      const Gradient basis = scale * rule_.unit_gradients[q];
-      const Deformation<dim> d(x * basis.transpose());
-      if (!d.admissible()) return std::numeric_limits<double>::infinity();
-      const double weight = volume * rule_.unit_weights[q];
-      sum += weight * law_.energy(d);
-      gradient.noalias() += weight * law_.stress(d) * basis;
+      const Gradient basis = target.pull_back(rule_.unit_gradients[q], scale);
+      const auto p = law_.point(x * basis.transpose());
+      if (!Law::admissible(p)) return std::numeric_limits<double>::infinity();
+      const double weight = target.volume * rule_.unit_weights[q];
+      sum += weight * law_.energy(p);
+      gradient.noalias() += weight * law_.stress(p) * basis;
     }
     return sum;
   }
 
-  // H(α) = B1 + α B2 + B3 on the cell. With m_i = G⁻ᵀ ∇φ̂_i, the (i,a),(j,b) entry of
-  // ∫ (B1 + α B2 + B3)[e_b ∇φ̂_jᵀ] : e_a ∇φ̂_iᵀ is, per quadrature point,
-  //   volumetric m_i[a] m_j[b] − (growth + α b) m_j[a] m_i[b] + μ δ_ab ∇φ̂_i·∇φ̂_j,
-  // so block (i,j) is volumetric m_i m_jᵀ − (growth + α b) m_j m_iᵀ + μ (∇φ̂_i·∇φ̂_j) I.
-  // Only the lower triangle is computed; make_exactly_symmetric mirrors it.
-  // Returns false (block unspecified) if det G ≤ 0 at some point.
-  bool hessian(const Coordinates& x, double volume, double alpha, Eigen::Ref<Block> block) const {
-    const double scale = inverse_edge(volume);
+  // H(α) = B1 + α B2 + B3 on the cell: per point, block (i, j) is the law's second derivative
+  // on (e_a ∇φ̂_iᵀ, e_b ∇φ̂_jᵀ). Only the lower triangle is computed; make_exactly_symmetric
+  // mirrors it. Returns false (block unspecified) if the law is infinite at some point.
+  bool hessian(const Coordinates& x, const Target& target, double alpha,
+               Eigen::Ref<Block> block) const {
+    const double scale = inverse_edge(target.volume);
     block.setZero();
     for (int q = 0; q < rule_.size; ++q) {
-      const Gradient basis = scale * rule_.unit_gradients[q];
-      const Deformation<dim> d(x * basis.transpose());
-      if (!d.admissible()) return false;
-      const TangentSplit split = law_.split(d);
-      const double weight = volume * rule_.unit_weights[q];
-      const double volumetric = weight * split.volumetric;
-      const double rotational = weight * split.rotational(alpha);
-      const double mu = weight * split.mu;
-      const Gradient m = d.inv_t * basis;
-      const Eigen::Matrix<double, vertices, vertices> gram = basis.transpose() * basis;
-      for (int j = 0; j < vertices; ++j) {
-        for (int i = j; i < vertices; ++i) {  // lower blocks; the upper ones are their transposes
-          block.template block<dim, dim>(dim * i, dim * j) +=
-              volumetric * m.col(i) * m.col(j).transpose() -
-              rotational * m.col(j) * m.col(i).transpose() +
-              mu * gram(i, j) * Matrix<dim>::Identity();
-        }
-      }
+      const Gradient basis = target.pull_back(rule_.unit_gradients[q], scale);
+      const auto p = law_.point(x * basis.transpose());
+      if (!Law::admissible(p)) return false;
+      const auto tangent = law_.tangent(p, alpha, target.volume * rule_.unit_weights[q], basis);
+      for (int j = 0; j < vertices; ++j)
+        for (int i = j; i < vertices; ++i)  // lower blocks; the upper ones are their transposes
+          block.template block<dim, dim>(dim * i, dim * j) += tangent.block(i, j);
     }
     make_exactly_symmetric(block);
     return true;
   }
 
-  // Vector Laplacian on the optimal cell: ∫ ∇φ̂_i·∇φ̂_j δ_ab (= B3/μ); independent of X.
-  void optimal_laplacian(double volume, Eigen::Ref<Block> block) const {
-    const double scale = inverse_edge(volume);
+  // Vector Laplacian on the target cell: ∫ ∇φ̂_i·∇φ̂_j δ_ab (= B3/μ); independent of X.
+  void optimal_laplacian(const Target& target, Eigen::Ref<Block> block) const {
+    const double scale = inverse_edge(target.volume);
     block.setZero();
     for (int q = 0; q < rule_.size; ++q) {
-      const Gradient basis = scale * rule_.unit_gradients[q];
-      add_scalar_laplacian(volume * rule_.unit_weights[q] * basis.transpose() * basis, block);
+      const Gradient basis = target.pull_back(rule_.unit_gradients[q], scale);
+      add_scalar_laplacian(target.volume * rule_.unit_weights[q] * basis.transpose() * basis,
+                           block);
     }
     make_exactly_symmetric(block);
   }
 
-  // Vector Laplacian on the actual cell K: ∫_K ∇φ_i·∇φ_j dx = ∫_{optimal} det G (G⁻ᵀ∇φ̂_i)·
+  // Vector Laplacian on the actual cell K: ∫_K ∇φ_i·∇φ_j dx = ∫_{target} det G (G⁻ᵀ∇φ̂_i)·
   // (G⁻ᵀ∇φ̂_j). Returns false (block unspecified) if det G ≤ 0 at some point.
-  bool current_laplacian(const Coordinates& x, double volume, Eigen::Ref<Block> block) const {
-    const double scale = inverse_edge(volume);
+  bool current_laplacian(const Coordinates& x, const Target& target,
+                         Eigen::Ref<Block> block) const {
+    const double scale = inverse_edge(target.volume);
     block.setZero();
     for (int q = 0; q < rule_.size; ++q) {
-      const Gradient basis = scale * rule_.unit_gradients[q];
+      const Gradient basis = target.pull_back(rule_.unit_gradients[q], scale);
       const Deformation<dim> d(x * basis.transpose());
       if (!d.admissible()) return false;
       const Gradient m = d.inv_t * basis;
-      add_scalar_laplacian(volume * rule_.unit_weights[q] * d.det * m.transpose() * m, block);
+      add_scalar_laplacian(target.volume * rule_.unit_weights[q] * d.det * m.transpose() * m,
+                           block);
     }
     make_exactly_symmetric(block);
     return true;
   }
 
   // Actual volume Σ_q v ŵ_q det G_q (exact for ≥ 2 Gauss points per direction) and min det G.
-  CellMeasure measure(const Coordinates& x, double volume) const {
-    const double scale = inverse_edge(volume);
+  CellMeasure measure(const Coordinates& x, const Target& target) const {
+    const double scale = inverse_edge(target.volume);
     CellMeasure m{0.0, std::numeric_limits<double>::infinity()};
     for (int q = 0; q < rule_.size; ++q) {
-      const double det = (x * (scale * rule_.unit_gradients[q]).transpose()).determinant();
-      m.volume += volume * rule_.unit_weights[q] * det;
+      const double det =
+          (x * target.pull_back(rule_.unit_gradients[q], scale).transpose()).determinant();
+      m.volume += target.volume * rule_.unit_weights[q] * det;
       m.min_det = std::min(m.min_det, det);
     }
     return m;
   }
 
  private:
+  static bool barrier_holds(const Coordinates& x) {
+    if constexpr (Law::barrier) return corners_admissible(x);
+    return true;
+  }
+
   // 1/s with s = v^(1/d), the edge scale of the optimal cell of volume v.
   static double inverse_edge(double volume) { return std::pow(volume, -1.0 / dim); }
 
@@ -274,8 +308,32 @@ class CellKernel {
         block.template block<dim, dim>(dim * i, dim * j).diagonal().array() += scalar(i, j);
   }
 
-  NeoHooke<dim> law_;
+  Law law_;
   OptimalCellQuadrature<Type> rule_;
 };
+
+// The thesis' energy: the Neo-Hookean law at the Gauss points (and, in the worst-cell phase,
+// corner samples).
+template <CellType Type>
+using NeoHookeKernel = CellKernel<Type, NeoHooke<CellTraits<Type>::dim>>;
+
+// The untangling energy (docs/untangling.md): the regularized law, finite for every X, at the
+// sample points where the Neo-Hookean phase looks for det G > 0 — simplices: their one point;
+// quadrilaterals: the four corners (det G is bilinear: positive corners make it positive
+// everywhere); hexahedra, wedges, pyramids: the corner frames and the Gauss points, half the
+// weight each (positive corners are necessary in 3D, not sufficient).
+template <CellType Type>
+using UntanglingKernel = CellKernel<Type, RegularizedNeoHooke<CellTraits<Type>::dim>>;
+
+template <CellType Type>
+constexpr double untangling_corner_weight() {
+  return CellTraits<Type>::simplex ? 0.0 : CellTraits<Type>::dim == 2 ? 1.0 : 0.5;
+}
+
+template <CellType Type>
+UntanglingKernel<Type> make_untangling_kernel(const RegularizedNeoHooke<CellTraits<Type>::dim>& law,
+                                              int gauss_points) {
+  return UntanglingKernel<Type>(law, gauss_points, untangling_corner_weight<Type>());
+}
 
 }  // namespace neomesh

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <array>
 #include <random>
 
@@ -17,7 +19,7 @@ using testing::relative_error;
 constexpr double kFdTolerance = 1e-6;  // relative error allowed against central differences
 
 template <CellType Type>
-using Coordinates = typename CellKernel<Type>::Coordinates;
+using Coordinates = typename NeoHookeKernel<Type>::Coordinates;
 
 // The optimal cell of volume v (docs/method.md §1, docs/cell-types.md), vertex 0 at the
 // origin for simplices, wedges and pyramids and the square/cube [0, h]^d for Q1 cells.
@@ -63,8 +65,8 @@ TYPED_TEST_SUITE(CellKernelTest, CellTypes);
 
 // `corner_weight` > 0: the worst-cell phase's energy, with corner samples.
 template <CellType Type>
-CellKernel<Type> thesis_kernel(double corner_weight = 0.0) {
-  return CellKernel<Type>(NeoHooke<CellTraits<Type>::dim>{1.0, 10.0, 1.0}, 3, corner_weight);
+NeoHookeKernel<Type> thesis_kernel(double corner_weight = 0.0) {
+  return NeoHookeKernel<Type>(NeoHooke<CellTraits<Type>::dim>{1.0, 10.0, 1.0}, 3, corner_weight);
 }
 
 constexpr double kCornerWeights[] = {0.0, 0.4};
@@ -73,9 +75,9 @@ TYPED_TEST(CellKernelTest, OptimalCellHasZeroEnergyAndGradient) {
   constexpr CellType Type = TypeParam::value;
   for (double w : kCornerWeights)
     for (double volume : {1.0, 0.01, 7.0}) {
-      const CellKernel<Type> kernel = thesis_kernel<Type>(w);
+      const NeoHookeKernel<Type> kernel = thesis_kernel<Type>(w);
       const Coordinates<Type> x = optimal_cell<Type>(volume);
-      typename CellKernel<Type>::Gradient g;
+      typename NeoHookeKernel<Type>::Gradient g;
       EXPECT_NEAR(kernel.energy_and_gradient(x, volume, g), 0.0, 1e-14);
       EXPECT_LT(g.norm(), 1e-13);
       const CellMeasure m = kernel.measure(x, volume);
@@ -89,10 +91,10 @@ TYPED_TEST(CellKernelTest, GradientMatchesFiniteDifferencesOfEnergy) {
   std::mt19937 rng(11);
   for (double w : kCornerWeights)
     for (int trial = 0; trial < 5; ++trial) {
-      const CellKernel<Type> kernel = thesis_kernel<Type>(w);
+      const NeoHookeKernel<Type> kernel = thesis_kernel<Type>(w);
       const double volume = 0.5 + trial;
       Coordinates<Type> x = perturbed_cell<Type>(volume, rng);
-      typename CellKernel<Type>::Gradient g;
+      typename NeoHookeKernel<Type>::Gradient g;
       kernel.energy_and_gradient(x, volume, g);
       const double step = 1e-6 * std::pow(volume, 1.0 / CellTraits<Type>::dim);
       const auto fd = fd_gradient(
@@ -103,7 +105,7 @@ TYPED_TEST(CellKernelTest, GradientMatchesFiniteDifferencesOfEnergy) {
 
 TYPED_TEST(CellKernelTest, HessianMatchesFiniteDifferencesOfGradient) {
   constexpr CellType Type = TypeParam::value;
-  using Kernel = CellKernel<Type>;
+  using Kernel = NeoHookeKernel<Type>;
   std::mt19937 rng(12);
   for (double w : kCornerWeights)
     for (int trial = 0; trial < 5; ++trial) {
@@ -127,7 +129,7 @@ TYPED_TEST(CellKernelTest, HessianMatchesFiniteDifferencesOfGradient) {
 // H(α) = B1 + α B2 + B3 is affine in α, and B3/μ at any cell is the optimal-cell Laplacian.
 TYPED_TEST(CellKernelTest, HessianSplitsIntoLaplacianAndRest) {
   constexpr CellType Type = TypeParam::value;
-  using Kernel = CellKernel<Type>;
+  using Kernel = NeoHookeKernel<Type>;
   const Kernel kernel = thesis_kernel<Type>();
   std::mt19937 rng(13);
   const double volume = 2.0;
@@ -146,7 +148,7 @@ TYPED_TEST(CellKernelTest, HessianSplitsIntoLaplacianAndRest) {
 
 TYPED_TEST(CellKernelTest, LaplacianOfCurrentCellEqualsOptimalAtOptimalCell) {
   constexpr CellType Type = TypeParam::value;
-  using Kernel = CellKernel<Type>;
+  using Kernel = NeoHookeKernel<Type>;
   const Kernel kernel = thesis_kernel<Type>();
   const double volume = 0.3;
   typename Kernel::Block optimal, current;
@@ -162,7 +164,7 @@ TYPED_TEST(CellKernelTest, LaplacianOfCurrentCellEqualsOptimalAtOptimalCell) {
 
 TYPED_TEST(CellKernelTest, InvertedCellIsInfiniteAndRejected) {
   constexpr CellType Type = TypeParam::value;
-  using Kernel = CellKernel<Type>;
+  using Kernel = NeoHookeKernel<Type>;
   const Kernel kernel = thesis_kernel<Type>();
   Coordinates<Type> x = optimal_cell<Type>(1.0);
   x.row(0) *= -1.0;  // mirror image: det G < 0 everywhere
@@ -177,7 +179,7 @@ TYPED_TEST(CellKernelTest, InvertedCellIsInfiniteAndRejected) {
 // A dart: vertex 3 of the unit square pulled in to (0.45, 0.45). det J is positive at all
 // 3×3 Gauss points but negative at that corner, so the line search must not accept it.
 TEST(QuadKernel, NonConvexQuadWithPositiveGaussPointsIsInfinite) {
-  using Kernel = CellKernel<CellType::Quadrilateral>;
+  using Kernel = NeoHookeKernel<CellType::Quadrilateral>;
   const Kernel kernel = thesis_kernel<CellType::Quadrilateral>();
   Coordinates<CellType::Quadrilateral> x;
   x << 0.0, 1.0, 0.0, 0.45, 0.0, 0.0, 1.0, 0.45;
@@ -198,11 +200,11 @@ TEST(QuadKernel, CornerSamplesMakeAFlatteningCornerCostly) {
     x.col(3).setConstant(0.5 + gap);  // beyond the diagonal from (1,0) to (0,1) by `gap`
     return x;
   };
-  const CellKernel<Type> gauss = thesis_kernel<Type>(), corners = thesis_kernel<Type>(0.4);
+  const NeoHookeKernel<Type> gauss = thesis_kernel<Type>(), corners = thesis_kernel<Type>(0.4);
   const Coordinates<Type> near = flattened(1e-3), flat = flattened(1e-9);
   EXPECT_LT(gauss.energy(flat, 1.0) - gauss.energy(near, 1.0), 0.1);
   EXPECT_GT(corners.energy(flat, 1.0) - corners.energy(near, 1.0), 20.0);
-  typename CellKernel<Type>::Gradient g;
+  typename NeoHookeKernel<Type>::Gradient g;
   corners.energy_and_gradient(flat, 1.0, g);
   EXPECT_LT(g.col(3).sum(), -1e6);  // descent (−g) pushes vertex 3 back out, hard
 }
@@ -238,6 +240,94 @@ TEST(WedgeKernel, StretchCostsEnergyAndHalfTurnOfTheTopIsInfinite) {
   EXPECT_TRUE(std::isinf(kernel.energy(turned, 1.0)));
 }
 
+// A target shape S with det S = 1: stretched, sheared and turned (a boundary-layer cell).
+template <int Dim>
+Matrix<Dim> anisotropic_shape(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Matrix<Dim> S = Matrix<Dim>::Identity();
+  S(0, 0) = 8.0;  // 8 : 1 along the first direction
+  for (int i = 0; i < Dim; ++i)
+    for (int j = 0; j < Dim; ++j) S(i, j) += 0.3 * u(rng);
+  return S / std::pow(S.determinant(), 1.0 / Dim);
+}
+
+template <int Dim>
+Matrix<Dim> rotation(double angle) {
+  if constexpr (Dim == 2) {
+    return Eigen::Rotation2Dd(angle).toRotationMatrix();
+  } else {
+    return Eigen::AngleAxisd(angle, Vector<3>(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
+  }
+}
+
+// The kernel's form of a shape: S⁻ᵀ (Functional::set_target_shapes makes it).
+template <int Dim>
+Matrix<Dim> inverse_transpose(const Matrix<Dim>& S) {
+  return S.inverse().transpose();
+}
+
+// The target cell itself (S times the optimal cell of the volume) has zero energy and gradient;
+// so does every rotation of it (only SᵀS counts), and a cell that differs from it does not.
+TYPED_TEST(CellKernelTest, TargetCellIsTheMinimumForEveryRotation) {
+  constexpr CellType Type = TypeParam::value;
+  constexpr int dim = CellTraits<Type>::dim;
+  std::mt19937 rng(15);
+  const NeoHookeKernel<Type> kernel = thesis_kernel<Type>();
+  for (int trial = 0; trial < 3; ++trial) {
+    const double volume = 0.3 + trial;
+    const Matrix<dim> S = anisotropic_shape<dim>(rng);
+    const Matrix<dim> inv_t = inverse_transpose(S);
+    const CellTarget<dim> target(volume, inv_t.data());
+    for (const Matrix<dim>& Q : {Matrix<dim>(Matrix<dim>::Identity()), rotation<dim>(0.8)}) {
+      const Coordinates<Type> x = Q * S * optimal_cell<Type>(volume);
+      typename NeoHookeKernel<Type>::Gradient g;
+      EXPECT_NEAR(kernel.energy_and_gradient(x, target, g), 0.0, 1e-11 * volume);
+      EXPECT_LT(g.norm(), 1e-10 * std::pow(volume, 1.0 - 1.0 / dim));
+      EXPECT_NEAR(kernel.measure(x, target).volume, volume, 1e-12 * volume);
+    }
+    // The same cell is far from the ideal one: the thesis' target sees a large energy.
+    EXPECT_GT(kernel.energy(S * optimal_cell<Type>(volume), volume), 1.0 * volume);
+  }
+}
+
+// The derivatives with a shaped target, for both laws, against central differences.
+template <typename Kernel>
+void expect_derivatives_match_with_shaped_targets(const Kernel& kernel, std::mt19937& rng) {
+  constexpr int dim = Kernel::dim;
+  using X = typename Kernel::Coordinates;
+  for (int trial = 0; trial < 4; ++trial) {
+    const double volume = 0.5 + trial;
+    const Matrix<dim> S = anisotropic_shape<dim>(rng);
+    const Matrix<dim> inv_t = inverse_transpose(S);
+    const CellTarget<dim> target(volume, inv_t.data());
+    // A generic cell near the target cell.
+    X x = S * perturbed_cell<Kernel::type>(volume, rng);
+    typename Kernel::Gradient g;
+    if (!std::isfinite(kernel.energy_and_gradient(x, target, g))) continue;
+    const double step = 1e-6 * std::pow(volume, 1.0 / dim);
+    const auto fd = fd_gradient([&](const X& y) { return kernel.energy(y, target); }, x, step);
+    EXPECT_LT(relative_error(g, fd), kFdTolerance) << "analytic\n" << g << "\nfd\n" << fd;
+    typename Kernel::Block h;
+    ASSERT_TRUE(kernel.hessian(x, target, 1.0, h));
+    const auto gradient = [&](const X& y) {
+      typename Kernel::Gradient gy;
+      kernel.energy_and_gradient(y, target, gy);
+      return gy;
+    };
+    EXPECT_LT(relative_error(h, fd_jacobian(gradient, x, step)), kFdTolerance);
+    EXPECT_EQ((h - h.transpose()).norm(), 0.0);
+  }
+}
+
+TYPED_TEST(CellKernelTest, DerivativesWithShapedTargetsMatchFiniteDifferences) {
+  constexpr CellType Type = TypeParam::value;
+  std::mt19937 rng(16);
+  for (double w : kCornerWeights)
+    expect_derivatives_match_with_shaped_targets(thesis_kernel<Type>(w), rng);
+  const RegularizedNeoHooke<CellTraits<Type>::dim> untangling{1.0, 10.0, 0.1};
+  expect_derivatives_match_with_shaped_targets(make_untangling_kernel<Type>(untangling, 3), rng);
+}
+
 // Renumbering the vertices by a symmetry of the optimal cell that keeps the orientation
 // (even permutations of a simplex; rotations of the square/cube in tensor order) leaves
 // the cell energy unchanged.
@@ -265,7 +355,7 @@ std::vector<std::array<int, CellTraits<Type>::vertices>> orientation_preserving_
 
 TYPED_TEST(CellKernelTest, EnergyIndependentOfVertexNumberingUpToSymmetry) {
   constexpr CellType Type = TypeParam::value;
-  const CellKernel<Type> kernel = thesis_kernel<Type>();
+  const NeoHookeKernel<Type> kernel = thesis_kernel<Type>();
   std::mt19937 rng(14);
   const double volume = 0.7;
   const Coordinates<Type> x = perturbed_cell<Type>(volume, rng);

@@ -12,7 +12,6 @@
 #include "core/collective_error.hpp"
 #include "energy/cell_kernels.hpp"
 #include "energy/matrix_assembler.hpp"
-#include "energy/untangling_kernel.hpp"
 
 namespace neomesh {
 
@@ -20,19 +19,20 @@ namespace {
 
 // The coordinates of cell c of `block` from the local coordinate array.
 template <CellType Type>
-typename CellKernel<Type>::Coordinates cell_coordinates(const CellBlock& block, PetscInt c,
-                                                        const double* local_x) {
-  constexpr int dim = CellKernel<Type>::dim;
-  typename CellKernel<Type>::Coordinates x;
+typename NeoHookeKernel<Type>::Coordinates cell_coordinates(const CellBlock& block, PetscInt c,
+                                                            const double* local_x) {
+  constexpr int dim = NeoHookeKernel<Type>::dim;
+  typename NeoHookeKernel<Type>::Coordinates x;
   const PetscInt* vertex = block.cell(c);
-  for (int i = 0; i < CellKernel<Type>::vertices; ++i)
+  for (int i = 0; i < NeoHookeKernel<Type>::vertices; ++i)
     x.col(i) = Eigen::Map<const Vector<dim>>(local_x + dim * vertex[i]);
   return x;
 }
 
-using Kernels = std::tuple<CellKernel<CellType::Triangle>, CellKernel<CellType::Quadrilateral>,
-                           CellKernel<CellType::Tetrahedron>, CellKernel<CellType::Hexahedron>,
-                           CellKernel<CellType::Wedge>, CellKernel<CellType::Pyramid>>;
+using Kernels =
+    std::tuple<NeoHookeKernel<CellType::Triangle>, NeoHookeKernel<CellType::Quadrilateral>,
+               NeoHookeKernel<CellType::Tetrahedron>, NeoHookeKernel<CellType::Hexahedron>,
+               NeoHookeKernel<CellType::Wedge>, NeoHookeKernel<CellType::Pyramid>>;
 
 using UntanglingKernels =
     std::tuple<UntanglingKernel<CellType::Triangle>, UntanglingKernel<CellType::Quadrilateral>,
@@ -43,12 +43,12 @@ UntanglingKernels make_untangling_kernels(const EnergyOptions& options, double e
   const RegularizedNeoHooke<2> law2{options.lambda, options.mu, epsilon};
   const RegularizedNeoHooke<3> law3{options.lambda, options.mu, epsilon};
   const int n = options.gauss_points;
-  return UntanglingKernels{UntanglingKernel<CellType::Triangle>(law2, n),
-                           UntanglingKernel<CellType::Quadrilateral>(law2, n),
-                           UntanglingKernel<CellType::Tetrahedron>(law3, n),
-                           UntanglingKernel<CellType::Hexahedron>(law3, n),
-                           UntanglingKernel<CellType::Wedge>(law3, n),
-                           UntanglingKernel<CellType::Pyramid>(law3, n)};
+  return UntanglingKernels{make_untangling_kernel<CellType::Triangle>(law2, n),
+                           make_untangling_kernel<CellType::Quadrilateral>(law2, n),
+                           make_untangling_kernel<CellType::Tetrahedron>(law3, n),
+                           make_untangling_kernel<CellType::Hexahedron>(law3, n),
+                           make_untangling_kernel<CellType::Wedge>(law3, n),
+                           make_untangling_kernel<CellType::Pyramid>(law3, n)};
 }
 
 Kernels make_kernels(const EnergyOptions& options, double corner_weight = 0.0) {
@@ -57,10 +57,12 @@ Kernels make_kernels(const EnergyOptions& options, double corner_weight = 0.0) {
   const NeoHooke<3> law3{options.lambda, options.mu, kappa};
   const int n = options.gauss_points;
   const double w = corner_weight;
-  return Kernels{
-      CellKernel<CellType::Triangle>(law2, n),    CellKernel<CellType::Quadrilateral>(law2, n, w),
-      CellKernel<CellType::Tetrahedron>(law3, n), CellKernel<CellType::Hexahedron>(law3, n, w),
-      CellKernel<CellType::Wedge>(law3, n, w),    CellKernel<CellType::Pyramid>(law3, n, w)};
+  return Kernels{NeoHookeKernel<CellType::Triangle>(law2, n),
+                 NeoHookeKernel<CellType::Quadrilateral>(law2, n, w),
+                 NeoHookeKernel<CellType::Tetrahedron>(law3, n),
+                 NeoHookeKernel<CellType::Hexahedron>(law3, n, w),
+                 NeoHookeKernel<CellType::Wedge>(law3, n, w),
+                 NeoHookeKernel<CellType::Pyramid>(law3, n, w)};
 }
 
 double sum_over_ranks(double local, MPI_Comm comm) {
@@ -80,8 +82,10 @@ struct Functional::Impl {
   // kernels also find inverted cells (their sample points are where det G must be > 0).
   UntanglingKernels untangling_kernels;
   bool untangling = false;
-  std::vector<std::uint8_t> fixed;  // per local dof
-  std::vector<double> volumes;      // desired volume per local cell
+  std::vector<std::uint8_t> fixed;   // per local dof
+  std::vector<double> volumes;       // desired volume per local cell
+  std::vector<double> shapes;        // per local cell S (dim² each) as given; empty: ideal
+  std::vector<double> shapes_inv_t;  // per local cell S⁻ᵀ with det S = 1, for the kernels
   OwnedVec free_mask;
   SlidingVertices sliding;
   std::vector<PetscInt> projector_of;  // per local vertex: its index in sliding.vertices, or -1
@@ -109,14 +113,20 @@ struct Functional::Impl {
         sliding(std::move(t)) {}
 
   template <CellType Type>
-  const CellKernel<Type>& kernel() const {
-    return std::get<CellKernel<Type>>(*kernels);
+  const NeoHookeKernel<Type>& kernel() const {
+    return std::get<NeoHookeKernel<Type>>(*kernels);
   }
   // Calls f with the kernel of the energy being minimized: Neo-Hookean, or untangling.
   template <CellType Type, typename F>
   decltype(auto) with_energy_kernel(F&& f) const {
     if (untangling) return f(std::get<UntanglingKernel<Type>>(untangling_kernels));
     return f(kernel<Type>());
+  }
+
+  // The target of local cell `cell` (cell_kernels.hpp).
+  template <int Dim>
+  CellTarget<Dim> target(PetscInt cell) const {
+    return {volumes[cell], shapes_inv_t.empty() ? nullptr : shapes_inv_t.data() + Dim * Dim * cell};
   }
 
   bool is_fixed_dof(PetscInt local_dof) const { return fixed[local_dof] != 0; }
@@ -154,7 +164,7 @@ struct Functional::Impl {
   double local_energy() const;
   double local_energy_and_gradient(std::vector<double>& gradient) const;
   OwnedMat create_matrix(MatrixLayout layout) const;
-  // Assembles the cell blocks computed by fill(CellTag<type>, x, volume, block) -> bool into M
+  // Assembles the cell blocks computed by fill(CellTag<type>, x, target, block) -> bool into M
   // (values only); fails on every rank, naming the first cell for which fill returned false.
   // With sliding vertices, `curvature` times their curvature term is added (α for H(α)).
   template <typename Fill>
@@ -169,12 +179,13 @@ double Functional::Impl::local_energy() const {
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
     visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
+      constexpr int dim = NeoHookeKernel<Type>::dim;
       with_energy_kernel<Type>([&](const auto& k) {
-        const double* desired = volumes.data() + block.first_cell;
         double block_sum = 0.0;
 #pragma omp parallel for reduction(+ : block_sum) schedule(static)
         for (PetscInt c = 0; c < block.size(); ++c)
-          block_sum += k.energy(cell_coordinates<Type>(block, c, local_x.data()), desired[c]);
+          block_sum += k.energy(cell_coordinates<Type>(block, c, local_x.data()),
+                                target<dim>(block.first_cell + c));
         sum += block_sum;
       });
     });
@@ -193,21 +204,20 @@ double Functional::Impl::local_energy_and_gradient(std::vector<double>& gradient
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
     visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
-      constexpr int dim = CellKernel<Type>::dim;
+      constexpr int dim = NeoHookeKernel<Type>::dim;
       with_energy_kernel<Type>([&](const auto& k) {
-        const double* desired = volumes.data() + block.first_cell;
         double block_sum = 0.0;
 #pragma omp parallel reduction(+ : block_sum)
         {
           const int t = omp_get_thread_num();
           double* mine = t == 0 ? gradient.data() : thread_gradients.data() + n * (t - 1);
-          typename CellKernel<Type>::Gradient g;
+          typename NeoHookeKernel<Type>::Gradient g;
 #pragma omp for schedule(static)
           for (PetscInt c = 0; c < block.size(); ++c) {
             block_sum += k.energy_and_gradient(cell_coordinates<Type>(block, c, local_x.data()),
-                                               desired[c], g);
+                                               target<dim>(block.first_cell + c), g);
             const PetscInt* vertex = block.cell(c);
-            for (int i = 0; i < CellKernel<Type>::vertices; ++i)
+            for (int i = 0; i < NeoHookeKernel<Type>::vertices; ++i)
               Eigen::Map<Vector<dim>>(mine + dim * vertex[i]) += g.col(i);
           }
         }
@@ -259,11 +269,10 @@ void Functional::Impl::project_block(const PetscInt* vertex, Block& block) const
 template <CellType Type, typename Fill>
 PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b,
                                            MatrixAssembler::Values& values) const {
-  using Block = typename CellKernel<Type>::Block;
-  constexpr int n = CellKernel<Type>::vertices;
-  constexpr int d = CellKernel<Type>::dim;
+  using Block = typename NeoHookeKernel<Type>::Block;
+  constexpr int n = NeoHookeKernel<Type>::vertices;
+  constexpr int d = NeoHookeKernel<Type>::dim;
   const CellBlock& block = view.blocks[b];
-  const double* desired = volumes.data() + block.first_cell;
   const std::vector<PetscInt>& chunks = assembler->colour_chunks(b);
   const std::vector<PetscInt>& start = assembler->colour_start(b);
   PetscInt first_bad = std::numeric_limits<PetscInt>::max();
@@ -274,8 +283,8 @@ PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b,
       const PetscInt end = std::min(block.size(), (chunks[k] + 1) * MatrixAssembler::kChunk);
       for (PetscInt c = chunks[k] * MatrixAssembler::kChunk; c < end; ++c) {
         Block cell_block;
-        if (!fill(CellTag<Type>{}, cell_coordinates<Type>(block, c, local_x.data()), desired[c],
-                  Eigen::Map<Block>(cell_block.data()))) {
+        if (!fill(CellTag<Type>{}, cell_coordinates<Type>(block, c, local_x.data()),
+                  target<d>(block.first_cell + c), Eigen::Map<Block>(cell_block.data()))) {
           first_bad = std::min(first_bad, block.first_cell + c);
           continue;
         }
@@ -399,6 +408,47 @@ const std::vector<double>& Functional::desired_volumes() const {
   return impl_->volumes;
 }
 
+void Functional::set_target_shapes(std::span<const double> shapes) {
+  const int d = impl_->view.dim;
+  const std::size_t n = static_cast<std::size_t>(d * d);
+  if (!shapes.empty() && shapes.size() != n * impl_->view.num_cells)
+    fail("Functional: {} target shape entries for {} cells of dimension {}", shapes.size(),
+         impl_->view.num_cells, d);
+  impl_->shapes.assign(shapes.begin(), shapes.end());
+  impl_->shapes_inv_t.resize(shapes.size());
+  for (std::size_t c = 0; c * n < shapes.size(); ++c) {
+    const Eigen::Map<const Eigen::MatrixXd> S(shapes.data() + c * n, d, d);
+    const double det = S.determinant();
+    if (!(det > 0.0) || !std::isfinite(det))
+      fail("the target shape of local cell {} has determinant {} (must be positive)", c, det);
+    Eigen::Map<Eigen::MatrixXd>(impl_->shapes_inv_t.data() + c * n, d, d) =
+        std::pow(det, 1.0 / d) * S.inverse().transpose();
+  }
+}
+
+const std::vector<double>& Functional::target_shapes() const {
+  return impl_->shapes;
+}
+
+std::vector<double> Functional::cell_jacobians(Vec x) const {
+  const MeshView& view = impl_->view;
+  const int d = view.dim;
+  impl_->dofs.global_to_local(x, impl_->local_x);
+  std::vector<double> jacobians(static_cast<std::size_t>(d * d * view.num_cells));
+  for (const CellBlock& block : view.blocks) {
+    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
+      constexpr int dim = NeoHookeKernel<Type>::dim;
+      // One Gauss point: the centre (for a pyramid the centre of its base).
+      const OptimalCellQuadrature<Type> centre(1);
+      for (PetscInt c = 0; c < block.size(); ++c)
+        Eigen::Map<Matrix<dim>>(jacobians.data() + dim * dim * (block.first_cell + c)) =
+            cell_coordinates<Type>(block, c, impl_->local_x.data()) *
+            centre.unit_gradients[0].transpose();
+    });
+  }
+  return jacobians;
+}
+
 double Functional::value(Vec x) const {
   impl_->load_coordinates(x);
   return sum_over_ranks(impl_->local_energy(), impl_->dofs.comm());
@@ -447,10 +497,10 @@ void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {
   impl_->load_coordinates_and_tangents(x);
   const Impl& impl = *impl_;
   impl.assemble(
-      [&impl, alpha]<CellType Type>(CellTag<Type>, const auto& coordinates, double volume,
+      [&impl, alpha]<CellType Type>(CellTag<Type>, const auto& coordinates, const auto& target,
                                     auto block) {
         return impl.with_energy_kernel<Type>(
-            [&](const auto& k) { return k.hessian(coordinates, volume, alpha, block); });
+            [&](const auto& k) { return k.hessian(coordinates, target, alpha, block); });
       },
       "H(alpha)", H, alpha);
 }
@@ -462,8 +512,9 @@ void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat matrix) cons
     impl_->load_coordinates_and_tangents(x);
     const Impl& impl = *impl_;
     impl.assemble(
-        [&impl]<CellType Type>(CellTag<Type>, const auto& coordinates, double volume, auto block) {
-          return impl.kernel<Type>().current_laplacian(coordinates, volume, block);
+        [&impl]<CellType Type>(CellTag<Type>, const auto& coordinates, const auto& target,
+                               auto block) {
+          return impl.kernel<Type>().current_laplacian(coordinates, target, block);
         },
         "current-mesh Laplacian", L);
   } else {
@@ -473,8 +524,8 @@ void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat matrix) cons
       impl_->require_volumes();
     const Impl& impl = *impl_;
     impl.assemble(
-        [&impl]<CellType Type>(CellTag<Type>, const auto&, double volume, auto block) {
-          impl.kernel<Type>().optimal_laplacian(volume, block);
+        [&impl]<CellType Type>(CellTag<Type>, const auto&, const auto& target, auto block) {
+          impl.kernel<Type>().optimal_laplacian(target, block);
           return true;
         },
         "optimal-cell Laplacian", L);
@@ -490,16 +541,16 @@ CellFields Functional::cell_fields(Vec x) const {
   fields.volume_ratio.resize(view.num_cells);
   for (const CellBlock& block : view.blocks) {
     visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
-      const CellKernel<Type>& k = impl_->kernel<Type>();
+      const NeoHookeKernel<Type>& k = impl_->kernel<Type>();
 #pragma omp parallel for schedule(static)
       for (PetscInt c = 0; c < block.size(); ++c) {
         const PetscInt cell = block.first_cell + c;
-        const double desired = impl_->volumes[cell];
+        const auto target = impl_->target<NeoHookeKernel<Type>::dim>(cell);
         const auto x = cell_coordinates<Type>(block, c, impl_->local_x.data());
-        const CellMeasure measure = k.measure(x, desired);
-        fields.energy[cell] = k.energy(x, desired);
+        const CellMeasure measure = k.measure(x, target);
+        fields.energy[cell] = k.energy(x, target);
         fields.min_det[cell] = measure.min_det;
-        fields.volume_ratio[cell] = measure.volume / desired;  // Q (thesis §6.2)
+        fields.volume_ratio[cell] = measure.volume / target.volume;  // Q (thesis §6.2)
       }
     });
   }
@@ -525,8 +576,9 @@ Inversion Functional::inversion(Vec x, int listed, double below) const {
       const UntanglingKernel<Type>& k = std::get<UntanglingKernel<Type>>(impl_->untangling_kernels);
       for (PetscInt c = 0; c < block.size(); ++c) {
         const PetscInt cell = block.first_cell + c;
-        const double det = k.min_det(cell_coordinates<Type>(block, c, impl_->local_x.data()),
-                                     impl_->volumes[cell]);
+        const double det = k.measure(cell_coordinates<Type>(block, c, impl_->local_x.data()),
+                                     impl_->target<UntanglingKernel<Type>::dim>(cell))
+                               .min_det;
         local.min_det = std::min(local.min_det, det);
         if (det > below) continue;
         ++local.count;
@@ -573,7 +625,7 @@ double mesh_volume(const MeshView& view, const DofMap& dofs, Vec x) {
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
     visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
-      const CellKernel<Type>& k = std::get<CellKernel<Type>>(kernels);
+      const NeoHookeKernel<Type>& k = std::get<NeoHookeKernel<Type>>(kernels);
       for (PetscInt c = 0; c < block.size(); ++c)
         sum += k.measure(cell_coordinates<Type>(block, c, local_x.data()), 1.0).volume;
     });

@@ -38,7 +38,7 @@ struct FixedDofs {
 };
 
 // Cells inverted at some x: det G ≤ 0 at a sample point of the untangling energy
-// (untangling_kernel.hpp: the corners of Q1 cells, and the Gauss points of hexahedra).
+// (cell_kernels.hpp: the corners of Q1 cells, and the Gauss points of hexahedra).
 struct Inversion {
   PetscInt count = 0;           // over all ranks
   double min_det = 0.0;         // the smallest det G at a sample point, over all ranks
@@ -62,6 +62,14 @@ class Functional {
   // Desired (absolute) volume per local cell, MeshView order. Must be set before use.
   void set_desired_volumes(std::span<const double> volumes);
   const std::vector<double>& desired_volumes() const;
+  // The shape S of each local cell's target (docs/method.md, "Target cells"), MeshView order:
+  // dim² numbers per cell, column-major, scaled here to det S = 1 (the volume is the desired
+  // volume). Empty: the thesis' ideal cells. Throws Error for det S ≤ 0 or a wrong length.
+  void set_target_shapes(std::span<const double> shapes);
+  const std::vector<double>& target_shapes() const;  // as given (empty: ideal)
+  // Each local cell's Jacobian at x, at its centre, relative to its unit ideal cell (dim² per
+  // cell, column-major, MeshView order): the shape an `input` target takes.
+  std::vector<double> cell_jacobians(Vec x) const;
 
   // F(x); +∞ when any cell has det G ≤ 0 at a quadrature point (never NaN).
   double value(Vec x) const;

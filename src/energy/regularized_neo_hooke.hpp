@@ -18,6 +18,7 @@
 //   B1 = φ″₊ (C:H) C,  B2 = φ″₋ (C:H) C + φ′ ∂C/∂G[H],  B3 = μ H.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "geometry/reference_cell.hpp"
@@ -52,9 +53,62 @@ struct RegularizedDeterminant {
   double d2phi;  // φ″(D)
 };
 
+// ∂²W_ε/∂G² = B1 + α B2 + B3 at one point contracted with the basis gradients D (columns
+// ∇φ̂_i), times the point's weight. With c_i = C ∇φ̂_i, block (i,j) is
+//   (φ″₊ + α φ″₋) c_i c_jᵀ + α φ′ S_ij + μ (∇φ̂_i·∇φ̂_j) I,
+// where S_ij = ∂²D/∂G² on (e_a ∇φ̂_iᵀ, e_b ∇φ̂_jᵀ) is skew: (S_ij)_ab = ε_ab (∇φ̂_i × ∇φ̂_j)
+// in 2D and ε_abc (G (∇φ̂_i × ∇φ̂_j))_c in 3D.
+template <int Dim, int N>
+struct RegularizedTangent {
+  double volumetric, twist, mu;  // weighted
+  Matrix<Dim> G;
+  Eigen::Matrix<double, Dim, N> c;  // C D
+  Eigen::Matrix<double, Dim, N> D;
+
+  Matrix<Dim> block(int i, int j) const {
+    return volumetric * c.col(i) * c.col(j).transpose() + twist * skew(D.col(i), D.col(j)) +
+           mu * D.col(i).dot(D.col(j)) * Matrix<Dim>::Identity();
+  }
+
+ private:
+  // ∂²D/∂G² on (e_a uᵀ, e_b vᵀ) as a Dim × Dim matrix over (a, b).
+  Matrix<Dim> skew(const Vector<Dim>& u, const Vector<Dim>& v) const {
+    Matrix<Dim> S;
+    if constexpr (Dim == 2) {
+      const double s = u[0] * v[1] - u[1] * v[0];
+      S << 0.0, s, -s, 0.0;
+    } else {
+      const Vector<3> w = G * u.cross(v);
+      S << 0.0, w[2], -w[1], -w[2], 0.0, w[0], w[1], -w[0], 0.0;
+    }
+    return S;
+  }
+};
+
 template <int Dim>
 struct RegularizedNeoHooke {
   double lambda, mu, epsilon;
+
+  // The interface of a law for CellKernel (cell_kernels.hpp): finite for every G.
+  struct Point {
+    Matrix<Dim> G;
+    RegularizedDeterminant r;
+  };
+  static constexpr bool barrier = false;
+  Point point(const Matrix<Dim>& G) const { return {G, at(G.determinant())}; }
+  static bool admissible(const Point&) { return true; }
+  double energy(const Point& p) const { return p.r.phi + 0.5 * mu * (p.G.squaredNorm() - Dim); }
+  Matrix<Dim> stress(const Point& p) const { return p.r.dphi * cofactor(p.G) + mu * p.G; }
+  template <int N>
+  RegularizedTangent<Dim, N> tangent(const Point& p, double alpha, double weight,
+                                     const Eigen::Matrix<double, Dim, N>& D) const {
+    return {.volumetric = weight * (std::max(p.r.d2phi, 0.0) + alpha * std::min(p.r.d2phi, 0.0)),
+            .twist = weight * alpha * p.r.dphi,
+            .mu = weight * mu,
+            .G = p.G,
+            .c = cofactor(p.G) * D,
+            .D = D};
+  }
 
   // φ, φ′, φ″ at D. With r = √(ε² + D²): χ′ = χ / r, χ″ = χ (r − D) / r³, and
   // φ′ = (λ log χ − μ) / r, φ″ = (λ + μ − λ log χ) / r² + (λ log χ − μ)(r − D) / r³.
@@ -70,13 +124,9 @@ struct RegularizedNeoHooke {
   }
 
   // W_ε(G).
-  double energy(const Matrix<Dim>& G) const {
-    return at(G.determinant()).phi + 0.5 * mu * (G.squaredNorm() - Dim);
-  }
+  double energy(const Matrix<Dim>& G) const { return energy(point(G)); }
   // P = ∂W_ε/∂G.
-  Matrix<Dim> stress(const Matrix<Dim>& G) const {
-    return at(G.determinant()).dphi * cofactor(G) + mu * G;
-  }
+  Matrix<Dim> stress(const Matrix<Dim>& G) const { return stress(point(G)); }
 };
 
 }  // namespace neomesh
