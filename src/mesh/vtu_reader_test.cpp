@@ -75,7 +75,7 @@ TEST(ReadPvtu, JoinsThePiecesWhereTheirPointsCoincideOrByGlobalIds) {
     EXPECT_EQ(mesh.num_cells(), 4);
     // 8 points in the files, 6 in the square: the edge x = 0.5 is shared.
     ASSERT_EQ(mesh.num_vertices(), 6);
-    EXPECT_EQ(mesh.cell_vertices[3], 1);  // piece 1's first point is piece 0's second
+    EXPECT_EQ(mesh.cell_vertices[6], 1);  // piece 1's first point is piece 0's second
   }
 }
 
