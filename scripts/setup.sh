@@ -12,7 +12,7 @@ packages=(
   libopenblas0-openmp
   libeigen3-dev libcli11-dev libfmt-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcairo2-dev libmuparser-dev libpugixml-dev libmetis-dev
+  libcairo2-dev libmuparser-dev libpugixml-dev libmetis-dev zlib1g-dev
   python3 python3-numpy python3-meshio python3-pytest gmsh  # tests: reader, runner, meshes
 )
 missing=()

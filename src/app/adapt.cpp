@@ -275,12 +275,12 @@ Subcommand add_adapt(CLI::App& app) {
       "level set) or follow given sizes: desired volume v = floor + d^p for the distance d of "
       "the cell's centre, recomputed from the moving mesh in Picard iterations (thesis §6).");
   cmd->add_option("input", o->inputs,
-                  "mesh to adapt (.msh Gmsh 2.2/4.1, .xml FEAT3, .vtk VTK legacy; a FEAT3 mesh may "
-                  "come with the "
-                  "files of its charts, in any order)")
+                  "mesh to adapt (.msh Gmsh 2.2/4.1, .xml FEAT3, .vtk VTK legacy, .vtu/.pvtu VTK "
+                  "XML, .mesh Medit; a FEAT3 mesh may come with the files of its charts, in any "
+                  "order)")
       ->required();
   cmd->add_option("-o,--output", o->output,
-                  "adapted mesh (.vtu with per-cell energy, Q and quality fields, or .msh)")
+                  "adapted mesh (.vtu with per-cell energy, Q and quality fields, .msh or .mesh)")
       ->required();
   cmd->add_flag("--force", o->force, "allow the output to overwrite the input file");
   cmd->add_flag("--no-guard", o->no_guard,

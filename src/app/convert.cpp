@@ -51,14 +51,15 @@ Subcommand add_convert(CLI::App& app) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* cmd = app.add_subcommand(
       "convert",
-      "Convert a mesh to .vtu (ParaView) or .msh. Reads Gmsh .msh 2.2/4.1, FEAT3 .xml or VTK "
-      ".vtk,\n"
-      "checks it (no inverted or degenerate cells) and writes VTU or Gmsh 4.1 (keeping physical\n"
-      "groups).");
-  cmd->add_option("input", options->inputs,
-                  "input mesh (.msh, .xml or .vtk; a FEAT3 mesh may come with its chart files)")
+      "Convert a mesh to .vtu (ParaView), .msh or .mesh. Reads Gmsh .msh 2.2/4.1, FEAT3 .xml,\n"
+      "VTK .vtk/.vtu/.pvtu or Medit .mesh, checks it (no inverted or degenerate cells) and\n"
+      "writes VTU, Gmsh 4.1 or Medit (keeping physical groups).");
+  cmd->add_option(
+         "input", options->inputs,
+         "input mesh (.msh, .xml, .vtk, .vtu, .pvtu or .mesh; a FEAT3 mesh may come with its "
+         "chart files)")
       ->required();
-  cmd->add_option("-o,--output", options->output, "output mesh (.vtu or .msh)")->required();
+  cmd->add_option("-o,--output", options->output, "output mesh (.vtu, .msh or .mesh)")->required();
   cmd->add_flag("--force", options->force,
                 "allow the output to overwrite the input (default: off)");
   return {cmd, [options] { run_convert(*options); }};

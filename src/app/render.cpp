@@ -126,7 +126,8 @@ Subcommand add_render(CLI::App& app) {
       "its energy or its volume ratio Q, with a colour bar; inverted cells are drawn in red\n"
       "and counted. For 3D meshes, open a .vtu output in ParaView instead.");
   cmd->add_option("mesh", options->inputs,
-                  "mesh file (.msh, .xml or .vtk; a FEAT3 mesh may come with its chart files)")
+                  "mesh file (.msh, .xml, .vtk, .vtu, .pvtu or .mesh; a FEAT3 mesh may come with "
+                  "its chart files)")
       ->required();
   cmd->add_option("-o,--output", options->output, "picture file (.png or .svg)")->required();
   std::vector<std::string> fields;

@@ -5,23 +5,33 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
+#include <map>
 
 #include "core/error.hpp"
 #include "core/testing/test_data.hpp"
 #include "mesh/feat_reader.hpp"
 #include "mesh/gmsh_reader.hpp"
+#include "mesh/medit_reader.hpp"
 #include "mesh/vtk_reader.hpp"
+#include "mesh/vtu_reader.hpp"
 
 namespace neomesh {
 namespace {
+
+// The reader of each extension.
+const std::map<std::string, std::function<void(const std::filesystem::path&)>> kReaders = {
+    {".msh", [](const auto& path) { read_gmsh(path); }},
+    {".xml", [](const auto& path) { read_feat(path); }},
+    {".vtk", [](const auto& path) { read_vtk(path); }},
+    {".vtu", [](const auto& path) { read_vtu(path); }},
+    {".mesh", [](const auto& path) { read_medit(path); }}};
 
 std::vector<std::filesystem::path> regressions() {
   std::vector<std::filesystem::path> files;
   for (const auto& entry :
        std::filesystem::directory_iterator(testing::data_path("fuzz-regressions")))
-    if (entry.path().extension() == ".msh" || entry.path().extension() == ".xml" ||
-        entry.path().extension() == ".vtk")
-      files.push_back(entry.path());
+    if (kReaders.contains(entry.path().extension().string())) files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   return files;
 }
@@ -31,12 +41,7 @@ TEST(FuzzRegressions, EveryFileIsAnErrorNamingIt) {
   ASSERT_GE(files.size(), 30u);
   for (const auto& path : files) {
     try {
-      if (path.extension() == ".msh")
-        read_gmsh(path);
-      else if (path.extension() == ".vtk")
-        read_vtk(path);
-      else
-        read_feat(path);
+      kReaders.at(path.extension().string())(path);
       ADD_FAILURE() << path << " was read without an error";
     } catch (const Error& e) {
       const std::string message = e.what();

@@ -9,26 +9,31 @@ namespace neomesh {
 
 void check_readable_format(const std::filesystem::path& path) {
   const auto ext = path.extension();
-  if (ext != ".msh" && ext != ".xml" && ext != ".vtk")
-    fail("{}: unknown mesh format '{}' (neomesh reads Gmsh .msh, FEAT3 .xml and VTK legacy .vtk)",
-         path.string(), ext.string());
+  if (ext != ".msh" && ext != ".xml" && ext != ".vtk" && ext != ".vtu" && ext != ".pvtu" &&
+      ext != ".mesh")
+    fail(
+        "{}: unknown mesh format '{}' (neomesh reads Gmsh .msh, FEAT3 .xml, VTK legacy .vtk, "
+        "VTK XML .vtu/.pvtu and Medit .mesh)",
+        path.string(), ext.string());
 }
 
 void check_writable_format(const std::filesystem::path& path) {
   const auto ext = path.extension();
-  if (ext != ".msh" && ext != ".vtu")
-    fail("{}: unknown output format '{}' (neomesh writes VTK .vtu and Gmsh .msh)", path.string(),
-         ext.string());
+  if (ext != ".msh" && ext != ".vtu" && ext != ".mesh")
+    fail("{}: unknown output format '{}' (neomesh writes VTK .vtu, Gmsh .msh and Medit .mesh)",
+         path.string(), ext.string());
 }
 
 void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path, const MeshFields& fields) {
   check_writable_format(path);
   const GatheredMesh gathered = gather_mesh(mesh, fields);
   on_root(mesh.comm(), [&] {
-    const bool vtu = path.extension() == ".vtu";
-    AtomicFile file(path, vtu);
-    if (vtu)
+    const auto ext = path.extension();
+    AtomicFile file(path, ext == ".vtu");
+    if (ext == ".vtu")
       write_vtu(gathered, file.stream());
+    else if (ext == ".mesh")
+      write_medit(gathered, file.stream());
     else
       write_msh(gathered, file.stream());
     file.commit();

@@ -1,5 +1,6 @@
-// Writing meshes. The format follows the extension: .vtu (ParaView, with fields) or
-// .msh (Gmsh 4.1 ASCII, keeping the input's physical groups). Every write goes to a
+// Writing meshes. The format follows the extension: .vtu (ParaView, with fields),
+// .msh (Gmsh 4.1 ASCII, keeping the input's physical groups) or .mesh (Medit, keeping the
+// groups as references). Every write goes to a
 // temporary file beside the target, renamed over it only when complete, so a failed or
 // interrupted run never leaves a partial output file. Collective: rank 0 writes.
 #pragma once

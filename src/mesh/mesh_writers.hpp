@@ -1,4 +1,4 @@
-// The two output formats, written from a GatheredMesh on rank 0 to a stream.
+// The output formats, written from a GatheredMesh on rank 0 to a stream.
 #pragma once
 
 #include <ostream>
@@ -15,5 +15,10 @@ void write_vtu(const GatheredMesh& mesh, std::ostream& out);
 // Gmsh 4.1 ASCII (.msh): cells and the boundary facets and points of physical groups, one
 // entity per physical group, so that reading the file back gives the same groups.
 void write_msh(const GatheredMesh& mesh, std::ostream& out);
+
+// Medit ASCII (.mesh, MeshVersionFormatted 2): vertices, cells with their groups as
+// references, and the boundary facets of facet groups (edges in 2D, triangles and
+// quadrilaterals in 3D) with theirs. Group names and fields are not kept: Medit has none.
+void write_medit(const GatheredMesh& mesh, std::ostream& out);
 
 }  // namespace neomesh

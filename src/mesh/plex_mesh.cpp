@@ -11,11 +11,13 @@
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/input_file.hpp"
 #include "mesh/input_topology.hpp"
+#include "mesh/medit_reader.hpp"
 #include "mesh/mesh_impl.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/plex_builder.hpp"
 #include "mesh/validate.hpp"
 #include "mesh/vtk_reader.hpp"
+#include "mesh/vtu_reader.hpp"
 
 namespace neomesh {
 
@@ -266,9 +268,12 @@ PlexMesh PlexMesh::load(const std::filesystem::path& path, MPI_Comm comm, Invert
     check_input_file(path);
     check_readable_format(path);
     const auto ext = path.extension();
-    input = ext == ".msh"   ? read_gmsh(path)
-            : ext == ".vtk" ? read_vtk(path)
-                            : input_from_data(read_feat(path));
+    input = ext == ".msh"    ? read_gmsh(path)
+            : ext == ".vtk"  ? read_vtk(path)
+            : ext == ".vtu"  ? read_vtu(path)
+            : ext == ".pvtu" ? read_pvtu(path)
+            : ext == ".mesh" ? read_medit(path)
+                             : input_from_data(read_feat(path));
   });
   return create(comm, input, path.string(), inverted);
 }

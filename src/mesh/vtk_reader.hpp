@@ -6,12 +6,8 @@
 //   DATASET POLYDATA            POINTS, then POLYGONS of 3 or 4 vertices (VERTICES and LINES
 //                               are skipped)
 //
-// Cells: triangles, quadrilaterals (and pixels), tetrahedra, hexahedra (and voxels), wedges and
-// pyramids; polygons of 3 and 4 vertices are triangles and quadrilaterals. Vertices and lines
-// are skipped: the cells are the elements of the highest dimension, as for Gmsh files. Cells
-// keep their file order, vertices are the points some cell uses, in file order. A 2D mesh
-// gets coordinates in its plane (plane_embedding.hpp). The whole mesh is one domain: the file
-// has no physical groups. POINT_DATA, CELL_DATA, FIELD and METADATA sections are skipped.
+// Cells as vtk_cells.hpp says. The whole mesh is one domain: the file has no physical groups.
+// POINT_DATA, CELL_DATA, FIELD and METADATA sections are skipped.
 //
 // Binary files are big-endian (as VTK writes them). Errors name the line (ASCII) or the byte
 // offset (binary) where the file stops making sense.

@@ -1,0 +1,52 @@
+// The cells of VTK files, legacy (.vtk) and XML (.vtu): VTK's cell types, and the cells as a
+// file lists them (VTK type and points of each) turned into an InputMesh.
+//
+// Cells: triangles, quadrilaterals (and pixels), tetrahedra, hexahedra (and voxels), wedges and
+// pyramids; polygons of 3 and 4 vertices are triangles and quadrilaterals. Vertices and lines
+// are skipped: the cells are the elements of the highest dimension, as for Gmsh files. Cells
+// keep their file order, vertices are the points some cell uses, in file order. A 2D mesh gets
+// coordinates in its plane (plane_embedding.hpp).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mesh/input_mesh.hpp"
+
+namespace neomesh {
+
+// The cell types of VTK (vtkCellType.h) neomesh reads or names in an error. `vertices` is -1
+// for cells of any number of vertices; pixels and voxels list their vertices in tensor order,
+// which is neomesh's canonical order.
+struct VtkType {
+  int vtk;
+  int dim;  // -1: an empty cell
+  int order;
+  int vertices;
+  std::optional<CellType> cell;
+  const char* name;
+};
+inline constexpr int kPixel = 8, kVoxel = 11, kPolyVertex = 2, kPolyLine = 4, kStrip = 6,
+                     kPolygon = 7;
+// The type of VTK number `vtk`, or null for a number VTK does not define.
+const VtkType* vtk_type(long long vtk);
+
+// The cells as the file lists them: VTK type and points of each.
+struct VtkCells {
+  std::vector<double> xyz;  // 3 per point
+  std::vector<int> types;   // per cell, a number vtk_type() knows
+  std::vector<std::int64_t> offsets = {0};
+  std::vector<std::int64_t> points;  // of each cell, in VTK order, each < xyz.size() / 3
+  // Per cell: its physical group (> 0), or 0; empty when the file gives none.
+  std::vector<int> tags;
+};
+
+// The mesh of the cells of the highest dimension. Throws Error naming `file` unless they are
+// 2D or 3D cells neomesh reads (second-order cells, polyhedra, polygons of more than 4
+// vertices, 1D cells only) or if a cell repeats a vertex. The positive tags of the cells
+// become cell groups (without names).
+InputMesh input_from_vtk_cells(const VtkCells& cells, const std::string& file);
+
+}  // namespace neomesh
