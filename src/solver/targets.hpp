@@ -16,7 +16,7 @@
 //             of its input cell: S = V^w R, v = v_input^w v_sizes^(1−w) (then all volumes are
 //             scaled to the mesh volume).
 // A kept cell is as thin as its shortest edge, so its energy is small against that of its
-// neighbours, which would squash it (a boundary layer's first height: −26 % with k = 1):
+// neighbours, which would squash it (a boundary layer's first heights: ±8 % with k = 1):
 // its weight k = (C a)^w, with a = σ_max(V)^d the volume of the isotropic cell spanning its
 // longest edge over its own, C = kKeptStiffness (docs/method.md has the measurements).
 // Inverted input cells have no shape of their own: their targets are ideal (Optimizer::smooth

@@ -7,6 +7,8 @@ Used by test_targets.py and bench/targets.py.
 - 3D: a sphere of radius 0.1 in the box [-0.5, 0.5]^3 with 5 layers of prisms (first height
   2.2e-3, ratio 1.3, thickness 0.02; Gmsh meshes the tetrahedra outside radius 0.12, the prisms
   are extruded from its triangles on that sphere, inwards along the radius)."""
+import contextlib
+import io
 import os
 import subprocess
 
@@ -75,14 +77,16 @@ def sphere(directory, h=0.1, per_circle=24, r_in=0.1, r_out=0.12, layers=5, rati
         for k in range(layers):
             prisms.append([index[v][k] for v in t] + [index[v][k + 1] for v in t])
     out = os.path.join(directory, "sphere_bl.msh")
-    meshio.write(out, meshio.Mesh(points, [("tetra", tets), ("wedge", np.array(prisms))]),
-                 file_format="gmsh22", binary=False)
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        meshio.write(out, meshio.Mesh(points, [("tetra", tets), ("wedge", np.array(prisms))]),
+                     file_format="gmsh22", binary=False)
     return out
 
 
 def _read(path):
     import meshio
-    return meshio.read(path)
+    with contextlib.redirect_stdout(io.StringIO()):  # meshio's notes on Gmsh 2.2 tags
+        return meshio.read(path)
 
 
 def _relative(before, after):
