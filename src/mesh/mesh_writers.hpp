@@ -2,10 +2,22 @@
 #pragma once
 
 #include <ostream>
+#include <vector>
 
 #include "mesh/gather.hpp"
 
 namespace neomesh {
+
+// The physical groups to write, and the tag of the cells that have none (0: they stay without).
+// Gmsh saves only elements in physical groups once a file has any, and meshio requires every
+// element block to have one: cells the input left without a group while its facets have
+// groups (as `neomesh generate` and many .geo files make them) go into a new cell group
+// "domain" with the next free tag.
+struct WrittenGroups {
+  std::vector<PhysicalGroup> all;  // sorted by (dim, tag)
+  int untagged_cells = 0;
+};
+WrittenGroups physical_groups(const InputMesh& mesh);
 
 // VTK XML UnstructuredGrid (.vtu), binary in a raw appended section (which ParaView and
 // meshio read; meshio converts to ASCII for reading by eye): cell and vertex fields, plus the
