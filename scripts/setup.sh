@@ -13,7 +13,9 @@ packages=(
   libeigen3-dev libcli11-dev libfmt-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcairo2-dev libmuparser-dev libpugixml-dev libmetis-dev zlib1g-dev
+  libexodusii-dev              # Exodus II .exo/.e/.ex2 (over netCDF)
   python3 python3-numpy python3-meshio python3-pytest gmsh  # tests: reader, runner, meshes
+  python3-netcdf4              # tests: meshio's Exodus II reader and writer
 )
 missing=()
 for p in "${packages[@]}"; do

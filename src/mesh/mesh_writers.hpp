@@ -1,7 +1,9 @@
-// The output formats, written from a GatheredMesh on rank 0 to a stream.
+// The output formats, written from a GatheredMesh on rank 0 to a stream (Exodus: to a file).
 #pragma once
 
+#include <filesystem>
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "mesh/gather.hpp"
@@ -32,5 +34,12 @@ void write_msh(const GatheredMesh& mesh, std::ostream& out);
 // references, and the boundary facets of facet groups (edges in 2D, triangles and
 // quadrilaterals in 3D) with theirs. Group names and fields are not kept: Medit has none.
 void write_medit(const GatheredMesh& mesh, std::ostream& out);
+
+// Exodus II (.exo, .e, .ex2) through the Exodus library, to the file `path` (messages name
+// `target`): coordinates (num_dim 2 for a 2D mesh in the plane z = 0), an element block per
+// cell group and cell type (id: the group's tag; name: the group's), a side set per facet
+// group. Fields and point groups are not written.
+void write_exodus(const GatheredMesh& mesh, const std::filesystem::path& path,
+                  const std::string& target);
 
 }  // namespace neomesh

@@ -1,0 +1,105 @@
+#include "mesh/exodus_file.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+#include <exodusII.h>
+
+#include "core/error.hpp"
+
+namespace neomesh {
+
+namespace {
+
+// Word sizes of the floating-point data: doubles in memory and in the file.
+constexpr int kDoubleBytes = 8;
+
+// The manual's side tables, 0-based, by CellType.
+constexpr ExodusSides kSides[kNumCellTypes] = {
+    {3, {{{2, {0, 1}}, {2, {1, 2}}, {2, {2, 0}}}}},
+    {4, {{{2, {0, 1}}, {2, {1, 2}}, {2, {2, 3}}, {2, {3, 0}}}}},
+    {4, {{{3, {0, 1, 3}}, {3, {1, 2, 3}}, {3, {0, 3, 2}}, {3, {0, 2, 1}}}}},
+    {6,
+     {{{4, {0, 1, 5, 4}},
+       {4, {1, 2, 6, 5}},
+       {4, {2, 3, 7, 6}},
+       {4, {0, 4, 7, 3}},
+       {4, {0, 3, 2, 1}},
+       {4, {4, 5, 6, 7}}}}},
+    {5,
+     {{{4, {0, 1, 4, 3}}, {4, {1, 2, 5, 4}}, {4, {0, 3, 5, 2}}, {3, {0, 2, 1}}, {3, {3, 4, 5}}}}},
+    {5, {{{3, {0, 1, 4}}, {3, {1, 2, 4}}, {3, {2, 3, 4}}, {3, {0, 4, 3}}, {4, {0, 3, 2, 1}}}}}};
+
+constexpr std::string_view kTypeNames[kNumCellTypes] = {"TRI3", "QUAD4",  "TETRA4",
+                                                        "HEX8", "WEDGE6", "PYRAMID5"};
+
+// Exodus element type names by their letters (the node count that may follow is checked by the
+// reader against the block's nodes per element).
+struct TypeWord {
+  std::string_view letters;
+  CellType type;
+  bool shell;
+};
+constexpr TypeWord kTypeWords[] = {
+    {"TRI", CellType::Triangle, false},       {"TRIANGLE", CellType::Triangle, false},
+    {"TRISHELL", CellType::Triangle, true},   {"QUAD", CellType::Quadrilateral, false},
+    {"SHELL", CellType::Quadrilateral, true}, {"TET", CellType::Tetrahedron, false},
+    {"TETRA", CellType::Tetrahedron, false},  {"HEX", CellType::Hexahedron, false},
+    {"WEDGE", CellType::Wedge, false},        {"PYRAMID", CellType::Pyramid, false}};
+
+}  // namespace
+
+ExodusFile::ExodusFile(const std::filesystem::path& path, Mode mode, const std::string& shown)
+    : name_(shown) {
+  ex_opts(0);  // no messages on stderr: failures become one Error each
+  int cpu_word = kDoubleBytes, io_word = kDoubleBytes;
+  if (mode == Mode::Read) {
+    float version = 0;
+    id_ = ex_open(path.c_str(), EX_READ, &cpu_word, &io_word, &version);
+    if (id_ < 0) fail("{}: is not an Exodus II file the Exodus library can open", name_);
+  } else {
+    id_ = ex_create(path.c_str(), EX_CLOBBER, &cpu_word, &io_word);
+    if (id_ < 0) fail("cannot write {}: the Exodus library cannot create it", name_);
+  }
+  ex_set_int64_status(id_, EX_ALL_INT64_API);
+}
+
+ExodusFile::~ExodusFile() {
+  if (id_ >= 0) ex_close(id_);
+}
+
+void ExodusFile::check(int status, std::string_view what) const {
+  if (status < 0) fail("{}: {} failed (Exodus error {})", name_, what, status);
+}
+
+void ExodusFile::close() {
+  if (id_ < 0) return;
+  const int status = ex_close(id_);
+  id_ = -1;
+  check(status, "closing the file");
+}
+
+const ExodusSides& exodus_sides(CellType t) {
+  return kSides[static_cast<int>(t)];
+}
+
+std::string_view exodus_type_name(CellType t) {
+  return kTypeNames[static_cast<int>(t)];
+}
+
+std::optional<CellType> exodus_cell_type(std::string_view name, bool& shell) {
+  const auto digits = std::find_if(name.begin(), name.end(), [](char c) {
+    return std::isdigit(static_cast<unsigned char>(c)) != 0;
+  });
+  const std::string_view letters(name.begin(), digits);
+  for (const TypeWord& w : kTypeWords)
+    if (std::equal(
+            letters.begin(), letters.end(), w.letters.begin(), w.letters.end(),
+            [](char a, char b) { return std::toupper(static_cast<unsigned char>(a)) == b; })) {
+      shell = w.shell;
+      return w.type;
+    }
+  return std::nullopt;
+}
+
+}  // namespace neomesh
