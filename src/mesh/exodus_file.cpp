@@ -30,8 +30,10 @@ constexpr ExodusSides kSides[kNumCellTypes] = {
      {{{4, {0, 1, 4, 3}}, {4, {1, 2, 5, 4}}, {4, {0, 3, 5, 2}}, {3, {0, 2, 1}}, {3, {3, 4, 5}}}}},
     {5, {{{3, {0, 1, 4}}, {3, {1, 2, 4}}, {3, {2, 3, 4}}, {3, {0, 4, 3}}, {4, {0, 3, 2, 1}}}}}};
 
-constexpr std::string_view kTypeNames[kNumCellTypes] = {"TRI3", "QUAD4",  "TETRA4",
-                                                        "HEX8", "WEDGE6", "PYRAMID5"};
+// The names the writer gives: the ones every reader knows (meshio 5 reads TETRA4 as a type of
+// its own and knows neither WEDGE6 nor PYRAMID5).
+constexpr std::string_view kTypeNames[kNumCellTypes] = {"TRI3", "QUAD4", "TETRA",
+                                                        "HEX8", "WEDGE", "PYRAMID"};
 
 // Exodus element type names by their letters (the node count that may follow is checked by the
 // reader against the block's nodes per element).

@@ -57,7 +57,7 @@ struct ExodusSides {
 };
 const ExodusSides& exodus_sides(CellType t);
 
-// The name the writer gives each cell type (TRI3, QUAD4, TETRA4, HEX8, WEDGE6, PYRAMID5).
+// The name the writer gives each cell type (TRI3, QUAD4, TETRA, HEX8, WEDGE, PYRAMID).
 std::string_view exodus_type_name(CellType t);
 
 // The cell type of an Exodus element type name (any case, any node count suffix: "TRI",
