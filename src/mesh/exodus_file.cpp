@@ -49,36 +49,26 @@ constexpr TypeWord kTypeWords[] = {
     {"TETRA", CellType::Tetrahedron, false},  {"HEX", CellType::Hexahedron, false},
     {"WEDGE", CellType::Wedge, false},        {"PYRAMID", CellType::Pyramid, false}};
 
+std::optional<std::string> exodus_failure(int status) {
+  if (status >= 0) return std::nullopt;  // (> 0: a warning)
+  return fmt::format("Exodus error {}", status);
+}
+
 }  // namespace
 
 ExodusFile::ExodusFile(const std::filesystem::path& path, Mode mode, const std::string& shown)
-    : name_(shown) {
+    : LibraryFile(shown, ex_close, exodus_failure) {
   ex_opts(0);  // no messages on stderr: failures become one Error each
   int cpu_word = kDoubleBytes, io_word = kDoubleBytes;
   if (mode == Mode::Read) {
     float version = 0;
     id_ = ex_open(path.c_str(), EX_READ, &cpu_word, &io_word, &version);
-    if (id_ < 0) fail("{}: is not an Exodus II file the Exodus library can open", name_);
+    if (id_ < 0) fail("{}: is not an Exodus II file the Exodus library can open", name());
   } else {
     id_ = ex_create(path.c_str(), EX_CLOBBER, &cpu_word, &io_word);
-    if (id_ < 0) fail("cannot write {}: the Exodus library cannot create it", name_);
+    if (id_ < 0) fail("cannot write {}: the Exodus library cannot create it", name());
   }
   ex_set_int64_status(id_, EX_ALL_INT64_API);
-}
-
-ExodusFile::~ExodusFile() {
-  if (id_ >= 0) ex_close(id_);
-}
-
-void ExodusFile::check(int status, std::string_view what) const {
-  if (status < 0) fail("{}: {} failed (Exodus error {})", name_, what, status);
-}
-
-void ExodusFile::close() {
-  if (id_ < 0) return;
-  const int status = ex_close(id_);
-  id_ = -1;
-  check(status, "closing the file");
 }
 
 const ExodusSides& exodus_sides(CellType t) {

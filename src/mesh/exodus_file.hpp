@@ -1,5 +1,4 @@
-// What the Exodus II reader and writer share: an open file (an RAII owner of the library's file
-// id that turns failed calls into Error naming the file), the element types neomesh reads and
+// What the Exodus II reader and writer share: an open file, the element types neomesh reads and
 // writes, and Exodus' numbering of element sides.
 //
 // Exodus' linear node orders are Gmsh's (Exodus II manual, "Element Types": TETRA4 positively
@@ -17,29 +16,14 @@
 #include <string_view>
 
 #include "mesh/cell_type.hpp"
+#include "mesh/library_file.hpp"
 
 namespace neomesh {
 
 // A file opened (or created) with the Exodus library, every integer 64-bit.
-class ExodusFile {
+class ExodusFile : public LibraryFile {
  public:
-  enum class Mode { Read, Create };
-  // `shown` is how messages name the file (the target, when writing to a temporary file).
   ExodusFile(const std::filesystem::path& path, Mode mode, const std::string& shown);
-  ~ExodusFile();
-  ExodusFile(const ExodusFile&) = delete;
-  ExodusFile& operator=(const ExodusFile&) = delete;
-
-  int id() const { return id_; }
-  const std::string& name() const { return name_; }
-  // Throws Error "<file>: <what> failed (Exodus error <code>)" when a call returned < 0.
-  void check(int status, std::string_view what) const;
-  // Closes the file (once); throws Error if that fails (a write not completed).
-  void close();
-
- private:
-  int id_ = -1;
-  std::string name_;
 };
 
 // An element side of Exodus' side numbering: `size` local nodes (0-based, in the file's order)
