@@ -15,19 +15,19 @@ bool is_exodus(const std::filesystem::path& path) {
 void check_readable_format(const std::filesystem::path& path) {
   const auto ext = path.extension();
   if (ext != ".msh" && ext != ".xml" && ext != ".vtk" && ext != ".vtu" && ext != ".pvtu" &&
-      ext != ".mesh" && !is_exodus(path))
+      ext != ".mesh" && ext != ".cgns" && !is_exodus(path))
     fail(
         "{}: unknown mesh format '{}' (neomesh reads Gmsh .msh, FEAT3 .xml, VTK legacy .vtk, "
-        "VTK XML .vtu/.pvtu, Medit .mesh and Exodus II .exo/.e/.ex2)",
+        "VTK XML .vtu/.pvtu, Medit .mesh, Exodus II .exo/.e/.ex2 and CGNS .cgns)",
         path.string(), ext.string());
 }
 
 void check_writable_format(const std::filesystem::path& path) {
   const auto ext = path.extension();
-  if (ext != ".msh" && ext != ".vtu" && ext != ".mesh" && !is_exodus(path))
+  if (ext != ".msh" && ext != ".vtu" && ext != ".mesh" && ext != ".cgns" && !is_exodus(path))
     fail(
-        "{}: unknown output format '{}' (neomesh writes VTK .vtu, Gmsh .msh, Medit .mesh and "
-        "Exodus II .exo/.e/.ex2)",
+        "{}: unknown output format '{}' (neomesh writes VTK .vtu, Gmsh .msh, Medit .mesh, "
+        "Exodus II .exo/.e/.ex2 and CGNS .cgns)",
         path.string(), ext.string());
 }
 
@@ -36,9 +36,11 @@ void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path, const M
   const GatheredMesh gathered = gather_mesh(mesh, fields);
   on_root(mesh.comm(), [&] {
     const auto ext = path.extension();
-    AtomicFile file(path, ext == ".vtu" || is_exodus(path));
+    AtomicFile file(path, ext == ".vtu" || ext == ".cgns" || is_exodus(path));
     if (is_exodus(path))
       write_exodus(gathered, file.temporary_path(), path.string());
+    else if (ext == ".cgns")
+      write_cgns(gathered, file.temporary_path(), path.string());
     else if (ext == ".vtu")
       write_vtu(gathered, file.stream());
     else if (ext == ".mesh")

@@ -1,4 +1,4 @@
-// The output formats, written from a GatheredMesh on rank 0 to a stream (Exodus: to a file).
+// The output formats, written from a GatheredMesh on rank 0 to a stream (Exodus, CGNS: to a file).
 #pragma once
 
 #include <filesystem>
@@ -41,5 +41,12 @@ void write_medit(const GatheredMesh& mesh, std::ostream& out);
 // group. Fields and point groups are not written.
 void write_exodus(const GatheredMesh& mesh, const std::filesystem::path& path,
                   const std::string& target);
+
+// CGNS (.cgns, HDF5) through the CGNS library, to the file `path` (messages name `target`): one
+// base with one unstructured zone, a section per cell group (MIXED where the group has cells
+// of several types) named by the group, a section of facet elements and a BC (PointRange at
+// FaceCenter/EdgeCenter) per facet group. Fields and point groups are not written.
+void write_cgns(const GatheredMesh& mesh, const std::filesystem::path& path,
+                const std::string& target);
 
 }  // namespace neomesh

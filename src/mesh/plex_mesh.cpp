@@ -7,6 +7,7 @@
 #include "core/collective_error.hpp"
 #include "mesh/boundary_surface.hpp"
 #include "mesh/cell_order.hpp"
+#include "mesh/cgns_reader.hpp"
 #include "mesh/exodus_reader.hpp"
 #include "mesh/feat_reader.hpp"
 #include "mesh/gmsh_reader.hpp"
@@ -275,6 +276,7 @@ PlexMesh PlexMesh::load(const std::filesystem::path& path, MPI_Comm comm, Invert
             : ext == ".pvtu"  ? read_pvtu(path)
             : ext == ".mesh"  ? read_medit(path)
             : is_exodus(path) ? read_exodus(path)
+            : ext == ".cgns"  ? read_cgns(path)
                               : input_from_data(read_feat(path));
   });
   return create(comm, input, path.string(), inverted);
