@@ -66,9 +66,7 @@ class Optimizer {
   // OptionError if the options are out of range. Collective.
   double evaluate(const SmoothOptions& options = {});
 
-  // The implementation, for neomesh's own front end (src/api/optimizer_impl.hpp).
-  struct Impl;
-  Impl& impl();
+  struct Impl;  // src/api/optimizer_impl.hpp
 
  private:
   std::unique_ptr<Impl> impl_;

@@ -23,16 +23,21 @@ struct EnergyOptions {
   // SmoothOptions and AdaptOptions use 2 (docs/benchmarks.md: the same optimum and iterations).
   int gauss_points = 3;
 
+  // κ as the energy uses it: λ where kappa < 0.
+  double effective_kappa() const { return kappa < 0.0 ? lambda : kappa; }
   void validate() const;
 };
 
 // What the boundary vertices may do (docs/boundary.md): stay put (the thesis' H¹₀ setting), or
 // slide along the input's boundary, corners and ridges kept.
 enum class BoundaryMode { Fixed, Slide };
-// Each choice has one name, the command line's and the report's: "fixed", "slide". parse_*()
-// throws Error for another name.
+// Each choice of an option has one name, the command line's and the report's ("fixed",
+// "slide"); parse_*() throws Error for another name, choice_names<E>() lists them all (the
+// default first). All are defined in one table per enum (src/api/options.cpp).
 std::string_view name(BoundaryMode mode);
 BoundaryMode parse_boundary_mode(std::string_view name);
+template <typename E>
+std::vector<std::string> choice_names();
 
 struct BoundaryOptions {
   BoundaryOptions() = default;
@@ -55,6 +60,8 @@ enum class RieszLaplacian {
   OptimalCells,  // ∫ over the optimal cells = B3/μ; the thesis' choice; built once per volumes
   CurrentMesh,   // stiffness matrix of the current mesh; depends on x
 };
+std::string_view name(RieszLaplacian kind);  // "optimal", "current"
+RieszLaplacian parse_riesz_laplacian(std::string_view name);
 
 // The linear solvers' defaults (PETSc options -hess_* and -riesz_* still win):
 //   Amg     CG + hypre BoomerAMG (mesh-independent iteration counts; the default)
@@ -71,6 +78,8 @@ LinearSolverKind parse_linear_solver(std::string_view name);
 // cheaper (L couples no two components; without sliding vertices it is one scalar hierarchy
 // per component) and no hierarchy of H is built or stored (docs/benchmarks.md).
 enum class HessianPreconditioner { Hessian, Laplacian };
+std::string_view name(HessianPreconditioner kind);  // "hessian", "laplacian"
+HessianPreconditioner parse_hessian_preconditioner(std::string_view name);
 
 // What an iteration does when the quasi-Newton direction δ̃ fails the angle test
 // (docs/method.md §4):
@@ -79,6 +88,8 @@ enum class HessianPreconditioner { Hessian, Laplacian };
 //                 and CG did not stop at negative curvature, keeping most of the Newton step
 //                 where H(α) and L disagree (fitted interfaces, sliding boundaries); else −s.
 enum class RejectedDirection { Antigradient, Blend };
+std::string_view name(RejectedDirection direction);  // "antigradient", "blend"
+RejectedDirection parse_rejected_direction(std::string_view name);
 
 // The quasi-Newton method of thesis §5.1 (docs/method.md §4).
 struct SolverOptions {
@@ -158,6 +169,7 @@ struct SolverOptions {
 enum class SizeMode { Uniform, Input, Smoothed };
 // "uniform", "input" or "smoothed" (the command line's --sizes); throws Error for another name.
 SizeMode parse_size_mode(std::string_view name);
+std::string_view name(SizeMode mode);
 
 // The cells smoothing pulls each cell towards (docs/method.md, "Target cells"):
 //   Ideal     the thesis' isotropic cell (square, cube, equilateral simplex, ...) of the

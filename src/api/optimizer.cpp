@@ -303,10 +303,6 @@ Optimizer::~Optimizer() = default;
 Optimizer::Optimizer(Optimizer&&) noexcept = default;
 Optimizer& Optimizer::operator=(Optimizer&&) noexcept = default;
 
-Optimizer::Impl& Optimizer::impl() {
-  return *impl_;
-}
-
 Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer) {
   Impl& r = *impl_;
   Result result = r.start(options);

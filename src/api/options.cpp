@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -11,23 +12,128 @@
 
 namespace neomesh {
 
-TargetMode parse_target_mode(std::string_view name) {
-  if (name == "ideal") return TargetMode::Ideal;
-  if (name == "input") return TargetMode::Input;
-  if (name == "smoothed") return TargetMode::Smoothed;
-  fail("unknown target mode '{}' (use ideal, input or smoothed)", name);
+namespace {
+
+// Each choice of an option has one name, the command line's and the report's.
+template <typename E>
+struct Choice {
+  E value;
+  std::string_view name;
+};
+
+constexpr Choice<BoundaryMode> kBoundaryModes[] = {{BoundaryMode::Fixed, "fixed"},
+                                                   {BoundaryMode::Slide, "slide"}};
+constexpr Choice<LinearSolverKind> kLinearSolvers[] = {{LinearSolverKind::Amg, "amg"},
+                                                       {LinearSolverKind::Jacobi, "jacobi"},
+                                                       {LinearSolverKind::Direct, "direct"}};
+constexpr Choice<RieszLaplacian> kRieszLaplacians[] = {{RieszLaplacian::OptimalCells, "optimal"},
+                                                       {RieszLaplacian::CurrentMesh, "current"}};
+constexpr Choice<HessianPreconditioner> kHessianPreconditioners[] = {
+    {HessianPreconditioner::Laplacian, "laplacian"}, {HessianPreconditioner::Hessian, "hessian"}};
+constexpr Choice<RejectedDirection> kRejectedDirections[] = {
+    {RejectedDirection::Blend, "blend"}, {RejectedDirection::Antigradient, "antigradient"}};
+constexpr Choice<SizeMode> kSizeModes[] = {
+    {SizeMode::Smoothed, "smoothed"}, {SizeMode::Input, "input"}, {SizeMode::Uniform, "uniform"}};
+constexpr Choice<TargetMode> kTargetModes[] = {
+    {TargetMode::Smoothed, "smoothed"}, {TargetMode::Ideal, "ideal"}, {TargetMode::Input, "input"}};
+
+template <typename E, std::size_t N>
+std::string_view name_in(const Choice<E> (&choices)[N], E value) {
+  for (const Choice<E>& c : choices)
+    if (c.value == value) return c.name;
+  return "?";
 }
 
-std::string_view name(TargetMode mode) {
-  switch (mode) {
-    case TargetMode::Ideal:
-      return "ideal";
-    case TargetMode::Input:
-      return "input";
-    case TargetMode::Smoothed:
-      return "smoothed";
+template <typename E, std::size_t N>
+std::vector<std::string> names_in(const Choice<E> (&choices)[N]) {
+  std::vector<std::string> names;
+  for (const Choice<E>& c : choices) names.emplace_back(c.name);
+  return names;
+}
+
+// The choice named `given`, or Error "unknown <what> 'x' (use a, b or c)".
+template <typename E, std::size_t N>
+E parse_in(const Choice<E> (&choices)[N], std::string_view what, std::string_view given) {
+  std::string list;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (choices[i].name == given) return choices[i].value;
+    list += fmt::format("{}{}", i == 0 ? "" : i + 1 == N ? " or " : ", ", choices[i].name);
   }
-  return "?";
+  fail("unknown {} '{}' (use {})", what, given, list);
+}
+
+}  // namespace
+
+std::string_view name(BoundaryMode mode) {
+  return name_in(kBoundaryModes, mode);
+}
+BoundaryMode parse_boundary_mode(std::string_view name) {
+  return parse_in(kBoundaryModes, "boundary mode", name);
+}
+std::string_view name(LinearSolverKind kind) {
+  return name_in(kLinearSolvers, kind);
+}
+LinearSolverKind parse_linear_solver(std::string_view name) {
+  return parse_in(kLinearSolvers, "linear solver", name);
+}
+std::string_view name(RieszLaplacian kind) {
+  return name_in(kRieszLaplacians, kind);
+}
+RieszLaplacian parse_riesz_laplacian(std::string_view name) {
+  return parse_in(kRieszLaplacians, "Riesz Laplacian", name);
+}
+std::string_view name(HessianPreconditioner kind) {
+  return name_in(kHessianPreconditioners, kind);
+}
+HessianPreconditioner parse_hessian_preconditioner(std::string_view name) {
+  return parse_in(kHessianPreconditioners, "quasi-Newton preconditioner", name);
+}
+std::string_view name(RejectedDirection direction) {
+  return name_in(kRejectedDirections, direction);
+}
+RejectedDirection parse_rejected_direction(std::string_view name) {
+  return parse_in(kRejectedDirections, "rejected direction", name);
+}
+std::string_view name(SizeMode mode) {
+  return name_in(kSizeModes, mode);
+}
+SizeMode parse_size_mode(std::string_view name) {
+  return parse_in(kSizeModes, "size mode", name);
+}
+std::string_view name(TargetMode mode) {
+  return name_in(kTargetModes, mode);
+}
+TargetMode parse_target_mode(std::string_view name) {
+  return parse_in(kTargetModes, "target mode", name);
+}
+
+template <>
+std::vector<std::string> choice_names<BoundaryMode>() {
+  return names_in(kBoundaryModes);
+}
+template <>
+std::vector<std::string> choice_names<LinearSolverKind>() {
+  return names_in(kLinearSolvers);
+}
+template <>
+std::vector<std::string> choice_names<RieszLaplacian>() {
+  return names_in(kRieszLaplacians);
+}
+template <>
+std::vector<std::string> choice_names<HessianPreconditioner>() {
+  return names_in(kHessianPreconditioners);
+}
+template <>
+std::vector<std::string> choice_names<RejectedDirection>() {
+  return names_in(kRejectedDirections);
+}
+template <>
+std::vector<std::string> choice_names<SizeMode>() {
+  return names_in(kSizeModes);
+}
+template <>
+std::vector<std::string> choice_names<TargetMode>() {
+  return names_in(kTargetModes);
 }
 
 namespace {

@@ -268,7 +268,7 @@ Subcommand add_adapt(CLI::App& app) {
   // Adaptation wants volumes met, not only shapes: λ = 4 μ, and boundary vertices that slide
   // so that the cells at the boundary can grade too (docs/adaptivity.md).
   o->method.energy = AdaptOptions().energy;
-  o->method.boundary = "slide";
+  o->method.boundary = name(AdaptOptions().boundary.mode);
   CLI::App* cmd = app.add_subcommand(
       "adapt",
       "Move the vertices so that cells are small near a surface (circle, sphere, plane, box, "

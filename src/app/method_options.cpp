@@ -9,19 +9,6 @@
 
 namespace neomesh::app {
 
-namespace {
-
-// The value of a two-way choice option, or a one-line error naming both choices.
-template <typename T>
-T one_of(const char* option, const std::string& given, std::pair<std::string_view, T> first,
-         std::pair<std::string_view, T> second) {
-  if (given == first.first) return first.second;
-  if (given == second.first) return second.second;
-  fail("unknown {} '{}' (use {} or {})", option, shorten(given), first.first, second.first);
-}
-
-}  // namespace
-
 void add_method_options(CLI::App& cmd, MethodOptions& o) {
   const char* energy = "Energy (thesis §4)";
   cmd.add_option("--lambda", o.energy.lambda,
@@ -54,7 +41,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
   cmd.add_option("--rejected-direction", o.rejected_direction,
                  "when the quasi-Newton direction fails the angle test: blend (turn it towards "
                  "the antigradient just enough to pass) or antigradient (the thesis)")
-      ->check(CLI::IsMember({"blend", "antigradient"}))
+      ->check(CLI::IsMember(choice_names<RejectedDirection>()))
       ->capture_default_str()
       ->group(method);
   cmd.add_option("--kmin", o.solver.kmin, "initial antigradient steps before quasi-Newton steps")
@@ -105,13 +92,13 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
   const char* linear = "Linear solvers (PETSc prefixes -hess_ and -riesz_)";
   cmd.add_option("--linear-solver", o.linear_solver,
                  "amg (CG + hypre BoomerAMG), jacobi (the thesis' PCG) or direct (Cholesky, MUMPS)")
-      ->check(CLI::IsMember({"amg", "jacobi", "direct"}))
+      ->check(CLI::IsMember(choice_names<LinearSolverKind>()))
       ->capture_default_str()
       ->group(linear);
   cmd.add_option("--riesz", o.riesz,
                  "Laplacian of the Riesz representative: optimal (over the optimal cells, the "
                  "thesis') or current (stiffness of the current mesh)")
-      ->check(CLI::IsMember({"optimal", "current"}))
+      ->check(CLI::IsMember(choice_names<RieszLaplacian>()))
       ->capture_default_str()
       ->group(linear);
   cmd.add_option("--hess-rtol", o.solver.hessian_rtol,
@@ -128,7 +115,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "amg: precondition the quasi-Newton solve with the Riesz solve's AMG hierarchy "
                  "of the Laplacian (laplacian: more CG iterations, cheaper ones, no hierarchy "
                  "of H(alpha) built or stored) or with a hierarchy of H(alpha) (hessian)")
-      ->check(CLI::IsMember({"hessian", "laplacian"}))
+      ->check(CLI::IsMember(choice_names<HessianPreconditioner>()))
       ->capture_default_str()
       ->group(linear);
   cmd.add_option(
@@ -151,6 +138,7 @@ void add_method_options(CLI::App& cmd, MethodOptions& o) {
                  "fixed (boundary vertices stay put, the thesis) or slide (they move along the "
                  "input's boundary, curved or flat; corners stay put, ridge vertices slide along "
                  "their ridge)")
+      ->check(CLI::IsMember(choice_names<BoundaryMode>()))
       ->capture_default_str()
       ->group(boundary);
   cmd.add_option("--shape", o.shapes,
@@ -221,15 +209,9 @@ void resolve(const MethodOptions& o, EnergyOptions& energy, SolverOptions& solve
   energy = o.energy;
   solver = o.solver;
   solver.linear_solver = parse_linear_solver(o.linear_solver);
-  solver.riesz =
-      one_of<RieszLaplacian>("--riesz", o.riesz, {"optimal", RieszLaplacian::OptimalCells},
-                             {"current", RieszLaplacian::CurrentMesh});
-  solver.hessian_pc = one_of<HessianPreconditioner>(
-      "--hess-pc", o.hess_pc, {"hessian", HessianPreconditioner::Hessian},
-      {"laplacian", HessianPreconditioner::Laplacian});
-  solver.rejected_direction = one_of<RejectedDirection>(
-      "--rejected-direction", o.rejected_direction, {"blend", RejectedDirection::Blend},
-      {"antigradient", RejectedDirection::Antigradient});
+  solver.riesz = parse_riesz_laplacian(o.riesz);
+  solver.hessian_pc = parse_hessian_preconditioner(o.hess_pc);
+  solver.rejected_direction = parse_rejected_direction(o.rejected_direction);
   solver.practical = !o.no_practical;
   solver.lazy_riesz = !o.riesz_every_step;
   boundary.mode = parse_boundary_mode(o.boundary);

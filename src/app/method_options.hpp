@@ -18,13 +18,13 @@ namespace neomesh::app {
 struct MethodOptions {
   EnergyOptions energy;
   SolverOptions solver;
-  std::string linear_solver = "amg";
-  std::string rejected_direction = "blend";
-  std::string riesz = "optimal";
-  std::string hess_pc = "laplacian";
+  std::string linear_solver{name(SolverOptions().linear_solver)};
+  std::string rejected_direction{name(SolverOptions().rejected_direction)};
+  std::string riesz{name(SolverOptions().riesz)};
+  std::string hess_pc{name(SolverOptions().hessian_pc)};
   // Unset: SolverOptions' defaults, the thesis' with --thesis.
   std::optional<double> riesz_rtol, hessian_forcing_max, max_trial_move;
-  std::string boundary = "fixed";
+  std::string boundary{name(BoundaryOptions().mode)};
   std::vector<std::string> shapes;  // --shape PART=SPEC
   double feature_angle = BoundaryOptions().feature_angle;
   bool no_practical = false;

@@ -25,7 +25,7 @@ namespace {
 
 struct RenderCommandOptions {
   std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
-  std::string output, field = "scaled_jacobian", sizes = "smoothed", title;
+  std::string output, field = "scaled_jacobian", sizes{name(SmoothOptions().sizes)}, title;
   int width = 1200;
   std::vector<double> range, window;
   bool log_scale = false;
@@ -140,7 +140,7 @@ Subcommand add_render(CLI::App& app) {
   cmd->add_option("--sizes", options->sizes,
                   "desired cell volumes for energy and Q, as in `neomesh smooth`: uniform (mesh "
                   "volume / cells), input (each cell's own volume) or smoothed")
-      ->check(CLI::IsMember({"uniform", "input", "smoothed"}))
+      ->check(CLI::IsMember(choice_names<SizeMode>()))
       ->capture_default_str();
   cmd->add_option("--title", options->title, "title above the mesh (default: the file name)");
   cmd->add_option("--width", options->width, "picture width in pixels (PNG) or points (SVG)")

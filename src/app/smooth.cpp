@@ -16,7 +16,8 @@ namespace {
 
 struct SmoothCommand {
   std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
-  std::string output, sizes = "smoothed", targets = "smoothed";
+  std::string output;
+  std::string sizes{name(SmoothOptions().sizes)}, targets{name(SmoothOptions().targets)};
   bool force = false, no_guard = false, no_untangle = false;
   MethodOptions method;
   RunOutputs outputs;
@@ -53,7 +54,7 @@ Subcommand add_smooth(CLI::App& app) {
   // The worst cells of real meshes touch the boundary, and only sliding vertices can fix them
   // (box_with_hole: min scaled Jacobian 0.024 fixed, 0.151 sliding); the boundary stays on the
   // input's facets, corners and group borders stay put (docs/boundary.md).
-  o->method.boundary = "slide";
+  o->method.boundary = name(SmoothOptions().boundary.mode);
   o->method.energy = SmoothOptions().energy;
   CLI::App* cmd = app.add_subcommand(
       "smooth",
@@ -66,7 +67,8 @@ Subcommand add_smooth(CLI::App& app) {
                   "XML, .mesh Medit; a FEAT3 mesh may come with the files of its charts, in any "
                   "order)")
       ->required();
-  cmd->add_option("-o,--output", o->output, "smoothed mesh (.vtu with quality fields, .msh or .mesh)")
+  cmd->add_option("-o,--output", o->output,
+                  "smoothed mesh (.vtu with quality fields, .msh or .mesh)")
       ->required();
   cmd->add_flag("--force", o->force, "allow the output to overwrite the input file (default: off)");
   cmd->add_flag("--no-guard", o->no_guard,
@@ -79,7 +81,7 @@ Subcommand add_smooth(CLI::App& app) {
   cmd->add_option("--sizes", o->sizes,
                   "desired cell volumes: smoothed (input volumes averaged over neighbours: keeps "
                   "the grading), input (each cell's own volume) or uniform (all equal, the thesis)")
-      ->check(CLI::IsMember({"smoothed", "input", "uniform"}))
+      ->check(CLI::IsMember(choice_names<SizeMode>()))
       ->capture_default_str();
   cmd->add_option("--targets", o->targets,
                   "the cell each cell is pulled towards: smoothed (the input's own cell where its "
@@ -87,7 +89,7 @@ Subcommand add_smooth(CLI::App& app) {
                   "are; the ideal cell where the stretching is noise), ideal (square, cube, "
                   "equilateral simplex, ... of the desired volume: the thesis) or input (the input "
                   "cell: only untangle and repair the worst cells)")
-      ->check(CLI::IsMember({"smoothed", "ideal", "input"}))
+      ->check(CLI::IsMember(choice_names<TargetMode>()))
       ->capture_default_str();
   add_run_output_options(*cmd, o->outputs, "scaled_jacobian");
   add_method_options(*cmd, o->method);

@@ -125,16 +125,6 @@ bool is_smooth(const Chart& chart) {
 
 }  // namespace
 
-BoundaryMode parse_boundary_mode(std::string_view name) {
-  if (name == "fixed") return BoundaryMode::Fixed;
-  if (name == "slide") return BoundaryMode::Slide;
-  fail("unknown boundary mode '{}' (expected fixed or slide)", name);
-}
-
-std::string_view name(BoundaryMode mode) {
-  return mode == BoundaryMode::Fixed ? "fixed" : "slide";
-}
-
 struct Boundary::Impl {
   const MeshView& view;
   const DofMap& dofs;

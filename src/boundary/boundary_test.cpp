@@ -206,12 +206,5 @@ TEST(Boundary, ProjectsSlidingVerticesBackOntoTheirGeometry) {
   EXPECT_NEAR(b.max_distance_from_input(x), 0.0, 1e-15);
 }
 
-TEST(BoundaryMode, ParsesItsNames) {
-  EXPECT_EQ(parse_boundary_mode("fixed"), BoundaryMode::Fixed);
-  EXPECT_EQ(parse_boundary_mode("slide"), BoundaryMode::Slide);
-  EXPECT_EQ(name(BoundaryMode::Slide), "slide");
-  EXPECT_THROW(parse_boundary_mode("free"), Error);
-}
-
 }  // namespace
 }  // namespace neomesh

@@ -52,7 +52,7 @@ UntanglingKernels make_untangling_kernels(const EnergyOptions& options, double e
 }
 
 Kernels make_kernels(const EnergyOptions& options, double corner_weight = 0.0) {
-  const double kappa = options.kappa < 0.0 ? options.lambda : options.kappa;
+  const double kappa = options.effective_kappa();
   const NeoHooke<2> law2{options.lambda, options.mu, kappa};
   const NeoHooke<3> law3{options.lambda, options.mu, kappa};
   const int n = options.gauss_points;

@@ -71,37 +71,37 @@ nlohmann::json to_json(const PhaseTimes& t) {
 }
 
 nlohmann::json to_json(const SolverOptions& o) {
-  return {
-      {"alpha0", o.alpha0 ? nlohmann::json(*o.alpha0) : nlohmann::json("auto")},
-      {"eta", o.eta},
-      {"kmin", o.kmin},
-      {"max_iterations", o.max_iterations},
-      {"time_limit", o.time_limit},
-      {"defect_atol", o.defect_atol},
-      {"defect_rtol", o.defect_rtol},
-      {"practical", o.practical},
-      {"energy_rtol", o.energy_rtol},
-      {"move_rtol", o.move_rtol},
-      {"newton_move_rtol", o.newton_move_rtol},
-      {"armijo_beta", o.armijo_beta},
-      {"max_halvings", o.max_halvings},
-      {"max_trial_move", o.max_trial_move},
-      {"initial_previous_defect", o.initial_previous_defect},
-      {"linear_solver", std::string(name(o.linear_solver))},
-      {"hessian_rtol", o.hessian_rtol},
-      {"hessian_defect_factor", o.hessian_defect_factor},
-      {"hessian_forcing_max", o.hessian_forcing_max},
-      {"riesz_rtol", o.riesz_rtol},
-      {"lazy_riesz", o.lazy_riesz},
-      {"hessian_pc_reuse", o.hessian_pc_reuse},
-      {"hessian_pc", o.hessian_pc == HessianPreconditioner::Laplacian ? "laplacian" : "hessian"},
-      {"riesz_laplacian", o.riesz == RieszLaplacian::OptimalCells ? "optimal" : "current"}};
+  return {{"alpha0", o.alpha0 ? nlohmann::json(*o.alpha0) : nlohmann::json("auto")},
+          {"eta", o.eta},
+          {"kmin", o.kmin},
+          {"max_iterations", o.max_iterations},
+          {"time_limit", o.time_limit},
+          {"defect_atol", o.defect_atol},
+          {"defect_rtol", o.defect_rtol},
+          {"practical", o.practical},
+          {"energy_rtol", o.energy_rtol},
+          {"move_rtol", o.move_rtol},
+          {"newton_move_rtol", o.newton_move_rtol},
+          {"armijo_beta", o.armijo_beta},
+          {"max_halvings", o.max_halvings},
+          {"max_trial_move", o.max_trial_move},
+          {"initial_previous_defect", o.initial_previous_defect},
+          {"linear_solver", std::string(name(o.linear_solver))},
+          {"hessian_rtol", o.hessian_rtol},
+          {"hessian_defect_factor", o.hessian_defect_factor},
+          {"hessian_forcing_max", o.hessian_forcing_max},
+          {"riesz_rtol", o.riesz_rtol},
+          {"lazy_riesz", o.lazy_riesz},
+          {"hessian_pc_reuse", o.hessian_pc_reuse},
+          {"hessian_pc", std::string(name(o.hessian_pc))},
+          {"riesz_laplacian", std::string(name(o.riesz))},
+          {"rejected_direction", std::string(name(o.rejected_direction))}};
 }
 
 nlohmann::json to_json(const EnergyOptions& o) {
   return {{"lambda", o.lambda},
           {"mu", o.mu},
-          {"kappa", o.kappa < 0 ? o.lambda : o.kappa},
+          {"kappa", o.effective_kappa()},
           {"gauss_points", o.gauss_points}};
 }
 

@@ -19,13 +19,6 @@ double global_sum(std::span<const double> values, MPI_Comm comm) {
 }
 }  // namespace
 
-SizeMode parse_size_mode(std::string_view name) {
-  if (name == "uniform") return SizeMode::Uniform;
-  if (name == "input") return SizeMode::Input;
-  if (name == "smoothed") return SizeMode::Smoothed;
-  fail("unknown size mode '{}' (use uniform, input or smoothed)", name);
-}
-
 void normalize_volumes(std::vector<double>& volumes, double total, MPI_Comm comm) {
   const double sum = global_sum(volumes, comm);
   if (!(sum > 0.0)) fail("the desired cell volumes sum to {} (must be positive)", sum);

@@ -8,25 +8,6 @@
 
 namespace neomesh {
 
-LinearSolverKind parse_linear_solver(std::string_view name) {
-  if (name == "amg") return LinearSolverKind::Amg;
-  if (name == "jacobi") return LinearSolverKind::Jacobi;
-  if (name == "direct") return LinearSolverKind::Direct;
-  fail("unknown linear solver '{}' (use amg, jacobi or direct)", name);
-}
-
-std::string_view name(LinearSolverKind kind) {
-  switch (kind) {
-    case LinearSolverKind::Amg:
-      return "amg";
-    case LinearSolverKind::Jacobi:
-      return "jacobi";
-    case LinearSolverKind::Direct:
-      return "direct";
-  }
-  return "?";
-}
-
 namespace {
 
 // BoomerAMG is tuned only through the options database: neomesh's defaults go there unless
@@ -143,7 +124,7 @@ void LinearSolver::setup() {
 
 void LinearSolver::precondition_per_component() {
   if (kind_ != LinearSolverKind::Amg)
-    fail("internal error: a per-component preconditioner for the {} solver", name(kind_));
+    fail("internal error: a per-component preconditioner for a solver other than AMG");
   OwnedPC scalar;
   NM_PETSC(PCCreate(PetscObjectComm(reinterpret_cast<PetscObject>(ksp_.get())), scalar.out()));
   NM_PETSC(PCSetOptionsPrefix(scalar, prefix_.c_str()));

@@ -86,7 +86,7 @@ inline SphereOutcome adapt_to_sphere(CellType type, int n, const SizeFieldOption
       "%s %d^%d, boundary %s: %zu iterations, %d Armijo steps, δ rejected %d times, updates "
       "after [%s], %s; Q in [0.5, 2]: %.1f%%, min %.3g, median %.3g, max %.3g; min scaled "
       "Jacobian %.3f; near/far volume %.3f; %.1f s\n",
-      std::string(name(type)).c_str(), n, d, std::string(name(boundary)).c_str(),
+      std::string(name(type)).c_str(), n, d, boundary == BoundaryMode::Slide ? "slide" : "fixed",
       out.result.run.history.size(), out.armijo_steps, out.rejected, updates.c_str(),
       describe(out.result.run.reason).c_str(), 100 * out.q.within, out.q.min, out.q.median,
       out.q.max, out.min_scaled_jacobian, out.near_far, out.seconds);
