@@ -21,7 +21,6 @@ struct Section {
   cgsize_t start = 0, end = 0;  // element ids, inclusive
   std::vector<CgnsElement> elements;
   std::vector<cgsize_t> offsets = {0}, nodes;
-  std::vector<std::uint8_t> named_by_bc;  // per element: a BC names it
 };
 
 class CgnsReader {
@@ -108,7 +107,6 @@ class CgnsReader {
       out.offsets.push_back(static_cast<cgsize_t>(out.nodes.size()));
       at += element->nodes;
     }
-    out.named_by_bc.assign(n, 0);
     return out;
   }
 
@@ -175,7 +173,8 @@ class MeshBuilder {
       }
   }
 
-  void add_boundary_conditions() {
+  // Returns how many there are.
+  int add_boundary_conditions() {
     int count = 0;
     const int id = reader_.id();
     check(cg_nbocos(id, kBase, kZone, &count), "reading the boundary conditions");
@@ -211,13 +210,15 @@ class MeshBuilder {
       else
         add_facets(name, names_.of(group, mesh_.dim - 1, mesh_), points);
     }
+    return count;
   }
 
-  // Facet elements no BC named: a group per section.
-  void add_unnamed_facets() {
+  // For a zone without BCs: the facet elements, a group per section. (With BCs, sections of
+  // facets often repeat a BC's patch, which would make it two boundary parts.)
+  void add_section_facets() {
     for (const Section& s : sections_)
       for (std::size_t e = 0; e < s.elements.size(); ++e)
-        if (s.elements[e].dim == mesh_.dim - 1 && !s.named_by_bc[e])
+        if (s.elements[e].dim == mesh_.dim - 1)
           add_facet(s, e, names_.of(s.name, mesh_.dim - 1, mesh_));
   }
 
@@ -238,7 +239,6 @@ class MeshBuilder {
       if (!found || found->first->elements[found->second].dim != mesh_.dim - 1)
         fail("{}: boundary condition '{}' names element {}, which is not a {}", reader_.name(), bc,
              e, mesh_.dim == 3 ? "face (TRI_3, QUAD_4)" : "edge (BAR_2)");
-      found->first->named_by_bc[found->second] = 1;
       add_facet(*found->first, found->second, tag);
     }
   }
@@ -247,7 +247,9 @@ class MeshBuilder {
     PetscInt v[4];
     const int n = s.elements[e].nodes;
     for (int j = 0; j < n; ++j) {
-      const PetscInt p = vertex_[s.nodes[s.offsets[e] + j] - 1];
+      const cgsize_t node = s.nodes[s.offsets[e] + j];
+      const bool known = node >= 1 && node <= static_cast<cgsize_t>(vertex_.size());
+      const PetscInt p = known ? vertex_[node - 1] : -1;
       if (p < 0)
         fail("{}: the facet element {} of section '{}' is not a facet of any cell", reader_.name(),
              s.start + static_cast<cgsize_t>(e), s.name);
@@ -291,8 +293,7 @@ InputMesh read_cgns(const std::filesystem::path& path) {
   MeshBuilder builder(reader, sections, mesh);
   builder.number_vertices(reader.coordinates());
   builder.add_cells();
-  builder.add_boundary_conditions();
-  builder.add_unnamed_facets();
+  if (builder.add_boundary_conditions() == 0) builder.add_section_facets();
   std::sort(mesh.groups.begin(), mesh.groups.end(), [](const auto& a, const auto& b) {
     return std::pair(a.dim, a.tag) < std::pair(b.dim, b.tag);
   });

@@ -7,9 +7,9 @@
 // are facet groups named by their family (BCs of one family make one group) or else by
 // themselves: a BC at faces (edges in 2D) names facet elements (PointList/PointRange with
 // GridLocation FaceCenter/EdgeCenter, ElementList/ElementRange), one at vertices (the default)
-// names vertices, whose boundary facets make the group. Facet elements no BC names are a
-// facet group of their section's name. NODE and BAR_2 elements of a 3D zone, flow solutions
-// and other nodes are not kept.
+// names vertices, whose boundary facets make the group. In a zone without BCs, each section's
+// facet elements are a facet group of the section's name. NODE and BAR_2 elements of a 3D zone,
+// flow solutions and other nodes are not kept.
 #pragma once
 
 #include <filesystem>

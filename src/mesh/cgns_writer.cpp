@@ -59,7 +59,8 @@ std::vector<Section> cell_sections(const InputMesh& mesh, const WrittenGroups& g
     if (g.dim == mesh.dim) group_names[g.tag] = g.name;
   std::vector<Section> out;
   for (auto& [tag, section] : by_tag) {
-    section.name = names.of(group_names[tag], tag, tag == 0 ? "cells" : "group");
+    section.name =
+        tag == 0 ? names.of("cells", tag, "cells") : names.of(group_names[tag], tag, "group");
     out.push_back(std::move(section));
   }
   return out;
