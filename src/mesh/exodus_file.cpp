@@ -49,6 +49,20 @@ constexpr TypeWord kTypeWords[] = {
     {"TETRA", CellType::Tetrahedron, false},  {"HEX", CellType::Hexahedron, false},
     {"WEDGE", CellType::Wedge, false},        {"PYRAMID", CellType::Pyramid, false}};
 
+// The letters an element type name starts with (TETRA of TETRA10), and whether they are `upper`
+// in any case.
+std::string_view letters(std::string_view name) {
+  const auto digits = std::find_if(name.begin(), name.end(), [](char c) {
+    return std::isdigit(static_cast<unsigned char>(c)) != 0;
+  });
+  return {name.begin(), digits};
+}
+bool same_word(std::string_view word, std::string_view upper) {
+  return std::equal(word.begin(), word.end(), upper.begin(), upper.end(), [](char a, char b) {
+    return std::toupper(static_cast<unsigned char>(a)) == b;
+  });
+}
+
 std::optional<std::string> exodus_failure(int status) {
   if (status >= 0) return std::nullopt;  // (> 0: a warning)
   return fmt::format("Exodus error {}", status);
@@ -80,17 +94,21 @@ std::string_view exodus_type_name(CellType t) {
 }
 
 std::optional<CellType> exodus_cell_type(std::string_view name, bool& shell) {
-  const auto digits = std::find_if(name.begin(), name.end(), [](char c) {
-    return std::isdigit(static_cast<unsigned char>(c)) != 0;
-  });
-  const std::string_view letters(name.begin(), digits);
-  for (const TypeWord& w : kTypeWords)
-    if (std::equal(
-            letters.begin(), letters.end(), w.letters.begin(), w.letters.end(),
-            [](char a, char b) { return std::toupper(static_cast<unsigned char>(a)) == b; })) {
-      shell = w.shell;
-      return w.type;
+  const std::string_view w = letters(name);
+  for (const TypeWord& t : kTypeWords)
+    if (same_word(w, t.letters)) {
+      shell = t.shell;
+      return t.type;
     }
+  return std::nullopt;
+}
+
+std::optional<int> exodus_point_or_line(std::string_view name) {
+  const std::string_view w = letters(name);
+  for (std::string_view line : {"BAR", "BEAM", "TRUSS", "ROD", "EDGE"})
+    if (same_word(w, line)) return 1;
+  for (std::string_view point : {"SPHERE", "CIRCLE", "POINT", "NODE"})
+    if (same_word(w, point)) return 0;
   return std::nullopt;
 }
 

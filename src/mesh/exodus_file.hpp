@@ -50,4 +50,8 @@ std::string_view exodus_type_name(CellType t);
 // and 2 are its two faces and whose edges come after.
 std::optional<CellType> exodus_cell_type(std::string_view name, bool& shell);
 
+// The dimension of a type of points (SPHERE, CIRCLE) or lines (BAR, BEAM, TRUSS): 0 or 1, or
+// none for other types.
+std::optional<int> exodus_point_or_line(std::string_view name);
+
 }  // namespace neomesh

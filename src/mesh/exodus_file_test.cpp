@@ -56,6 +56,10 @@ TEST(ExodusTypeNames, ReadInAnyCaseWithAnyNodeCountAndBackAsWritten) {
   EXPECT_EQ(exodus_cell_type("BAR2", shell), std::nullopt);
   EXPECT_EQ(exodus_cell_type("NSIDED", shell), std::nullopt);
   for (CellType t : kAllCellTypes) EXPECT_EQ(exodus_cell_type(exodus_type_name(t), shell), t);
+  EXPECT_EQ(exodus_point_or_line("BAR2"), 1);
+  EXPECT_EQ(exodus_point_or_line("beam"), 1);
+  EXPECT_EQ(exodus_point_or_line("SPHERE"), 0);
+  EXPECT_EQ(exodus_point_or_line("NSIDED"), std::nullopt);
 }
 
 }  // namespace

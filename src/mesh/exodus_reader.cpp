@@ -18,8 +18,9 @@ namespace {
 // An element block as the file has it: nodes per element (1-based node numbers).
 struct Block {
   std::int64_t id = 0;
-  std::string name;  // the block's, or "block_<id>"
-  std::optional<CellType> type;
+  std::string name;              // the block's, or "block_<id>"
+  std::optional<CellType> type;  // none for points and lines, which are never cells
+  int dim = 0;
   bool shell = false;
   std::int64_t first_element = 0;  // 0-based global element number of its first element
   std::int64_t size = 0;
@@ -106,15 +107,20 @@ class ExodusReader {
                              &attributes),
                 fmt::format("reading element block {}", id));
     b.type = exodus_cell_type(type, b.shell);
+    if (const auto point_or_line = exodus_point_or_line(type); !b.type && point_or_line) {
+      b.dim = *point_or_line;  // (its elements count in the numbering of side sets)
+      return b;
+    }
     if (!b.type)
       fail(
           "{}: element block {} ('{}') has {} elements, which neomesh does not read (it reads "
-          "TRI3, QUAD4/SHELL4, TETRA4, HEX8, WEDGE6 and PYRAMID5)",
+          "TRI3, QUAD4/SHELL4, TETRA4, HEX8, WEDGE6 and PYRAMID5, and skips points and lines)",
           name(), id, b.name, type);
     if (nodes != num_vertices(*b.type))
       fail(
           "{}: element block {} ('{}') has {} elements with {} nodes; neomesh needs linear ({}) {}",
           name(), id, b.name, type, nodes, num_vertices(*b.type), facts(*b.type).plural);
+    b.dim = facts(*b.type).dim;
     b.nodes.resize(b.size * nodes);
     if (b.size > 0)
       file_.check(ex_get_conn(file_.id(), EX_ELEM_BLOCK, id, b.nodes.data(), nullptr, nullptr),
@@ -149,7 +155,7 @@ std::vector<PetscInt> number_vertices(const std::vector<Block>& blocks,
   const std::int64_t nn = static_cast<std::int64_t>(xyz.size() / 3);
   std::vector<PetscInt> vertex(nn, -1);
   for (const Block& b : blocks) {
-    if (facts(*b.type).dim != mesh.dim) continue;
+    if (b.dim != mesh.dim) continue;
     for (std::size_t k = 0; k < b.nodes.size(); ++k) {
       const std::int64_t n = b.nodes[k];
       if (n < 1 || n > nn)
@@ -169,7 +175,7 @@ void add_cells(const std::vector<Block>& blocks, const std::vector<PetscInt>& ve
   GroupTags tags(ids);
   std::map<std::string, int> tag_of;  // group name → tag
   for (const Block& b : blocks) {
-    if (facts(*b.type).dim != mesh.dim) continue;
+    if (b.dim != mesh.dim) continue;
     const auto [it, added] = tag_of.try_emplace(b.name, 0);
     if (added) {
       it->second = tags.of(b.id);
@@ -203,7 +209,7 @@ void add_side_sets(ExodusReader& reader, const std::vector<Block>& blocks,
           1;
       if (e < 0 || b < blocks.begin() || e >= b->first_element + b->size)
         fail("{}: side set {} names element {}, which does not exist", file, id, e + 1);
-      if (facts(*b->type).dim != mesh.dim)
+      if (b->dim != mesh.dim)
         fail(
             "{}: side set {} names element {} of block {}, which is not a cell (its dimension is "
             "lower than the mesh's)",
@@ -232,7 +238,7 @@ InputMesh read_exodus(const std::filesystem::path& path) {
   InputMesh mesh;
   mesh.dim = 0;
   for (const Block& b : blocks)
-    if (b.size > 0) mesh.dim = std::max(mesh.dim, facts(*b.type).dim);
+    if (b.size > 0) mesh.dim = std::max(mesh.dim, b.dim);
   if (mesh.dim == 0) fail("{}: has no elements", file);
   const std::vector<PetscInt> vertex = number_vertices(blocks, reader.coordinates(), file, mesh);
   add_cells(blocks, vertex, mesh);

@@ -6,8 +6,9 @@
 // a cell group named by the block's name, or "block_<id>" without one; blocks of the same name
 // make one group, whose tag is the first such block's id (if it is > 0; meshio numbers blocks
 // from 0, and such blocks get the tags above every id). Blocks of a lower dimension (shells on
-// a solid's boundary) are not kept. Side sets are facet groups (tag: the set's id; name: the
-// set's, or "sideset_<id>"). Node sets, attributes, maps and results are not kept.
+// a solid's boundary, BAR/BEAM/TRUSS lines, SPHERE points) are not kept. Side sets are facet groups
+// (tag: the set's id; name: the set's, or "sideset_<id>"). Node sets, attributes, maps and results
+// are not kept.
 #pragma once
 
 #include <filesystem>

@@ -25,6 +25,16 @@ def test_an_exodus_file_written_by_meshio_reads_as_meshio_wrote_it(tmp, case, le
     expect_same(read_mesh(convert(tmp, exo, "out.msh")), mesh, groups=False)
 
 
+def test_blocks_of_lines_are_skipped(tmp):
+    """A 2D mesh with its boundary edges in a BAR2 block, as Cubit writes it: the triangles."""
+    mesh = generated(tmp, "box-tri", "2")
+    edges = [(a, b) for t in mesh.cells[0].data.tolist() for a, b in ((t[0], t[1]), (t[1], t[2]))]
+    exo = os.path.join(tmp, "in.exo")
+    meshio.write(exo, meshio.Mesh(mesh.points, [mesh.cells[0], ("line", np.array(edges[:5]))]),
+                 file_format="exodus")
+    expect_same(read_mesh(convert(tmp, exo, "out.msh")), mesh, groups=False)
+
+
 # Exodus' sides (the manual's tables, 0-based nodes), to write side sets as Cubit does.
 SIDES = {"tetra": [(0, 1, 3), (1, 2, 3), (0, 3, 2), (0, 2, 1)],
          "hexahedron": [(0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (0, 4, 7, 3), (0, 3, 2, 1),
