@@ -45,8 +45,7 @@ def sphere(directory, h=0.1, per_circle=24, r_in=0.1, r_out=0.12, layers=5, rati
     with open(geo, "w") as f:
         f.write(BOX_WITH_SPHERICAL_HOLE.replace("R}", f"{r_out}}}").replace("= N", f"= {per_circle}")
                 .replace("= H", f"= {h}"))
-    tets_only = gmsh(geo, os.path.join(directory, "box_hole.msh"), "-3")
-    m = meshio.read(tets_only)
+    m = _read(gmsh(geo, os.path.join(directory, "box_hole.msh"), "-3"))
     p = m.points
     tets = np.vstack([c.data for c in m.cells if c.type == "tetra"])
     on = np.abs(np.linalg.norm(p, axis=1) - r_out) < 1e-6 * r_out
