@@ -1,26 +1,28 @@
-// Target cells for smoothing from the input cells (`--targets input|smoothed`; docs/method.md,
-// "Target cells"): per cell a desired volume, a shape S (det S = 1) of the cell the energy
-// pulls it towards, and a weight k of its energy. (`--targets ideal` needs none of this: the
-// thesis' isotropic cells of the volumes `--sizes` asks for, k = 1.)
+// Target cells for smoothing from the input cells (`--targets input|smoothed`; docs/method.md
+// §9): per cell a desired volume, a shape S (det S = 1) of the cell the energy pulls it
+// towards, and a weight k of its energy. (`--targets ideal` needs none of this: the thesis'
+// isotropic cells of the volumes `--sizes` asks for, k = 1.)
 //   KeptInput::All        the input cell itself: its stretch and volume at its centre ("only
 //                         untangle or repair": the input is the energy's minimum)
 //   KeptInput::Coherent   the input's design where it is coherent, ideal cells where it is
-//                         noise (`--targets smoothed`). Each
-//             cell's Jacobian at its centre, relative to its ideal cell, is J = s V R (det V =
-//             1, R a rotation). A neighbourhood stretched on purpose — a boundary layer, a
-//             graded CAD mesh — has its cells stretched alike: the anisotropy of the mean of
-//             log V over the cells sharing a vertex is close to the mean of their own
-//             anisotropies (coherence near 1). Noise stretches cells in scattered directions,
-//             which cancel in the mean. A cell keeps the share
-//               w = ramp(coherence; kCoherence) · ramp(own anisotropy; kStretched)
-//             of its input cell: S = V^w R, v = v_input^w v_sizes^(1−w) (then all volumes are
-//             scaled to the mesh volume).
+//                         noise (`--targets smoothed`)
+// Each cell's Jacobian at its centre, relative to its ideal cell, is J = s V R (det V = 1, R a
+// rotation). A region stretched on purpose — a boundary layer, a graded CAD mesh — has its cells
+// stretched alike: over the cells of the same type sharing a vertex with a cell, the mean of
+// log V has an anisotropy Ā (log of largest over smallest stretch) close to the mean Â of
+// their own. Noise stretches cells in scattered directions, which cancel in the mean. A cell
+// keeps the share
+//   w = ramp(Ā; kStretched) · ramp(Ā / Â; kCoherence)
+// of its input cell: S = V^w R, v = v_input^w v_sizes^(1−w) (then all volumes are scaled to
+// the mesh volume). Only cells of one type count: layers are made of one type, and the many
+// tetrahedra or triangles around a layer's outer cells would hide it.
 // A kept cell is as thin as its shortest edge, so its energy is small against that of its
 // neighbours, which would squash it (a boundary layer's first heights: ±8 % with k = 1):
 // its weight k = (C a)^w, with a = σ_max(V)^d the volume of the isotropic cell spanning its
 // longest edge over its own, C = kKeptStiffness (docs/method.md has the measurements).
-// Inverted input cells have no shape of their own: their targets are ideal (Optimizer::smooth
-// takes ideal targets for every cell of a tangled input).
+// When no cell is kept the targets are the ideal ones exactly (no shapes). Inverted input
+// cells have no shape of their own: their targets are ideal (Optimizer::smooth takes ideal
+// targets for every cell of a tangled input).
 #pragma once
 
 #include <span>
@@ -33,8 +35,9 @@ namespace neomesh {
 
 enum class KeptInput { All, Coherent };
 
-// The constants of Smoothed (docs/method.md, "Target cells"): the ramps' ends, coherence and
-// own anisotropy (a right triangle is 1.73 from the equilateral one: it is never kept), and C.
+// The constants of Coherent (docs/method.md §9): the ramps' ends, of the mean's anisotropy (a
+// grid of right triangles, 1.73 from the equilateral one, is never kept) and of the coherence
+// Ā / Â; and C.
 struct Ramp {
   double from, to;
 };
