@@ -13,7 +13,11 @@ packages=(
   libeigen3-dev libcli11-dev libfmt-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcairo2-dev libmuparser-dev libpugixml-dev libmetis-dev zlib1g-dev
+  libexodusii-dev              # Exodus II .exo/.e/.ex2 (over netCDF)
+  libcgns-dev                  # CGNS .cgns (over HDF5)
   python3 python3-numpy python3-meshio python3-pytest gmsh  # tests: reader, runner, meshes
+  python3-netcdf4              # tests: meshio's Exodus II reader and writer
+  cgns-convert                 # tests: tetgen_to_cgns writes .cgns files
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -49,15 +49,16 @@ struct FacetGroup {
 class LevelSet;  // level_set.hpp
 
 // Throws Error unless `path` has an extension neomesh reads (.msh, .xml, .vtk, .vtu, .pvtu,
-// .mesh) / writes (.msh, .vtu, .mesh): a check before a long run.
+// .mesh, .exo, .e, .ex2, .cgns) / writes (.msh, .vtu, .mesh, .exo, .e, .ex2, .cgns): a check before
+// a long run.
 void check_readable_format(const std::filesystem::path& path);
 void check_writable_format(const std::filesystem::path& path);
 
 class Mesh {
  public:
   // Reads .msh (Gmsh 2.2/4.1, ASCII or binary), .xml (FEAT3), .vtk (VTK legacy, ASCII or
-  // binary, UNSTRUCTURED_GRID or POLYDATA), .vtu/.pvtu (VTK XML UnstructuredGrid, any encoding)
-  // or .mesh (Medit ASCII) on the first process and
+  // binary, UNSTRUCTURED_GRID or POLYDATA), .vtu/.pvtu (VTK XML UnstructuredGrid, any encoding),
+  // .mesh (Medit ASCII), .exo/.e/.ex2 (Exodus II) or .cgns (CGNS) on the first process and
   // distributes it over `comm`. Throws Error naming the file (and cell) for anything neomesh
   // cannot use: a missing file, a malformed mesh, an unsupported cell type, NaN coordinates,
   // 2D cells that do not lie in one plane (a surface mesh). A 2D mesh whose file places it in
@@ -113,9 +114,10 @@ class Mesh {
   QualitySummary quality() const;
 
   // Writes .msh (Gmsh 4.1, with the input's physical groups and `facet_groups`), .mesh (Medit,
-  // with the groups' numbers as references) or .vtu (with the cell quality fields, `cell_fields`
-  // and `vertex_fields`) atomically: an error leaves no
-  // partial file. Collective.
+  // with the groups' numbers as references), .exo/.e/.ex2 (Exodus II, with element blocks and
+  // side sets), .cgns (CGNS, with sections and boundary conditions) or .vtu (with the cell
+  // quality fields, `cell_fields` and `vertex_fields`) atomically: an error leaves no partial
+  // file. Collective.
   void write(const std::filesystem::path& path, const std::vector<Field>& cell_fields = {},
              const std::vector<Field>& vertex_fields = {},
              const std::vector<FacetGroup>& facet_groups = {}) const;

@@ -51,15 +51,19 @@ Subcommand add_convert(CLI::App& app) {
   auto options = std::make_shared<ConvertOptions>();
   CLI::App* cmd = app.add_subcommand(
       "convert",
-      "Convert a mesh to .vtu (ParaView), .msh or .mesh. Reads Gmsh .msh 2.2/4.1, FEAT3 .xml,\n"
-      "VTK .vtk/.vtu/.pvtu or Medit .mesh, checks it (no inverted or degenerate cells) and\n"
-      "writes VTU, Gmsh 4.1 or Medit (keeping physical groups).");
+      "Convert a mesh to .vtu (ParaView), .msh, .mesh, .exo or .cgns. Reads Gmsh .msh 2.2/4.1,\n"
+      "FEAT3 .xml, VTK .vtk/.vtu/.pvtu, Medit .mesh, Exodus II .exo/.e/.ex2 or CGNS .cgns,\n"
+      "checks it (no inverted or degenerate cells) and writes VTU, Gmsh 4.1, Medit, Exodus II\n"
+      "or CGNS (keeping physical groups).");
   cmd->add_option(
          "input", options->inputs,
-         "input mesh (.msh, .xml, .vtk, .vtu, .pvtu or .mesh; a FEAT3 mesh may come with its "
+         "input mesh (.msh, .xml, .vtk, .vtu, .pvtu, .mesh, .exo/.e/.ex2 or .cgns; a FEAT3 mesh "
+         "may come with its "
          "chart files)")
       ->required();
-  cmd->add_option("-o,--output", options->output, "output mesh (.vtu, .msh or .mesh)")->required();
+  cmd->add_option("-o,--output", options->output,
+                  "output mesh (.vtu, .msh, .mesh, .exo/.e/.ex2 or .cgns)")
+      ->required();
   cmd->add_flag("--force", options->force,
                 "allow the output to overwrite the input (default: off)");
   return {cmd, [options] { run_convert(*options); }};

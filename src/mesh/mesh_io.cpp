@@ -7,21 +7,28 @@
 
 namespace neomesh {
 
+bool is_exodus(const std::filesystem::path& path) {
+  const auto ext = path.extension();
+  return ext == ".exo" || ext == ".e" || ext == ".ex2";
+}
+
 void check_readable_format(const std::filesystem::path& path) {
   const auto ext = path.extension();
   if (ext != ".msh" && ext != ".xml" && ext != ".vtk" && ext != ".vtu" && ext != ".pvtu" &&
-      ext != ".mesh")
+      ext != ".mesh" && ext != ".cgns" && !is_exodus(path))
     fail(
         "{}: unknown mesh format '{}' (neomesh reads Gmsh .msh, FEAT3 .xml, VTK legacy .vtk, "
-        "VTK XML .vtu/.pvtu and Medit .mesh)",
+        "VTK XML .vtu/.pvtu, Medit .mesh, Exodus II .exo/.e/.ex2 and CGNS .cgns)",
         path.string(), ext.string());
 }
 
 void check_writable_format(const std::filesystem::path& path) {
   const auto ext = path.extension();
-  if (ext != ".msh" && ext != ".vtu" && ext != ".mesh")
-    fail("{}: unknown output format '{}' (neomesh writes VTK .vtu, Gmsh .msh and Medit .mesh)",
-         path.string(), ext.string());
+  if (ext != ".msh" && ext != ".vtu" && ext != ".mesh" && ext != ".cgns" && !is_exodus(path))
+    fail(
+        "{}: unknown output format '{}' (neomesh writes VTK .vtu, Gmsh .msh, Medit .mesh, "
+        "Exodus II .exo/.e/.ex2 and CGNS .cgns)",
+        path.string(), ext.string());
 }
 
 void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path, const MeshFields& fields) {
@@ -29,8 +36,12 @@ void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path, const M
   const GatheredMesh gathered = gather_mesh(mesh, fields);
   on_root(mesh.comm(), [&] {
     const auto ext = path.extension();
-    AtomicFile file(path, ext == ".vtu");
-    if (ext == ".vtu")
+    AtomicFile file(path, ext == ".vtu" || ext == ".cgns" || is_exodus(path));
+    if (is_exodus(path))
+      write_exodus(gathered, file.temporary_path(), path.string());
+    else if (ext == ".cgns")
+      write_cgns(gathered, file.temporary_path(), path.string());
+    else if (ext == ".vtu")
       write_vtu(gathered, file.stream());
     else if (ext == ".mesh")
       write_medit(gathered, file.stream());

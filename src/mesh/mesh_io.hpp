@@ -1,7 +1,7 @@
 // Writing meshes. The format follows the extension: .vtu (ParaView, with fields),
-// .msh (Gmsh 4.1 ASCII, keeping the input's physical groups) or .mesh (Medit, keeping the
-// groups as references). Every write goes to a
-// temporary file beside the target, renamed over it only when complete, so a failed or
+// .msh (Gmsh 4.1 ASCII, keeping the input's physical groups), .mesh (Medit, keeping the
+// groups as references) or .exo/.e/.ex2 (Exodus II: element blocks and side sets). Every write goes
+// to a temporary file beside the target, renamed over it only when complete, so a failed or
 // interrupted run never leaves a partial output file. Collective: rank 0 writes.
 #pragma once
 
@@ -23,6 +23,9 @@ struct MeshFields {
   std::vector<Field> vertex;
   std::vector<FacetGroup> facet_groups;
 };
+
+// Exodus II's extensions: .exo, .e, .ex2.
+bool is_exodus(const std::filesystem::path& path);
 
 void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path,
                 const MeshFields& fields = {});

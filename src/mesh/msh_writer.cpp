@@ -28,32 +28,6 @@ struct Entities {
   }
 };
 
-// The physical groups to write, and the tag of the cells that have none (0: they stay without).
-// Gmsh saves only elements in physical groups once a file has any, and meshio requires every
-// element block to have one: cells the input left without a group while its facets have
-// groups (as `neomesh generate` and many .geo files make them) go into a new cell group
-// "domain" with the next free tag.
-struct Groups {
-  std::vector<PhysicalGroup> all;
-  int untagged_cells = 0;
-};
-
-Groups physical_groups(const InputMesh& mesh) {
-  Groups g{mesh.groups, 0};
-  const bool any_untagged =
-      std::find(mesh.cell_tags.begin(), mesh.cell_tags.end(), 0) != mesh.cell_tags.end();
-  if (mesh.groups.empty() || !any_untagged) return g;
-  int largest = 0;
-  for (const PhysicalGroup& group : mesh.groups)
-    if (group.dim == mesh.dim) largest = std::max(largest, group.tag);
-  g.untagged_cells = largest + 1;
-  g.all.push_back({mesh.dim, g.untagged_cells, "domain"});
-  std::sort(g.all.begin(), g.all.end(), [](const auto& a, const auto& b) {
-    return std::pair(a.dim, a.tag) < std::pair(b.dim, b.tag);
-  });
-  return g;
-}
-
 // An element block: elements of one type on one entity, as vertex lists (input numbers).
 struct Block {
   int dim, entity, type;
@@ -80,7 +54,8 @@ void write_entities(std::ostream& f, const std::vector<double>& xyz, const Entit
   fmt::print(f, "$EndEntities\n");
 }
 
-std::vector<Block> element_blocks(const GatheredMesh& g, const Groups& groups, Entities& entities) {
+std::vector<Block> element_blocks(const GatheredMesh& g, const WrittenGroups& groups,
+                                  Entities& entities) {
   const InputMesh& mesh = g.mesh;
   std::map<std::tuple<int, int, int>, Block> blocks;  // by (dim, physical tag, type)
   for (const PhysicalGroup& group : groups.all) entities.add(group.dim, group.tag);
@@ -116,10 +91,26 @@ std::vector<Block> element_blocks(const GatheredMesh& g, const Groups& groups, E
 
 }  // namespace
 
+WrittenGroups physical_groups(const InputMesh& mesh) {
+  WrittenGroups g{mesh.groups, 0};
+  const bool any_untagged =
+      std::find(mesh.cell_tags.begin(), mesh.cell_tags.end(), 0) != mesh.cell_tags.end();
+  if (mesh.groups.empty() || !any_untagged) return g;
+  int largest = 0;
+  for (const PhysicalGroup& group : mesh.groups)
+    if (group.dim == mesh.dim) largest = std::max(largest, group.tag);
+  g.untagged_cells = largest + 1;
+  g.all.push_back({mesh.dim, g.untagged_cells, "domain"});
+  std::sort(g.all.begin(), g.all.end(), [](const auto& a, const auto& b) {
+    return std::pair(a.dim, a.tag) < std::pair(b.dim, b.tag);
+  });
+  return g;
+}
+
 void write_msh(const GatheredMesh& g, std::ostream& f) {
   const InputMesh& mesh = g.mesh;
   fmt::print(f, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
-  const Groups groups = physical_groups(mesh);
+  const WrittenGroups groups = physical_groups(mesh);
   const auto named = std::count_if(groups.all.begin(), groups.all.end(),
                                    [](const auto& group) { return !group.name.empty(); });
   if (named > 0) {

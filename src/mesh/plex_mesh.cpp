@@ -7,6 +7,8 @@
 #include "core/collective_error.hpp"
 #include "mesh/boundary_surface.hpp"
 #include "mesh/cell_order.hpp"
+#include "mesh/cgns_reader.hpp"
+#include "mesh/exodus_reader.hpp"
 #include "mesh/feat_reader.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/input_file.hpp"
@@ -268,12 +270,14 @@ PlexMesh PlexMesh::load(const std::filesystem::path& path, MPI_Comm comm, Invert
     check_input_file(path);
     check_readable_format(path);
     const auto ext = path.extension();
-    input = ext == ".msh"    ? read_gmsh(path)
-            : ext == ".vtk"  ? read_vtk(path)
-            : ext == ".vtu"  ? read_vtu(path)
-            : ext == ".pvtu" ? read_pvtu(path)
-            : ext == ".mesh" ? read_medit(path)
-                             : input_from_data(read_feat(path));
+    input = ext == ".msh"     ? read_gmsh(path)
+            : ext == ".vtk"   ? read_vtk(path)
+            : ext == ".vtu"   ? read_vtu(path)
+            : ext == ".pvtu"  ? read_pvtu(path)
+            : ext == ".mesh"  ? read_medit(path)
+            : is_exodus(path) ? read_exodus(path)
+            : ext == ".cgns"  ? read_cgns(path)
+                              : input_from_data(read_feat(path));
   });
   return create(comm, input, path.string(), inverted);
 }

@@ -1,4 +1,4 @@
-"""VTK XML (.vtu, .pvtu) and Medit (.mesh) files as users bring them: written by meshio (an
+"""VTK XML (.vtu, .pvtu), Medit (.mesh) and Exodus II (.exo) files as users bring them: written by meshio (an
 independent writer) they read as the mesh meshio wrote, and neomesh's own outputs read back
 unchanged (read -> write -> read: the same coordinates, cells and groups). Run with
 NEOMESH=path/to/neomesh."""
@@ -85,20 +85,20 @@ def test_a_vtu_written_by_meshio_reads_as_meshio_wrote_it(tmp, case, level, enco
 
 @pytest.mark.parametrize("source", ["mixed_tri_quad_v41.msh", "cube_hex_v41.msh",
                                     "prism_v41.msh"])
-@pytest.mark.parametrize("ext", [".vtu", ".mesh"])
+@pytest.mark.parametrize("ext", [".vtu", ".mesh", ".exo"])
 def test_neomesh_reads_its_own_output_back(tmp, source, ext):
-    """.msh -> ext -> .msh keeps coordinates, cells and cell groups (.mesh: facet groups too)
-    of the .msh -> .msh conversion."""
+    """.msh -> ext -> .msh keeps coordinates, cells and cell groups (.mesh, .exo: facet groups
+    too) of the .msh -> .msh conversion."""
     direct = read_mesh(convert(tmp, os.path.join(DATA, source), "direct.msh"))
     middle = convert(tmp, os.path.join(DATA, source), "middle" + ext)
     again = read_mesh(convert(tmp, middle, "again.msh"))
     expect_same(again, direct)
-    if ext == ".mesh":
+    if ext != ".vtu":
         assert facet_groups(again) == facet_groups(direct)
 
 
 @pytest.mark.parametrize("ranks", RANKS)
-@pytest.mark.parametrize("ext", [".vtu", ".mesh"])
+@pytest.mark.parametrize("ext", [".vtu", ".mesh", ".exo"])
 def test_a_smoothed_file_smooths_again_as_its_msh_twin(tmp, ext, ranks):
     """`neomesh smooth out.vtu -o again.vtu`: the output of a run is an input, the same mesh
     as the .msh the run writes (coordinates to the last bit)."""
@@ -113,13 +113,17 @@ def test_a_smoothed_file_smooths_again_as_its_msh_twin(tmp, ext, ranks):
     assert np.array_equal(a.points[:, :2], b.points[:, :2])
 
 
-def test_the_facet_groups_of_a_generated_mesh_survive_medit(tmp):
+@pytest.mark.parametrize("ext", [".mesh", ".exo"])
+def test_the_facet_groups_of_a_generated_mesh_survive_medit_and_exodus(tmp, ext):
+    """Exodus keeps the groups' names too, as block and side set names."""
     source = os.path.join(tmp, "square.msh")
     neomesh("generate", "square-midpoint", "--level", "2", "-o", source)
     direct = read_mesh(convert(tmp, source, "direct.msh"))
-    again = read_mesh(convert(tmp, convert(tmp, source, "middle.mesh"), "again.msh"))
+    again = read_mesh(convert(tmp, convert(tmp, source, "middle" + ext), "again.msh"))
     expect_same(again, direct)
     assert facet_groups(again) == facet_groups(direct) != []
+    if ext == ".exo":
+        assert again.field_data.keys() == direct.field_data.keys()
 
 
 @pytest.mark.parametrize("case, level", CASES[:4])

@@ -1,0 +1,252 @@
+#include "mesh/exodus_reader.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <map>
+
+#include <exodusII.h>
+
+#include "core/error.hpp"
+#include "mesh/cell_order.hpp"
+#include "mesh/exodus_file.hpp"
+#include "mesh/input_file.hpp"
+
+namespace neomesh {
+
+namespace {
+
+// An element block as the file has it: nodes per element (1-based node numbers).
+struct Block {
+  std::int64_t id = 0;
+  std::string name;              // the block's, or "block_<id>"
+  std::optional<CellType> type;  // none for points and lines, which are never cells
+  int dim = 0;
+  bool shell = false;
+  std::int64_t first_element = 0;  // 0-based global element number of its first element
+  std::int64_t size = 0;
+  std::vector<std::int64_t> nodes;  // num_vertices(*type) per element
+};
+
+class ExodusReader {
+ public:
+  explicit ExodusReader(const std::filesystem::path& path)
+      : file_(path, ExodusFile::Mode::Read, path.string()) {
+    const int id = file_.id();
+    file_.check(ex_get_init_ext(id, &init_), "reading the header");
+    if (init_.num_dim < 2 || init_.num_dim > 3)
+      fail("{}: has {}D coordinates; neomesh reads 2D and 3D meshes", name(), init_.num_dim);
+    const auto longest = ex_inquire_int(id, EX_INQ_DB_MAX_USED_NAME_LENGTH);
+    if (longest > 0) ex_set_max_name_length(id, static_cast<int>(longest));
+    name_length_ = std::max<std::int64_t>(longest, MAX_STR_LENGTH);
+  }
+
+  const std::string& name() const { return file_.name(); }
+
+  // x, y, z of every node (z = 0 for 2D coordinates).
+  std::vector<double> coordinates() {
+    const std::size_t n = init_.num_nodes;
+    std::vector<double> x(n), y(n), z(n, 0.0), xyz(3 * n);
+    file_.check(
+        ex_get_coord(file_.id(), x.data(), y.data(), init_.num_dim == 3 ? z.data() : nullptr),
+        "reading the coordinates");
+    for (std::size_t i = 0; i < n; ++i) {
+      xyz[3 * i] = x[i];
+      xyz[3 * i + 1] = y[i];
+      xyz[3 * i + 2] = z[i];
+    }
+    return xyz;
+  }
+
+  std::vector<Block> blocks() {
+    std::vector<Block> out;
+    std::int64_t first = 0;
+    for (std::int64_t id : ids(EX_ELEM_BLOCK, init_.num_elem_blk)) {
+      out.push_back(block(id));
+      out.back().first_element = first;
+      first += out.back().size;
+    }
+    return out;
+  }
+
+  std::vector<std::int64_t> ids(ex_entity_type kind, std::int64_t count) {
+    std::vector<std::int64_t> out(count);
+    if (count > 0) file_.check(ex_get_ids(file_.id(), kind, out.data()), "reading the ids");
+    return out;
+  }
+
+  // The entity's name, or "<prefix>_<id>" if it has none.
+  std::string entity_name(ex_entity_type kind, std::int64_t id, std::string_view prefix) {
+    std::string buffer(name_length_ + 1, '\0');
+    file_.check(ex_get_name(file_.id(), kind, id, buffer.data()), "reading a name");
+    buffer.resize(buffer.find('\0'));
+    return buffer.empty() ? fmt::format("{}_{}", prefix, id) : buffer;
+  }
+
+  // A side set: 1-based global element numbers and 1-based sides.
+  std::pair<std::vector<std::int64_t>, std::vector<std::int64_t>> side_set(std::int64_t id) {
+    std::int64_t size = 0, factors = 0;
+    file_.check(ex_get_set_param(file_.id(), EX_SIDE_SET, id, &size, &factors),
+                fmt::format("reading side set {}", id));
+    std::vector<std::int64_t> elements(size), sides(size);
+    if (size > 0)
+      file_.check(ex_get_set(file_.id(), EX_SIDE_SET, id, elements.data(), sides.data()),
+                  fmt::format("reading side set {}", id));
+    return {std::move(elements), std::move(sides)};
+  }
+
+  const ex_init_params& init() const { return init_; }
+
+ private:
+  Block block(std::int64_t id) {
+    Block b;
+    b.id = id;
+    b.name = entity_name(EX_ELEM_BLOCK, id, "block");
+    char type[MAX_STR_LENGTH + 1] = {};
+    std::int64_t nodes = 0, edges = 0, faces = 0, attributes = 0;
+    file_.check(ex_get_block(file_.id(), EX_ELEM_BLOCK, id, type, &b.size, &nodes, &edges, &faces,
+                             &attributes),
+                fmt::format("reading element block {}", id));
+    b.type = exodus_cell_type(type, b.shell);
+    if (const auto point_or_line = exodus_point_or_line(type); !b.type && point_or_line) {
+      b.dim = *point_or_line;  // (its elements count in the numbering of side sets)
+      return b;
+    }
+    if (!b.type)
+      fail(
+          "{}: element block {} ('{}') has {} elements, which neomesh does not read (it reads "
+          "TRI3, QUAD4/SHELL4, TETRA4, HEX8, WEDGE6 and PYRAMID5, and skips points and lines)",
+          name(), id, b.name, type);
+    if (nodes != num_vertices(*b.type))
+      fail(
+          "{}: element block {} ('{}') has {} elements with {} nodes; neomesh needs linear ({}) {}",
+          name(), id, b.name, type, nodes, num_vertices(*b.type), facts(*b.type).plural);
+    b.dim = facts(*b.type).dim;
+    b.nodes.resize(b.size * nodes);
+    if (b.size > 0)
+      file_.check(ex_get_conn(file_.id(), EX_ELEM_BLOCK, id, b.nodes.data(), nullptr, nullptr),
+                  fmt::format("reading element block {}", id));
+    return b;
+  }
+
+  ExodusFile file_;
+  ex_init_params init_{};
+  std::int64_t name_length_ = MAX_STR_LENGTH;
+};
+
+// Group tags from Exodus ids: the id itself where it is a valid tag (1..INT_MAX), else (meshio
+// numbers its blocks from 0) the next tag above every id.
+class GroupTags {
+ public:
+  explicit GroupTags(const std::vector<std::int64_t>& ids) {
+    for (std::int64_t id : ids)
+      if (valid(id)) next_ = std::max(next_, static_cast<int>(id) + 1);
+  }
+  int of(std::int64_t id) { return valid(id) ? static_cast<int>(id) : next_++; }
+
+ private:
+  static bool valid(std::int64_t id) { return id >= 1 && id < std::numeric_limits<int>::max(); }
+  int next_ = 1;
+};
+
+// Numbers the nodes that cells use (file order) into `vertex` and sets the mesh's coordinates.
+std::vector<PetscInt> number_vertices(const std::vector<Block>& blocks,
+                                      const std::vector<double>& xyz, const std::string& file,
+                                      InputMesh& mesh) {
+  const std::int64_t nn = static_cast<std::int64_t>(xyz.size() / 3);
+  std::vector<PetscInt> vertex(nn, -1);
+  for (const Block& b : blocks) {
+    if (b.dim != mesh.dim) continue;
+    for (std::size_t k = 0; k < b.nodes.size(); ++k) {
+      const std::int64_t n = b.nodes[k];
+      if (n < 1 || n > nn)
+        fail("{}: element {} of block {} refers to node {}, which is out of range (1..{})", file,
+             k / num_vertices(*b.type) + 1, b.id, n, nn);
+      vertex[n - 1] = 0;
+    }
+  }
+  number_used_vertices(vertex, xyz, file, mesh);
+  return vertex;
+}
+
+void add_cells(const std::vector<Block>& blocks, const std::vector<PetscInt>& vertex,
+               InputMesh& mesh) {
+  std::vector<std::int64_t> ids;
+  for (const Block& b : blocks) ids.push_back(b.id);
+  GroupTags tags(ids);
+  std::map<std::string, int> tag_of;  // group name → tag
+  for (const Block& b : blocks) {
+    if (b.dim != mesh.dim) continue;
+    const auto [it, added] = tag_of.try_emplace(b.name, 0);
+    if (added) {
+      it->second = tags.of(b.id);
+      mesh.groups.push_back({mesh.dim, it->second, b.name});
+    }
+    const int n = num_vertices(*b.type);
+    for (std::int64_t e = 0; e < b.size; ++e) {
+      PetscInt v[8];
+      for (int j = 0; j < n; ++j)
+        v[gmsh_from_canonical(*b.type)[j]] = vertex[b.nodes[e * n + j] - 1];
+      mesh.add_cell(*b.type, v, it->second);
+      mesh.element_tag.push_back(b.first_element + e + 1);
+    }
+  }
+}
+
+void add_side_sets(ExodusReader& reader, const std::vector<Block>& blocks,
+                   const std::vector<PetscInt>& vertex, InputMesh& mesh) {
+  const std::string& file = reader.name();
+  const std::vector<std::int64_t> ids = reader.ids(EX_SIDE_SET, reader.init().num_side_sets);
+  GroupTags tags(ids);
+  for (std::int64_t id : ids) {
+    const auto [elements, sides] = reader.side_set(id);
+    const int tag = tags.of(id);
+    mesh.groups.push_back({mesh.dim - 1, tag, reader.entity_name(EX_SIDE_SET, id, "sideset")});
+    for (std::size_t k = 0; k < elements.size(); ++k) {
+      const std::int64_t e = elements[k] - 1;
+      const auto b =
+          std::upper_bound(blocks.begin(), blocks.end(), e,
+                           [](std::int64_t x, const Block& y) { return x < y.first_element; }) -
+          1;
+      if (e < 0 || b < blocks.begin() || e >= b->first_element + b->size)
+        fail("{}: side set {} names element {}, which does not exist", file, id, e + 1);
+      if (b->dim != mesh.dim)
+        fail(
+            "{}: side set {} names element {} of block {}, which is not a cell (its dimension is "
+            "lower than the mesh's)",
+            file, id, e + 1, b->id);
+      const ExodusSides& table = exodus_sides(*b->type);
+      const std::int64_t side = sides[k] - 1 - (b->shell ? 2 : 0);  // a shell's faces come first
+      if (side < 0 || side >= table.count)
+        fail("{}: side set {} names side {} of element {}, which has no such side", file, id,
+             sides[k], e + 1);
+      const ExodusSide& s = table.sides[side];
+      const std::int64_t* nodes = b->nodes.data() + (e - b->first_element) * num_vertices(*b->type);
+      PetscInt v[4];
+      for (int j = 0; j < s.size; ++j) v[j] = vertex[nodes[s.nodes[j]] - 1];
+      mesh.facets.add(v, s.size, tag);
+    }
+  }
+}
+
+}  // namespace
+
+InputMesh read_exodus(const std::filesystem::path& path) {
+  check_regular_file(path);
+  ExodusReader reader(path);
+  const std::string& file = reader.name();
+  const std::vector<Block> blocks = reader.blocks();
+  InputMesh mesh;
+  mesh.dim = 0;
+  for (const Block& b : blocks)
+    if (b.size > 0) mesh.dim = std::max(mesh.dim, b.dim);
+  if (mesh.dim == 0) fail("{}: has no elements", file);
+  const std::vector<PetscInt> vertex = number_vertices(blocks, reader.coordinates(), file, mesh);
+  add_cells(blocks, vertex, mesh);
+  add_side_sets(reader, blocks, vertex, mesh);
+  std::sort(mesh.groups.begin(), mesh.groups.end(), [](const auto& a, const auto& b) {
+    return std::pair(a.dim, a.tag) < std::pair(b.dim, b.tag);
+  });
+  return mesh;
+}
+
+}  // namespace neomesh
