@@ -274,16 +274,8 @@ Subcommand add_adapt(CLI::App& app) {
       "Move the vertices so that cells are small near a surface (circle, sphere, plane, box, "
       "level set) or follow given sizes: desired volume v = floor + d^p for the distance d of "
       "the cell's centre, recomputed from the moving mesh in Picard iterations (thesis §6).");
-  cmd->add_option("input", o->inputs,
-                  "mesh to adapt (.msh Gmsh 2.2/4.1, .xml FEAT3, .vtk VTK legacy, .vtu/.pvtu VTK "
-                  "XML, .mesh Medit, .exo/.e/.ex2 Exodus II, .cgns CGNS; a FEAT3 mesh may come "
-                  "with the files "
-                  "of its charts, in any "
-                  "order)")
-      ->required();
-  cmd->add_option("-o,--output", o->output,
-                  "adapted mesh (.vtu with per-cell energy, Q and quality fields, .msh, .mesh, "
-                  ".exo or .cgns)")
+  cmd->add_option("input", o->inputs, input_mesh_help("mesh to adapt"))->required();
+  cmd->add_option("-o,--output", o->output, fmt::format("adapted mesh ({})", kMeshOutputs))
       ->required();
   cmd->add_flag("--force", o->force, "allow the output to overwrite the input file");
   cmd->add_flag("--no-guard", o->no_guard,

@@ -7,6 +7,11 @@
 
 namespace neomesh::app {
 
+std::string input_mesh_help(const char* what) {
+  return fmt::format("{} ({}; a FEAT3 mesh may come with the files of its charts, in any order)",
+                     what, kMeshInputs);
+}
+
 void check_input_mesh(const std::string& path) {
   check_readable_format(path);
 }

@@ -27,8 +27,16 @@ void check_option(const char* option, T value, bool in_range, const char* range)
 // Every value of a list option (--circle 0.5,0.5,0.2) is finite.
 void check_finite(const char* option, std::span<const double> values);
 
-// Not collective: throws Error unless `path` has the extension of a mesh format neomesh reads
-// (.msh, .xml, .vtk), before the (possibly long) read.
+// The mesh formats as --help names them, one list for every subcommand.
+inline constexpr const char* kMeshInputs =
+    ".msh Gmsh 2.2/4.1, .xml FEAT3, .vtk VTK legacy, .vtu/.pvtu VTK XML, .mesh Medit, "
+    ".exo/.e/.ex2 Exodus II, .cgns CGNS";
+inline constexpr const char* kMeshOutputs = ".vtu with per-cell fields, .msh, .mesh, .exo or .cgns";
+// "<what> (<kMeshInputs>; a FEAT3 mesh may come with the files of its charts, in any order)"
+std::string input_mesh_help(const char* what);
+
+// Not collective: throws Error unless `path` has the extension of a mesh format neomesh reads,
+// before the (possibly long) read.
 void check_input_mesh(const std::string& path);
 void check_input_mesh(const std::vector<std::string>& paths);
 

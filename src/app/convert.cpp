@@ -55,14 +55,8 @@ Subcommand add_convert(CLI::App& app) {
       "FEAT3 .xml, VTK .vtk/.vtu/.pvtu, Medit .mesh, Exodus II .exo/.e/.ex2 or CGNS .cgns,\n"
       "checks it (no inverted or degenerate cells) and writes VTU, Gmsh 4.1, Medit, Exodus II\n"
       "or CGNS (keeping physical groups).");
-  cmd->add_option(
-         "input", options->inputs,
-         "input mesh (.msh, .xml, .vtk, .vtu, .pvtu, .mesh, .exo/.e/.ex2 or .cgns; a FEAT3 mesh "
-         "may come with its "
-         "chart files)")
-      ->required();
-  cmd->add_option("-o,--output", options->output,
-                  "output mesh (.vtu, .msh, .mesh, .exo/.e/.ex2 or .cgns)")
+  cmd->add_option("input", options->inputs, input_mesh_help("input mesh"))->required();
+  cmd->add_option("-o,--output", options->output, fmt::format("output mesh ({})", kMeshOutputs))
       ->required();
   cmd->add_flag("--force", options->force,
                 "allow the output to overwrite the input (default: off)");

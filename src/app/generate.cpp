@@ -137,7 +137,7 @@ Subcommand add_generate(CLI::App& app) {
                   "widths per coordinate, at random, < 1 (from 0.25 on, cells may fold over: a "
                   "tangled mesh)")
       ->capture_default_str();
-  cmd->add_option("-o,--output", options->output, "output file (.msh, .vtu, .mesh, .exo or .cgns)")
+  cmd->add_option("-o,--output", options->output, fmt::format("output file ({})", kMeshOutputs))
       ->required();
   return {cmd, [options] { run_generate(*options); }};
 }

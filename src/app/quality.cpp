@@ -76,10 +76,7 @@ Subcommand add_quality(CLI::App& app) {
       "Print the quality of a mesh: cells by type, min/mean/max of the cell volume, det J at "
       "corners and Gauss points, scaled Jacobian (1 = ideal, <= 0 = inverted), angles and edge "
       "ratio, and the number of inverted and degenerate cells.");
-  cmd->add_option("mesh", options->inputs,
-                  "mesh file (.msh, .xml, .vtk, .vtu, .pvtu or .mesh; a FEAT3 mesh may come with "
-                  "its chart files)")
-      ->required();
+  cmd->add_option("mesh", options->inputs, input_mesh_help("mesh file"))->required();
   cmd->add_option("--reference", options->reference,
                   "compare the boundary with this mesh's (e.g. the input of smooth): the largest "
                   "distance of a boundary vertex from its boundary and the domain volume change "

@@ -125,10 +125,7 @@ Subcommand add_render(CLI::App& app) {
       "Draw a 2D mesh as a .png or .svg picture. Every cell is coloured by a quality metric,\n"
       "its energy or its volume ratio Q, with a colour bar; inverted cells are drawn in red\n"
       "and counted. For 3D meshes, open a .vtu output in ParaView instead.");
-  cmd->add_option("mesh", options->inputs,
-                  "mesh file (.msh, .xml, .vtk, .vtu, .pvtu or .mesh; a FEAT3 mesh may come with "
-                  "its chart files)")
-      ->required();
+  cmd->add_option("mesh", options->inputs, input_mesh_help("mesh file"))->required();
   cmd->add_option("-o,--output", options->output, "picture file (.png or .svg)")->required();
   std::vector<std::string> fields;
   for (const FieldInfo& f : kFields) fields.emplace_back(f.option);

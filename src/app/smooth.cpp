@@ -62,13 +62,8 @@ Subcommand add_smooth(CLI::App& app) {
       "vertices slide along the boundary, corners stay) to minimize the Neo-Hookean energy with\n"
       "the quasi-Newton method of the thesis; prints one row per iteration and the quality\n"
       "before and after. A mesh with inverted cells is untangled first.");
-  cmd->add_option("input", o->inputs,
-                  "mesh to smooth (.msh Gmsh 2.2/4.1, .xml FEAT3, .vtk VTK legacy, .vtu/.pvtu VTK "
-                  "XML, .mesh Medit; a FEAT3 mesh may come with the files of its charts, in any "
-                  "order)")
-      ->required();
-  cmd->add_option("-o,--output", o->output,
-                  "smoothed mesh (.vtu with quality fields, .msh or .mesh)")
+  cmd->add_option("input", o->inputs, input_mesh_help("mesh to smooth"))->required();
+  cmd->add_option("-o,--output", o->output, fmt::format("smoothed mesh ({})", kMeshOutputs))
       ->required();
   cmd->add_flag("--force", o->force, "allow the output to overwrite the input file (default: off)");
   cmd->add_flag("--no-guard", o->no_guard,
