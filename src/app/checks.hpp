@@ -31,7 +31,8 @@ void check_finite(const char* option, std::span<const double> values);
 inline constexpr const char* kMeshInputs =
     ".msh Gmsh 2.2/4.1, .xml FEAT3, .vtk VTK legacy, .vtu/.pvtu VTK XML, .mesh Medit, "
     ".exo/.e/.ex2 Exodus II, .cgns CGNS";
-inline constexpr const char* kMeshOutputs = ".vtu with per-cell fields, .msh, .mesh, .exo or .cgns";
+inline constexpr const char* kMeshOutputs =
+    ".vtu with per-cell fields, .vtk, .msh, .mesh, .exo or .cgns";
 // "<what> (<kMeshInputs>; a FEAT3 mesh may come with the files of its charts, in any order)"
 std::string input_mesh_help(const char* what);
 

@@ -24,10 +24,11 @@ void check_readable_format(const std::filesystem::path& path) {
 
 void check_writable_format(const std::filesystem::path& path) {
   const auto ext = path.extension();
-  if (ext != ".msh" && ext != ".vtu" && ext != ".mesh" && ext != ".cgns" && !is_exodus(path))
+  if (ext != ".msh" && ext != ".vtu" && ext != ".vtk" && ext != ".mesh" && ext != ".cgns" &&
+      !is_exodus(path))
     fail(
-        "{}: unknown output format '{}' (neomesh writes VTK .vtu, Gmsh .msh, Medit .mesh, "
-        "Exodus II .exo/.e/.ex2 and CGNS .cgns)",
+        "{}: unknown output format '{}' (neomesh writes VTK .vtu and .vtk, Gmsh .msh, Medit "
+        ".mesh, Exodus II .exo/.e/.ex2 and CGNS .cgns)",
         path.string(), ext.string());
 }
 
@@ -43,6 +44,8 @@ void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path, const M
       write_cgns(gathered, file.temporary_path(), path.string());
     else if (ext == ".vtu")
       write_vtu(gathered, file.stream());
+    else if (ext == ".vtk")
+      write_vtk(gathered, file.stream());
     else if (ext == ".mesh")
       write_medit(gathered, file.stream());
     else

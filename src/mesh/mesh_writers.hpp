@@ -26,6 +26,13 @@ WrittenGroups physical_groups(const InputMesh& mesh);
 // cell field "physical" when the cells carry physical groups.
 void write_vtu(const GatheredMesh& mesh, std::ostream& out);
 
+// VTK legacy ASCII (.vtk, version 4.2, UNSTRUCTURED_GRID; what Mesquite and many codes read):
+// points, cells, the cell scalars "physical" when the cells carry physical groups, and the
+// cell and vertex fields as FIELD data. Values in their shortest exact form, so that reading
+// the file back gives the same coordinates. Facet groups are not written (the format has no
+// place for them).
+void write_vtk(const GatheredMesh& mesh, std::ostream& out);
+
 // Gmsh 4.1 ASCII (.msh): cells and the boundary facets and points of physical groups, one
 // entity per physical group, so that reading the file back gives the same groups.
 void write_msh(const GatheredMesh& mesh, std::ostream& out);

@@ -79,6 +79,9 @@ class VtkParser {
     if (!have_points_) invalid("it has no POINTS");
     if (!polydata_ && !have_types_ && c_.offsets.size() > 1)
       invalid("it has CELLS but no CELL_TYPES");
+    if (!c_.tags.empty() && c_.tags.size() != c_.types.size())
+      invalid("it gives physical groups of {} cells, but has {} cells", c_.tags.size(),
+              c_.types.size());
     return std::move(c_);
   }
 
@@ -298,9 +301,10 @@ class VtkParser {
       read_cells(h, polydata_cells);
     else if (!polydata_ && is(keyword, "CELL_TYPES"))
       read_cell_types(h);
-    else if (is(keyword, "POINT_DATA") || is(keyword, "CELL_DATA"))
+    else if (is(keyword, "POINT_DATA") || is(keyword, "CELL_DATA")) {
       read_data_size(h);
-    else if (is(keyword, "FIELD"))
+      in_cell_data_ = is(keyword, "CELL_DATA");
+    } else if (is(keyword, "FIELD"))
       skip_field(h);
     else if (is(keyword, "METADATA"))
       skip_metadata();
@@ -412,6 +416,17 @@ class VtkParser {
     }
   }
 
+  // The cell scalars "physical" (neomesh's and meshio's name for the cells' physical groups).
+  void read_cell_groups(long long n, const DataType& t) {
+    c_.tags.resize(static_cast<std::size_t>(n));
+    for (int& tag : c_.tags) {
+      const double v = value(t);
+      if (!(v >= 0 && v < 2147483647.0) || v != std::floor(v))
+        invalid("a cell's physical group is {} (must be a whole number, 0 or more)", v);
+      tag = static_cast<int>(v);
+    }
+  }
+
   // POINT_DATA and CELL_DATA attributes: "KEYWORD name ..." and data_size_ values per tuple.
   void skip_attribute(const std::vector<std::string_view>& h) {
     const std::string_view keyword = h.empty() ? "" : h[0];
@@ -423,7 +438,11 @@ class VtkParser {
       const DataType& t = data_type(argument(h, 2, "data type"));
       const long long components = h.size() > 3 ? number(h[3], "a number of components") : 1;
       header_if("LOOKUP_TABLE");
-      skip_values(values(data_size_, components, t), t);
+      const std::string_view name = argument(h, 1, "name");
+      if (in_cell_data_ && components == 1 && (name == "physical" || name == "gmsh:physical"))
+        read_cell_groups(values(data_size_, 1, t), t);
+      else
+        skip_values(values(data_size_, components, t), t);
     } else if (is(keyword, "LOOKUP_TABLE")) {
       const long long n = number(argument(h, 2, "size"), "a size");
       skip_values(values(n, 4, binary_ ? kUInt8 : kFloat), kUInt8);  // RGBA
@@ -488,6 +507,7 @@ class VtkParser {
   bool have_points_ = false;
   bool have_types_ = false;
   long long data_size_ = -1;  // tuples per attribute after POINT_DATA or CELL_DATA
+  bool in_cell_data_ = false;
   VtkCells c_;
 };
 

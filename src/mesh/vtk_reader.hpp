@@ -6,8 +6,9 @@
 //   DATASET POLYDATA            POINTS, then POLYGONS of 3 or 4 vertices (VERTICES and LINES
 //                               are skipped)
 //
-// Cells as vtk_cells.hpp says. The whole mesh is one domain: the file has no physical groups.
-// POINT_DATA, CELL_DATA, FIELD and METADATA sections are skipped.
+// Cells as vtk_cells.hpp says. The cell scalars "physical" (or "gmsh:physical"), as neomesh
+// and meshio write them, are the cells' physical groups; other POINT_DATA, CELL_DATA, FIELD
+// and METADATA sections are skipped.
 //
 // Binary files are big-endian (as VTK writes them). Errors name the line (ASCII) or the byte
 // offset (binary) where the file stops making sense.

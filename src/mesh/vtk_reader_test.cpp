@@ -117,6 +117,26 @@ TEST(ReadVtk, NamesTheLineOfAnAsciiError) {
                   "not start with '# vtk DataFile Version')"));
 }
 
+// The cell scalars "physical" (neomesh's .vtk output) are the cells' groups; a count other than
+// the cells' or a value that is not a group number is an error naming the line.
+TEST(ReadVtk, ReadsThePhysicalGroupsOfCells) {
+  const std::string cells = "CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n";
+  const std::string path = ::testing::TempDir() + "groups.vtk";
+  std::ofstream(path) << kHead + kTrianglePoints + cells +
+                             "CELL_DATA 1\nSCALARS physical int 1\nLOOKUP_TABLE default\n7\n";
+  const InputMesh mesh = read_vtk(path);
+  EXPECT_EQ(mesh.cell_tags, (std::vector<int>{7}));
+  ASSERT_EQ(mesh.groups.size(), 1u);
+  EXPECT_EQ(mesh.groups[0].tag, 7);
+  EXPECT_TRUE(has(error_reading(kHead + kTrianglePoints + cells +
+                                "CELL_DATA 2\nSCALARS physical int 1\nLOOKUP_TABLE default\n7 8\n"),
+                  "it gives physical groups of 2 cells, but has 1 cells"));
+  EXPECT_TRUE(has(error_reading(kHead + kTrianglePoints + cells +
+                                "CELL_DATA 1\nSCALARS physical float 1\nLOOKUP_TABLE default\n"
+                                "2.5\n"),
+                  "a cell's physical group is 2.5"));
+}
+
 TEST(ReadVtk, NamesTheByteOffsetOfABinaryError) {
   const std::string head = "# vtk DataFile Version 3.0\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\n";
   const std::string points = "POINTS 1 double\n" + std::string(24, '\0') + "\n";
