@@ -38,9 +38,9 @@ struct SphereOutcome {
   }
 };
 
-// neomesh's defaults for adapt (docs/adaptivity.md): λ = 4 μ, sliding boundary vertices,
-// desired volumes bounded (ratio 32, SizeFieldOptions) and smoothed once.
-const EnergyOptions kAdaptEnergy{.lambda = 4.0, .mu = 1.0};
+// neomesh's defaults for adapt (docs/adaptivity.md; AdaptOptions): λ = 4 μ, 2 Gauss points, sliding
+// boundary vertices, desired volumes bounded (ratio 32, SizeFieldOptions) and smoothed once.
+const EnergyOptions kAdaptEnergy = AdaptOptions().energy;
 
 inline SphereOutcome adapt_to_sphere(CellType type, int n, const SizeFieldOptions& sizes,
                                      const PicardOptions& picard_options = {},
