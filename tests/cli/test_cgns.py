@@ -14,6 +14,8 @@ from conftest import (DATA, RANKS, expect_nothing_else_changed, expect_one_error
 from test_formats import cells, convert, expect_same, facet_groups, generated
 
 meshio = pytest.importorskip("meshio", reason="python3-meshio is not installed")
+pytestmark = pytest.mark.skipif(os.environ.get("NEOMESH_CGNS") == "0",
+                                reason="neomesh is built without CGNS (cmake -DNEOMESH_CGNS=ON)")
 TETGEN_TO_CGNS = shutil.which("tetgen_to_cgns")
 
 
