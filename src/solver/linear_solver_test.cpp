@@ -4,6 +4,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -23,7 +24,10 @@ using ::testing::Not;
 std::string view_pc(const LinearSolver& solver) {
   PC pc = nullptr;
   NM_PETSC(KSPGetPC(solver.ksp(), &pc));
-  const std::string path = testing::TempDir() + "linear_solver_test_pc.txt";
+  // One file per process: ctest runs these tests in parallel processes, which overwrote and
+  // removed one another's view of a shared file (an empty view failed them now and then).
+  const std::string path =
+      testing::TempDir() + "linear_solver_test_pc_" + std::to_string(getpid()) + ".txt";
   PetscViewer viewer = nullptr;
   NM_PETSC(PetscViewerASCIIOpen(PETSC_COMM_SELF, path.c_str(), &viewer));
   NM_PETSC(PCView(pc, viewer));
