@@ -1,5 +1,6 @@
 #include <neomesh/options.hpp>
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -14,126 +15,148 @@ namespace neomesh {
 
 namespace {
 
-// Each choice of an option has one name, the command line's and the report's.
+// Each choice of an option has one name, the command line's and the report's; each enum has
+// one table of them, with the noun its errors use.
 template <typename E>
 struct Choice {
   E value;
   std::string_view name;
 };
 
-constexpr Choice<BoundaryMode> kBoundaryModes[] = {{BoundaryMode::Fixed, "fixed"},
-                                                   {BoundaryMode::Slide, "slide"}};
-constexpr Choice<LinearSolverKind> kLinearSolvers[] = {{LinearSolverKind::Amg, "amg"},
-                                                       {LinearSolverKind::Jacobi, "jacobi"},
-                                                       {LinearSolverKind::Direct, "direct"}};
-constexpr Choice<RieszLaplacian> kRieszLaplacians[] = {{RieszLaplacian::OptimalCells, "optimal"},
-                                                       {RieszLaplacian::CurrentMesh, "current"}};
-constexpr Choice<HessianPreconditioner> kHessianPreconditioners[] = {
-    {HessianPreconditioner::Laplacian, "laplacian"}, {HessianPreconditioner::Hessian, "hessian"}};
-constexpr Choice<RejectedDirection> kRejectedDirections[] = {
-    {RejectedDirection::Blend, "blend"}, {RejectedDirection::Antigradient, "antigradient"}};
-constexpr Choice<SizeMode> kSizeModes[] = {
-    {SizeMode::Smoothed, "smoothed"}, {SizeMode::Input, "input"}, {SizeMode::Uniform, "uniform"}};
-constexpr Choice<TargetMode> kTargetModes[] = {
-    {TargetMode::Smoothed, "smoothed"}, {TargetMode::Ideal, "ideal"}, {TargetMode::Input, "input"}};
-
 template <typename E, std::size_t N>
-std::string_view name_in(const Choice<E> (&choices)[N], E value) {
-  for (const Choice<E>& c : choices)
+struct Choices {
+  std::string_view what;  // "unknown <what> 'x'"
+  std::array<Choice<E>, N> list;
+};
+
+constexpr Choices<BoundaryMode, 2> kBoundaryModes{
+    "boundary mode", {{{BoundaryMode::Fixed, "fixed"}, {BoundaryMode::Slide, "slide"}}}};
+constexpr Choices<LinearSolverKind, 3> kLinearSolvers{"linear solver",
+                                                      {{{LinearSolverKind::Amg, "amg"},
+                                                        {LinearSolverKind::Jacobi, "jacobi"},
+                                                        {LinearSolverKind::Direct, "direct"}}}};
+constexpr Choices<RieszLaplacian, 2> kRieszLaplacians{
+    "Riesz Laplacian",
+    {{{RieszLaplacian::OptimalCells, "optimal"}, {RieszLaplacian::CurrentMesh, "current"}}}};
+constexpr Choices<HessianPreconditioner, 2> kHessianPreconditioners{
+    "quasi-Newton preconditioner",
+    {{{HessianPreconditioner::Laplacian, "laplacian"},
+      {HessianPreconditioner::Hessian, "hessian"}}}};
+constexpr Choices<RejectedDirection, 2> kRejectedDirections{
+    "rejected direction",
+    {{{RejectedDirection::Blend, "blend"}, {RejectedDirection::Antigradient, "antigradient"}}}};
+constexpr Choices<SizeMode, 3> kSizeModes{"size mode",
+                                          {{{SizeMode::Smoothed, "smoothed"},
+                                            {SizeMode::Input, "input"},
+                                            {SizeMode::Uniform, "uniform"}}}};
+constexpr Choices<TargetMode, 3> kTargetModes{"target mode",
+                                              {{{TargetMode::Smoothed, "smoothed"},
+                                                {TargetMode::Ideal, "ideal"},
+                                                {TargetMode::Input, "input"}}}};
+
+// The table of an enum, found by overload.
+constexpr const auto& choices(BoundaryMode) {
+  return kBoundaryModes;
+}
+constexpr const auto& choices(LinearSolverKind) {
+  return kLinearSolvers;
+}
+constexpr const auto& choices(RieszLaplacian) {
+  return kRieszLaplacians;
+}
+constexpr const auto& choices(HessianPreconditioner) {
+  return kHessianPreconditioners;
+}
+constexpr const auto& choices(RejectedDirection) {
+  return kRejectedDirections;
+}
+constexpr const auto& choices(SizeMode) {
+  return kSizeModes;
+}
+constexpr const auto& choices(TargetMode) {
+  return kTargetModes;
+}
+
+template <typename E>
+std::string_view name_of(E value) {
+  for (const Choice<E>& c : choices(value).list)
     if (c.value == value) return c.name;
   return "?";
 }
 
-template <typename E, std::size_t N>
-std::vector<std::string> names_in(const Choice<E> (&choices)[N]) {
-  std::vector<std::string> names;
-  for (const Choice<E>& c : choices) names.emplace_back(c.name);
-  return names;
-}
-
 // The choice named `given`, or Error "unknown <what> 'x' (use a, b or c)".
-template <typename E, std::size_t N>
-E parse_in(const Choice<E> (&choices)[N], std::string_view what, std::string_view given) {
+template <typename E>
+E parse_as(std::string_view given) {
+  const auto& table = choices(E{});
   std::string list;
-  for (std::size_t i = 0; i < N; ++i) {
-    if (choices[i].name == given) return choices[i].value;
-    list += fmt::format("{}{}", i == 0 ? "" : i + 1 == N ? " or " : ", ", choices[i].name);
+  for (std::size_t i = 0; i < table.list.size(); ++i) {
+    if (table.list[i].name == given) return table.list[i].value;
+    list += fmt::format("{}{}",
+                        i == 0                       ? ""
+                        : i + 1 == table.list.size() ? " or "
+                                                     : ", ",
+                        table.list[i].name);
   }
-  fail("unknown {} '{}' (use {})", what, given, list);
+  fail("unknown {} '{}' (use {})", table.what, given, list);
 }
 
 }  // namespace
 
+template <typename E>
+std::vector<std::string> choice_names() {
+  std::vector<std::string> names;
+  for (const Choice<E>& c : choices(E{}).list) names.emplace_back(c.name);
+  return names;
+}
+template std::vector<std::string> choice_names<BoundaryMode>();
+template std::vector<std::string> choice_names<LinearSolverKind>();
+template std::vector<std::string> choice_names<RieszLaplacian>();
+template std::vector<std::string> choice_names<HessianPreconditioner>();
+template std::vector<std::string> choice_names<RejectedDirection>();
+template std::vector<std::string> choice_names<SizeMode>();
+template std::vector<std::string> choice_names<TargetMode>();
+
 std::string_view name(BoundaryMode mode) {
-  return name_in(kBoundaryModes, mode);
+  return name_of(mode);
 }
 BoundaryMode parse_boundary_mode(std::string_view name) {
-  return parse_in(kBoundaryModes, "boundary mode", name);
+  return parse_as<BoundaryMode>(name);
 }
 std::string_view name(LinearSolverKind kind) {
-  return name_in(kLinearSolvers, kind);
+  return name_of(kind);
 }
 LinearSolverKind parse_linear_solver(std::string_view name) {
-  return parse_in(kLinearSolvers, "linear solver", name);
+  return parse_as<LinearSolverKind>(name);
 }
 std::string_view name(RieszLaplacian kind) {
-  return name_in(kRieszLaplacians, kind);
+  return name_of(kind);
 }
 RieszLaplacian parse_riesz_laplacian(std::string_view name) {
-  return parse_in(kRieszLaplacians, "Riesz Laplacian", name);
+  return parse_as<RieszLaplacian>(name);
 }
 std::string_view name(HessianPreconditioner kind) {
-  return name_in(kHessianPreconditioners, kind);
+  return name_of(kind);
 }
 HessianPreconditioner parse_hessian_preconditioner(std::string_view name) {
-  return parse_in(kHessianPreconditioners, "quasi-Newton preconditioner", name);
+  return parse_as<HessianPreconditioner>(name);
 }
 std::string_view name(RejectedDirection direction) {
-  return name_in(kRejectedDirections, direction);
+  return name_of(direction);
 }
 RejectedDirection parse_rejected_direction(std::string_view name) {
-  return parse_in(kRejectedDirections, "rejected direction", name);
+  return parse_as<RejectedDirection>(name);
 }
 std::string_view name(SizeMode mode) {
-  return name_in(kSizeModes, mode);
+  return name_of(mode);
 }
 SizeMode parse_size_mode(std::string_view name) {
-  return parse_in(kSizeModes, "size mode", name);
+  return parse_as<SizeMode>(name);
 }
 std::string_view name(TargetMode mode) {
-  return name_in(kTargetModes, mode);
+  return name_of(mode);
 }
 TargetMode parse_target_mode(std::string_view name) {
-  return parse_in(kTargetModes, "target mode", name);
-}
-
-template <>
-std::vector<std::string> choice_names<BoundaryMode>() {
-  return names_in(kBoundaryModes);
-}
-template <>
-std::vector<std::string> choice_names<LinearSolverKind>() {
-  return names_in(kLinearSolvers);
-}
-template <>
-std::vector<std::string> choice_names<RieszLaplacian>() {
-  return names_in(kRieszLaplacians);
-}
-template <>
-std::vector<std::string> choice_names<HessianPreconditioner>() {
-  return names_in(kHessianPreconditioners);
-}
-template <>
-std::vector<std::string> choice_names<RejectedDirection>() {
-  return names_in(kRejectedDirections);
-}
-template <>
-std::vector<std::string> choice_names<SizeMode>() {
-  return names_in(kSizeModes);
-}
-template <>
-std::vector<std::string> choice_names<TargetMode>() {
-  return names_in(kTargetModes);
+  return parse_as<TargetMode>(name);
 }
 
 namespace {
