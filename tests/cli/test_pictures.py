@@ -5,7 +5,7 @@ import struct
 
 import pytest
 
-from conftest import neomesh
+from conftest import expect_one_error_line, neomesh
 
 
 def png_size(path):
@@ -49,3 +49,19 @@ def test_bad_picture_option(box, tmp, option, word):
     proc = neomesh("smooth", box, "-o", out, *option, cwd=tmp, expect=None)
     assert proc.returncode != 0 and word in proc.stderr and not os.path.exists(out), \
         f"bad {option[0]} was accepted: {proc.returncode} {proc.stderr}"
+
+
+def test_render_window_draws_only_that_part(box, tmp):
+    """render --window zooms in: a quarter of the unit square draws the cells reaching into
+    it (a sixteenth of the paths and a few more), not the whole mesh."""
+    whole, part = os.path.join(tmp, "whole.svg"), os.path.join(tmp, "part.svg")
+    neomesh("render", box, "-o", whole)
+    neomesh("render", box, "-o", part, "--window", "0,0.25,0,0.25")
+    paths = lambda f: open(f).read().count("<path")
+    assert paths(part) < paths(whole) / 3, (paths(part), paths(whole))
+
+
+def test_an_empty_render_window_is_refused_in_one_line(box, tmp):
+    out = os.path.join(tmp, "never.png")
+    proc = neomesh("render", box, "-o", out, "--window", "0.5,0.2,0,1", expect=None)
+    expect_one_error_line(proc, ["window", "x_min < x_max"], [out])
