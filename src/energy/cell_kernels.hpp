@@ -64,6 +64,8 @@ struct OptimalCellQuadrature {
   int size = 0;
   std::array<Gradients, max_points> unit_gradients;
   std::array<double, max_points> unit_weights{};
+  // Σ_q ŵ_q D̂_qᵀ D̂_q: the scalar Laplacian of the unit optimal cell, ∫ ∇φ̂_i·∇φ̂_j.
+  Eigen::Matrix<double, vertices, vertices> unit_laplacian;
 
   // `gauss_points` per direction for Q1 cells, wedges and pyramids (ReferenceRule); simplices
   // need one point (G is constant). `corner_weight` in [0, 1]: see above (1: corners only).
@@ -72,11 +74,14 @@ struct OptimalCellQuadrature {
       corner_weight = 0.0;
     } else {
       if (corner_weight > 0.0) add_corners(corner_weight);
-      if (corner_weight >= 1.0) return;
     }
     const int first = size;
-    add_gauss_points(gauss_points);
+    if (corner_weight < 1.0) add_gauss_points(gauss_points);
     for (int q = first; q < size; ++q) unit_weights[q] *= 1.0 - corner_weight;
+    unit_laplacian.setZero();
+    for (int q = 0; q < size; ++q)
+      unit_laplacian.noalias() +=
+          unit_weights[q] * unit_gradients[q].transpose() * unit_gradients[q];
   }
 
  private:
@@ -160,8 +165,9 @@ struct CellMeasure {
 //   Point point(G)                          the quantities of W at G, computed once
 //   static bool admissible(Point)           whether W is finite there
 //   double energy(Point), Matrix stress(Point)    W and P = ∂W/∂G
-//   tangent(Point, α, weight, D)            ∂²W/∂G² (B1 + α B2 + B3) contracted with the basis
+//   tangent(Point, α, weight, D)            B1 + α B2 of ∂²W/∂G² contracted with the basis
 //                                           gradients D: .block(i, j) is the (i, j) block
+//   mu                                      B3 = μ H, the same for every G
 //   static constexpr bool barrier           W = +∞ where det G ≤ 0 (checked at the corners too)
 template <CellType Type, typename Law>
 class CellKernel {
@@ -230,7 +236,8 @@ class CellKernel {
 
   // H(α) = B1 + α B2 + B3 on the cell: per point, block (i, j) is the law's second derivative
   // on (e_a ∇φ̂_iᵀ, e_b ∇φ̂_jᵀ). Only the lower triangle is computed; make_exactly_symmetric
-  // mirrors it. Returns false (block unspecified) if the law is infinite at some point.
+  // mirrors it. B3 = μ H is μ times the target cell's Laplacian, added once, not per point.
+  // Returns false (block unspecified) if the law is infinite at some point.
   bool hessian(const Coordinates& x, const Target& target, double alpha,
                Eigen::Ref<Block> block) const {
     const double scale = inverse_edge(target.volume);
@@ -244,19 +251,15 @@ class CellKernel {
         for (int i = j; i < vertices; ++i)  // lower blocks; the upper ones are their transposes
           block.template block<dim, dim>(dim * i, dim * j) += tangent.block(i, j);
     }
+    add_scalar_laplacian(law_.mu * scalar_laplacian(target, scale), block);
     make_exactly_symmetric(block);
     return true;
   }
 
   // Vector Laplacian on the target cell: ∫ ∇φ̂_i·∇φ̂_j δ_ab (= B3/μ); independent of X.
   void optimal_laplacian(const Target& target, Eigen::Ref<Block> block) const {
-    const double scale = inverse_edge(target.volume);
     block.setZero();
-    for (int q = 0; q < rule_.size; ++q) {
-      const Gradient basis = target.pull_back(rule_.unit_gradients[q], scale);
-      add_scalar_laplacian(target.weight() * rule_.unit_weights[q] * basis.transpose() * basis,
-                           block);
-    }
+    add_scalar_laplacian(scalar_laplacian(target, inverse_edge(target.volume)), block);
     make_exactly_symmetric(block);
   }
 
@@ -304,6 +307,20 @@ class CellKernel {
   // and this makes it so in floating point (PETSc may then rely on MAT_SYMMETRIC).
   static void make_exactly_symmetric(Eigen::Ref<Block> block) {
     block.template triangularView<Eigen::StrictlyUpper>() = block.transpose().eval();
+  }
+
+  // k Σ_q v ŵ_q D_qᵀ D_q (D_q = T⁻ᵀ D̂_q / s, 1/s = `scale`): for the ideal cell the unit
+  // cell's Laplacian scaled, v s⁻² L̂; for a shaped target summed point by point.
+  Eigen::Matrix<double, vertices, vertices> scalar_laplacian(const Target& target,
+                                                             double scale) const {
+    if (!target.shape_inverse_t) return (target.weight() * scale * scale) * rule_.unit_laplacian;
+    Eigen::Matrix<double, vertices, vertices> sum =
+        Eigen::Matrix<double, vertices, vertices>::Zero();
+    for (int q = 0; q < rule_.size; ++q) {
+      const Gradient basis = target.pull_back(rule_.unit_gradients[q], scale);
+      sum.noalias() += target.weight() * rule_.unit_weights[q] * basis.transpose() * basis;
+    }
+    return sum;
   }
 
   // block((i,a),(j,b)) += scalar(i,j) δ_ab

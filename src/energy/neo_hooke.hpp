@@ -52,20 +52,19 @@ struct TangentSplit {
   double rotational(double alpha) const { return growth + alpha * b; }
 };
 
-// ∂²W/∂G² = B1 + α B2 + B3 at one point contracted with the basis gradients D (columns
-// ∇φ̂_i), times the point's weight. With m_i = G⁻ᵀ ∇φ̂_i, the (i,a),(j,b) entry of
-// (B1 + α B2 + B3)[e_b ∇φ̂_jᵀ] : e_a ∇φ̂_iᵀ is
-//   volumetric m_i[a] m_j[b] − (growth + α b) m_j[a] m_i[b] + μ δ_ab ∇φ̂_i·∇φ̂_j,
-// so block (i,j) is volumetric m_i m_jᵀ − (growth + α b) m_j m_iᵀ + μ (∇φ̂_i·∇φ̂_j) I.
+// B1 + α B2 at one point contracted with the basis gradients D (columns ∇φ̂_i), times the
+// point's weight; B3 = μ H does not depend on G, and the kernel adds it once per cell. With
+// m_i = G⁻ᵀ ∇φ̂_i, the (i,a),(j,b) entry of (B1 + α B2)[e_b ∇φ̂_jᵀ] : e_a ∇φ̂_iᵀ is
+//   volumetric m_i[a] m_j[b] − (growth + α b) m_j[a] m_i[b],
+// so block (i,j) is volumetric m_i m_jᵀ − (growth + α b) m_j m_iᵀ.
 template <int Dim, int N>
 struct NeoHookeTangent {
-  double volumetric, rotational, mu;  // weighted
-  Eigen::Matrix<double, Dim, N> m;    // G⁻ᵀ D
-  Eigen::Matrix<double, N, N> gram;   // Dᵀ D
+  Eigen::Matrix<double, Dim, N> m;             // G⁻ᵀ D
+  Eigen::Matrix<double, Dim, N> volumetric_m;  // weighted volumetric · m
+  Eigen::Matrix<double, Dim, N> rotational_m;  // weighted (growth + α b) · m
 
   Matrix<Dim> block(int i, int j) const {
-    return volumetric * m.col(i) * m.col(j).transpose() -
-           rotational * m.col(j) * m.col(i).transpose() + mu * gram(i, j) * Matrix<Dim>::Identity();
+    return volumetric_m.col(i) * m.col(j).transpose() - rotational_m.col(j) * m.col(i).transpose();
   }
 };
 
@@ -127,16 +126,16 @@ struct NeoHooke {
   Matrix<Dim> tangent(const Matrix<Dim>& G, const Matrix<Dim>& H, double alpha) const {
     return tangent(Deformation<Dim>(G), H, alpha);
   }
-  // The same contracted with basis gradients D, times `weight` (NeoHookeTangent).
+  // B1 + α B2 contracted with basis gradients D, times `weight` (NeoHookeTangent).
   template <int N>
   NeoHookeTangent<Dim, N> tangent(const Deformation<Dim>& d, double alpha, double weight,
                                   const Eigen::Matrix<double, Dim, N>& D) const {
     const TangentSplit s = split(d);
-    return {.volumetric = weight * s.volumetric,
-            .rotational = weight * s.rotational(alpha),
-            .mu = weight * s.mu,
-            .m = d.inv_t * D,
-            .gram = D.transpose() * D};
+    NeoHookeTangent<Dim, N> t;
+    t.m.noalias() = d.inv_t * D;
+    t.volumetric_m = (weight * s.volumetric) * t.m;
+    t.rotational_m = (weight * s.rotational(alpha)) * t.m;
+    return t;
   }
 
  private:

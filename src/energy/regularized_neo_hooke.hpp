@@ -53,21 +53,20 @@ struct RegularizedDeterminant {
   double d2phi;  // φ″(D)
 };
 
-// ∂²W_ε/∂G² = B1 + α B2 + B3 at one point contracted with the basis gradients D (columns
-// ∇φ̂_i), times the point's weight. With c_i = C ∇φ̂_i, block (i,j) is
-//   (φ″₊ + α φ″₋) c_i c_jᵀ + α φ′ S_ij + μ (∇φ̂_i·∇φ̂_j) I,
+// B1 + α B2 at one point contracted with the basis gradients D (columns ∇φ̂_i), times the
+// point's weight (B3 = μ H the kernel adds once per cell). With c_i = C ∇φ̂_i, block (i,j) is
+//   (φ″₊ + α φ″₋) c_i c_jᵀ + α φ′ S_ij,
 // where S_ij = ∂²D/∂G² on (e_a ∇φ̂_iᵀ, e_b ∇φ̂_jᵀ) is skew: (S_ij)_ab = ε_ab (∇φ̂_i × ∇φ̂_j)
 // in 2D and ε_abc (G (∇φ̂_i × ∇φ̂_j))_c in 3D.
 template <int Dim, int N>
 struct RegularizedTangent {
-  double volumetric, twist, mu;  // weighted
+  double volumetric, twist;  // weighted
   Matrix<Dim> G;
   Eigen::Matrix<double, Dim, N> c;  // C D
   Eigen::Matrix<double, Dim, N> D;
 
   Matrix<Dim> block(int i, int j) const {
-    return volumetric * c.col(i) * c.col(j).transpose() + twist * skew(D.col(i), D.col(j)) +
-           mu * D.col(i).dot(D.col(j)) * Matrix<Dim>::Identity();
+    return volumetric * c.col(i) * c.col(j).transpose() + twist * skew(D.col(i), D.col(j));
   }
 
  private:
@@ -104,7 +103,6 @@ struct RegularizedNeoHooke {
                                      const Eigen::Matrix<double, Dim, N>& D) const {
     return {.volumetric = weight * (std::max(p.r.d2phi, 0.0) + alpha * std::min(p.r.d2phi, 0.0)),
             .twist = weight * alpha * p.r.dphi,
-            .mu = weight * mu,
             .G = p.G,
             .c = cofactor(p.G) * D,
             .D = D};
