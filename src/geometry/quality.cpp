@@ -19,6 +19,15 @@ constexpr double kDegrees = 180.0 / std::numbers::pi;
 // |volume| below this fraction of the mean cell volume counts as degenerate.
 constexpr double kDegenerateVolume = 1e-14;
 
+template <int Dim>
+double cosine_between(const Vector<Dim>& a, const Vector<Dim>& b) {
+  return std::clamp(a.dot(b) / (a.norm() * b.norm()), -1.0, 1.0);
+}
+
+double degrees(double cosine) {
+  return std::acos(cosine) * kDegrees;
+}
+
 struct Measures {
   double volume, min_corner_det, min_gauss_det, scaled_jacobian, min_angle, max_angle, edge_ratio;
 
@@ -26,13 +35,22 @@ struct Measures {
     min_angle = std::min(min_angle, angle);
     max_angle = std::max(max_angle, angle);
   }
-};
+  // The angle between a and b: acos decreases, so only the extreme cosines need one, not each
+  // of a hexahedron's 24 angles (finish_angles).
+  template <int Dim>
+  void record_angle_between(const Vector<Dim>& a, const Vector<Dim>& b) {
+    const double c = cosine_between<Dim>(a, b);
+    max_cosine = std::max(max_cosine, c);
+    min_cosine = std::min(min_cosine, c);
+  }
+  void finish_angles() {
+    if (!(max_cosine >= min_cosine)) return;  // none recorded (or NaN)
+    record_angle(degrees(max_cosine));
+    record_angle(degrees(min_cosine));
+  }
 
-template <int Dim>
-double angle_between(const Vector<Dim>& a, const Vector<Dim>& b) {
-  const double c = a.dot(b) / (a.norm() * b.norm());
-  return std::acos(std::clamp(c, -1.0, 1.0)) * kDegrees;
-}
+  double max_cosine = -kInfinity, min_cosine = kInfinity;
+};
 
 // Longest over shortest edge; every edge lies on a facet (2D: is one), so the facets' cycles
 // visit them all.
@@ -122,8 +140,7 @@ Measures measure_simplex(const typename CellTraits<Type>::Coordinates& x) {
   m.max_angle = 0.0;
   if constexpr (d == 2) {
     for (int i = 0; i < 3; ++i)
-      m.record_angle(
-          angle_between<2>(x.col((i + 1) % 3) - x.col(i), x.col((i + 2) % 3) - x.col(i)));
+      m.record_angle_between<2>(x.col((i + 1) % 3) - x.col(i), x.col((i + 2) % 3) - x.col(i));
   } else {
     // Dihedral angle at edge (a, b): between the normals of its faces towards c and d.
     for (int a = 0; a < 4; ++a)
@@ -132,10 +149,11 @@ Measures measure_simplex(const typename CellTraits<Type>::Coordinates& x) {
         for (int c = 0; c < 4; ++c)
           if (c != a && c != b) others[k++] = c;
         const Vector<3> e = x.col(b) - x.col(a);
-        m.record_angle(angle_between<3>(e.cross(Vector<3>(x.col(others[0]) - x.col(a))),
-                                        e.cross(Vector<3>(x.col(others[1]) - x.col(a)))));
+        m.record_angle_between<3>(e.cross(Vector<3>(x.col(others[0]) - x.col(a))),
+                                  e.cross(Vector<3>(x.col(others[1]) - x.col(a))));
       }
   }
+  m.finish_angles();
   m.edge_ratio = edge_ratio<Type>(x);
   return m;
 }
@@ -156,15 +174,23 @@ Measures measure_q1(const typename CellTraits<Type>::Coordinates& x) {
       for (int k = j + 1; k < d; ++k) {
         // The actual edges leave the corner; the angle between them is the one inside the
         // cell unless the corner is reflex (2D) or inverted.
-        double angle =
-            angle_between<d>(x.col(c ^ (1 << j)) - x.col(c), x.col(c ^ (1 << k)) - x.col(c));
-        if (d == 2 && det <= 0.0) angle = 360.0 - angle;
-        m.record_angle(angle);
+        const Vector<d> a = x.col(c ^ (1 << j)) - x.col(c), b = x.col(c ^ (1 << k)) - x.col(c);
+        if (d == 2 && det <= 0.0)
+          m.record_angle(360.0 - degrees(cosine_between<d>(a, b)));
+        else
+          m.record_angle_between<d>(a, b);
       }
   }
-  static const TensorGaussRule<d> det_rule(3);
-  for (int q = 0; q < det_rule.size; ++q) {
-    const Matrix<d> jacobian = 2.0 * x * q1_gradients<d>(det_rule.points[q]).transpose();
+  m.finish_angles();
+  // 2 ∇N at the 3 Gauss points per direction, computed once.
+  static const auto det_gradients = [] {
+    const TensorGaussRule<d> rule(3);
+    std::array<typename CellTraits<Type>::Coordinates, TensorGaussRule<d>::max_points> g;
+    for (int q = 0; q < rule.size; ++q) g[q] = 2.0 * q1_gradients<d>(rule.points[q]);
+    return std::pair{rule.size, g};
+  }();
+  for (int q = 0; q < det_gradients.first; ++q) {
+    const Matrix<d> jacobian = x * det_gradients.second[q].transpose();
     m.min_gauss_det = std::min(m.min_gauss_det, jacobian.determinant());
   }
   m.edge_ratio = edge_ratio<Type>(x);
@@ -187,11 +213,11 @@ Measures measure_wedge_or_pyramid(const typename CellTraits<Type>::Coordinates& 
     const FacetVertices& facet = cell.facets[f];
     for (int i = 0; i < facet.size; ++i) {
       const auto corner = x.col(facet.vertices[i]);
-      m.record_angle(
-          angle_between<3>(x.col(facet.vertices[(i + 1) % facet.size]) - corner,
-                           x.col(facet.vertices[(i + facet.size - 1) % facet.size]) - corner));
+      m.record_angle_between<3>(x.col(facet.vertices[(i + 1) % facet.size]) - corner,
+                                x.col(facet.vertices[(i + facet.size - 1) % facet.size]) - corner);
     }
   }
+  m.finish_angles();
   // det J relative to the unit reference cell (see signed_volume): the pyramid's det J =
   // (1 − ξ2)²/32 det[∂B/∂u, ∂B/∂v, apex − B] with u, v ∈ [0, 1].
   static const ReferenceRule<Type> det_rule(3);
