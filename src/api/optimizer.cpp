@@ -98,7 +98,8 @@ CellTargets Optimizer::Impl::smoothing_targets(TargetMode mode, SizeMode sizes) 
   std::vector<double> ideal = desired_volumes(sizes, view(), dofs(), volumes);
   if (mode == TargetMode::Ideal) return ideal_targets(std::move(ideal));
   return input_targets(mode == TargetMode::Input ? KeptInput::All : KeptInput::Coherent, view(),
-                       dofs(), volumes, functional->cell_jacobians(x), std::move(ideal));
+                       dofs(), volumes, functional->cell_jacobians(x),
+                       cell_edge_ratios(view(), view().coords), std::move(ideal));
 }
 
 void Optimizer::Impl::set_targets(const CellTargets& targets) {

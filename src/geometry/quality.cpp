@@ -341,6 +341,14 @@ std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const 
   return sj;
 }
 
+std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const double> coords) {
+  std::vector<double> ratio(view.num_cells);
+  for_each_cell(view, coords, [&ratio]<CellType Type>(std::size_t i, const auto& x) {
+    ratio[i] = edge_ratio<Type>(x);
+  });
+  return ratio;
+}
+
 std::vector<std::pair<std::string_view, MetricStats>> QualitySummary::metrics() const {
   return {{"volume", volume},
           {"min_det_corners", min_corner_det},

@@ -61,6 +61,7 @@ CellQuality cell_quality(const MeshView& view, std::span<const double> coords);
 // inverse mean ratios): for the desired volumes and the quality guard, which need no more.
 std::vector<double> cell_volumes(const MeshView& view, std::span<const double> coords);
 std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const double> coords);
+std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const double> coords);
 
 // The metrics of `quality` as the per-cell fields of an output (.vtu), by the names the
 // reports and `--picture-field` use.

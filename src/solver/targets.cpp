@@ -57,7 +57,7 @@ double global_max(double local, MPI_Comm comm) {
 template <int Dim>
 void coherent_shares(const MeshView& view, const DofMap& dofs,
                      const std::vector<std::optional<InputCell<Dim>>>& input,
-                     std::vector<double>& kept) {
+                     std::span<const double> edge_ratios, std::vector<double>& kept) {
   const std::size_t cells = input.size();
   std::vector<Mat<Dim>> log_stretch(cells, Mat<Dim>::Zero());
   std::vector<double> own(cells, 0.0);
@@ -89,9 +89,12 @@ void coherent_shares(const MeshView& view, const DofMap& dofs,
       for (int i = 0; i < Dim; ++i)
         for (int j = i; j < Dim; ++j) m(i, j) = m(j, i) = mean[i * Dim + j][c] / share[c];
       const double anisotropy = log_anisotropy<Dim>(m);
+      // log f: how much more the cell is stretched than its edges are long.
+      const double shear = own[c] - std::log(edge_ratios[c]);
       kept[c] = ramp(anisotropy, std::log(kStretched.from), std::log(kStretched.to)) *
                 ramp(anisotropy / std::max(mean_own[c] / share[c], std::log(1.5)), kCoherence.from,
-                     kCoherence.to);
+                     kCoherence.to) *
+                (1.0 - ramp(shear, std::log(kSheared.from), std::log(kSheared.to)));
     }
   }
 }
@@ -99,7 +102,7 @@ void coherent_shares(const MeshView& view, const DofMap& dofs,
 template <int Dim>
 CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& dofs,
                           std::span<const double> cell_volumes, std::span<const double> jacobians,
-                          std::vector<double> ideal_volumes) {
+                          std::span<const double> edge_ratios, std::vector<double> ideal_volumes) {
   const std::size_t cells = cell_volumes.size();
   CellTargets t = ideal_targets(std::move(ideal_volumes));
   // Each valid cell's J = s V R, det V = 1.
@@ -116,7 +119,7 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
     for (std::size_t c = 0; c < cells; ++c) t.kept[c] = input[c] ? 1.0 : 0.0;
   } else if (global_max(most_stretched, dofs.comm()) > std::log(kStretched.from)) {
     // (The mean's anisotropy is at most the largest cell's: no stretched cell, none kept.)
-    coherent_shares<Dim>(view, dofs, input, t.kept);
+    coherent_shares<Dim>(view, dofs, input, edge_ratios, t.kept);
   }
   // No cell kept: the thesis' ideal targets, exactly.
   const double most_kept = t.kept.empty() ? 0.0 : *std::max_element(t.kept.begin(), t.kept.end());
@@ -156,15 +159,17 @@ CellTargets ideal_targets(std::vector<double> volumes) {
 
 CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& dofs,
                           std::span<const double> cell_volumes, std::span<const double> jacobians,
-                          std::vector<double> ideal_volumes) {
+                          std::span<const double> edge_ratios, std::vector<double> ideal_volumes) {
   const std::size_t cells = cell_volumes.size();
   const std::size_t entries = static_cast<std::size_t>(view.dim * view.dim) * cells;
-  if (jacobians.size() != entries || ideal_volumes.size() != cells)
-    fail("internal error: {} Jacobian entries and {} volumes for {} cells", jacobians.size(),
-         ideal_volumes.size(), cells);
+  if (jacobians.size() != entries || ideal_volumes.size() != cells || edge_ratios.size() != cells)
+    fail("internal error: {} Jacobian entries, {} edge ratios and {} volumes for {} cells",
+         jacobians.size(), edge_ratios.size(), ideal_volumes.size(), cells);
   if (view.dim == 2)
-    return input_targets<2>(kept, view, dofs, cell_volumes, jacobians, std::move(ideal_volumes));
-  return input_targets<3>(kept, view, dofs, cell_volumes, jacobians, std::move(ideal_volumes));
+    return input_targets<2>(kept, view, dofs, cell_volumes, jacobians, edge_ratios,
+                            std::move(ideal_volumes));
+  return input_targets<3>(kept, view, dofs, cell_volumes, jacobians, edge_ratios,
+                          std::move(ideal_volumes));
 }
 
 KeptCells count_kept(std::span<const double> kept, MPI_Comm comm) {

@@ -16,6 +16,13 @@
 // of its input cell: S = V^w R, v = v_input^w v_sizes^(1−w) (then all volumes are scaled to
 // the mesh volume). Only cells of one type count: layers are made of one type, and the many
 // tetrahedra or triangles around a layer's outer cells would hide it.
+// A mesh generator's stretched cells are stretched along their edges (a layer's rectangles and
+// prisms, a graded block's bricks); a mesh deformed afterwards (a moved vertex, a moved
+// boundary) has its cells sheared, stretched across their edges, and a shear is no design: a
+// cell whose stretch σ_max/σ_min exceeds its edge ratio (longest over shortest edge) by the
+// factor f keeps the share w · (1 − ramp(f; kSheared)) only. (A 10:1 rectangle or right
+// triangle: f = 1–1.15; a rhombus of 30°: f = 3.7; the thesis' square-midpoint, a grid
+// deformed by moving its middle vertex: up to 25.)
 // A kept cell is as thin as its shortest edge, so its energy is small against that of its
 // neighbours, which would squash it (a boundary layer's first heights: ±8 % with k = 1):
 // its weight k = (C a)^w, with a = σ_max(V)^d the volume of the isotropic cell spanning its
@@ -41,7 +48,7 @@ enum class KeptInput { All, Coherent };
 struct Ramp {
   double from, to;
 };
-inline constexpr Ramp kCoherence{0.5, 0.8}, kStretched{2.0, 3.5};
+inline constexpr Ramp kCoherence{0.5, 0.8}, kStretched{2.0, 3.5}, kSheared{2.0, 4.0};
 inline constexpr double kKeptStiffness = 7.0;
 
 struct CellTargets {
@@ -55,12 +62,12 @@ struct CellTargets {
 CellTargets ideal_targets(std::vector<double> volumes);
 
 // `cell_volumes`: each local cell's actual volume; `jacobians`: each local cell's Jacobian at
-// its centre relative to its unit ideal cell (Functional::cell_jacobians); `ideal_volumes`: the
-// desired volumes of the ideal targets (desired_volumes.hpp), for the cells not kept.
-// Collective.
+// its centre relative to its unit ideal cell (Functional::cell_jacobians); `edge_ratios`: each
+// local cell's longest over shortest edge; `ideal_volumes`: the desired volumes of the ideal
+// targets (desired_volumes.hpp), for the cells not kept. Collective.
 CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& dofs,
                           std::span<const double> cell_volumes, std::span<const double> jacobians,
-                          std::vector<double> ideal_volumes);
+                          std::span<const double> edge_ratios, std::vector<double> ideal_volumes);
 
 // How many local cells keep all of their input cell (w = 1), part of it, or none.
 struct KeptCells {
