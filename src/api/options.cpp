@@ -1,7 +1,6 @@
 #include <neomesh/options.hpp>
 
 #include <array>
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -9,6 +8,7 @@
 
 #include <neomesh/error.hpp>
 
+#include "api/option_table.hpp"
 #include "core/error.hpp"
 
 namespace neomesh {
@@ -159,31 +159,26 @@ TargetMode parse_target_mode(std::string_view name) {
   return parse_as<TargetMode>(name);
 }
 
-namespace {
-
-// Throws OptionError for `field` unless `value` is finite and `ok`: "<field> must be <range>
-// (got <value>)". inf and nan are refused so that they never reach the method (an infinite λ
-// would make every cell look inverted).
-template <typename T>
-void require(bool ok, const char* field, T value, const char* range) {
-  if (!std::isfinite(static_cast<double>(value)))
-    throw OptionError(field, fmt::format("must be a finite number, {} (got {})", range, value));
-  if (!ok) throw OptionError(field, fmt::format("must be {} (got {})", range, value));
+template <typename E>
+E parse_choice(std::string_view name) {
+  return parse_as<E>(name);
 }
+template BoundaryMode parse_choice(std::string_view);
+template LinearSolverKind parse_choice(std::string_view);
+template RieszLaplacian parse_choice(std::string_view);
+template HessianPreconditioner parse_choice(std::string_view);
+template RejectedDirection parse_choice(std::string_view);
+template SizeMode parse_choice(std::string_view);
+template TargetMode parse_choice(std::string_view);
 
-}  // namespace
-
+// The ranges of the fields are in their tables (src/api/option_table.cpp); what relates two
+// fields is here.
 void EnergyOptions::validate() const {
-  require(lambda > 0, "energy.lambda", lambda, "positive");
-  require(mu > 0, "energy.mu", mu, "positive");
-  require(kappa == -1.0 || kappa > 0, "energy.kappa", kappa, "positive (or -1 for kappa = lambda)");
-  require(gauss_points >= 1 && gauss_points <= 5, "energy.gauss_points", gauss_points,
-          "between 1 and 5");
+  check_ranges(energy_option_table(), *this);
 }
 
 void BoundaryOptions::validate() const {
-  require(feature_angle > 0 && feature_angle < 180, "boundary.feature_angle", feature_angle,
-          "in (0, 180) degrees");
+  check_ranges(boundary_option_table(), *this);
   if (!shapes.empty() && mode != BoundaryMode::Slide)
     throw OptionError("boundary.shapes",
                       "need sliding boundary vertices (with fixed ones nothing slides on them)");
@@ -194,45 +189,15 @@ void BoundaryOptions::validate() const {
 }
 
 void SolverOptions::validate() const {
-  if (alpha0) require(*alpha0 > 0 && *alpha0 <= 1, "solver.alpha0", *alpha0, "in (0, 1]");
-  require(eta > 0 && eta < 1, "solver.eta", eta, "in (0, 1)");
-  require(kmin >= 0, "solver.kmin", kmin, "0 or more");
-  require(max_iterations >= 1, "solver.max_iterations", max_iterations, "at least 1");
-  require(time_limit >= 0, "solver.time_limit", time_limit, "0 (none) or more seconds");
-  require(defect_atol >= 0, "solver.defect_atol", defect_atol, "0 or more");
-  require(defect_rtol >= 0, "solver.defect_rtol", defect_rtol, "0 or more");
-  require(energy_rtol >= 0, "solver.energy_rtol", energy_rtol, "0 or more");
-  require(move_rtol >= 0, "solver.move_rtol", move_rtol, "0 or more");
-  require(newton_move_rtol >= 0, "solver.newton_move_rtol", newton_move_rtol, "0 or more");
-  require(armijo_beta > 0 && armijo_beta < 1, "solver.armijo_beta", armijo_beta, "in (0, 1)");
-  require(max_halvings >= 1, "solver.max_halvings", max_halvings, "at least 1");
-  require(max_trial_move >= 0, "solver.max_trial_move", max_trial_move, "0 or more");
-  require(initial_previous_defect > 0, "solver.initial_previous_defect", initial_previous_defect,
-          "positive");
-  require(hessian_rtol > 0 && hessian_rtol < 1, "solver.hessian_rtol", hessian_rtol, "in (0, 1)");
-  require(hessian_defect_factor > 0, "solver.hessian_defect_factor", hessian_defect_factor,
-          "positive");
-  require(hessian_forcing_max >= 0 && hessian_forcing_max < 1, "solver.hessian_forcing_max",
-          hessian_forcing_max, "in [0, 1)");
-  require(riesz_rtol > 0 && riesz_rtol < 1, "solver.riesz_rtol", riesz_rtol, "in (0, 1)");
-  require(hessian_pc_reuse >= 0, "solver.hessian_pc_reuse", hessian_pc_reuse, "0 or more");
+  check_ranges(solver_option_table(), *this);
 }
 
 void SizeFieldOptions::validate() const {
-  require(power > 0, "sizes.power", power, "positive");
-  require(floor >= 0, "sizes.floor", floor, "0 or more");
-  if (max_ratio)
-    require(*max_ratio == 0 || *max_ratio > 1, "sizes.max_ratio", *max_ratio,
-            "above 1, or 0 for no bound");
-  require(smoothing_passes >= 0, "sizes.smoothing_passes", smoothing_passes, "0 or more");
+  check_ranges(size_field_option_table(), *this);
 }
 
 void PicardOptions::validate() const {
-  require(min_updates >= 0, "picard.min_updates", min_updates, "0 or more");
-  require(update_every >= 1, "picard.update_every", update_every, "at least 1");
-  require(update_move >= 0, "picard.update_move", update_move, "0 or more");
-  require(update_step_norm >= 0, "picard.update_step_norm", update_step_norm, "0 or more");
-  require(relaxation > 0 && relaxation <= 1, "picard.relaxation", relaxation, "in (0, 1]");
+  check_ranges(picard_option_table(), *this);
 }
 
 namespace {
@@ -267,6 +232,7 @@ void SmoothOptions::validate() const {
   energy.validate();
   boundary.validate();
   solver.validate();
+  check_ranges(smooth_own_option_table(), *this);
 }
 
 AdaptOptions AdaptOptions::thesis(AdaptOptions o) {
@@ -286,7 +252,7 @@ void AdaptOptions::validate() const {
   solver.validate();
   sizes.validate();
   picard.validate();
-  require(warm_updates >= 0, "warm_updates", warm_updates, "0 or more");
+  check_ranges(adapt_own_option_table(), *this);
 }
 
 }  // namespace neomesh

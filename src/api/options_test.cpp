@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include <neomesh/error.hpp>
@@ -40,6 +41,41 @@ TEST(OptionChoices, EveryNameParsesBackAndTheDefaultComesFirst) {
 TEST(EnergyOptions, KappaBelowZeroMeansLambda) {
   EXPECT_EQ((EnergyOptions{.lambda = 4.0, .kappa = -1.0}).effective_kappa(), 4.0);
   EXPECT_EQ((EnergyOptions{.lambda = 4.0, .kappa = 2.0}).effective_kappa(), 2.0);
+}
+
+// validate() names the field, the range and the value; inf and nan are refused as such.
+std::string error_of(const auto& options) {
+  try {
+    options.validate();
+  } catch (const OptionError& e) {
+    return e.what();
+  }
+  return "(valid)";
+}
+
+TEST(OptionRanges, ValidateNamesTheFieldTheRangeAndTheValue) {
+  EXPECT_EQ(error_of(SolverOptions{.eta = 2.0}), "solver.eta must be in (0, 1) (got 2)");
+  EXPECT_EQ(error_of(SolverOptions{.alpha0 = 0.0}), "solver.alpha0 must be in (0, 1] (got 0)");
+  EXPECT_EQ(error_of(SolverOptions{.kmin = -1}), "solver.kmin must be 0 or more (got -1)");
+  EXPECT_EQ(error_of(EnergyOptions{.lambda = -1.0}), "energy.lambda must be positive (got -1)");
+  EXPECT_EQ(error_of(EnergyOptions{.kappa = HUGE_VAL}),
+            "energy.kappa must be a finite number, positive (or -1 for kappa = lambda) (got inf)");
+  EXPECT_EQ(error_of(EnergyOptions{.gauss_points = 6}),
+            "energy.gauss_points must be between 1 and 5 (got 6)");
+  EXPECT_EQ(error_of(SizeFieldOptions{.max_ratio = 1.0}),
+            "sizes.max_ratio must be above 1, or 0 for no bound (got 1)");
+  EXPECT_EQ(error_of(PicardOptions{.relaxation = 2.0}),
+            "picard.relaxation must be in (0, 1] (got 2)");
+  AdaptOptions adapt;
+  adapt.warm_updates = -1;
+  EXPECT_EQ(error_of(adapt), "warm_updates must be 0 or more (got -1)");
+  BoundaryOptions fixed{BoundaryMode::Fixed};
+  fixed.shapes = {{"hole", "circle:0,0,1"}};
+  EXPECT_EQ(error_of(fixed),
+            "boundary.shapes need sliding boundary vertices (with fixed ones nothing slides on "
+            "them)");
+  EXPECT_EQ(error_of(SmoothOptions{}), "(valid)");
+  EXPECT_EQ(error_of(AdaptOptions::thesis()), "(valid)");
 }
 
 }  // namespace

@@ -24,14 +24,10 @@ namespace {
 struct AdaptCommand {
   std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
   std::string output, levelset, sizes_file, time;
-  int step_updates = 1;  // Picard updates before a time step after the first may stop
   std::vector<double> circle, sphere, plane, box;
   bool force = false;
   bool fit = false;
-  bool no_untangle = false, no_guard = false;
-  SizeFieldOptions sizes;
-  PicardOptions picard;
-  MethodOptions method;
+  TaskOptions<AdaptOptions> options;
   RunOutputs outputs;
 };
 
@@ -169,13 +165,8 @@ void adapt_in_time(const AdaptCommand& o, const AdaptOptions& options, SizeField
 }
 
 void adapt(AdaptCommand& o) {
-  AdaptOptions options;
-  options.sizes = o.sizes;
-  options.picard = o.picard;
-  options.warm_updates = o.step_updates;
-  options.untangle = !o.no_untangle;
-  options.quality_guard = !o.no_guard && !o.fit;
-  options = resolve(o.method, options);
+  AdaptOptions options = o.options.resolve();
+  if (o.fit) options.quality_guard = false;  // the interface's vertices must stay on it
   check_finite("--circle", o.circle);
   check_finite("--sphere", o.sphere);
   check_finite("--plane", o.plane);
@@ -200,7 +191,7 @@ void adapt(AdaptCommand& o) {
   std::optional<LevelSet> phi;
   if (o.fit) phi.emplace(fit_level_set(o));
 
-  OptimizationRun run(o.inputs, o.no_untangle ? InvertedCells::Refuse : InvertedCells::Keep);
+  OptimizationRun run(o.inputs, options.untangle ? InvertedCells::Keep : InvertedCells::Refuse);
   const Mesh& mesh = run.mesh();
   // Every time's interface must exist and lie inside the domain: fail before any output.
   if (phi)
@@ -243,32 +234,21 @@ void adapt(AdaptCommand& o) {
       "volume in [0.5, 2] for {:.1f}% of the cells, min {:.3g}, median {:.3g}, max {:.3g}\n",
       result.update_iterations.size(), fmt::join(result.update_iterations, ", "), 100 * q.within,
       q.min, q.median, q.max);
-  run.finish(result, settings, o.output, o.outputs,
-             {{"size_field", field.description()},
-              {"size_options",
-               {{"floor", options.sizes.floor},
-                {"power", options.sizes.power},
-                {"max_ratio", options.sizes.ratio(o.fit)},
-                {"smoothing_passes", options.sizes.smoothing_passes}}},
-              {"picard",
-               {{"min_updates", options.picard.min_updates},
-                {"update_every", options.picard.update_every},
-                {"update_move", options.picard.update_move},
-                {"update_step_norm", options.picard.update_step_norm},
-                {"relaxation", options.picard.relaxation},
-                {"update_iterations", result.update_iterations}}},
-              {"volume_ratio", to_json(q)},
-              {"fit", fit_report}});
+  // α₀ and the bound of the desired volumes the run used: numbers, also where they were "auto".
+  AdaptOptions reported = options;
+  reported.solver.alpha0 = result.problem.alpha0;
+  reported.sizes.max_ratio = options.sizes.ratio(o.fit);
+  nlohmann::json report = to_json(reported);
+  report["picard"]["update_iterations"] = result.update_iterations;
+  report.update(
+      {{"size_field", field.description()}, {"volume_ratio", to_json(q)}, {"fit", fit_report}});
+  run.finish(result, settings, o.output, o.outputs, report);
 }
 
 }  // namespace
 
 Subcommand add_adapt(CLI::App& app) {
   auto o = std::make_shared<AdaptCommand>();
-  // Adaptation wants volumes met, not only shapes: λ = 4 μ, and boundary vertices that slide
-  // so that the cells at the boundary can grade too (docs/adaptivity.md).
-  o->method.energy = AdaptOptions().energy;
-  o->method.boundary = name(AdaptOptions().boundary.mode);
   CLI::App* cmd = app.add_subcommand(
       "adapt",
       "Move the vertices so that cells are small near a surface (circle, sphere, plane, box, "
@@ -278,17 +258,9 @@ Subcommand add_adapt(CLI::App& app) {
   cmd->add_option("-o,--output", o->output, fmt::format("adapted mesh ({})", kMeshOutputs))
       ->required();
   cmd->add_flag("--force", o->force, "allow the output to overwrite the input file");
-  cmd->add_flag("--no-guard", o->no_guard,
-                "keep the adaptation's optimum even where a cell ends up worse than the input's "
-                "worst cell or with a corner nearly flat (default: off, i.e. flat corners are "
-                "lifted and such cells' vertices are pulled back; not with --fit; --thesis "
-                "implies it)");
-  cmd->add_flag("--no-untangle", o->no_untangle,
-                "refuse a mesh with inverted cells instead of untangling it first (default: off, "
-                "i.e. inverted cells are untangled towards the size field's volumes, then the mesh "
-                "is adapted)");
+  o->options.add(*cmd, "");
 
-  const char* field = "Size field (exactly one)";
+  const std::string field(kSizeFieldGroup);
   cmd->add_option("--circle", o->circle, "cx,cy,r: distance to a circle")
       ->delimiter(',')
       ->expected(3)
@@ -311,56 +283,16 @@ Subcommand add_adapt(CLI::App& app) {
   cmd->add_option("--sizes", o->sizes_file,
                   "file with one relative volume per cell, in the mesh's cell order")
       ->group(field);
-  cmd->add_option("--power", o->sizes.power, "p in v = floor + d^p")
-      ->capture_default_str()
-      ->group(field);
-  cmd->add_option("--floor", o->sizes.floor, "floor in v = floor + d^p")
-      ->capture_default_str()
-      ->group(field);
-  cmd->add_option("--max-ratio", o->sizes.max_ratio,
-                  "largest over smallest desired volume; smaller ones are raised (0: no bound; "
-                  "default 32, with --fit 16)")
-      ->default_str("auto")
-      ->group(field);
-  cmd->add_option("--smooth-sizes", o->sizes.smoothing_passes,
-                  "passes of averaging log(desired volume) over neighbouring cells")
-      ->capture_default_str()
-      ->group(field);
+  o->options.add(*cmd, kSizeFieldGroup);
+  o->options.add(*cmd, kPicardGroup);
 
-  const char* picard = "Picard iteration (thesis §6)";
-  cmd->add_option("--min-updates", o->picard.min_updates,
-                  "updates of the desired volumes before the run may stop")
-      ->capture_default_str()
-      ->group(picard);
-  cmd->add_option("--update-every", o->picard.update_every,
-                  "update the desired volumes at least every this many iterations")
-      ->capture_default_str()
-      ->group(picard);
-  cmd->add_option("--update-move", o->picard.update_move,
-                  "update once a quasi-Newton step moved no vertex more than this times its "
-                  "local cell size")
-      ->capture_default_str()
-      ->group(picard);
-  cmd->add_option("--update-step", o->picard.update_step_norm,
-                  "update once the step's Euclidean norm σ‖δ‖ is below this (thesis: 1e-6; 0: off)")
-      ->capture_default_str()
-      ->group(picard);
-  cmd->add_option("--relaxation", o->picard.relaxation,
-                  "ω in v ← (1−ω) v_old + ω v(centroids), in (0, 1]")
-      ->capture_default_str()
-      ->group(picard);
-
-  const char* time = "A geometry that moves, and fitting the mesh to it";
+  const std::string time(kTimeGroup);
   cmd->add_option("--time", o->time,
                   "START:END:STEPS: adapt at STEPS times from START to END (t in --levelset), each "
                   "step starting from the one before; -o OUT.pvd writes OUT-0000.vtu ... and "
                   "ParaView's collection, -o OUT.msh writes OUT-0000.msh ...")
       ->group(time);
-  cmd->add_option("--step-updates", o->step_updates,
-                  "Picard updates before a time step after the first may stop (the first step "
-                  "uses --min-updates)")
-      ->capture_default_str()
-      ->group(time);
+  o->options.add(*cmd, kTimeGroup);
 
   cmd->add_flag("--fit", o->fit,
                 "fit a chain of edges (2D) / surface of faces (3D) to the zero set of the level "
@@ -369,7 +301,7 @@ Subcommand add_adapt(CLI::App& app) {
                 "and phi (.vtu); with --time at every step")
       ->group(time);
   add_run_output_options(*cmd, o->outputs, "Q");
-  add_method_options(*cmd, o->method);
+  o->options.add_remaining(*cmd);
   return {cmd, [o] { adapt(*o); }};
 }
 

@@ -1,230 +1,179 @@
 #include "app/method_options.hpp"
 
+#include <algorithm>
+#include <cstdint>
 #include <functional>
-#include <map>
-#include <string_view>
-#include <utility>
+#include <iostream>
+#include <type_traits>
+
+#include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/log.hpp"
 
 namespace neomesh::app {
 
-void add_method_options(CLI::App& cmd, MethodOptions& o) {
-  const char* energy = "Energy (thesis §4)";
-  cmd.add_option("--lambda", o.energy.lambda,
-                 "λ > 0: weight of (log det G)², resists volume change")
-      ->capture_default_str()
-      ->group(energy);
-  cmd.add_option("--mu", o.energy.mu, "μ > 0: weight of the shape terms")
-      ->capture_default_str()
-      ->group(energy);
-  cmd.add_option("--kappa", o.energy.kappa,
-                 "κ > 0: penalty on cells grown beyond e^(μ/λ+1) × their desired volume "
-                 "(default: λ)")
-      ->group(energy);
-  cmd.add_option("--gauss", o.energy.gauss_points,
-                 "Gauss points per direction on quadrilaterals/hexahedra/wedges/pyramids (1-5; "
-                 "--thesis: 3)")
-      ->capture_default_str()
-      ->group(energy);
+namespace {
 
-  const char* method = "Quasi-Newton method (thesis §5.1)";
-  cmd.add_option("--alpha0", o.solver.alpha0,
-                 "initial α in H(α) = B1 + α B2 + B3, in (0, 1]; auto: 1, or 0.3 where "
-                 "vertices slide on a curved or oblique boundary (--thesis: 0.3)")
-      ->default_str("auto")
-      ->group(method);
-  cmd.add_option("--eta", o.solver.eta,
-                 "angle test: accept the quasi-Newton direction if η_k ≥ η, η in (0, 1)")
-      ->capture_default_str()
-      ->group(method);
-  cmd.add_option("--rejected-direction", o.rejected_direction,
-                 "when the quasi-Newton direction fails the angle test: blend (turn it towards "
-                 "the antigradient just enough to pass) or antigradient (the thesis)")
-      ->check(CLI::IsMember(choice_names<RejectedDirection>()))
-      ->capture_default_str()
-      ->group(method);
-  cmd.add_option("--kmin", o.solver.kmin, "initial antigradient steps before quasi-Newton steps")
-      ->capture_default_str()
-      ->group(method);
-  cmd.add_option("--max-iter", o.solver.max_iterations, "maximum number of iterations")
-      ->capture_default_str()
-      ->group(method);
-  cmd.add_option("--time-limit", o.solver.time_limit,
-                 "end the run after this many seconds with the best mesh so far (0: no limit)")
-      ->capture_default_str()
-      ->group(method);
-  cmd.add_option("--tol", o.solver.defect_atol, "stop when the Newton defect ‖g‖ is below this")
-      ->capture_default_str()
-      ->group(method);
-  cmd.add_option("--rtol", o.solver.defect_rtol,
-                 "stop when the Newton defect fell by this factor from its start")
-      ->capture_default_str()
-      ->group(method);
-  cmd.add_flag("--no-practical", o.no_practical,
-               "iterate to the defect tolerance even after the mesh stopped changing (default: "
-               "stop on the practical criterion too)")
-      ->group(method);
-  cmd.add_option("--energy-rtol", o.solver.energy_rtol,
-                 "practical criterion: relative energy decrease per iteration below this ...")
-      ->capture_default_str()
-      ->group(method);
-  cmd.add_option("--move-rtol", o.solver.move_rtol,
-                 "... and no vertex moved more than this times its local cell size")
-      ->capture_default_str()
-      ->group(method);
-  cmd.add_option("--newton-move-rtol", o.solver.newton_move_rtol,
-                 "practical criterion: or a full Newton step (alpha 1, sigma 1) moved no vertex "
-                 "more than this times its local cell size (0: off)")
-      ->capture_default_str()
-      ->group(method);
-  cmd.add_option("--max-trial-move", o.max_trial_move,
-                 "line search along the antigradient: the first trial step moves no vertex more "
-                 "than this times its local cell size (the halving sequence from 1 is kept; 0: "
-                 "start at 1, as with --thesis)")
-      ->default_str(fmt::format("{:g}", SolverOptions{}.max_trial_move))
-      ->group(method);
-  cmd.add_option("--alpha-start-defect", o.solver.initial_previous_defect,
-                 "defect assumed before the first iteration for the α update (thesis: 10)")
-      ->capture_default_str()
-      ->group(method);
-
-  const char* linear = "Linear solvers (PETSc prefixes -hess_ and -riesz_)";
-  cmd.add_option("--linear-solver", o.linear_solver,
-                 "amg (CG + hypre BoomerAMG), jacobi (the thesis' PCG) or direct (Cholesky, MUMPS)")
-      ->check(CLI::IsMember(choice_names<LinearSolverKind>()))
-      ->capture_default_str()
-      ->group(linear);
-  cmd.add_option("--riesz", o.riesz,
-                 "Laplacian of the Riesz representative: optimal (over the optimal cells, the "
-                 "thesis') or current (stiffness of the current mesh)")
-      ->check(CLI::IsMember(choice_names<RieszLaplacian>()))
-      ->capture_default_str()
-      ->group(linear);
-  cmd.add_option("--hess-rtol", o.solver.hessian_rtol,
-                 "relative tolerance of the loose quasi-Newton solve")
-      ->capture_default_str()
-      ->group(linear);
-  cmd.add_option("--hess-forcing-max", o.hessian_forcing_max,
-                 "far from the minimum the quasi-Newton solve may stop at a residual of up to "
-                 "this times the defect, the closer the tighter (0: the thesis' solve throughout, "
-                 "as with --thesis)")
-      ->default_str(fmt::format("{:g}", SolverOptions{}.hessian_forcing_max))
-      ->group(linear);
-  cmd.add_option("--hess-pc", o.hess_pc,
-                 "amg: precondition the quasi-Newton solve with the Riesz solve's AMG hierarchy "
-                 "of the Laplacian (laplacian: more CG iterations, cheaper ones, no hierarchy "
-                 "of H(alpha) built or stored) or with a hierarchy of H(alpha) (hessian)")
-      ->check(CLI::IsMember(choice_names<HessianPreconditioner>()))
-      ->capture_default_str()
-      ->group(linear);
-  cmd.add_option(
-         "--hess-pc-reuse", o.solver.hessian_pc_reuse,
-         "--hess-pc hessian: keep the AMG hierarchy of H(alpha) while the solve needs at most this "
-         "many times the iterations it needed when built (0: rebuild every iteration)")
-      ->capture_default_str()
-      ->group(linear);
-  cmd.add_option("--riesz-rtol", o.riesz_rtol,
-                 fmt::format("relative tolerance of the Riesz solve (default: {:g}, with --thesis "
-                             "{:g})",
-                             SolverOptions{}.riesz_rtol, SolverOptions::kThesisRieszRtol))
-      ->group(linear);
-  cmd.add_flag("--riesz-every-step", o.riesz_every_step,
-               "solve the Riesz system every iteration (default: in quasi-Newton steps only when "
-               "the angle test, estimated with one AMG V-cycle, needs s; always with --thesis)")
-      ->group(linear);
-  const char* boundary = "Boundary (docs/boundary.md)";
-  cmd.add_option("--boundary", o.boundary,
-                 "fixed (boundary vertices stay put, the thesis) or slide (they move along the "
-                 "input's boundary, curved or flat; corners stay put, ridge vertices slide along "
-                 "their ridge)")
-      ->check(CLI::IsMember(choice_names<BoundaryMode>()))
-      ->capture_default_str()
-      ->group(boundary);
-  cmd.add_option("--shape", o.shapes,
-                 "with --boundary slide: boundary part PART (physical group or FEAT3 mesh part) "
-                 "lies exactly on a shape: PART=circle:cx,cy,r | line:px,py,nx,ny | "
-                 "sphere:cx,cy,cz,r | plane:px,py,pz,nx,ny,nz | cylinder:px,py,pz,ax,ay,az,r | "
-                 "levelset:EXPR (repeatable; default: FEAT3 charts, flat faces, else the input's "
-                 "own facets)")
-      ->group(boundary);
-  cmd.add_option("--feature-angle", o.feature_angle,
-                 "with --boundary slide: the boundary has a corner (2D) or ridge (3D) where it "
-                 "turns by more than this many degrees; corners stay put, ridge vertices slide "
-                 "along the ridge")
-      ->capture_default_str()
-      ->group(boundary);
-  cmd.add_flag("--thesis", o.thesis,
-               "the thesis' conventions: uniform desired volumes, fixed boundary vertices, no "
-               "practical stopping criterion (iterate to the defect tolerance), Riesz solve to "
-               "1e-8, 3 Gauss points per direction, antigradient steps where the angle test "
-               "fails; default: off")
-      ->group(method);
+// What --thesis sets, where it differs from the default: "--thesis: 3", "--thesis implies it";
+// empty where it changes nothing.
+template <typename Options>
+std::string thesis_note(const OptionSpec<Options>& spec) {
+  static const Options defaults{};
+  static const Options thesis = Options::thesis();
+  if (!differs(spec, defaults, thesis)) return "";
+  if (spec.negated) return "--thesis implies it";
+  return "--thesis: " + value_text(spec, thesis);
 }
 
-std::string cli_message(const std::string& message) {
-  static const std::map<std::string, std::string, std::less<>> kNames = {
-      {"energy.lambda", "--lambda"},
-      {"energy.mu", "--mu"},
-      {"energy.kappa", "--kappa"},
-      {"energy.gauss_points", "--gauss"},
-      {"solver.alpha0", "--alpha0"},
-      {"solver.eta", "--eta"},
-      {"solver.kmin", "--kmin"},
-      {"solver.max_iterations", "--max-iter"},
-      {"solver.time_limit", "--time-limit"},
-      {"solver.defect_atol", "--tol"},
-      {"solver.defect_rtol", "--rtol"},
-      {"solver.energy_rtol", "--energy-rtol"},
-      {"solver.move_rtol", "--move-rtol"},
-      {"solver.newton_move_rtol", "--newton-move-rtol"},
-      {"solver.initial_previous_defect", "--alpha-start-defect"},
-      {"solver.max_trial_move", "--max-trial-move"},
-      {"solver.hessian_rtol", "--hess-rtol"},
-      {"solver.hessian_forcing_max", "--hess-forcing-max"},
-      {"solver.hessian_pc_reuse", "--hess-pc-reuse"},
-      {"solver.riesz_rtol", "--riesz-rtol"},
-      {"boundary.feature_angle", "--feature-angle"},
-      {"boundary.shapes", "--shape"},
-      {"sizes.power", "--power"},
-      {"sizes.floor", "--floor"},
-      {"sizes.max_ratio", "--max-ratio"},
-      {"sizes.smoothing_passes", "--smooth-sizes"},
-      {"picard.min_updates", "--min-updates"},
-      {"picard.update_every", "--update-every"},
-      {"picard.update_move", "--update-move"},
-      {"picard.update_step_norm", "--update-step"},
-      {"picard.relaxation", "--relaxation"},
-      {"warm_updates", "--step-updates"},
-      {"solver.linear_solver", "--linear-solver"},
-      {"fit", "--fit"}};
-  const std::size_t end = message.find_first_of(" :");
-  if (end == std::string::npos) return message;
-  const auto it = kNames.find(message.substr(0, end));
-  return it != kNames.end() ? it->second + message.substr(end) : message;
+template <typename Options>
+std::string help_text(const OptionSpec<Options>& spec) {
+  const std::string note = thesis_note(spec);
+  return note.empty() ? std::string(spec.help) : fmt::format("{} ({})", spec.help, note);
 }
 
-void resolve(const MethodOptions& o, EnergyOptions& energy, SolverOptions& solver,
-             BoundaryOptions& boundary) {
-  energy = o.energy;
-  solver = o.solver;
-  solver.linear_solver = parse_linear_solver(o.linear_solver);
-  solver.riesz = parse_riesz_laplacian(o.riesz);
-  solver.hessian_pc = parse_hessian_preconditioner(o.hess_pc);
-  solver.rejected_direction = parse_rejected_direction(o.rejected_direction);
-  solver.practical = !o.no_practical;
-  solver.lazy_riesz = !o.riesz_every_step;
-  boundary.mode = parse_boundary_mode(o.boundary);
-  boundary.feature_angle = o.feature_angle;
-  boundary.shapes.clear();
-  for (const std::string& shape : o.shapes) {
+// "boundary.shapes" entries PART=SPEC as (part, spec) pairs.
+Shapes parse_shapes(const std::vector<std::string>& texts) {
+  Shapes shapes;
+  for (const std::string& shape : texts) {
     const auto equals = shape.find('=');
     if (equals == std::string::npos || equals == 0 || equals + 1 == shape.size())
       fail("--shape '{}': expected PART=SHAPE, e.g. hole=circle:0,0,0.5", shape);
-    boundary.shapes.emplace_back(shape.substr(0, equals), shape.substr(equals + 1));
+    shapes.emplace_back(shape.substr(0, equals), shape.substr(equals + 1));
   }
-  if (!o.shapes.empty() && (boundary.mode != BoundaryMode::Slide || o.thesis))
+  return shapes;
+}
+
+// A markdown table cell: | escaped.
+std::string cell(std::string_view text) {
+  std::string out;
+  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+
+}  // namespace
+
+template <typename Options>
+void TaskOptions<Options>::add(CLI::App& cmd, const OptionSpec<Options>& spec) {
+  const std::string flag(spec.flag), help = help_text(spec);
+  static const Options defaults{};
+  CLI::Option* option = std::visit(
+      [&](const auto& access) -> CLI::Option* {
+        using A = std::decay_t<decltype(access)>;
+        if constexpr (std::is_same_v<A, Preset>) {
+          return cmd.add_flag(flag, thesis_, help);
+        } else {
+          auto& value = access(given_);
+          using T = std::decay_t<decltype(value)>;
+          if constexpr (std::is_same_v<T, bool>) {
+            if (!spec.negated) return cmd.add_flag(flag, value, help);
+            return cmd.add_flag_function(
+                flag, [&value](std::int64_t count) { value = count <= 0; }, help);
+          } else if constexpr (std::is_same_v<T, Shapes>) {
+            return cmd.add_option(flag, shape_texts_[spec.path], help);
+          } else if constexpr (std::is_enum_v<T>) {
+            return cmd
+                .add_option_function<std::string>(
+                    flag, [&value](const std::string& name) { value = parse_choice<T>(name); },
+                    help)
+                ->check(CLI::IsMember(choice_names<T>()))
+                ->default_str(default_text(spec, defaults));
+          } else {
+            return cmd.add_option(flag, value, help)->default_str(default_text(spec, defaults));
+          }
+        }
+      },
+      spec.field);
+  if (!spec.group.empty()) option->group(std::string(spec.group));
+  added_.emplace_back(&spec, option);
+}
+
+template <typename Options>
+void TaskOptions<Options>::add(CLI::App& cmd, std::string_view group) {
+  for (const OptionSpec<Options>& spec : task_option_table<Options>())
+    if (!spec.flag.empty() && spec.group == group) add(cmd, spec);
+}
+
+template <typename Options>
+void TaskOptions<Options>::add_remaining(CLI::App& cmd) {
+  // Hidden (group ""), and before the groups that follow so that --help ends as before.
+  cmd.add_flag_callback(
+         "--help-markdown",
+         [] {
+           if (is_root_rank()) std::cout << options_markdown<Options>();
+           throw CLI::Success();
+         },
+         "print the table of these options in docs/user-guide.md")
+      ->group("");
+  for (const OptionSpec<Options>& spec : task_option_table<Options>()) {
+    const bool added =
+        std::any_of(added_.begin(), added_.end(), [&](const auto& a) { return a.first == &spec; });
+    if (!spec.flag.empty() && !added) add(cmd, spec);
+  }
+}
+
+template <typename Options>
+Options TaskOptions<Options>::resolve() const {
+  Options given = given_;
+  for (const auto& [path, texts] : shape_texts_)
+    for (const auto& [spec, option] : added_)
+      if (spec->path == path)
+        std::get<Access<Options, Shapes>>(spec->field)(given) = parse_shapes(texts);
+  Options options = given;
+  if (thesis_) {
+    options = Options::thesis(given);
+    for (const auto& [spec, option] : added_)
+      if (option->count() > 0) copy_field(*spec, given, options);
+  }
+  // A shape needs sliding vertices, and --thesis' boundary is fixed: say it in the flags' words.
+  if (!given.boundary.shapes.empty() && (given.boundary.mode != BoundaryMode::Slide || thesis_))
     fail("--shape needs --boundary slide (with fixed boundary vertices nothing slides on it)");
+  options.validate();
+  return options;
+}
+
+template <typename Options>
+std::string options_markdown() {
+  const Options defaults{}, thesis = Options::thesis();
+  std::string table =
+      "| option | field | default | `--thesis` | what it does |\n|---|---|---|---|---|\n";
+  for (const OptionSpec<Options>& spec : task_option_table<Options>()) {
+    const bool preset = std::holds_alternative<Preset>(spec.field);
+    table += fmt::format(
+        "| {} | {} | {} | {} | {} |\n", spec.flag.empty() ? "—" : fmt::format("`{}`", spec.flag),
+        preset ? "—" : fmt::format("`{}`", spec.path), cell(default_text(spec, defaults)),
+        preset                            ? "on"
+        : differs(spec, defaults, thesis) ? cell(value_text(spec, thesis))
+                                          : "",
+        cell(spec.help));
+  }
+  return table;
+}
+
+template class TaskOptions<SmoothOptions>;
+template class TaskOptions<AdaptOptions>;
+template std::string options_markdown<SmoothOptions>();
+template std::string options_markdown<AdaptOptions>();
+
+std::string cli_message(const std::string& message) {
+  static const std::map<std::string, std::string, std::less<>> kFlags = [] {
+    // The options whose errors the library reports: the ranged ones, and the fields of the
+    // parts ("boundary.shapes"); not "sizes" or "untangle", which begin other messages too.
+    std::map<std::string, std::string, std::less<>> flags = {{"fit", "--fit"}};
+    const auto add = [&flags](const auto& table) {
+      for (const auto& spec : table)
+        if (!spec.flag.empty() &&
+            (!spec.range.text.empty() || spec.path.find('.') != std::string_view::npos))
+          flags.emplace(spec.path, spec.flag);
+    };
+    add(smooth_option_table());
+    add(adapt_option_table());
+    return flags;
+  }();
+  const std::size_t end = message.find_first_of(" :");
+  if (end == std::string::npos) return message;
+  const auto it = kFlags.find(message.substr(0, end));
+  return it != kFlags.end() ? it->second + message.substr(end) : message;
 }
 
 }  // namespace neomesh::app

@@ -1,11 +1,15 @@
-// Options of the optimization method shared by `smooth` and `adapt`: the energy (λ, μ, κ,
-// quadrature), the boundary (fixed or sliding vertices), the quasi-Newton method (α₀, η, k_min,
-// tolerances) and the linear solvers. The command line writes them into the library's option
-// structs (include/neomesh/options.hpp); what it cannot say as a number is a name resolved here.
+// The options of `smooth` and `adapt` on the command line, bound straight to the library's
+// option structs (include/neomesh/options.hpp) from their tables (src/api/option_table.hpp):
+// each table entry is one option of --help with its flag, help text, group and default, and
+// what --thesis changes is said in its help. What the command line adds is small: --thesis
+// applies the preset first and the options given explicitly win over it, and --shape
+// PART=SPEC is split.
 #pragma once
 
-#include <optional>
+#include <map>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -13,46 +17,45 @@
 #include <neomesh/error.hpp>
 #include <neomesh/options.hpp>
 
+#include "api/option_table.hpp"
+
 namespace neomesh::app {
 
-struct MethodOptions {
-  EnergyOptions energy;
-  SolverOptions solver;
-  std::string linear_solver{name(SolverOptions().linear_solver)};
-  std::string rejected_direction{name(SolverOptions().rejected_direction)};
-  std::string riesz{name(SolverOptions().riesz)};
-  std::string hess_pc{name(SolverOptions().hessian_pc)};
-  // Unset: SolverOptions' defaults, the thesis' with --thesis.
-  std::optional<double> riesz_rtol, hessian_forcing_max, max_trial_move;
-  std::string boundary{name(BoundaryOptions().mode)};
-  std::vector<std::string> shapes;  // --shape PART=SPEC
-  double feature_angle = BoundaryOptions().feature_angle;
-  bool no_practical = false;
-  bool riesz_every_step = false;
-  bool thesis = false;
+// The command line's options of a task: Options is SmoothOptions or AdaptOptions.
+template <typename Options>
+class TaskOptions {
+ public:
+  TaskOptions() = default;
+  TaskOptions(const TaskOptions&) = delete;  // the command line holds references into it
+  TaskOptions& operator=(const TaskOptions&) = delete;
+
+  // Adds the options of the task's table in `group` ("": the subcommand's own), in the
+  // table's order, so that a subcommand can place them among options of its own.
+  void add(CLI::App& cmd, std::string_view group);
+  // Adds the options not added yet, and the hidden --help-markdown.
+  void add_remaining(CLI::App& cmd);
+
+  // The options of the command line: with --thesis its preset, then the options given
+  // explicitly (or in a config file) over it; the ranges checked (OptionError).
+  Options resolve() const;
+
+ private:
+  void add(CLI::App& cmd, const OptionSpec<Options>& spec);
+
+  Options given_;  // the defaults, and what the command line wrote over them
+  bool thesis_ = false;
+  std::map<std::string_view, std::vector<std::string>> shape_texts_;  // --shape PART=SPEC
+  std::vector<std::pair<const OptionSpec<Options>*, CLI::Option*>> added_;
 };
 
-void add_method_options(CLI::App& cmd, MethodOptions& options);
+// The task's options as a markdown table (docs/user-guide.md): option, field, default, what
+// --thesis sets, help.
+template <typename Options>
+std::string options_markdown();
 
 // A library error about an option begins with the option's field path ("solver.eta must be
 // ...", "boundary.shapes: ..."): the message with the command line's spelling instead
 // ("--eta must be ...", "--shape: ...").
 std::string cli_message(const std::string& message);
-
-// `options` (SmoothOptions or AdaptOptions) with the method options of the command line: the
-// names resolved, the thesis preset applied with --thesis, the ranges checked (OptionError).
-void resolve(const MethodOptions& method, EnergyOptions& energy, SolverOptions& solver,
-             BoundaryOptions& boundary);
-template <typename Options>
-Options resolve(const MethodOptions& method, Options options) {
-  resolve(method, options.energy, options.solver, options.boundary);
-  if (method.thesis) options = Options::thesis(options);
-  if (method.riesz_rtol) options.solver.riesz_rtol = *method.riesz_rtol;
-  if (method.hessian_forcing_max) options.solver.hessian_forcing_max = *method.hessian_forcing_max;
-  if (method.max_trial_move) options.solver.max_trial_move = *method.max_trial_move;
-  if (method.solver.alpha0) options.solver.alpha0 = method.solver.alpha0;  // over --thesis' 0.3
-  options.validate();
-  return options;
-}
 
 }  // namespace neomesh::app

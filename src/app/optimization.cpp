@@ -350,9 +350,6 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
 
   if (!outputs.report.empty()) {
     const PeakMemory memory = peak_memory(r.mesh.comm());
-    // The α₀ the run started with: a number, as the banner prints it, also when it was "auto".
-    SolverOptions solver = settings.solver;
-    solver.alpha0 = result.problem.alpha0;
     nlohmann::json json = {
         {"input", r.mesh.name()},
         {"output", output.string()},
@@ -360,9 +357,6 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
         {"cells", r.mesh.num_cells()},
         {"vertices", r.mesh.num_vertices()},
         {"free_dofs", result.problem.free_coordinates},
-        {"energy_options", to_json(settings.energy)},
-        {"solver_options", to_json(solver)},
-        {"boundary", std::string(name(settings.boundary.mode))},
         {"boundary_change", boundary_change},
         {"result", to_json(result)},
         {"quality_before", to_json(result.quality_before)},

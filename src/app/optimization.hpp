@@ -69,7 +69,8 @@ class OptimizationRun {
   // Writes `output` with the optimizer's fields and facet groups (one step of a time series).
   void snapshot(const std::filesystem::path& output) const;
   // Prints the outcome and the quality before and after, writes `output` with per-cell fields,
-  // and the optional JSON report (with `extra` merged in), history plot and picture.
+  // and the optional JSON report (with `extra` merged in: the options, to_json(SmoothOptions)
+  // or to_json(AdaptOptions), and what the task adds), history plot and picture.
   void finish(const Result& result, const RunSettings& settings,
               const std::filesystem::path& output, const RunOutputs& outputs,
               const nlohmann::json& extra = {});

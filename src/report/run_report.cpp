@@ -2,6 +2,8 @@
 
 #include <neomesh/options.hpp>
 
+#include "api/option_table.hpp"
+
 #include "core/atomic_file.hpp"
 #include "core/log.hpp"
 
@@ -70,39 +72,51 @@ nlohmann::json to_json(const PhaseTimes& t) {
           {"line_search", t.line_search}};
 }
 
-nlohmann::json to_json(const SolverOptions& o) {
-  return {{"alpha0", o.alpha0 ? nlohmann::json(*o.alpha0) : nlohmann::json("auto")},
-          {"eta", o.eta},
-          {"kmin", o.kmin},
-          {"max_iterations", o.max_iterations},
-          {"time_limit", o.time_limit},
-          {"defect_atol", o.defect_atol},
-          {"defect_rtol", o.defect_rtol},
-          {"practical", o.practical},
-          {"energy_rtol", o.energy_rtol},
-          {"move_rtol", o.move_rtol},
-          {"newton_move_rtol", o.newton_move_rtol},
-          {"armijo_beta", o.armijo_beta},
-          {"max_halvings", o.max_halvings},
-          {"max_trial_move", o.max_trial_move},
-          {"initial_previous_defect", o.initial_previous_defect},
-          {"linear_solver", std::string(name(o.linear_solver))},
-          {"hessian_rtol", o.hessian_rtol},
-          {"hessian_defect_factor", o.hessian_defect_factor},
-          {"hessian_forcing_max", o.hessian_forcing_max},
-          {"riesz_rtol", o.riesz_rtol},
-          {"lazy_riesz", o.lazy_riesz},
-          {"hessian_pc_reuse", o.hessian_pc_reuse},
-          {"hessian_pc", std::string(name(o.hessian_pc))},
-          {"riesz_laplacian", std::string(name(o.riesz))},
-          {"rejected_direction", std::string(name(o.rejected_direction))}};
+namespace {
+
+// The field of `spec` in `o` as the report shows it.
+template <typename Options>
+nlohmann::json option_value(const OptionSpec<Options>& spec, const Options& o) {
+  if (spec.reported) return spec.reported(o);
+  return std::visit(
+      [&](const auto& access) -> nlohmann::json {
+        if constexpr (std::is_same_v<std::decay_t<decltype(access)>, Preset>) {
+          return nullptr;
+        } else {
+          const auto& value = get(access, o);
+          using T = std::decay_t<decltype(value)>;
+          if constexpr (std::is_same_v<T, std::optional<double>>)
+            return value ? nlohmann::json(*value) : nlohmann::json("auto");
+          else if constexpr (std::is_enum_v<T>)
+            return std::string(name(value));
+          else
+            return value;
+        }
+      },
+      spec.field);
 }
 
-nlohmann::json to_json(const EnergyOptions& o) {
-  return {{"lambda", o.lambda},
-          {"mu", o.mu},
-          {"kappa", o.effective_kappa()},
-          {"gauss_points", o.gauss_points}};
+template <typename Options>
+nlohmann::json options_json(const OptionTable<Options>& table, const Options& o) {
+  nlohmann::json report = nlohmann::json::object();
+  for (const OptionSpec<Options>& spec : table) {
+    if (spec.report_object.empty()) continue;  // --thesis: a preset, no value of its own
+    const std::string_view key =
+        !spec.report_key.empty() ? spec.report_key : spec.path.substr(spec.path.rfind('.') + 1);
+    report[std::string(spec.report_object)][std::string(key)] = option_value(spec, o);
+  }
+  report["boundary"] = std::string(name(o.boundary.mode));
+  return report;
+}
+
+}  // namespace
+
+nlohmann::json to_json(const SmoothOptions& o) {
+  return options_json(smooth_option_table(), o);
+}
+
+nlohmann::json to_json(const AdaptOptions& o) {
+  return options_json(adapt_option_table(), o);
 }
 
 nlohmann::json to_json(const Result& r) {

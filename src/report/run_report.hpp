@@ -13,8 +13,12 @@ namespace neomesh {
 
 nlohmann::json to_json(const IterationRecord& rec);
 nlohmann::json to_json(const PhaseTimes& times);
-nlohmann::json to_json(const SolverOptions& options);
-nlohmann::json to_json(const EnergyOptions& options);
+// The options of a run: every option of the task's table (src/api/option_table.hpp) under
+// its field's name, in the object of its part ("energy_options", "solver_options",
+// "boundary_options"; a smoothing's own in "smooth_options"; an adaptation's "size_options",
+// "picard" and "adapt_options"), and the boundary mode as "boundary".
+nlohmann::json to_json(const SmoothOptions& options);
+nlohmann::json to_json(const AdaptOptions& options);
 // The run's iterations, stop reason, energies, defects and phase times (not its quality).
 nlohmann::json to_json(const Result& result);
 nlohmann::json to_json(const UntanglingSummary& untangling);

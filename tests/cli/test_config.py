@@ -72,6 +72,11 @@ def test_thesis_defaults_and_what_wins_over_them(smooth):
     assert report["solver_options"]["hessian_forcing_max"] == 0.05, f"forcing wins: {report}"
     _, report = smooth("--thesis", "--max-trial-move", "8")
     assert report["solver_options"]["max_trial_move"] == 8, f"trial move wins: {report}"
+    # Every option given explicitly wins over --thesis, not only those above.
+    _, report = smooth("--thesis", "--gauss", "2", "--sizes", "input")
+    assert report["energy_options"]["gauss_points"] == 2, f"--gauss wins: {report}"
+    assert report["smooth_options"]["sizes"] == "input", f"--sizes wins: {report}"
+    assert report["boundary_options"]["mode"] == "fixed", f"--thesis boundary: {report}"
 
 
 def test_riesz_solve_every_step_or_when_the_angle_test_needs_it(smooth):

@@ -1,0 +1,33 @@
+#!/usr/bin/env python3
+"""Writes the option tables of docs/user-guide.md from src/api/option_table.cpp: each table between
+its markers is replaced by `neomesh smooth --help-markdown` (`adapt`). The unit test
+OptionDocs.TheUserGuideShowsTheTablesOfSmoothAndAdapt fails until this is run after a change of
+the table.
+
+usage: scripts/update_option_docs.py NEOMESH [SOURCE_DIR]"""
+import os
+import re
+import subprocess
+import sys
+
+
+def main():
+    neomesh = sys.argv[1]
+    source = sys.argv[2] if len(sys.argv) > 2 else os.path.join(os.path.dirname(__file__), "..")
+    guide = os.path.join(source, "docs", "user-guide.md")
+    with open(guide, encoding="utf-8") as f:
+        text = f.read()
+    for command in ["smooth", "adapt"]:
+        table = subprocess.run([neomesh, command, "--help-markdown"], check=True,
+                               capture_output=True, text=True).stdout
+        pattern = re.compile(rf"(<!-- options of {command}: generated[^\n]*\n).*?"
+                             rf"(<!-- end of the options of {command} -->)", re.S)
+        text, count = pattern.subn(lambda m: m.group(1) + table + m.group(2), text)
+        if count != 1:
+            sys.exit(f"{guide}: no markers of the options of {command}")
+    with open(guide, "w", encoding="utf-8") as f:
+        f.write(text)
+
+
+if __name__ == "__main__":
+    main()
