@@ -89,8 +89,9 @@ void coherent_shares(const MeshView& view, const DofMap& dofs,
       for (int i = 0; i < Dim; ++i)
         for (int j = i; j < Dim; ++j) m(i, j) = m(j, i) = mean[i * Dim + j][c] / share[c];
       const double anisotropy = log_anisotropy<Dim>(m);
-      // log f: how much more the cell is stretched than its edges are long.
-      const double shear = own[c] - std::log(edge_ratios[c]);
+      // log f: how much more the cell is stretched than its edges are long (not for simplices,
+      // see the header).
+      const double shear = is_simplex(type) ? 0.0 : own[c] - std::log(edge_ratios[c]);
       kept[c] = ramp(anisotropy, std::log(kStretched.from), std::log(kStretched.to)) *
                 ramp(anisotropy / std::max(mean_own[c] / share[c], std::log(1.5)), kCoherence.from,
                      kCoherence.to) *

@@ -22,7 +22,9 @@
 // cell whose stretch σ_max/σ_min exceeds its edge ratio (longest over shortest edge) by the
 // factor f keeps the share w · (1 − ramp(f; kSheared)) only. (A 10:1 rectangle or right
 // triangle: f = 1–1.15; a rhombus of 30°: f = 3.7; the thesis' square-midpoint, a grid
-// deformed by moving its middle vertex: up to 25.)
+// deformed by moving its middle vertex: up to 25.) Simplices are judged by coherence alone:
+// each is an affine image of the ideal one, and on FEAT3's triangle meshes (venturi-pipe-tria,
+// the rotor's) the factor made the worst cell worse.
 // A kept cell is as thin as its shortest edge, so its energy is small against that of its
 // neighbours, which would squash it (a boundary layer's first heights: ±8 % with k = 1):
 // its weight k = (C a)^w, with a = σ_max(V)^d the volume of the isotropic cell spanning its
