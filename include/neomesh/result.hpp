@@ -129,6 +129,15 @@ struct CornerPhaseSummary {
   bool gave_up = false;  // lifting stalled with a cell inverted: the optimum was kept
 };
 
+// The local repair of the worst cells after the optimization (docs/method.md, "Worst cells"):
+// interior vertices of the worst cells moved to raise the worst scaled Jacobian around them.
+struct WorstCellRepairSummary {
+  double min_scaled_jacobian_before = 0.0;  // of the whole mesh
+  double min_scaled_jacobian_after = 0.0;
+  std::int64_t vertices_moved = 0;  // distinct vertices
+  int sweeps = 0;
+};
+
 // Fitting to the zero set of a level set (Optimizer::adapt with a LevelSet, docs/adaptivity.md).
 struct FitSummary {
   std::string level_set;  // φ's expression
@@ -152,9 +161,10 @@ struct Result {
   // the call started (0 with fixed boundary vertices; with sliding ones bounded by the
   // input's discretization), and the relative change of its volume.
   double boundary_distance = 0.0, volume_change = 0.0;
-  std::optional<UntanglingSummary> untangling;      // smooth, if cells were inverted
-  std::optional<CornerPhaseSummary> corner_phase;   // smooth, if a corner had flattened
-  std::optional<QualityGuardResult> quality_guard;  // smooth, unless switched off
+  std::optional<UntanglingSummary> untangling;              // smooth, if cells were inverted
+  std::optional<CornerPhaseSummary> corner_phase;           // smooth, if a corner had flattened
+  std::optional<WorstCellRepairSummary> worst_cell_repair;  // unless the guard is off
+  std::optional<QualityGuardResult> quality_guard;          // smooth, unless switched off
   std::vector<int> update_iterations;  // adapt: iterations after which volumes were updated
   VolumeRatioStats volume_ratio;       // adapt: Q = actual / desired volume at the end
   std::optional<FitSummary> fit;       // adapt with a LevelSet

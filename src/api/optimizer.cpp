@@ -21,6 +21,7 @@
 #include "solver/quasi_newton.hpp"
 #include "solver/targets.hpp"
 #include "solver/untangle.hpp"
+#include "solver/worst_cell_repair.hpp"
 #include "solver/worst_cells.hpp"
 
 namespace neomesh {
@@ -225,10 +226,18 @@ void Optimizer::Impl::finish(Result& result) {
 }
 
 void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& method,
-                                          const Observer& observer, Result& result) {
-  if (result.reason != StopReason::TimeLimit)
+                                          const Observer& observer, Result& result, bool repair) {
+  if (result.reason != StopReason::TimeLimit) {
     result.corner_phase = lift_flat_corners(*functional, view(), dofs(), x, method, cell_size,
                                             result, observer.iteration);
+    if (repair) {
+      const WorstCellRepair r = repair_worst_cells(view(), dofs(), movable_vertices(), x);
+      result.worst_cell_repair = {.min_scaled_jacobian_before = r.min_before,
+                                  .min_scaled_jacobian_after = r.min_after,
+                                  .vertices_moved = r.vertices_moved,
+                                  .sweeps = r.sweeps};
+    }
+  }
   // The threshold is the file's worst cell, or where placing vertices on their charts left it.
   result.quality_guard = guard_worst_quality(
       view(), dofs(), input, x, [this](Vec y) { functional->project_onto_boundary(y); },
@@ -236,6 +245,24 @@ void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& m
           ? std::nullopt
           : std::optional(result.quality_before.scaled_jacobian.min));
   if (result.quality_guard->vertices_moved > 0) result.final_energy = functional->value(x);
+}
+
+std::vector<std::uint8_t> Optimizer::Impl::movable_vertices() const {
+  const int d = view().dim;
+  const std::vector<std::uint8_t> fixed = boundary->fixed_dofs().flags;
+  std::vector<std::uint8_t> movable(view().num_vertices);
+  for (PetscInt v = 0; v < view().num_vertices; ++v)
+    movable[v] =
+        !view().on_boundary[v] && std::none_of(fixed.begin() + d * v, fixed.begin() + d * (v + 1),
+                                               [](std::uint8_t f) { return f != 0; });
+  for (PetscInt v : boundary->sliding_vertices().vertices) movable[v] = 0;
+  // A cell that keeps (part of) its input cell is the mesh's design: its vertices stay.
+  if (!input_share.empty())
+    for (const CellBlock& block : view().blocks)
+      for (PetscInt c = 0; c < block.size(); ++c)
+        if (input_share[block.first_cell + c] > 0.0)
+          for (int i = 0; i < facts(block.type).vertices; ++i) movable[block.cell(c)[i]] = 0;
+  return movable;
 }
 
 VolumeRatioStats Optimizer::Impl::volume_ratio() const {
@@ -326,7 +353,8 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   const OwnedVec input = copy_of(r.x);
   if (options.untangle) result.untangling = r.untangle(method, observer);
   copy_run(minimize(*r.functional, r.x, method, r.cell_size, observer.iteration), result);
-  if (options.quality_guard) r.protect_worst_cells(input, method, observer, result);
+  if (options.quality_guard)
+    r.protect_worst_cells(input, method, observer, result, options.repair_worst_cells);
   r.finish(result);
   result.seconds = MPI_Wtime() - r.started;
   return result;

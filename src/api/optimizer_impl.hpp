@@ -65,10 +65,11 @@ struct Optimizer::Impl {
   void fit(const LevelSet& level_set, const SizeField& field, const AdaptOptions& options,
            const PicardOptions& last_stage, const Observer& observer, Result& result);
   // The worst cells once the method has stopped (smooth, adapt): corners it left nearly flat
-  // are lifted (worst_cells.hpp), then no cell stays below the input's worst (quality_guard.hpp;
+  // are lifted (worst_cells.hpp), with `repair` the worst cells are repaired locally
+  // (worst_cell_repair.hpp), then no cell stays below the input's worst (quality_guard.hpp;
   // `input`: x where the call started).
   void protect_worst_cells(Vec input, const QuasiNewtonOptions& method, const Observer& observer,
-                           Result& result);
+                           Result& result, bool repair = false);
   // Q = actual / desired volume at x.
   VolumeRatioStats volume_ratio() const;
   // If cells are inverted at x, untangles them (docs/untangling.md) towards the current desired
@@ -81,6 +82,9 @@ struct Optimizer::Impl {
   QuasiNewtonOptions method(const SolverOptions& solver) const;
   // Volume of each local cell at the mesh's coordinates (where a call starts).
   std::vector<double> cell_volumes() const;
+  // Per local vertex: 1 if it may move in the worst-cell repair (interior, no fixed
+  // coordinate, not sliding).
+  std::vector<std::uint8_t> movable_vertices() const;
   // Moves the mesh to x and sets result's quality_after and boundary change; throws
   // Error if a cell is inverted (the energy is infinite there, so the method cannot produce
   // one: a promise kept for every output).

@@ -143,6 +143,15 @@ void print_corner_phase(const CornerPhaseSummary& phase) {
         phase.min_scaled_jacobian_before, phase.iterations, phase.min_scaled_jacobian_after);
 }
 
+// What the local repair of the worst cells did, if it moved a vertex (docs/method.md, "Worst
+// cells").
+void print_worst_cell_repair(const WorstCellRepairSummary& repair) {
+  if (repair.vertices_moved == 0) return;
+  say("worst cells: {} interior vertices moved to lift the worst cells around them (min scaled "
+      "Jacobian {:.4f} -> {:.4f})\n",
+      repair.vertices_moved, repair.min_scaled_jacobian_before, repair.min_scaled_jacobian_after);
+}
+
 }  // namespace
 
 struct OptimizationRun::Impl {
@@ -324,6 +333,7 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
                              const nlohmann::json& extra) {
   Impl& r = *impl_;
   if (result.corner_phase) print_corner_phase(*result.corner_phase);
+  if (result.worst_cell_repair) print_worst_cell_repair(*result.worst_cell_repair);
   if (result.quality_guard) print_quality_guard(*result.quality_guard);
   always("stopped after {} iterations: {}\nF {:.6g} -> {:.6g}, Newton defect {:.3e} -> {:.3e}\n",
          result.history.size(), describe(result.reason), result.initial_energy, result.final_energy,
@@ -374,6 +384,7 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
                          {"ideal_because_tangled", result.problem.targets.ideal_because_tangled}};
     if (result.untangling) json["untangling"] = to_json(*result.untangling);
     if (result.corner_phase) json["corner_phase"] = to_json(*result.corner_phase);
+    if (result.worst_cell_repair) json["worst_cell_repair"] = to_json(*result.worst_cell_repair);
     if (result.quality_guard) json["quality_guard"] = to_json(*result.quality_guard);
     if (extra.is_object()) json.update(extra);
     on_root(r.mesh.comm(), [&] { write_json(json, outputs.report); });

@@ -341,6 +341,16 @@ std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const 
   return sj;
 }
 
+double cell_scaled_jacobian(CellType type, const double* coords) {
+  double sj = 0.0;
+  visit_cell_type(type, [&]<CellType Type>(CellTag<Type>) {
+    using Traits = CellTraits<Type>;
+    sj = scaled_jacobian<Type>(
+        Eigen::Map<const typename Traits::Coordinates>(coords, Traits::dim, Traits::vertices));
+  });
+  return sj;
+}
+
 std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const double> coords) {
   std::vector<double> ratio(view.num_cells);
   for_each_cell(view, coords, [&ratio]<CellType Type>(std::size_t i, const auto& x) {

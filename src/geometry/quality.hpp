@@ -62,6 +62,9 @@ CellQuality cell_quality(const MeshView& view, std::span<const double> coords);
 std::vector<double> cell_volumes(const MeshView& view, std::span<const double> coords);
 std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const double> coords);
 std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const double> coords);
+// The scaled Jacobian of one cell of `type` with vertex coordinates `coords` (dim values per
+// vertex, in the cell's canonical order).
+double cell_scaled_jacobian(CellType type, const double* coords);
 
 // The metrics of `quality` as the per-cell fields of an output (.vtu), by the names the
 // reports and `--picture-field` use.

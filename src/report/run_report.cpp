@@ -132,6 +132,13 @@ nlohmann::json to_json(const Result& r) {
           {"history", history}};
 }
 
+nlohmann::json to_json(const WorstCellRepairSummary& repair) {
+  return {{"min_scaled_jacobian_before", repair.min_scaled_jacobian_before},
+          {"min_scaled_jacobian_after", repair.min_scaled_jacobian_after},
+          {"vertices_moved", repair.vertices_moved},
+          {"sweeps", repair.sweeps}};
+}
+
 nlohmann::json to_json(const CornerPhaseSummary& phase) {
   return {{"min_scaled_jacobian_before", phase.min_scaled_jacobian_before},
           {"min_scaled_jacobian_after", phase.min_scaled_jacobian_after},

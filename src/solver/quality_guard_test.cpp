@@ -5,22 +5,18 @@
 #include "geometry/quality.hpp"
 #include "mesh/generate.hpp"
 #include "mesh/serial_view.hpp"
+#include "solver/testing/coordinates.hpp"
 
 namespace neomesh {
 namespace {
+
+using testing::vector_of;
 
 double min_scaled_jacobian(const MeshView& view, Vec x) {
   VecReadView xv(x);
   const std::vector<double> sj =
       cell_quality(view, std::span<const double>(xv.data(), xv.size())).scaled_jacobian;
   return *std::min_element(sj.begin(), sj.end());
-}
-
-OwnedVec vector_of(const DofMap& dofs, const std::vector<double>& coords) {
-  OwnedVec v = dofs.create_global_vector();
-  VecWriteView out(v);
-  for (PetscInt i = 0; i < out.size(); ++i) out[i] = coords[i];
-  return v;
 }
 
 // Input: a jittered 6×6 grid. "Optimized": the uniform grid, except that vertex 8 (interior)

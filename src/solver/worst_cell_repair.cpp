@@ -1,0 +1,296 @@
+#include "solver/worst_cell_repair.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <set>
+#include <vector>
+
+#include "geometry/quality.hpp"
+#include "mesh/cell_type.hpp"
+#include "mesh/gather.hpp"
+
+namespace neomesh {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Step lengths of the search, in units of the vertex's shortest edge: the longest first; a
+// shorter one is tried only when no direction of a longer one improved.
+constexpr double kSteps[] = {0.3, 0.1, 0.03, 0.01};
+// A move must raise the worst cell around the vertex by more than this.
+constexpr double kGain = 1e-9;
+
+// The whole mesh on rank 0, vertices and cells in input order.
+struct WholeMesh {
+  int dim = 0;
+  std::vector<std::int64_t> vertex_id;  // input number per vertex (ascending)
+  std::vector<double> coords;           // dim per vertex
+  std::vector<std::uint8_t> movable;    // per vertex
+  std::vector<CellType> types;          // per cell (ascending input number)
+  std::vector<std::int64_t> offsets;    // cell c's vertices: vertices[offsets[c], offsets[c+1])
+  std::vector<std::int64_t> vertices;   // indices into vertex_id
+};
+
+// Gathers owned vertices and all cells to rank 0 by input number.
+WholeMesh gather_whole_mesh(const MeshView& view, std::span<const double> local,
+                            std::span<const std::uint8_t> movable, MPI_Comm comm) {
+  const int d = view.dim;
+  std::vector<std::int64_t> ids;
+  std::vector<double> coords;
+  std::vector<int> flags;
+  for (PetscInt v = 0; v < view.num_vertices; ++v) {
+    if (!view.owned[v]) continue;
+    ids.push_back(view.input_vertex[v]);
+    coords.insert(coords.end(), local.begin() + d * v, local.begin() + d * (v + 1));
+    flags.push_back(movable[v]);
+  }
+  std::vector<std::int64_t> cell_ids, cell_vertices;
+  std::vector<int> types;
+  for (const CellBlock& block : view.blocks)
+    for (PetscInt c = 0; c < block.size(); ++c) {
+      cell_ids.push_back(view.global_cell[block.first_cell + c]);
+      types.push_back(static_cast<int>(block.type));
+      const PetscInt* vertex = block.cell(c);
+      for (int i = 0; i < facts(block.type).vertices; ++i)
+        cell_vertices.push_back(view.input_vertex[vertex[i]]);
+    }
+  const auto all_ids = gatherv(comm, ids, MPI_INT64_T);
+  const auto all_coords = gatherv(comm, coords, MPI_DOUBLE);
+  const auto all_flags = gatherv(comm, flags, MPI_INT);
+  const auto all_cell_ids = gatherv(comm, cell_ids, MPI_INT64_T);
+  const auto all_types = gatherv(comm, types, MPI_INT);
+  const auto all_cell_vertices = gatherv(comm, cell_vertices, MPI_INT64_T);
+
+  WholeMesh m;
+  m.dim = d;
+  if (mpi_rank(comm) != 0) return m;
+  std::vector<std::size_t> order(all_ids.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return all_ids[a] < all_ids[b]; });
+  for (std::size_t k : order) {
+    m.vertex_id.push_back(all_ids[k]);
+    m.coords.insert(m.coords.end(), all_coords.begin() + d * k, all_coords.begin() + d * (k + 1));
+    m.movable.push_back(static_cast<std::uint8_t>(all_flags[k]));
+  }
+  auto index_of = [&m](std::int64_t id) {
+    return std::lower_bound(m.vertex_id.begin(), m.vertex_id.end(), id) - m.vertex_id.begin();
+  };
+  std::vector<std::int64_t> first(all_cell_ids.size() + 1, 0);
+  for (std::size_t c = 0; c < all_cell_ids.size(); ++c)
+    first[c + 1] = first[c] + facts(static_cast<CellType>(all_types[c])).vertices;
+  std::vector<std::size_t> cells(all_cell_ids.size());
+  std::iota(cells.begin(), cells.end(), 0);
+  std::sort(cells.begin(), cells.end(),
+            [&](auto a, auto b) { return all_cell_ids[a] < all_cell_ids[b]; });
+  m.offsets.push_back(0);
+  for (std::size_t c : cells) {
+    m.types.push_back(static_cast<CellType>(all_types[c]));
+    for (std::int64_t k = first[c]; k < first[c + 1]; ++k)
+      m.vertices.push_back(index_of(all_cell_vertices[k]));
+    m.offsets.push_back(static_cast<std::int64_t>(m.vertices.size()));
+  }
+  return m;
+}
+
+// Unit directions of the search: 16 in the plane, the 26 towards a cube's neighbours in 3D.
+std::vector<std::vector<double>> directions(int dim) {
+  std::vector<std::vector<double>> dirs;
+  if (dim == 2) {
+    for (int k = 0; k < 16; ++k) {
+      const double a = 2.0 * std::numbers::pi * k / 16;
+      dirs.push_back({std::cos(a), std::sin(a)});
+    }
+    return dirs;
+  }
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      for (int k = -1; k <= 1; ++k) {
+        if (i == 0 && j == 0 && k == 0) continue;
+        const double n = std::sqrt(double(i * i + j * j + k * k));
+        dirs.push_back({i / n, j / n, k / n});
+      }
+  return dirs;
+}
+
+// The search on rank 0. Returns the indices of the moved vertices.
+class Repair {
+ public:
+  explicit Repair(WholeMesh& m)
+      : m_(m),
+        star_first_(m.vertex_id.size() + 1, 0),
+        star_(m.vertices.size()),
+        sj_(m.types.size()) {
+    for (std::int64_t v : m.vertices) ++star_first_[v + 1];
+    std::partial_sum(star_first_.begin(), star_first_.end(), star_first_.begin());
+    std::vector<std::int64_t> next(star_first_.begin(), star_first_.end() - 1);
+    for (std::size_t c = 0; c < m.types.size(); ++c) {
+      for (std::int64_t k = m.offsets[c]; k < m.offsets[c + 1]; ++k)
+        star_[next[m.vertices[k]]++] = static_cast<std::int64_t>(c);
+      sj_[c] = scaled_jacobian(c);
+    }
+  }
+
+  double min_quality() const {
+    return sj_.empty() ? kInfinity : *std::min_element(sj_.begin(), sj_.end());
+  }
+
+  // One sweep over the worst cells' neighbourhood; false if no vertex moved.
+  bool sweep(std::set<std::int64_t>& moved) {
+    std::vector<std::int64_t> cells(sj_.size());
+    std::iota(cells.begin(), cells.end(), 0);
+    const std::size_t worst = std::min<std::size_t>(kRepairWorstCells, cells.size());
+    std::partial_sort(cells.begin(), cells.begin() + worst, cells.end(), [this](auto a, auto b) {
+      return sj_[a] < sj_[b] || (sj_[a] == sj_[b] && a < b);
+    });
+    // The worst cells' vertices and the vertices of the cells around those.
+    std::set<std::int64_t> candidates;
+    for (std::size_t w = 0; w < worst; ++w)
+      for (std::int64_t v : cell_vertices(cells[w]))
+        for (std::int64_t c : star(v))
+          for (std::int64_t u : cell_vertices(c))
+            if (m_.movable[u]) candidates.insert(u);
+    bool any = false;
+    for (std::int64_t v : candidates)
+      if (improve(v)) {
+        moved.insert(v);
+        any = true;
+      }
+    return any;
+  }
+
+ private:
+  std::span<const std::int64_t> cell_vertices(std::int64_t c) const {
+    return {m_.vertices.data() + m_.offsets[c],
+            static_cast<std::size_t>(m_.offsets[c + 1] - m_.offsets[c])};
+  }
+
+  // The cells of vertex v.
+  std::span<const std::int64_t> star(std::int64_t v) const {
+    return {star_.data() + star_first_[v],
+            static_cast<std::size_t>(star_first_[v + 1] - star_first_[v])};
+  }
+
+  double scaled_jacobian(std::int64_t c) const {
+    const int d = m_.dim;
+    double x[3 * 8];
+    int i = 0;
+    for (std::int64_t v : cell_vertices(c)) {
+      for (int a = 0; a < d; ++a) x[d * i + a] = m_.coords[d * v + a];
+      ++i;
+    }
+    return cell_scaled_jacobian(m_.types[c], x);
+  }
+
+  double worst_around(std::int64_t v) const {
+    double q = kInfinity;
+    for (std::int64_t c : star(v)) q = std::min(q, scaled_jacobian(c));
+    return q;
+  }
+
+  // Moves v to the best of the trial points if that raises the worst cell around it.
+  bool improve(std::int64_t v) {
+    const int d = m_.dim;
+    double* p = m_.coords.data() + d * v;
+    double h = kInfinity;  // the shortest edge length from v in its cells (an upper bound)
+    for (std::int64_t c : star(v))
+      for (std::int64_t u : cell_vertices(c))
+        if (u != v) {
+          double s = 0.0;
+          for (int a = 0; a < d; ++a) s += std::pow(m_.coords[d * u + a] - p[a], 2);
+          h = std::min(h, std::sqrt(s));
+        }
+    if (!(h > 0.0) || !std::isfinite(h)) return false;
+    const double base = worst_around(v);
+    double best = base;
+    std::vector<double> best_move;
+    for (double step : kSteps) {
+      for (const std::vector<double>& dir : dirs_) {
+        for (int a = 0; a < d; ++a) p[a] += step * h * dir[a];
+        const double q = worst_around(v);
+        for (int a = 0; a < d; ++a) p[a] -= step * h * dir[a];
+        if (q > best + kGain) {
+          best = q;
+          best_move.assign(dir.begin(), dir.end());
+          for (double& x : best_move) x *= step * h;
+        }
+      }
+      if (!best_move.empty()) break;
+    }
+    if (best_move.empty()) return false;
+    for (int a = 0; a < d; ++a) p[a] += best_move[a];
+    for (std::int64_t c : star(v)) sj_[c] = scaled_jacobian(c);
+    return true;
+  }
+
+  WholeMesh& m_;
+  std::vector<std::int64_t> star_first_,
+      star_;                // the cells of vertex v: star_[first[v], first[v+1])
+  std::vector<double> sj_;  // per cell
+  std::vector<std::vector<double>> dirs_ = directions(m_.dim);
+};
+
+}  // namespace
+
+WorstCellRepair repair_worst_cells(const MeshView& view, const DofMap& dofs,
+                                   std::span<const std::uint8_t> movable, Vec x) {
+  const MPI_Comm comm = dofs.comm();
+  const int d = view.dim;
+  std::vector<double> local(dofs.num_local_dofs());
+  dofs.global_to_local(x, local);
+  WholeMesh mesh = gather_whole_mesh(view, local, movable, comm);
+
+  WorstCellRepair summary;
+  std::vector<std::int64_t> moved_ids;
+  std::vector<double> moved_coords;
+  if (mpi_rank(comm) == 0) {
+    Repair repair(mesh);
+    summary.min_before = repair.min_quality();
+    std::set<std::int64_t> moved;
+    // Until a sweep no longer lifts the worst cell (moves elsewhere may go on improving a
+    // little for long).
+    for (double worst = summary.min_before; summary.sweeps < kRepairMaxSweeps;) {
+      const bool any = repair.sweep(moved);
+      ++summary.sweeps;
+      const double now = repair.min_quality();
+      if (!any || !(now > worst + kGain)) break;
+      worst = now;
+    }
+    summary.min_after = repair.min_quality();
+    summary.vertices_moved = static_cast<std::int64_t>(moved.size());
+    for (std::int64_t v : moved) {
+      moved_ids.push_back(mesh.vertex_id[v]);
+      moved_coords.insert(moved_coords.end(), mesh.coords.begin() + d * v,
+                          mesh.coords.begin() + d * (v + 1));
+    }
+  }
+  MPI_Bcast(&summary.min_before, 1, MPI_DOUBLE, 0, comm);
+  MPI_Bcast(&summary.min_after, 1, MPI_DOUBLE, 0, comm);
+  MPI_Bcast(&summary.vertices_moved, 1, MPI_INT64_T, 0, comm);
+  MPI_Bcast(&summary.sweeps, 1, MPI_INT, 0, comm);
+  if (summary.vertices_moved == 0) return summary;
+  moved_ids.resize(summary.vertices_moved);
+  moved_coords.resize(d * summary.vertices_moved);
+  MPI_Bcast(moved_ids.data(), static_cast<int>(moved_ids.size()), MPI_INT64_T, 0, comm);
+  MPI_Bcast(moved_coords.data(), static_cast<int>(moved_coords.size()), MPI_DOUBLE, 0, comm);
+
+  // Each rank writes its owned vertices among the moved ones (moved_ids is ascending).
+  PetscInt first = 0;
+  NM_PETSC(VecGetOwnershipRange(x, &first, nullptr));
+  PetscScalar* values = nullptr;
+  NM_PETSC(VecGetArray(x, &values));
+  for (PetscInt v = 0; v < view.num_vertices; ++v) {
+    if (!view.owned[v]) continue;
+    const auto it = std::lower_bound(moved_ids.begin(), moved_ids.end(), view.input_vertex[v]);
+    if (it == moved_ids.end() || *it != view.input_vertex[v]) continue;
+    const std::size_t k = static_cast<std::size_t>(it - moved_ids.begin());
+    for (int a = 0; a < d; ++a)
+      values[dofs.global_dof()[d * v + a] - first] = moved_coords[d * k + a];
+  }
+  NM_PETSC(VecRestoreArray(x, &values));
+  return summary;
+}
+
+}  // namespace neomesh

@@ -1,0 +1,40 @@
+// The worst cells repaired locally (docs/method.md, "Worst cells"). The energy is a sum over
+// cells: its optimum may leave a few cells far worse than all others where the boundary
+// squeezes them (FEAT3's rotor: two cells at a scaled Jacobian of 0.30 in a mesh whose next
+// worst is 0.52), because lifting them costs more energy elsewhere than it saves. Users judge a
+// mesh by its worst cell, so after the optimization each interior vertex of the worst cells and
+// of their neighbours is moved, one at a time, to where the worst cell around it is best: a
+// pattern search over directions and step lengths (optimization-based smoothing, Freitag and
+// Plassmann's max–min), accepting a move only if it raises the minimum scaled Jacobian of the
+// vertex's cells. So no cell gets worse than the worst cell was, and the mean barely moves.
+//
+// Boundary vertices stay (sliding ones would need their geometry). The search runs on rank 0
+// over the whole mesh in input numbering, so every number of ranks gives the same result.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "mesh/dof_map.hpp"
+#include "mesh/mesh_view.hpp"
+
+namespace neomesh {
+
+// What the repair did.
+struct WorstCellRepair {
+  double min_before = 0.0, min_after = 0.0;  // the whole mesh's worst scaled Jacobian
+  std::int64_t vertices_moved = 0;           // distinct vertices
+  int sweeps = 0;
+};
+
+// The worst cells taken per sweep, and the sweeps at most; the repair ends earlier, at the
+// first sweep that does not lift the worst cell.
+inline constexpr int kRepairWorstCells = 6;
+inline constexpr int kRepairMaxSweeps = 100;
+
+// `movable`: per local vertex, 1 if it may move. x (a global Vec laid out by `dofs`) is changed
+// in place. Collective.
+WorstCellRepair repair_worst_cells(const MeshView& view, const DofMap& dofs,
+                                   std::span<const std::uint8_t> movable, Vec x);
+
+}  // namespace neomesh

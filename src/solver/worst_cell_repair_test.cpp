@@ -1,0 +1,70 @@
+#include "solver/worst_cell_repair.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "geometry/quality.hpp"
+#include "mesh/generate.hpp"
+#include "mesh/serial_view.hpp"
+#include "solver/testing/coordinates.hpp"
+
+namespace neomesh {
+namespace {
+
+using testing::vector_of;
+
+std::vector<double> scaled_jacobians(const MeshView& view, Vec x) {
+  VecReadView xv(x);
+  return cell_scaled_jacobians(view, std::span<const double>(xv.data(), xv.size()));
+}
+
+// A uniform 6×6 grid with one interior vertex pushed towards a neighbour: its four cells are
+// the worst; moving it (and its neighbours) back lifts them, boundary vertices stay.
+TEST(WorstCellRepair, LiftsTheWorstCellsAndNeverLowersTheMinimum) {
+  MeshData grid = square_random(6, 0.0, 3);
+  const PetscInt bad_vertex = 8;
+  grid.coords[2 * bad_vertex] += 0.12;
+  grid.coords[2 * bad_vertex + 1] += 0.05;
+  const MeshView view = serial_view(grid);
+  const DofMap dofs = DofMap::serial(2, view.num_vertices);
+  OwnedVec x = vector_of(dofs, grid.coords);
+  const std::vector<double> before = scaled_jacobians(view, x);
+  const double worst_before = *std::min_element(before.begin(), before.end());
+  ASSERT_LT(worst_before, 0.8) << "the setup must make a bad cell";
+  std::vector<std::uint8_t> movable(view.num_vertices);
+  for (PetscInt v = 0; v < view.num_vertices; ++v) movable[v] = !view.on_boundary[v];
+
+  const WorstCellRepair r = repair_worst_cells(view, dofs, movable, x);
+
+  const std::vector<double> after = scaled_jacobians(view, x);
+  const double worst_after = *std::min_element(after.begin(), after.end());
+  EXPECT_DOUBLE_EQ(r.min_before, worst_before);
+  EXPECT_DOUBLE_EQ(r.min_after, worst_after);
+  EXPECT_GT(worst_after, 0.95) << "the grid's own cells are squares";
+  EXPECT_GE(r.vertices_moved, 1);
+  EXPECT_GE(r.sweeps, 1);
+  VecReadView xv(x);
+  for (PetscInt v = 0; v < view.num_vertices; ++v)
+    if (view.on_boundary[v]) {
+      EXPECT_EQ(xv[2 * v], grid.coords[2 * v]) << "boundary vertex " << v;
+      EXPECT_EQ(xv[2 * v + 1], grid.coords[2 * v + 1]) << "boundary vertex " << v;
+    }
+}
+
+TEST(WorstCellRepair, MovesNothingThatIsNotMovable) {
+  MeshData grid = square_random(6, 0.0, 3);
+  grid.coords[2 * 8] += 0.12;
+  const MeshView view = serial_view(grid);
+  const DofMap dofs = DofMap::serial(2, view.num_vertices);
+  OwnedVec x = vector_of(dofs, grid.coords);
+  const std::vector<std::uint8_t> movable(view.num_vertices, 0);
+  const WorstCellRepair r = repair_worst_cells(view, dofs, movable, x);
+  EXPECT_EQ(r.vertices_moved, 0);
+  EXPECT_EQ(r.min_after, r.min_before);
+  VecReadView xv(x);
+  for (PetscInt i = 0; i < xv.size(); ++i) EXPECT_EQ(xv[i], grid.coords[i]);
+}
+
+}  // namespace
+}  // namespace neomesh
