@@ -1,0 +1,252 @@
+// The input's point and cell data and its facet and point groups, written back: read -> write ->
+// read gives the same arrays (names, components, values, types) and groups in every format that
+// has a place for them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "core/testing/test_data.hpp"
+#include "mesh/exodus_file.hpp"
+#include "mesh/gather.hpp"
+#include "mesh/mesh_impl.hpp"
+#include "mesh/mesh_io.hpp"
+#include "mesh/vtk_reader.hpp"
+#include "mesh/vtu_reader.hpp"
+
+namespace neomesh {
+namespace {
+
+using testing::data_path;
+using testing::scratch_dir;
+
+// A quadrilateral and two triangles (2D), an unused point (6), a line in the facet group 7
+// ("left side"), an untagged line and a vertex tagged 9 ("corner"; both skipped); the
+// quadrilateral is in the cell group 1 ("solid"), the triangles in 2 (unnamed). Point data:
+// "temperature" (Float64) and "velocity" (Float32, 3 components); cell data: "material"
+// (Int32) and "volume" (a name of neomesh's own fields).
+constexpr const char* kVtu = R"(<?xml version="1.0"?>
+<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">
+<UnstructuredGrid>
+<FieldData>
+<DataArray type="Int32" Name="left side" NumberOfTuples="2" format="ascii">7 1</DataArray>
+<DataArray type="Int32" Name="corner" NumberOfTuples="2" format="ascii">9 0</DataArray>
+<DataArray type="Int32" Name="solid" NumberOfTuples="2" format="ascii">1 2</DataArray>
+<DataArray type="String" Name="comment" NumberOfTuples="1" format="ascii">104 105 0</DataArray>
+</FieldData>
+<Piece NumberOfPoints="7" NumberOfCells="6">
+<PointData>
+<DataArray type="Float64" Name="temperature" format="ascii">0 1.5 3 4.5 6 7.5 9</DataArray>
+<DataArray type="Float32" Name="velocity" NumberOfComponents="3" format="ascii">
+0 0.1 0.2 1 1.1 1.2 2 2.1 2.2 3 3.1 3.2 4 4.1 4.2 5 5.1 5.2 6 6.1 6.2</DataArray>
+</PointData>
+<CellData>
+<DataArray type="Int32" Name="physical" format="ascii">1 2 2 7 0 9</DataArray>
+<DataArray type="Int32" Name="material" format="ascii">10 20 30 -1 -2 -3</DataArray>
+<DataArray type="Float64" Name="volume" format="ascii">-1 -2 -3 -4 -5 -6</DataArray>
+</CellData>
+<Points>
+<DataArray type="Float64" NumberOfComponents="3" format="ascii">
+0 0 0  1 0 0  1 1 0  0 1 0  2 0 0  2 1 0  5 5 0</DataArray>
+</Points>
+<Cells>
+<DataArray type="Int64" Name="connectivity" format="ascii">0 1 2 3  1 4 5  1 5 2  0 1  4 5  3</DataArray>
+<DataArray type="Int64" Name="offsets" format="ascii">4 7 10 12 14 15</DataArray>
+<DataArray type="UInt8" Name="types" format="ascii">9 5 5 3 3 1</DataArray>
+</Cells>
+</Piece>
+</UnstructuredGrid>
+</VTKFile>
+)";
+
+std::filesystem::path input_file(const std::string& test) {
+  const auto path = scratch_dir(test) / "in.vtu";
+  std::ofstream(path) << kVtu;
+  return path;
+}
+
+const DataArray* find(const std::vector<DataArray>& arrays, const std::string& name) {
+  for (const DataArray& a : arrays)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
+void expect_same_data(const std::vector<DataArray>& a, const std::vector<DataArray>& b,
+                      bool types) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].name, b[k].name);
+    EXPECT_EQ(a[k].components, b[k].components) << a[k].name;
+    EXPECT_EQ(a[k].values, b[k].values) << a[k].name;
+    if (types) {
+      EXPECT_EQ(a[k].type, b[k].type) << a[k].name;
+    }
+  }
+}
+
+TEST(VtuData, ReadsTheArraysOfTheVerticesAndCellsKept) {
+  const InputMesh mesh = read_vtu(input_file("VtuDataRead"));
+  ASSERT_EQ(mesh.num_vertices(), 6);  // the unused point is dropped, with its data
+  ASSERT_EQ(mesh.num_cells(), 3);
+  ASSERT_EQ(mesh.point_data.size(), 2u);
+  EXPECT_EQ(mesh.point_data[0].name, "temperature");
+  EXPECT_EQ(mesh.point_data[0].values, (std::vector<double>{0, 1.5, 3, 4.5, 6, 7.5}));
+  EXPECT_EQ(mesh.point_data[1].name, "velocity");
+  EXPECT_EQ(mesh.point_data[1].components, 3);
+  EXPECT_EQ(mesh.point_data[1].type, ValueType::Float32);
+  EXPECT_EQ(mesh.point_data[1].values.size(), 18u);
+  EXPECT_EQ(mesh.point_data[1].values[17], static_cast<double>(5.2f));
+  ASSERT_EQ(mesh.cell_data.size(), 2u);  // not "physical": that is the groups
+  EXPECT_EQ(mesh.cell_data[0].name, "material");
+  EXPECT_EQ(mesh.cell_data[0].type, ValueType::Int32);
+  EXPECT_EQ(mesh.cell_data[0].values, (std::vector<double>{10, 20, 30}));
+
+  ASSERT_EQ(mesh.facets.size(), 1);
+  EXPECT_EQ(mesh.facets.tags[0], 7);
+  EXPECT_EQ(mesh.facets.vertices, (std::vector<PetscInt>{0, 1}));
+  EXPECT_EQ(mesh.points.size(), 0);  // as Gmsh's point elements
+  ASSERT_EQ(mesh.groups.size(), 3u);
+  const std::vector<std::tuple<int, int, std::string>> expected = {
+      {1, 7, "left side"}, {2, 1, "solid"}, {2, 2, ""}};
+  for (std::size_t k = 0; k < expected.size(); ++k)
+    EXPECT_EQ(std::tuple(mesh.groups[k].dim, mesh.groups[k].tag, mesh.groups[k].name), expected[k]);
+}
+
+TEST(VtuData, AGroupFacetOnNoCellIsAnError) {
+  std::string text = kVtu;
+  text.replace(text.find("0 1  4 5  3"), 11, "0 6  4 5  3");  // the facet to the unused point
+  const auto path = scratch_dir("VtuDataOffMesh") / "in.vtu";
+  std::ofstream(path) << text;
+  EXPECT_THROW(read_vtu(path), Error);
+}
+
+class DataRoundTrip : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(DataRoundTrip, KeepsPointAndCellDataAndGroups) {
+  const std::string ext = GetParam();
+  PlexMesh in = PlexMesh::load(input_file("DataRoundTrip" + ext.substr(1)));
+  const auto out = scratch_dir("DataRoundTripOut" + ext.substr(1)) / ("out" + ext);
+  write_mesh(in, out);
+  PlexMesh back = PlexMesh::load(out);
+  const auto &a = MeshAccess::impl(in), &b = MeshAccess::impl(back);
+  const bool typed = ext != ".exo";  // Exodus variables are doubles
+  expect_same_data(a.point_data, b.point_data, typed);
+  expect_same_data(a.cell_data, b.cell_data, typed);
+  EXPECT_EQ(a.facets.vertices, b.facets.vertices);
+  EXPECT_EQ(a.facets.tags, b.facets.tags);
+  EXPECT_EQ(a.cell_tags, b.cell_tags);
+  if (ext == ".exo") return;  // Exodus names unnamed blocks
+  ASSERT_EQ(a.groups.size(), b.groups.size());
+  for (std::size_t k = 0; k < a.groups.size(); ++k) {
+    EXPECT_EQ(a.groups[k].dim, b.groups[k].dim);
+    EXPECT_EQ(a.groups[k].tag, b.groups[k].tag);
+    EXPECT_EQ(a.groups[k].name, b.groups[k].name);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, DataRoundTrip, ::testing::Values(".vtu", ".vtk", ".exo"),
+                         [](const auto& info) { return std::string(info.param).substr(1); });
+
+// A .msh's boundary groups survive .vtu and .vtk with their names.
+class FacetGroupsInVtk : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(FacetGroupsInVtk, SurviveWithTheirNames) {
+  PlexMesh in = PlexMesh::load(data_path("mixed_tri_quad_v41.msh"));
+  const auto out = scratch_dir("FacetGroupsInVtk") / (std::string("out") + GetParam());
+  write_mesh(in, out);
+  PlexMesh back = PlexMesh::load(out);
+  const auto &a = MeshAccess::impl(in), &b = MeshAccess::impl(back);
+  ASSERT_GT(a.facets.size(), 0);
+  EXPECT_EQ(a.facets.vertices, b.facets.vertices);
+  EXPECT_EQ(a.facets.tags, b.facets.tags);
+  ASSERT_EQ(a.groups.size(), b.groups.size());
+  for (std::size_t k = 0; k < a.groups.size(); ++k) {
+    EXPECT_EQ(a.groups[k].dim, b.groups[k].dim);
+    EXPECT_EQ(a.groups[k].tag, b.groups[k].tag);
+    EXPECT_EQ(a.groups[k].name, b.groups[k].name);
+  }
+  ASSERT_EQ(in.view().parts.size(), back.view().parts.size());
+  for (std::size_t p = 0; p < in.view().parts.size(); ++p)
+    EXPECT_EQ(in.view().parts[p].name, back.view().parts[p].name);
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, FacetGroupsInVtk, ::testing::Values(".vtu", ".vtk"),
+                         [](const auto& info) { return std::string(info.param).substr(1); });
+
+// The input's "volume" keeps its name; neomesh's is written as "neomesh_volume", and replaces
+// an input array of that name (its own field of an earlier run).
+TEST(DataNames, TheInputKeepsItsNamesAndNeomeshsFieldsArePrefixed) {
+  for (const char* ext : {".vtu", ".vtk"}) {
+    PlexMesh in = PlexMesh::load(input_file("DataNames"));
+    MeshFields fields;
+    fields.cell.push_back({"volume", std::vector<double>(3, 42.0), 1});
+    fields.cell.push_back({"other", std::vector<double>(3, 7.0), 1});
+    const auto dir = scratch_dir("DataNamesOut");
+    write_mesh(in, dir / (std::string("once") + ext), fields);
+    PlexMesh once = PlexMesh::load(dir / (std::string("once") + ext));
+    const auto& data = MeshAccess::impl(once).cell_data;
+    ASSERT_TRUE(find(data, "volume")) << ext;
+    EXPECT_EQ(find(data, "volume")->values, (std::vector<double>{-1, -2, -3})) << ext;
+    ASSERT_TRUE(find(data, "neomesh_volume")) << ext;
+    EXPECT_EQ(find(data, "neomesh_volume")->values, (std::vector<double>(3, 42.0))) << ext;
+    ASSERT_TRUE(find(data, "other")) << ext;
+
+    fields.cell[0].values.assign(3, 43.0);
+    write_mesh(once, dir / (std::string("twice") + ext), fields);
+    PlexMesh twice = PlexMesh::load(dir / (std::string("twice") + ext));
+    const auto& again = MeshAccess::impl(twice).cell_data;
+    EXPECT_EQ(again.size(), data.size() + 1) << ext;  // + "neomesh_other"
+    EXPECT_EQ(find(again, "volume")->values, (std::vector<double>{-1, -2, -3})) << ext;
+    EXPECT_EQ(find(again, "neomesh_volume")->values, (std::vector<double>(3, 43.0))) << ext;
+  }
+}
+
+TEST(VtkData, ReadsAttributesAndFieldArraysWithTheirNamesDecoded) {
+  const auto path = scratch_dir("VtkData") / "in.vtk";
+  std::ofstream(path) << "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+                         "FIELD FieldData 1\nthe%20wall 1 2 int\n3 1\n"
+                         "POINTS 4 float\n0 0 0 1 0 0 1 1 0 0 1 0\n"
+                         "CELLS 3 11\n3 0 1 2\n3 0 2 3\n2 0 1\nCELL_TYPES 3\n5 5 3\n"
+                         "CELL_DATA 3\nSCALARS physical int 1\nLOOKUP_TABLE default\n0 0 3\n"
+                         "SCALARS id%25 short\nLOOKUP_TABLE default\n4 5 6\n"
+                         "POINT_DATA 4\nVECTORS flow double\n0 0 0 1 1 1 2 2 2 3 3 3\n"
+                         "FIELD FieldData 2\nT 1 4 float\n0.5 1.5 2.5 3.5\n"
+                         "skipped 1 3 float\n1 2 3\n";
+  const InputMesh mesh = read_vtk(path);
+  ASSERT_EQ(mesh.cell_data.size(), 1u);
+  EXPECT_EQ(mesh.cell_data[0].name, "id%");
+  EXPECT_EQ(mesh.cell_data[0].type, ValueType::Int16);
+  EXPECT_EQ(mesh.cell_data[0].values, (std::vector<double>{4, 5}));
+  ASSERT_EQ(mesh.point_data.size(), 2u);
+  EXPECT_EQ(mesh.point_data[0].name, "flow");
+  EXPECT_EQ(mesh.point_data[0].components, 3);
+  EXPECT_EQ(mesh.point_data[1].name, "T");
+  EXPECT_EQ(mesh.point_data[1].values, (std::vector<double>{0.5, 1.5, 2.5, 3.5}));
+  ASSERT_EQ(mesh.facets.size(), 1);
+  ASSERT_EQ(mesh.groups.size(), 1u);
+  EXPECT_EQ(mesh.groups[0].name, "the wall");
+}
+
+TEST(ExodusVariables, VectorsAreWrittenByComponentAndJoinedAgain) {
+  const DataArray v{"u", 3, ValueType::Float64, {1, 2, 3, 4, 5, 6}};
+  EXPECT_EQ(exodus_variable_names(v), (std::vector<std::string>{"u_x", "u_y", "u_z"}));
+  EXPECT_EQ(exodus_variable_names({"p", 1, ValueType::Float64, {}}),
+            (std::vector<std::string>{"p"}));
+  EXPECT_EQ(exodus_variable_names({"t", 4, ValueType::Float64, {}}),
+            (std::vector<std::string>{"t_1", "t_2", "t_3", "t_4"}));
+  const std::vector<DataArray> scalars = {{"p", 1, ValueType::Float64, {7, 8}},
+                                          {"u_x", 1, ValueType::Float64, {1, 4}},
+                                          {"u_y", 1, ValueType::Float64, {2, 5}},
+                                          {"u_z", 1, ValueType::Float64, {3, 6}},
+                                          {"w_x", 1, ValueType::Float64, {0, 0}}};
+  const std::vector<DataArray> joined = join_exodus_variables(scalars);
+  ASSERT_EQ(joined.size(), 3u);
+  EXPECT_EQ(joined[0].name, "p");
+  EXPECT_EQ(joined[1].name, "u");
+  EXPECT_EQ(joined[1].components, 3);
+  EXPECT_EQ(joined[1].values, v.values);
+  EXPECT_EQ(joined[2].name, "w_x");  // alone: a scalar
+}
+
+}  // namespace
+}  // namespace neomesh
