@@ -119,8 +119,9 @@ class Mesh {
   // side sets), .cgns (CGNS, with sections and boundary conditions) or .vtu/.vtk (with the
   // groups, the cell quality fields, `cell_fields` and `vertex_fields`) atomically: an error
   // leaves no partial file. The point and cell data of the file read (VTK data arrays, Exodus
-  // variables) are written back unchanged to .vtu, .vtk and .exo; a field whose name they
-  // have is written as "neomesh_<name>" (docs/user-guide.md). Collective.
+  // variables, Gmsh $NodeData/$ElementData) are written back unchanged to .vtu, .vtk, .exo and
+  // .msh; a field whose name they have is written as "neomesh_<name>" (docs/user-guide.md).
+  // Collective.
   void write(const std::filesystem::path& path, const std::vector<Field>& cell_fields = {},
              const std::vector<Field>& vertex_fields = {},
              const std::vector<FacetGroup>& facet_groups = {}) const;

@@ -55,7 +55,8 @@ void write_vtu(const GatheredMesh& mesh, std::ostream& out);
 void write_vtk(const GatheredMesh& mesh, std::ostream& out);
 
 // Gmsh 4.1 ASCII (.msh): cells and the boundary facets and points of physical groups, one
-// entity per physical group, so that reading the file back gives the same groups.
+// entity per physical group, so that reading the file back gives the same groups; the input's
+// point and cell data as $NodeData and $ElementData (time 0, values as doubles).
 void write_msh(const GatheredMesh& mesh, std::ostream& out);
 
 // Medit ASCII (.mesh, MeshVersionFormatted 2): vertices, cells with their groups as

@@ -133,3 +133,23 @@ def test_data_of_unused_points_and_facets_are_dropped_with_them(tmp):
     assert got.point_data["id"].dtype == np.int64
     assert [b.type for b in got.cells] == ["triangle"]
     assert got.cell_data["c"][0].tolist() == [1.5, 2.5]
+
+
+@pytest.mark.parametrize("ranks", RANKS)
+@pytest.mark.parametrize("target", [".msh", ".vtu"])
+def test_gmsh_node_and_element_data_are_kept(tmp, target, ranks):
+    """meshio writes point and cell data to .msh as $NodeData and $ElementData."""
+    mesh = with_data(tmp, "box-quad", "2")
+    mesh.cell_data["gmsh:physical"] = [np.full(len(b.data), 1, dtype=np.int32) for b in mesh.cells]
+    mesh.cell_data["gmsh:geometrical"] = mesh.cell_data["gmsh:physical"]
+    path = os.path.join(tmp, "in.msh")
+    meshio.write(path, mesh, file_format="gmsh22", binary=False)
+    out = os.path.join(tmp, "out" + target)
+    neomesh("smooth", path, "-o", out, "--quiet", ranks=ranks)
+    got, expected = read_mesh(out), read_mesh(path)
+    assert not np.allclose(got.points, expected.points)
+    for name in ("temperature", "velocity"):
+        assert np.array_equal(got.point_data[name].reshape(expected.point_data[name].shape),
+                              expected.point_data[name]), name
+    assert np.array_equal(cell_values(got, "material").ravel(),
+                          cell_values(expected, "material").ravel())
