@@ -35,21 +35,21 @@ struct VtkElements {
 };
 VtkElements vtk_elements(const GatheredMesh& mesh);
 
-// Cell data `values` (per cell) for every element: facets and points get NaN (0 for an integer
-// type).
-std::vector<double> per_element(const std::vector<double>& values, int components, ValueType type,
+// Cell data `values` (per cell) for every element: facets and points get `fill`.
+std::vector<double> per_element(const std::vector<double>& values, int components, double fill,
                                 std::size_t elements);
 
 // VTK XML UnstructuredGrid (.vtu), binary in a raw appended section (which ParaView and
 // meshio read; meshio converts to ASCII for reading by eye). Elements as VtkElements; point
 // data: the input's, then the vertex fields; cell data: the input's (in their types), then the
-// cell fields, then "physical". Field data: an Int32 array [tag, dimension] per named group,
-// named by the group.
+// cell fields (NaN for facets and points, 0 in integer arrays), then "physical". Field data: an
+// Int32 array [tag, dimension] per named group, named by the group.
 void write_vtu(const GatheredMesh& mesh, std::ostream& out);
 
 // VTK legacy ASCII (.vtk, version 4.2, UNSTRUCTURED_GRID; what Mesquite and many codes read):
 // points, elements as VtkElements, the cell scalars "physical", the input's data and the fields
-// as FIELD data, the group names as the dataset's FIELD data (as for .vtu). Values in their
+// as FIELD data (0 for facets and points: VTK's legacy reader reads no NaN), the group names as
+// the dataset's FIELD data (as for .vtu). Values in their
 // shortest exact form, so that reading the file back gives the same coordinates and data. Names
 // with spaces or '%' are written as VTK does ("%20", "%25").
 void write_vtk(const GatheredMesh& mesh, std::ostream& out);

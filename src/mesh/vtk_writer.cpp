@@ -52,19 +52,18 @@ void write_values(std::ostream& f, const std::vector<double>& values, ValueType 
 }
 
 // A FIELD section of the input's arrays and neomesh's fields, `tuples` each (cell data: the
-// cells' values, then NaN or 0 for facets and points).
+// cells' values, then 0 for facets and points: VTK's legacy reader reads no "nan").
 void write_field_data(std::ostream& f, const std::vector<DataArray>& data,
                       const std::vector<Field>& fields, PetscInt tuples) {
   if (data.empty() && fields.empty()) return;
   fmt::print(f, "FIELD FieldData {}\n", data.size() + fields.size());
   for (const DataArray& a : data) {
     fmt::print(f, "{} {} {} {}\n", encoded(a.name), a.components, tuples, legacy_type(a.type));
-    write_values(f, per_element(a.values, a.components, a.type, tuples), a.type);
+    write_values(f, per_element(a.values, a.components, 0.0, tuples), a.type);
   }
   for (const Field& field : fields) {
     fmt::print(f, "{} {} {} double\n", encoded(field.name), field.components, tuples);
-    write_values(f, per_element(field.values, field.components, ValueType::Float64, tuples),
-                 ValueType::Float64);
+    write_values(f, per_element(field.values, field.components, 0.0, tuples), ValueType::Float64);
   }
 }
 

@@ -142,6 +142,12 @@ void add_data(VtuDocument& doc, const DataArray& a, const std::vector<double>& v
   }
 }
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+bool real(ValueType t) {
+  return t == ValueType::Float32 || t == ValueType::Float64;
+}
+
 // The VTK type of a facet or point of `n` vertices: vertex, line, triangle, quadrilateral.
 std::uint8_t vtk_facet_type(PetscInt n) {
   constexpr std::uint8_t types[] = {0, 1, 3, 5, 9};
@@ -178,11 +184,10 @@ VtkElements vtk_elements(const GatheredMesh& gathered) {
   return e;
 }
 
-std::vector<double> per_element(const std::vector<double>& values, int components, ValueType type,
+std::vector<double> per_element(const std::vector<double>& values, int components, double fill,
                                 std::size_t elements) {
   std::vector<double> out = values;
-  const bool real = type == ValueType::Float32 || type == ValueType::Float64;
-  out.resize(elements * components, real ? std::numeric_limits<double>::quiet_NaN() : 0.0);
+  out.resize(elements * components, fill);
   return out;
 }
 
@@ -215,10 +220,10 @@ void write_vtu(const GatheredMesh& gathered, std::ostream& f) {
   for (const Field& field : gathered.fields.vertex) add_field(doc, field, field.values);
   doc.text("</PointData>\n<CellData>\n");
   for (const DataArray& a : mesh.cell_data)
-    add_data(doc, a, per_element(a.values, a.components, a.type, elements.size()));
+    add_data(doc, a,
+             per_element(a.values, a.components, real(a.type) ? kNaN : 0.0, elements.size()));
   for (const Field& field : gathered.fields.cell)
-    add_field(doc, field,
-              per_element(field.values, field.components, ValueType::Float64, elements.size()));
+    add_field(doc, field, per_element(field.values, field.components, kNaN, elements.size()));
   if (elements.has_tags) doc.array("Int32", " Name=\"physical\"", elements.tags);
   doc.text("</CellData>\n<Points>\n");
 
