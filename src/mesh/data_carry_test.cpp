@@ -12,7 +12,9 @@
 #include "core/testing/test_data.hpp"
 #include "mesh/exodus_file.hpp"
 #include "mesh/gather.hpp"
+#include "mesh/generate.hpp"
 #include "mesh/gmsh_reader.hpp"
+#include "mesh/medit_reader.hpp"
 #include "mesh/mesh_impl.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/vtk_reader.hpp"
@@ -291,6 +293,27 @@ TEST(GmshData, ReadsNodeAndElementDataByTag) {
   EXPECT_EQ(mesh.cell_data[0].name, "the u");
   EXPECT_EQ(mesh.cell_data[0].components, 2);
   EXPECT_EQ(mesh.cell_data[0].values, (std::vector<double>{2.5, 3.5, 0.5, 1.5}));
+}
+
+// Medit's vertex references are the point data "medit:ref": .mesh -> .vtu -> .mesh keeps them.
+TEST(MeditData, VertexReferencesSurviveOtherFormats) {
+  const auto dir = scratch_dir("MeditData");
+  std::ofstream(dir / "in.mesh") << "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n"
+                                    "0 0 3\n1 0 0\n1 1 -4\n0 1 7\n9 9 8\n"
+                                    "Triangles\n2\n1 2 3 1\n1 3 4 1\nEnd\n";
+  const InputMesh in = read_medit(dir / "in.mesh");
+  ASSERT_EQ(in.point_data.size(), 1u);
+  EXPECT_EQ(in.point_data[0].name, "medit:ref");
+  EXPECT_EQ(in.point_data[0].values, (std::vector<double>{3, 0, -4, 7}));  // not the unused one
+  PlexMesh mesh = PlexMesh::load(dir / "in.mesh");
+  write_mesh(mesh, dir / "mid.vtu");
+  write_mesh(PlexMesh::load(dir / "mid.vtu"), dir / "again.mesh");
+  const InputMesh again = read_medit(dir / "again.mesh");
+  ASSERT_EQ(again.point_data.size(), 1u);
+  EXPECT_EQ(again.point_data[0].values, in.point_data[0].values);
+  // All 0: no data.
+  write_mesh(PlexMesh::from_data(box(CellType::Triangle, 2), "box"), dir / "box.mesh");
+  EXPECT_TRUE(read_medit(dir / "box.mesh").point_data.empty());
 }
 
 TEST(ExodusVariables, VectorsAreWrittenByComponentAndJoinedAgain) {

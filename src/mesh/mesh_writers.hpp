@@ -61,7 +61,8 @@ void write_msh(const GatheredMesh& mesh, std::ostream& out);
 
 // Medit ASCII (.mesh, MeshVersionFormatted 2): vertices, cells with their groups as
 // references, and the boundary facets of facet groups (edges in 2D, triangles and
-// quadrilaterals in 3D) with theirs. Group names and fields are not kept: Medit has none.
+// quadrilaterals in 3D) with theirs; vertex references from the point data "medit:ref" (else
+// 0). Group names, fields and other data are not kept: Medit has no place for them.
 void write_medit(const GatheredMesh& mesh, std::ostream& out);
 
 // Exodus II (.exo, .e, .ex2) through the Exodus library, to the file `path` (messages name

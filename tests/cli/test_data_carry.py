@@ -153,3 +153,18 @@ def test_gmsh_node_and_element_data_are_kept(tmp, target, ranks):
                               expected.point_data[name]), name
     assert np.array_equal(cell_values(got, "material").ravel(),
                           cell_values(expected, "material").ravel())
+
+
+def test_medit_vertex_references_are_kept(tmp):
+    """meshio writes the point data "medit:ref" as Medit's vertex references; a .mesh -> .vtu ->
+    .mesh conversion keeps them."""
+    mesh = with_data(tmp, "box-tri", "2")
+    refs = (np.arange(len(mesh.points)) % 4).astype(np.int32)
+    path = os.path.join(tmp, "in.mesh")
+    meshio.write(path, meshio.Mesh(mesh.points, mesh.cells, point_data={"medit:ref": refs}))
+    mid = os.path.join(tmp, "mid.vtu")
+    neomesh("convert", path, "-o", mid)
+    assert np.array_equal(read_mesh(mid).point_data["medit:ref"], refs)
+    again = os.path.join(tmp, "again.mesh")
+    neomesh("convert", mid, "-o", again)
+    assert np.array_equal(read_mesh(again).point_data["medit:ref"], refs)
