@@ -295,6 +295,22 @@ TEST(GmshData, ReadsNodeAndElementDataByTag) {
   EXPECT_EQ(mesh.cell_data[0].values, (std::vector<double>{2.5, 3.5, 0.5, 1.5}));
 }
 
+// A name .msh cannot hold (a quote, a line break) is written readable; .vtu keeps it.
+TEST(GmshData, NamesStayOnOneLine) {
+  std::string text = kVtu;
+  text.replace(text.find("\"temperature\""), 13, "\"te&quot;mp&#10;x\"");
+  const auto dir = scratch_dir("GmshDataNames");
+  std::ofstream(dir / "in.vtu") << text;
+  PlexMesh mesh = PlexMesh::load(dir / "in.vtu");
+  ASSERT_EQ(MeshAccess::impl(mesh).point_data[0].name, "te\"mp\nx");
+  write_mesh(mesh, dir / "out.msh");
+  const InputMesh back = read_gmsh(dir / "out.msh");
+  ASSERT_EQ(back.point_data.size(), 2u);
+  EXPECT_EQ(back.point_data[0].name, "te'mp x");
+  write_mesh(mesh, dir / "out.vtu");  // XML keeps it as it is
+  EXPECT_EQ(read_vtu(dir / "out.vtu").point_data[0].name, "te\"mp\nx");
+}
+
 // Medit's vertex references are the point data "medit:ref": .mesh -> .vtu -> .mesh keeps them.
 TEST(MeditData, VertexReferencesSurviveOtherFormats) {
   const auto dir = scratch_dir("MeditData");

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <map>
+#include <string>
 
 #include <fmt/ostream.h>
 
@@ -97,7 +98,11 @@ std::vector<Block> element_blocks(const GatheredMesh& g, const WrittenGroups& gr
 // tag (`tags[i]`: the tag of entity i).
 void write_data(std::ostream& f, const char* section, const DataArray& a,
                 const std::vector<std::size_t>& tags) {
-  fmt::print(f, "${}\n1\n\"{}\"\n1\n0\n3\n0\n{}\n{}\n", section, a.name, a.components, tags.size());
+  std::string name = a.name;  // a string tag is one line between quotes
+  std::replace_if(
+      name.begin(), name.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::replace(name.begin(), name.end(), '"', '\'');
+  fmt::print(f, "${}\n1\n\"{}\"\n1\n0\n3\n0\n{}\n{}\n", section, name, a.components, tags.size());
   for (std::size_t i = 0; i < tags.size(); ++i) {
     fmt::print(f, "{}", tags[i]);
     for (int k = 0; k < a.components; ++k)

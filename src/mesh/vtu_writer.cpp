@@ -92,6 +92,15 @@ std::string escaped(std::string_view text) {
       case '\'':
         out += "&apos;";
         break;
+      case '\n':
+        out += "&#10;";
+        break;
+      case '\r':
+        out += "&#13;";
+        break;
+      case '\t':
+        out += "&#9;";
+        break;
       default:
         out += c;
     }
