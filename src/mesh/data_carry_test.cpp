@@ -3,6 +3,8 @@
 // has a place for them.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -157,6 +159,38 @@ std::vector<int> reordered(const std::vector<int>& tags, const std::vector<Petsc
   std::vector<int> out;
   for (PetscInt c : order) out.push_back(tags[c]);
   return out;
+}
+
+// The pieces of a .pvtu join their data: a shared point's from the first piece, the arrays every
+// piece has (not "only1").
+TEST(VtuData, PiecesJoinTheirArrays) {
+  const auto dir = scratch_dir("PvtuData");
+  const auto piece = [&](const char* name, const char* points, const char* t, double c,
+                         const char* extra) {
+    std::ofstream(dir / name) << fmt::format(
+        R"(<VTKFile type="UnstructuredGrid"><UnstructuredGrid><Piece NumberOfPoints="3" NumberOfCells="1">
+<PointData><DataArray type="Float64" Name="T" format="ascii">{}</DataArray>{}</PointData>
+<CellData><DataArray type="Float64" Name="c" format="ascii">{}</DataArray></CellData>
+<Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">{}</DataArray></Points>
+<Cells><DataArray type="Int32" Name="connectivity" format="ascii">0 1 2</DataArray>
+<DataArray type="Int32" Name="offsets" format="ascii">3</DataArray>
+<DataArray type="UInt8" Name="types" format="ascii">5</DataArray></Cells>
+</Piece></UnstructuredGrid></VTKFile>
+)",
+        t, extra, c, points);
+  };
+  piece("p0.vtu", "0 0 0 1 0 0 1 1 0", "0 1 2", 10, "");
+  piece("p1.vtu", "0 0 0 1 1 0 0 1 0", "-5 -6 3", 20,
+        R"(<DataArray type="Int32" Name="only1" format="ascii">1 1 1</DataArray>)");
+  std::ofstream(dir / "all.pvtu")
+      << R"(<VTKFile type="PUnstructuredGrid"><PUnstructuredGrid><Piece Source="p0.vtu"/>)"
+         R"(<Piece Source="p1.vtu"/></PUnstructuredGrid></VTKFile>)";
+  const InputMesh mesh = read_pvtu(dir / "all.pvtu");
+  ASSERT_EQ(mesh.num_vertices(), 4);
+  ASSERT_EQ(mesh.point_data.size(), 1u);
+  EXPECT_EQ(mesh.point_data[0].values, (std::vector<double>{0, 1, 2, 3}));
+  ASSERT_EQ(mesh.cell_data.size(), 1u);
+  EXPECT_EQ(mesh.cell_data[0].values, (std::vector<double>{10, 20}));
 }
 
 class DataRoundTrip : public ::testing::TestWithParam<const char*> {};
