@@ -3,6 +3,7 @@
 // has a place for them.
 #include <gtest/gtest.h>
 
+#include <exodusII.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 
 #include "core/testing/test_data.hpp"
 #include "mesh/exodus_file.hpp"
+#include "mesh/exodus_reader.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/generate.hpp"
 #include "mesh/gmsh_reader.hpp"
@@ -364,6 +366,58 @@ TEST(MeditData, VertexReferencesSurviveOtherFormats) {
   // All 0: no data.
   write_mesh(PlexMesh::from_data(box(CellType::Triangle, 2), "box"), dir / "box.mesh");
   EXPECT_TRUE(read_medit(dir / "box.mesh").point_data.empty());
+}
+
+// An Exodus file written through the library as other programs write it: two blocks, two time
+// steps, an element variable that only the second block has (truth table). The last step is
+// read; the first block's cells get NaN.
+TEST(ExodusVariables, TheLastStepIsReadAndAMissingBlockGetsNaN) {
+  const auto path = scratch_dir("ExodusVariables") / "in.exo";
+  {
+    ExodusFile file(path, ExodusFile::Mode::Create, path.string());
+    ex_init_params init{};
+    init.num_dim = 2;
+    init.num_nodes = 5;
+    init.num_elem = 2;
+    init.num_elem_blk = 2;
+    file.check(ex_put_init_ext(file.id(), &init), "init");
+    const double x[] = {0, 1, 1, 0, 2}, y[] = {0, 0, 1, 1, 0};
+    file.check(ex_put_coord(file.id(), x, y, nullptr), "coord");
+    const std::int64_t quad[] = {1, 2, 3, 4}, tri[] = {2, 5, 3};
+    file.check(ex_put_block(file.id(), EX_ELEM_BLOCK, 10, "QUAD4", 1, 4, 0, 0, 0), "block");
+    file.check(ex_put_conn(file.id(), EX_ELEM_BLOCK, 10, quad, nullptr, nullptr), "conn");
+    file.check(ex_put_block(file.id(), EX_ELEM_BLOCK, 20, "TRI3", 1, 3, 0, 0, 0), "block");
+    file.check(ex_put_conn(file.id(), EX_ELEM_BLOCK, 20, tri, nullptr, nullptr), "conn");
+    char p[] = "p", u[] = "u_x", v[] = "u_y";
+    char* nodal[] = {p};
+    char* element[] = {u, v};
+    file.check(ex_put_variable_param(file.id(), EX_NODAL, 1), "vars");
+    file.check(ex_put_variable_names(file.id(), EX_NODAL, 1, nodal), "names");
+    file.check(ex_put_variable_param(file.id(), EX_ELEM_BLOCK, 2), "vars");
+    file.check(ex_put_variable_names(file.id(), EX_ELEM_BLOCK, 2, element), "names");
+    int truth[] = {0, 0, 1, 1};  // block 10: none; block 20: both
+    file.check(ex_put_truth_table(file.id(), EX_ELEM_BLOCK, 2, 2, truth), "truth");
+    for (int step = 1; step <= 2; ++step) {
+      const double time = step;
+      file.check(ex_put_time(file.id(), step, &time), "time");
+      const double nodes[] = {step * 1.0, step * 2.0, step * 3.0, step * 4.0, step * 5.0};
+      file.check(ex_put_var(file.id(), step, EX_NODAL, 1, 1, 5, nodes), "var");
+      const double ux = 10.0 * step, uy = -ux;
+      file.check(ex_put_var(file.id(), step, EX_ELEM_BLOCK, 1, 20, 1, &ux), "var");
+      file.check(ex_put_var(file.id(), step, EX_ELEM_BLOCK, 2, 20, 1, &uy), "var");
+    }
+    file.close();
+  }
+  const InputMesh mesh = read_exodus(path);
+  ASSERT_EQ(mesh.point_data.size(), 1u);
+  EXPECT_EQ(mesh.point_data[0].values, (std::vector<double>{2, 4, 6, 8, 10}));
+  ASSERT_EQ(mesh.cell_data.size(), 1u);
+  EXPECT_EQ(mesh.cell_data[0].name, "u");
+  ASSERT_EQ(mesh.cell_data[0].values.size(), 4u);
+  EXPECT_TRUE(std::isnan(mesh.cell_data[0].values[0]));
+  EXPECT_TRUE(std::isnan(mesh.cell_data[0].values[1]));
+  EXPECT_EQ(mesh.cell_data[0].values[2], 20);
+  EXPECT_EQ(mesh.cell_data[0].values[3], -20);
 }
 
 TEST(ExodusVariables, VectorsAreWrittenByComponentAndJoinedAgain) {
