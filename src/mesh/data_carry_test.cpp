@@ -195,6 +195,23 @@ TEST(VtuData, PiecesJoinTheirArrays) {
   EXPECT_EQ(mesh.cell_data[0].values, (std::vector<double>{10, 20}));
 }
 
+// A UInt64 array may hold values beyond Int64 (ids, hashes): they are data, not an error, and
+// written back as the largest UInt64.
+TEST(VtuData, UInt64ValuesBeyondInt64AreKept) {
+  std::string text = kVtu;
+  text.replace(text.find("<DataArray type=\"Float64\" Name=\"temperature\""), 0,
+               "<DataArray type=\"UInt64\" Name=\"id\" format=\"binary\">"
+               "OAAAAP//////////////////////////////////////////////////////////////////////////"
+               "</DataArray>\n");
+  const auto dir = scratch_dir("VtuDataUInt64");
+  std::ofstream(dir / "in.vtu") << text;
+  const InputMesh mesh = read_vtu(dir / "in.vtu");
+  ASSERT_EQ(mesh.point_data[0].name, "id");
+  EXPECT_EQ(mesh.point_data[0].values[0], 0x1p64);
+  write_mesh(PlexMesh::load(dir / "in.vtu"), dir / "out.vtu");
+  EXPECT_EQ(read_vtu(dir / "out.vtu").point_data[0].values[5], 0x1p64);  // 2^64 - 1 as double
+}
+
 class DataRoundTrip : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(DataRoundTrip, KeepsPointAndCellDataAndGroups) {

@@ -196,9 +196,10 @@ T binary_value(const char* p, const ScalarType& t, bool big_endian) {
     const int shift = 64 - 8 * t.bytes;
     return static_cast<T>(static_cast<std::int64_t>(bits << shift) >> shift);
   }
-  if (bits > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+  if (std::is_integral_v<T> &&
+      bits > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
     throw DataError(fmt::format("the value {} is out of range", bits));
-  return static_cast<T>(bits);
+  return static_cast<T>(bits);  // a double: data values (input_mesh.hpp, ValueType)
 }
 
 // The whitespace-separated numbers of an ASCII array, at most `count` of them.

@@ -1,9 +1,11 @@
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <iterator>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <fmt/ostream.h>
@@ -116,10 +118,24 @@ void add_field(VtuDocument& doc, const Field& field, const std::vector<double>& 
   doc.array("Float64", attributes(field.name, field.components), values);
 }
 
+// The values in type T; integer types take the nearest value they hold (0 for NaN), as a double
+// beyond an integer type's range (2^64 from a UInt64 rounded) has no conversion.
 template <class T>
 std::vector<T> converted(const std::vector<double>& values) {
   std::vector<T> out(values.size());
-  for (std::size_t i = 0; i < values.size(); ++i) out[i] = static_cast<T>(values[i]);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double v = values[i];
+    if constexpr (std::is_integral_v<T>) {
+      constexpr double lo = static_cast<double>(std::numeric_limits<T>::lowest());
+      constexpr double hi = static_cast<double>(std::numeric_limits<T>::max());
+      out[i] = std::isnan(v) ? T{0}
+               : v <= lo     ? std::numeric_limits<T>::lowest()
+               : v >= hi     ? std::numeric_limits<T>::max()
+                             : static_cast<T>(v);
+    } else {
+      out[i] = static_cast<T>(v);
+    }
+  }
   return out;
 }
 
