@@ -210,6 +210,8 @@ TEST(VtuData, UInt64ValuesBeyondInt64AreKept) {
   EXPECT_EQ(mesh.point_data[0].values[0], 0x1p64);
   write_mesh(PlexMesh::load(dir / "in.vtu"), dir / "out.vtu");
   EXPECT_EQ(read_vtu(dir / "out.vtu").point_data[0].values[5], 0x1p64);  // 2^64 - 1 as double
+  write_mesh(PlexMesh::load(dir / "in.vtu"), dir / "out.vtk");
+  EXPECT_NE(testing::read_file(dir / "out.vtk").find("18446744073709551615"), std::string::npos);
 }
 
 class DataRoundTrip : public ::testing::TestWithParam<const char*> {};

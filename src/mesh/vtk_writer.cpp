@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -42,10 +43,10 @@ void write_values(std::ostream& f, const std::vector<double>& values, ValueType 
       fmt::print(f, "{}", v);
     else if (type == ValueType::Float32)
       fmt::print(f, "{}", static_cast<float>(v));
-    else if (type == ValueType::UInt64)
-      fmt::print(f, "{}", static_cast<std::uint64_t>(v));
-    else
-      fmt::print(f, "{}", static_cast<std::int64_t>(v));
+    else if (type == ValueType::UInt64)  // clamped: 2^64 - 1 is 2^64 as a double
+      fmt::print(f, "{}", !(v > 0) ? 0 : v >= 0x1p64 ? ~std::uint64_t{0} : std::uint64_t(v));
+    else  // the values of an integer array: integers well within Int64
+      fmt::print(f, "{}", std::abs(v) < 0x1p63 ? static_cast<std::int64_t>(v) : 0);
     fmt::print(f, "{}", (i + 1) % 9 == 0 ? "\n" : " ");
   }
   fmt::print(f, "\n");
