@@ -28,7 +28,7 @@ struct MeshArrays;       // below
 // (Keep: Optimizer::smooth untangles it, quality() counts the inverted cells).
 enum class InvertedCells { Refuse, Keep };
 
-// A per-cell or per-vertex field written with the mesh (.vtu; .msh keeps the mesh only).
+// A per-cell or per-vertex field written with the mesh (.vtu, .vtk; .msh keeps the mesh only).
 struct Field {
   std::string name;
   // `components` values per local cell (in this process' order) or per vertex of
@@ -37,9 +37,10 @@ struct Field {
   int components = 1;
 };
 
-// Facets (edges in 2D, faces in 3D) that a .msh output lists as the physical group `name`
-// (replacing an input group of that name); .vtu leaves them out. On every process its own
-// facets, each once over all processes.
+// Facets (edges in 2D, faces in 3D) that an output lists as the physical group `name`
+// (replacing an input group of that name): in .msh, .vtu and .vtk as facet elements, in .mesh
+// as references, in .exo as a side set. On every process its own facets, each once over all
+// processes.
 struct FacetGroup {
   std::string name;
   std::vector<std::int64_t> offsets = {0};  // facet f is vertices[offsets[f], offsets[f + 1])
@@ -115,9 +116,12 @@ class Mesh {
 
   // Writes .msh (Gmsh 4.1, with the input's physical groups and `facet_groups`), .mesh (Medit,
   // with the groups' numbers as references), .exo/.e/.ex2 (Exodus II, with element blocks and
-  // side sets), .cgns (CGNS, with sections and boundary conditions) or .vtu (with the cell
-  // quality fields, `cell_fields` and `vertex_fields`) atomically: an error leaves no partial
-  // file. Collective.
+  // side sets), .cgns (CGNS, with sections and boundary conditions) or .vtu/.vtk (with the
+  // groups, the cell quality fields, `cell_fields` and `vertex_fields`) atomically: an error
+  // leaves no partial file. The point and cell data of the file read (VTK data arrays, Exodus
+  // variables, Gmsh $NodeData/$ElementData) are written back unchanged to .vtu, .vtk, .exo and
+  // .msh; a field whose name they have is written as "neomesh_<name>" (docs/user-guide.md).
+  // Collective.
   void write(const std::filesystem::path& path, const std::vector<Field>& cell_fields = {},
              const std::vector<Field>& vertex_fields = {},
              const std::vector<FacetGroup>& facet_groups = {}) const;
@@ -162,7 +166,8 @@ class Mesh {
   // value per cell. Collective.
   MeshArrays gather(const std::vector<Field>& cell_fields = {}) const;
 
-  // Writes the mesh without fields (.vtu: no quality fields either), atomically. Collective.
+  // Writes the mesh without fields (.vtu: no quality fields either; the input's data are
+  // written as by write()), atomically. Collective.
   void write_mesh_only(const std::filesystem::path& path) const;
 
  private:

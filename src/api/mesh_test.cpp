@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <numeric>
 #include <vector>
 
@@ -172,6 +173,36 @@ TEST(MeshBoundaryDistance, HowFarTheBoundaryMoved) {
   mesh.set_coordinates(x);
   EXPECT_NEAR(mesh.max_boundary_distance(reference), 0.25, 1e-12);
   EXPECT_THROW(mesh.max_boundary_distance(Mesh::generate({.name = "box-hex", .size = 1})), Error);
+}
+
+}  // namespace
+}  // namespace neomesh
+
+namespace neomesh {
+namespace {
+
+// Mesh::read and Mesh::write carry the file's point and cell data: after moving the vertices,
+// the written .vtu holds the input's arrays unchanged beside the quality fields, and a
+// quality field whose name the input has ("volume") is written as "neomesh_volume".
+TEST(MeshData, ReadAndWriteCarryTheInputsData) {
+  const auto dir = testing::scratch_dir("MeshData");
+  std::ofstream(dir / "in.vtk") << "# vtk DataFile Version 3.0\nt\nASCII\n"
+                                   "DATASET UNSTRUCTURED_GRID\n"
+                                   "POINTS 4 double\n0 0 0 1 0 0 1 1 0 0 1 0\n"
+                                   "CELLS 2 8\n3 0 1 2\n3 0 2 3\nCELL_TYPES 2\n5 5\n"
+                                   "CELL_DATA 2\nSCALARS volume int\nLOOKUP_TABLE default\n7 9\n"
+                                   "POINT_DATA 4\nSCALARS T double\nLOOKUP_TABLE default\n"
+                                   "0.25 1.5 2.75 3\n";
+  Mesh mesh = Mesh::read(dir / "in.vtk");
+  std::vector<double> x = mesh.coordinates();
+  for (double& c : x) c *= 2;
+  mesh.set_coordinates(x);
+  mesh.write(dir / "out.vtk");
+  const std::string text = testing::read_file(dir / "out.vtk");
+  EXPECT_NE(text.find("volume 1 2 int\n7 9"), std::string::npos) << text;
+  EXPECT_NE(text.find("T 1 4 double\n0.25 1.5 2.75 3"), std::string::npos) << text;
+  EXPECT_NE(text.find("neomesh_volume 1 2 double\n2 2"), std::string::npos) << text;
+  EXPECT_NE(text.find("2 2 0"), std::string::npos) << text;  // the moved vertex
 }
 
 }  // namespace

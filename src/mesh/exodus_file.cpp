@@ -112,4 +112,42 @@ std::optional<int> exodus_point_or_line(std::string_view name) {
   return std::nullopt;
 }
 
+std::vector<std::string> exodus_variable_names(const DataArray& array) {
+  if (array.components == 1) return {array.name};
+  std::vector<std::string> out;
+  for (int k = 0; k < array.components; ++k)
+    out.push_back(array.components <= 3 ? fmt::format("{}_{}", array.name, "xyz"[k])
+                                        : fmt::format("{}_{}", array.name, k + 1));
+  return out;
+}
+
+std::vector<DataArray> join_exodus_variables(std::vector<DataArray> scalars) {
+  // The number of components of a vector starting at scalar `i`: 2 or 3, or 1.
+  const auto components = [&](std::size_t i) {
+    const std::string& x = scalars[i].name;
+    if (x.size() < 3 || !x.ends_with("_x")) return 1;
+    const std::string base = x.substr(0, x.size() - 2);
+    int k = 1;
+    while (k < 3 && i + k < scalars.size() && scalars[i + k].name == base + "_" + "xyz"[k]) ++k;
+    return k;
+  };
+  std::vector<DataArray> out;
+  for (std::size_t i = 0; i < scalars.size();) {
+    const int k = components(i);
+    if (k == 1) {
+      out.push_back(std::move(scalars[i++]));
+      continue;
+    }
+    const std::size_t n = scalars[i].values.size();
+    DataArray joined{scalars[i].name.substr(0, scalars[i].name.size() - 2), k, scalars[i].type,
+                     std::vector<double>(n * k)};
+    for (int c = 0; c < k; ++c)
+      for (std::size_t e = 0; e < n && e < scalars[i + c].values.size(); ++e)
+        joined.values[e * k + c] = scalars[i + c].values[e];
+    out.push_back(std::move(joined));
+    i += k;
+  }
+  return out;
+}
+
 }  // namespace neomesh

@@ -14,8 +14,10 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "mesh/cell_type.hpp"
+#include "mesh/input_mesh.hpp"
 #include "mesh/library_file.hpp"
 
 namespace neomesh {
@@ -53,5 +55,13 @@ std::optional<CellType> exodus_cell_type(std::string_view name, bool& shell);
 // The dimension of a type of points (SPHERE, CIRCLE) or lines (BAR, BEAM, TRUSS): 0 or 1, or
 // none for other types.
 std::optional<int> exodus_point_or_line(std::string_view name);
+
+// Exodus variables are scalars: an array of 2 or 3 components is written as the variables
+// "<name>_x", "<name>_y" (, "<name>_z"), one of k other components as "<name>_1" .. "<name>_k".
+std::vector<std::string> exodus_variable_names(const DataArray& array);
+
+// Scalar variables (values per entity each) as arrays, the variables "<name>_x", "<name>_y"
+// (and "<name>_z") next to each other joined into one array "<name>" of 2 (3) components.
+std::vector<DataArray> join_exodus_variables(std::vector<DataArray> scalars);
 
 }  // namespace neomesh

@@ -1,6 +1,7 @@
 #include "mesh/exodus_reader.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 
@@ -95,6 +96,43 @@ class ExodusReader {
   }
 
   const ex_init_params& init() const { return init_; }
+
+  // The variables of `kind` (EX_NODAL, EX_ELEM_BLOCK) at the last time step: their names, or
+  // none without time steps.
+  std::vector<std::string> variable_names(ex_entity_type kind) {
+    if (ex_inquire_int(file_.id(), EX_INQ_TIME) <= 0) return {};
+    int count = 0;
+    file_.check(ex_get_variable_param(file_.id(), kind, &count), "reading the variables");
+    std::vector<std::string> names(count, std::string(name_length_ + 1, '\0'));
+    std::vector<char*> list;
+    for (std::string& n : names) list.push_back(n.data());
+    if (count > 0)
+      file_.check(ex_get_variable_names(file_.id(), kind, count, list.data()),
+                  "reading the variable names");
+    for (std::string& n : names) n.resize(n.find('\0'));
+    return names;
+  }
+
+  int last_step() { return static_cast<int>(ex_inquire_int(file_.id(), EX_INQ_TIME)); }
+
+  // Variable `var` (1-based) of entity `id` at the last step: `n` values.
+  std::vector<double> variable(ex_entity_type kind, int var, std::int64_t id, std::int64_t n) {
+    std::vector<double> values(n);
+    if (n > 0)
+      file_.check(ex_get_var(file_.id(), last_step(), kind, var, id, n, values.data()),
+                  "reading a variable");
+    return values;
+  }
+
+  // Which element variables each block has (block-major), all true without a truth table.
+  std::vector<int> truth_table(std::int64_t blocks, int vars) {
+    std::vector<int> table(blocks * vars, 1);
+    if (blocks > 0 && vars > 0)
+      file_.check(ex_get_truth_table(file_.id(), EX_ELEM_BLOCK, static_cast<int>(blocks), vars,
+                                     table.data()),
+                  "reading the element variables' truth table");
+    return table;
+  }
 
  private:
   Block block(std::int64_t id) {
@@ -228,6 +266,41 @@ void add_side_sets(ExodusReader& reader, const std::vector<Block>& blocks,
   }
 }
 
+// The nodal and element variables at the last time step, as point and cell data (element
+// variables that a block of cells lacks are NaN there).
+void add_variables(ExodusReader& reader, const std::vector<Block>& blocks,
+                   const std::vector<PetscInt>& vertex, InputMesh& mesh) {
+  std::vector<std::int64_t> used;
+  for (std::size_t n = 0; n < vertex.size(); ++n)
+    if (vertex[n] >= 0) used.push_back(static_cast<std::int64_t>(n));
+  std::vector<DataArray> nodal;
+  const std::vector<std::string> nodal_names = reader.variable_names(EX_NODAL);
+  for (std::size_t k = 0; k < nodal_names.size(); ++k)
+    nodal.push_back({nodal_names[k], 1, ValueType::Float64,
+                     reader.variable(EX_NODAL, static_cast<int>(k) + 1, 1,
+                                     static_cast<std::int64_t>(vertex.size()))});
+  mesh.point_data = join_exodus_variables(select_data(nodal, vertex.size(), used));
+
+  const std::vector<std::string> names = reader.variable_names(EX_ELEM_BLOCK);
+  const int vars = static_cast<int>(names.size());
+  const std::vector<int> truth = reader.truth_table(static_cast<std::int64_t>(blocks.size()), vars);
+  std::vector<DataArray> element;
+  for (int k = 0; k < vars; ++k) {
+    DataArray a{names[k], 1, ValueType::Float64, {}};
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      if (blocks[b].dim != mesh.dim) continue;
+      if (truth[b * vars + k]) {
+        const auto v = reader.variable(EX_ELEM_BLOCK, k + 1, blocks[b].id, blocks[b].size);
+        a.values.insert(a.values.end(), v.begin(), v.end());
+      } else {
+        a.values.resize(a.values.size() + blocks[b].size, std::nan(""));
+      }
+    }
+    element.push_back(std::move(a));
+  }
+  mesh.cell_data = join_exodus_variables(std::move(element));
+}
+
 }  // namespace
 
 InputMesh read_exodus(const std::filesystem::path& path) {
@@ -243,6 +316,7 @@ InputMesh read_exodus(const std::filesystem::path& path) {
   const std::vector<PetscInt> vertex = number_vertices(blocks, reader.coordinates(), file, mesh);
   add_cells(blocks, vertex, mesh);
   add_side_sets(reader, blocks, vertex, mesh);
+  add_variables(reader, blocks, vertex, mesh);
   std::sort(mesh.groups.begin(), mesh.groups.end(), [](const auto& a, const auto& b) {
     return std::pair(a.dim, a.tag) < std::pair(b.dim, b.tag);
   });

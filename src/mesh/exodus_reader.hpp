@@ -7,8 +7,10 @@
 // make one group, whose tag is the first such block's id (if it is > 0; meshio numbers blocks
 // from 0, and such blocks get the tags above every id). Blocks of a lower dimension (shells on
 // a solid's boundary, BAR/BEAM/TRUSS lines, SPHERE points) are not kept. Side sets are facet groups
-// (tag: the set's id; name: the set's, or "sideset_<id>"). Node sets, attributes, maps and results
-// are not kept.
+// (tag: the set's id; name: the set's, or "sideset_<id>"). Nodal and element variables (results)
+// of the last time step are point and cell data ("<name>_x", "_y", "_z" next to each other
+// joined into vectors; an element variable a block of cells lacks is NaN on its cells); earlier
+// time steps, global variables, node sets, attributes and maps are not kept.
 #pragma once
 
 #include <filesystem>

@@ -160,11 +160,61 @@ void write_side_set(const ExodusFile& file, const SideSet& s) {
     file.check(ex_put_name(file.id(), EX_SIDE_SET, s.tag, s.name.c_str()), "writing a name");
 }
 
-// Group names longer than Exodus' default of 32 characters are kept whole.
-int longest_name(const WrittenGroups& groups) {
+// Group and variable names longer than Exodus' default of 32 characters are kept whole.
+int longest_name(const WrittenGroups& groups, const InputMesh& mesh) {
   std::size_t longest = MAX_STR_LENGTH;
   for (const PhysicalGroup& g : groups.all) longest = std::max(longest, g.name.size());
+  for (const auto* data : {&mesh.point_data, &mesh.cell_data})
+    for (const DataArray& a : *data)
+      for (const std::string& name : exodus_variable_names(a))
+        longest = std::max(longest, name.size());
   return static_cast<int>(longest);
+}
+
+// Declares the variables of `kind` (one per component of each array).
+void put_variable_names(const ExodusFile& file, ex_entity_type kind,
+                        const std::vector<DataArray>& arrays) {
+  std::vector<std::string> names;
+  for (const DataArray& a : arrays)
+    for (std::string& name : exodus_variable_names(a)) names.push_back(std::move(name));
+  if (names.empty()) return;
+  std::vector<char*> list;
+  for (std::string& name : names) list.push_back(name.data());
+  const int n = static_cast<int>(names.size());
+  file.check(ex_put_variable_param(file.id(), kind, n), "writing the variables");
+  file.check(ex_put_variable_names(file.id(), kind, n, list.data()), "writing the variables");
+}
+
+// The input's point and cell data as nodal and element variables of one time step (time 0).
+void write_variables(const ExodusFile& file, const InputMesh& mesh,
+                     const std::vector<Block>& blocks) {
+  if (mesh.point_data.empty() && mesh.cell_data.empty()) return;
+  put_variable_names(file, EX_NODAL, mesh.point_data);
+  put_variable_names(file, EX_ELEM_BLOCK, mesh.cell_data);
+  const double time = 0.0;
+  file.check(ex_put_time(file.id(), 1, &time), "writing the time step");
+  int var = 0;
+  const PetscInt nv = mesh.num_vertices();
+  for (const DataArray& a : mesh.point_data)
+    for (int k = 0; k < a.components; ++k) {
+      std::vector<double> values(nv);
+      for (PetscInt v = 0; v < nv; ++v) values[v] = a.values[v * a.components + k];
+      file.check(ex_put_var(file.id(), 1, EX_NODAL, ++var, 1, nv, values.data()),
+                 "writing a nodal variable");
+    }
+  var = 0;
+  for (const DataArray& a : mesh.cell_data)
+    for (int k = 0; k < a.components; ++k) {
+      ++var;
+      for (const Block& b : blocks) {
+        std::vector<double> values;
+        values.reserve(b.cells.size());
+        for (PetscInt c : b.cells) values.push_back(a.values[c * a.components + k]);
+        file.check(ex_put_var(file.id(), 1, EX_ELEM_BLOCK, var, b.id,
+                              static_cast<std::int64_t>(values.size()), values.data()),
+                   "writing an element variable");
+      }
+    }
 }
 
 }  // namespace
@@ -177,7 +227,8 @@ void write_exodus(const GatheredMesh& g, const std::filesystem::path& path,
   const std::vector<SideSet> sets = side_sets(mesh, groups, blocks, target);
 
   ExodusFile file(path, ExodusFile::Mode::Create, target);
-  file.check(ex_set_max_name_length(file.id(), longest_name(groups)), "setting the name length");
+  file.check(ex_set_max_name_length(file.id(), longest_name(groups, mesh)),
+             "setting the name length");
   ex_init_params init{};
   std::snprintf(init.title, sizeof init.title, "neomesh");
   init.num_dim = mesh.dim == 2 && !mesh.plane ? 2 : 3;
@@ -189,6 +240,7 @@ void write_exodus(const GatheredMesh& g, const std::filesystem::path& path,
   write_coordinates(file, mesh, static_cast<int>(init.num_dim));
   for (const Block& b : blocks) write_block(file, mesh, b);
   for (const SideSet& s : sets) write_side_set(file, s);
+  write_variables(file, mesh, blocks);
   file.close();
 }
 

@@ -104,7 +104,30 @@ void add_facet_group(const PlexMesh& mesh, const FacetGroup& group, InputMesh& o
   out.facets = std::move(kept);
 }
 
+void make_room_for_data(const std::vector<Field>& fields, std::vector<DataArray>& data,
+                        std::vector<std::string>& names) {
+  const auto named = [&](const std::string& name) {
+    return std::find_if(data.begin(), data.end(),
+                        [&](const DataArray& a) { return a.name == name; });
+  };
+  for (const Field& f : fields) {
+    std::string name = f.name;
+    if (named(name) != data.end()) name = "neomesh_" + name;
+    if (const auto it = named(name); it != data.end()) data.erase(it);
+    names.push_back(std::move(name));
+  }
+}
+
 }  // namespace
+
+void make_room_for_data(GatheredMesh& gathered) {
+  for (auto [fields, data] : {std::pair(&gathered.fields.vertex, &gathered.mesh.point_data),
+                              std::pair(&gathered.fields.cell, &gathered.mesh.cell_data)}) {
+    std::vector<std::string> names;
+    make_room_for_data(*fields, *data, names);
+    for (std::size_t k = 0; k < names.size(); ++k) (*fields)[k].name = std::move(names[k]);
+  }
+}
 
 GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
   std::string error;
@@ -165,6 +188,8 @@ GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
                       m.cell_tags[c]);
   out.mesh.points = m.points;
   out.mesh.plane = m.plane;
+  out.mesh.point_data = m.point_data;
+  out.mesh.cell_data = m.cell_data;
   return out;
 }
 

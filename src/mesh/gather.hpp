@@ -25,7 +25,8 @@ std::vector<T> gatherv(MPI_Comm comm, const std::vector<T>& local, MPI_Datatype 
 }
 
 struct GatheredMesh {
-  InputMesh mesh;        // cells by input number; facets and points in physical groups
+  InputMesh mesh;        // cells by input number; facets and points in physical groups; the
+                         // input's point and cell data
   MeshFields fields;     // cell fields by input cell number, vertex fields by input vertex
   bool has_cell_groups;  // cells carry physical tags (written as the cell field "physical")
 };
@@ -33,5 +34,10 @@ struct GatheredMesh {
 // Collective; the result is complete on rank 0 and empty elsewhere. Throws Error if a
 // field's size does not match the mesh.
 GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields);
+
+// For the writers: where the input's data and the fields share a name (per vertex or per cell),
+// the input's array keeps it and the field is renamed "neomesh_<name>". An input array of that
+// name too (a field of an earlier run, renamed so) is replaced by the field.
+void make_room_for_data(GatheredMesh& gathered);
 
 }  // namespace neomesh

@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -12,6 +13,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <unordered_map>
 
 #include "core/error.hpp"
 #include "mesh/cell_order.hpp"
@@ -70,7 +72,17 @@ struct Elements {
   int order = 1;
 };
 
+// A $NodeData or $ElementData section (ASCII): its name, and per node or element its tag and
+// `components` values.
+struct TaggedData {
+  std::string name;
+  int components = 1;
+  std::vector<long long> tags;
+  std::vector<double> values;
+};
+
 struct Contents {
+  std::vector<TaggedData> node_data, element_data;   // the last section of each name
   int version = 0;                                   // 22 or 41
   std::map<std::pair<int, int>, std::string> names;  // $PhysicalNames by (dim, tag)
   std::map<std::pair<int, int>, int> entity_tag;     // 4.1: (dim, entity) → physical tag
@@ -111,6 +123,8 @@ class GmshParser {
         read_nodes();
       else if (section == "$Elements")
         read_elements();
+      else if ((section == "$NodeData" || section == "$ElementData") && !binary_)
+        read_data(section == "$NodeData" ? c_.node_data : c_.element_data);
       else
         skip_section(section);
     }
@@ -281,6 +295,45 @@ class GmshParser {
       pos_ = eol;
     }
     expect_end("$PhysicalNames");
+  }
+
+  // $NodeData/$ElementData: string tags (the first is the name), real tags (the time), integer
+  // tags (time step, components, count), then per node or element its tag and values. A later
+  // section of the same name (a later time step) replaces an earlier one.
+  void read_data(std::vector<TaggedData>& all) {
+    TaggedData d;
+    const long long strings = count(integer(), 2);
+    for (long long i = 0; i < strings; ++i) {
+      skip_space();
+      const char* eol = std::find(pos_, end_, '\n');
+      std::string_view line(pos_, static_cast<std::size_t>(eol - pos_));
+      const auto open = line.find('"'), close = line.rfind('"');
+      if (open != std::string_view::npos && close > open)
+        line = line.substr(open + 1, close - open - 1);
+      if (i == 0) d.name = std::string(line);
+      pos_ = eol;
+    }
+    const long long reals = count(integer(), 2);
+    for (long long i = 0; i < reals; ++i) real();
+    const long long integers = count(integer(), 2);
+    if (integers < 3) invalid("{} has {} integer tags (3 or more)", shown(section_), integers);
+    long long ints[3];
+    for (long long i = 0; i < integers; ++i) {
+      const long long v = integer();
+      if (i < 3) ints[i] = v;
+    }
+    d.components = static_cast<int>(integer_in(ints[1], 1, 1024, "the number of components"));
+    const long long n = count(ints[2], 2 * (1 + d.components));
+    d.tags.reserve(n);
+    d.values.reserve(n * d.components);
+    for (long long k = 0; k < n; ++k) {
+      d.tags.push_back(tag(integer(), "tag"));
+      for (int j = 0; j < d.components; ++j) d.values.push_back(real());
+    }
+    expect_end(section_);
+    if (d.name.empty()) return;
+    std::erase_if(all, [&](const TaggedData& a) { return a.name == d.name; });
+    all.push_back(std::move(d));
   }
 
   void read_entities() {
@@ -526,6 +579,26 @@ int cell_dimension(const Contents& c, const std::string& file) {
 
 }  // namespace
 
+// The data of $NodeData/$ElementData per entity of `numbers` (tags, in order); entities without
+// a value get NaN, values of other tags are dropped.
+std::vector<DataArray> data_by_tag(const std::vector<TaggedData>& data,
+                                   const std::vector<long long>& numbers) {
+  std::vector<DataArray> out;
+  if (data.empty()) return out;
+  std::unordered_map<long long, std::size_t> index;
+  for (std::size_t i = numbers.size(); i-- > 0;) index[numbers[i]] = i;
+  for (const TaggedData& d : data) {
+    const auto k = static_cast<std::size_t>(d.components);
+    DataArray a{d.name, d.components, ValueType::Float64,
+                std::vector<double>(numbers.size() * k, std::nan(""))};
+    for (std::size_t t = 0; t < d.tags.size(); ++t)
+      if (const auto it = index.find(d.tags[t]); it != index.end())
+        std::copy_n(d.values.begin() + t * k, k, a.values.begin() + it->second * k);
+    out.push_back(std::move(a));
+  }
+  return out;
+}
+
 InputMesh read_gmsh(const std::filesystem::path& path) {
   const std::string file = path.string();
   const Contents c = GmshParser(path).parse();
@@ -544,6 +617,12 @@ InputMesh read_gmsh(const std::filesystem::path& path) {
   };
   add_groups(mesh.dim - 1, facet_tags);
   add_groups(mesh.dim, cell_tags);
+
+  std::vector<long long> node_tags;
+  for (std::size_t n = 0; n < vertex.size(); ++n)
+    if (vertex[n] >= 0) node_tags.push_back(c.node_tags[n]);
+  mesh.point_data = data_by_tag(c.node_data, node_tags);
+  mesh.cell_data = data_by_tag(c.element_data, {mesh.element_tag.begin(), mesh.element_tag.end()});
   return mesh;
 }
 

@@ -29,6 +29,27 @@ InputMesh input_from_data(const MeshData& data) {
   return mesh;
 }
 
+void round_to_type(DataArray& array) {
+  if (array.type != ValueType::Float32) return;
+  for (double& v : array.values) v = static_cast<float>(v);
+}
+
+std::vector<DataArray> select_data(const std::vector<DataArray>& arrays, std::size_t count,
+                                   const std::vector<std::int64_t>& kept) {
+  std::vector<DataArray> out;
+  for (const DataArray& a : arrays) {
+    const auto k = static_cast<std::size_t>(a.components);
+    if (k == 0 || a.values.size() != count * k) continue;
+    DataArray selected{a.name, a.components, a.type, {}};
+    selected.values.reserve(kept.size() * k);
+    for (const std::int64_t i : kept)
+      selected.values.insert(selected.values.end(), a.values.begin() + i * k,
+                             a.values.begin() + (i + 1) * k);
+    out.push_back(std::move(selected));
+  }
+  return out;
+}
+
 void number_used_vertices(std::vector<PetscInt>& vertex, std::span<const double> xyz,
                           const std::string& file, InputMesh& mesh) {
   std::vector<double> used;

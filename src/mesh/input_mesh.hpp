@@ -38,6 +38,40 @@ struct TaggedEntities {
   }
 };
 
+// The type a file stores an array's values in, kept so that writing the array back gives the same
+// type (values are held as double: exact for every type but 64-bit integers beyond 2^53).
+enum class ValueType : std::uint8_t {
+  Int8,
+  UInt8,
+  Int16,
+  UInt16,
+  Int32,
+  UInt32,
+  Int64,
+  UInt64,
+  Float32,
+  Float64
+};
+
+// An array of values per vertex or per cell that the input file carries (VTK point and cell
+// data, Exodus nodal and element variables, Gmsh $NodeData/$ElementData): neomesh never uses
+// them, it writes them back. `components` values per entity, in input numbering.
+struct DataArray {
+  std::string name;
+  int components = 1;
+  ValueType type = ValueType::Float64;
+  std::vector<double> values;
+};
+
+// The values of an array read as text rounded to its type (Float32: to float), as they are
+// written back.
+void round_to_type(DataArray& array);
+
+// The arrays restricted to the entities kept: entity `i` of the result is `kept[i]` of the file.
+// Arrays whose values do not cover `count` entities are left out.
+std::vector<DataArray> select_data(const std::vector<DataArray>& arrays, std::size_t count,
+                                   const std::vector<std::int64_t>& kept);
+
 struct InputMesh {
   int dim = 2;
   std::vector<double> coords;  // `dim` values per vertex (2D: in the mesh's plane)
@@ -55,6 +89,9 @@ struct InputMesh {
   // Per cell: the number the file gives it (Gmsh element tag), for messages; empty when the
   // format numbers cells by position only (FEAT3, generated meshes).
   std::vector<std::int64_t> element_tag;
+  // Data the file gives per vertex and per cell, in input numbering, written back unchanged.
+  std::vector<DataArray> point_data;
+  std::vector<DataArray> cell_data;
 
   PetscInt num_vertices() const { return static_cast<PetscInt>(coords.size()) / dim; }
   PetscInt num_cells() const { return static_cast<PetscInt>(cell_types.size()); }

@@ -71,7 +71,8 @@ struct Elements {
 
 struct Contents {
   int dimension = 0;
-  std::vector<double> xyz;  // 3 per vertex
+  std::vector<double> xyz;         // 3 per vertex
+  std::vector<std::int64_t> refs;  // per vertex
   std::array<Elements, kNumKinds> elements;
   std::vector<int> kinds;  // of the element sections, in the order they first appear
 };
@@ -183,13 +184,14 @@ class MeditParser {
     const int d = c_.dimension;
     const long long n = count(d + 1);
     c_.xyz.assign(3 * n, 0.0);
+    c_.refs.assign(n, 0);
     for (long long v = 0; v < n; ++v) {
       for (int i = 0; i < d; ++i) {
         const double x = number<double>("a coordinate");
         if (!std::isfinite(x)) invalid("vertex {} has the coordinate {}", v + 1, x);
         c_.xyz[3 * v + i] = x;
       }
-      integer();  // the vertex's reference
+      c_.refs[v] = integer();
     }
   }
 
@@ -289,6 +291,20 @@ InputMesh read_medit(const std::filesystem::path& path) {
   }
   for (int tag : facet_tags) mesh.groups.push_back({mesh.dim - 1, tag, ""});
   for (int tag : cell_tags) mesh.groups.push_back({mesh.dim, tag, ""});
+
+  // Vertex references, unless all are 0: the point data "medit:ref" (as meshio names them).
+  DataArray refs{"medit:ref", 1, ValueType::Int32, {}};
+  bool any = false;
+  for (std::int64_t v = 0; v < nv; ++v) {
+    if (vertex[v] < 0) continue;
+    const std::int64_t r = c.refs[v];
+    any = any || r != 0;
+    if (r < std::numeric_limits<std::int32_t>::min() ||
+        r > std::numeric_limits<std::int32_t>::max())
+      refs.type = ValueType::Int64;
+    refs.values.push_back(static_cast<double>(r));
+  }
+  if (any) mesh.point_data.push_back(std::move(refs));
   return mesh;
 }
 

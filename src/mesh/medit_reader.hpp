@@ -11,9 +11,11 @@
 // some cell or kept facet uses, in file order. A cell's reference is its group (the domain):
 // references > 0 become cell groups, as Gmsh's physical groups do (without names: Medit has
 // none). Elements one dimension lower (triangles and quadrilaterals of a 3D mesh, edges of a 2D
-// one) with a reference > 0 are boundary facets in the facet group of that number; others and
-// vertex references are not kept. Local vertex orders are Gmsh's (which MMG and Gmsh use for
-// .mesh); meshio writes prisms in VTK's order instead, which reads as inverted prisms.
+// one) with a reference > 0 are boundary facets in the facet group of that number; others are
+// not kept. Vertex references, unless all are 0, are the point data "medit:ref" (Int32, as
+// meshio names them), which the other formats carry as data. Local vertex orders are Gmsh's (which
+// MMG and Gmsh use for .mesh); meshio writes prisms in VTK's order instead, which reads as inverted
+// prisms.
 #pragma once
 
 #include <filesystem>

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <fmt/ostream.h>
@@ -33,10 +34,15 @@ void write_medit(const GatheredMesh& g, std::ostream& f) {
   const int dimension = mesh.dim == 2 && !mesh.plane ? 2 : 3;
   fmt::print(f, "MeshVersionFormatted 2\n\nDimension {}\n\n", dimension);
   const std::vector<double> xyz = coordinates_in_space(mesh);
+  // Vertex references: the point data "medit:ref" (as the reader and meshio name them), or 0.
+  const DataArray* refs = nullptr;
+  for (const DataArray& a : mesh.point_data)
+    if (a.name == "medit:ref" && a.components == 1) refs = &a;
   fmt::print(f, "Vertices\n{}\n", mesh.num_vertices());
   for (PetscInt v = 0; v < mesh.num_vertices(); ++v) {
     for (int i = 0; i < dimension; ++i) fmt::print(f, "{:.17g} ", xyz[3 * v + i]);
-    fmt::print(f, "0\n");
+    const double ref = refs ? refs->values[v] : 0.0;
+    fmt::print(f, "{}\n", std::abs(ref) < 0x1p62 ? static_cast<long long>(ref) : 0LL);
   }
 
   for (CellType t : kAllCellTypes) {

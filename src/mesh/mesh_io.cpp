@@ -34,7 +34,8 @@ void check_writable_format(const std::filesystem::path& path) {
 
 void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path, const MeshFields& fields) {
   check_writable_format(path);
-  const GatheredMesh gathered = gather_mesh(mesh, fields);
+  GatheredMesh gathered = gather_mesh(mesh, fields);
+  make_room_for_data(gathered);
   on_root(mesh.comm(), [&] {
     const auto ext = path.extension();
     AtomicFile file(path, ext == ".vtu" || ext == ".cgns" || is_exodus(path));

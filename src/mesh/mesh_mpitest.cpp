@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "core/testing/test_data.hpp"
+#include "mesh/gather.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/mesh_test_util.hpp"
 #include "mesh/plex_mesh.hpp"
@@ -123,6 +124,63 @@ TEST_P(Distributed, WritesTheSameFileAsSerial) {
           << ext;
     }
   }
+}
+
+// The input's data follow the input numbering through a distributed read and write, in every
+// format that keeps them: each vertex's "x" stays its x coordinate, each cell's "cx" the x of its
+// centroid and (but in Exodus, which orders cells by block) "cell" its number.
+TEST_P(Distributed, CarriesTheInputDataInItsNumbering) {
+  const auto dir = testing::shared_scratch_dir("Distributed.CarriesTheInputData");
+  if (mpi_rank() == 0) {
+    PlexMesh serial = PlexMesh::load(data_path(GetParam()), PETSC_COMM_SELF);
+    const MeshView& view = serial.view();
+    MeshFields fields;
+    fields.cell.push_back({"cell", {view.global_cell.begin(), view.global_cell.end()}, 1});
+    fields.cell.push_back({"cx", std::vector<double>(view.num_cells), 1});
+    for (const CellBlock& block : view.blocks)
+      for (PetscInt c = 0; c < block.size(); ++c) {
+        double sum = 0;
+        for (int i = 0; i < num_vertices(block.type); ++i)
+          sum += view.coords[block.cell(c)[i] * view.dim];
+        fields.cell[1].values[block.first_cell + c] = sum / num_vertices(block.type);
+      }
+    fields.vertex.push_back({"x", {}, 1});
+    for (PetscInt v = 0; v < view.num_vertices; ++v)
+      fields.vertex[0].values.push_back(view.coords[v * view.dim]);
+    write_mesh(serial, dir / "in.vtu", fields);
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  PlexMesh mesh = PlexMesh::load(dir / "in.vtu");
+  const std::vector<std::string> formats = {".vtu", ".vtk", ".exo"};
+  for (const std::string& ext : formats) write_mesh(mesh, dir / ("p" + ext));
+  if (mpi_rank() != 0) return;
+  for (const std::string& ext : formats) {
+    PlexMesh back = PlexMesh::load(dir / ("p" + ext), PETSC_COMM_SELF);
+    const GatheredMesh g = gather_mesh(back, {});
+    ASSERT_EQ(g.mesh.point_data.size(), 1u) << ext;
+    ASSERT_EQ(g.mesh.cell_data.size(), 2u) << ext;
+    const std::vector<double>& x = g.mesh.point_data[0].values;
+    ASSERT_EQ(x.size(), static_cast<std::size_t>(g.mesh.num_vertices())) << ext;
+    for (PetscInt v = 0; v < g.mesh.num_vertices(); ++v)
+      EXPECT_EQ(x[v], g.mesh.coords[v * g.mesh.dim]) << ext << " vertex " << v;
+    const std::vector<double>& cell = g.mesh.cell_data[0].values;
+    const std::vector<double>& cx = g.mesh.cell_data[1].values;
+    ASSERT_EQ(cell.size(), static_cast<std::size_t>(g.mesh.num_cells())) << ext;
+    for (PetscInt c = 0; c < g.mesh.num_cells(); ++c) {
+      if (ext != ".exo") {
+        EXPECT_EQ(cell[c], c) << ext;
+      }
+      double sum = 0;
+      const PetscInt n = g.mesh.cell_offsets[c + 1] - g.mesh.cell_offsets[c];
+      for (PetscInt i = g.mesh.cell_offsets[c]; i < g.mesh.cell_offsets[c + 1]; ++i)
+        sum += g.mesh.coords[g.mesh.cell_vertices[i] * g.mesh.dim];
+      EXPECT_NEAR(cx[c], sum / n, 1e-12) << ext << " cell " << c;
+    }
+  }
+  // The same file as a serial run writes.
+  PlexMesh serial = PlexMesh::load(dir / "in.vtu", PETSC_COMM_SELF);
+  write_mesh(serial, dir / "s.vtu");
+  EXPECT_EQ(read_file(dir / "p.vtu"), read_file(dir / "s.vtu"));
 }
 
 INSTANTIATE_TEST_SUITE_P(Files, Distributed,

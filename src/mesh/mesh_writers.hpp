@@ -21,31 +21,55 @@ struct WrittenGroups {
 };
 WrittenGroups physical_groups(const InputMesh& mesh);
 
+// The elements of a VTK file (.vtu, .vtk) of a mesh: its cells in input order, then the facets
+// of its facet groups (lines, triangles, quadrilaterals) and the points of its point groups
+// (vertices), as meshio writes Gmsh's groups. `tags`: each element's physical tag (0: none),
+// written as the cell data "physical" when `has_tags`.
+struct VtkElements {
+  std::vector<std::uint8_t> types;
+  std::vector<std::int64_t> offsets;  // where each element's points end in `connectivity`
+  std::vector<std::int64_t> connectivity;
+  std::vector<std::int32_t> tags;
+  bool has_tags = false;
+  std::size_t size() const { return types.size(); }
+};
+VtkElements vtk_elements(const GatheredMesh& mesh);
+
+// Cell data `values` (per cell) for every element: facets and points get `fill`.
+std::vector<double> per_element(const std::vector<double>& values, int components, double fill,
+                                std::size_t elements);
+
 // VTK XML UnstructuredGrid (.vtu), binary in a raw appended section (which ParaView and
-// meshio read; meshio converts to ASCII for reading by eye): cell and vertex fields, plus the
-// cell field "physical" when the cells carry physical groups.
+// meshio read; meshio converts to ASCII for reading by eye). Elements as VtkElements; point
+// data: the input's, then the vertex fields; cell data: the input's (in their types), then the
+// cell fields (NaN for facets and points, 0 in integer arrays), then "physical". Field data: an
+// Int32 array [tag, dimension] per named group, named by the group.
 void write_vtu(const GatheredMesh& mesh, std::ostream& out);
 
 // VTK legacy ASCII (.vtk, version 4.2, UNSTRUCTURED_GRID; what Mesquite and many codes read):
-// points, cells, the cell scalars "physical" when the cells carry physical groups, and the
-// cell and vertex fields as FIELD data. Values in their shortest exact form, so that reading
-// the file back gives the same coordinates. Facet groups are not written (the format has no
-// place for them).
+// points, elements as VtkElements, the cell scalars "physical", the input's data and the fields
+// as FIELD data (0 for facets and points: VTK's legacy reader reads no NaN), the group names as
+// the dataset's FIELD data (as for .vtu). Values in their
+// shortest exact form, so that reading the file back gives the same coordinates and data. Names
+// with spaces or '%' are written as VTK does ("%20", "%25").
 void write_vtk(const GatheredMesh& mesh, std::ostream& out);
 
 // Gmsh 4.1 ASCII (.msh): cells and the boundary facets and points of physical groups, one
-// entity per physical group, so that reading the file back gives the same groups.
+// entity per physical group, so that reading the file back gives the same groups; the input's
+// point and cell data as $NodeData and $ElementData (time 0, values as doubles).
 void write_msh(const GatheredMesh& mesh, std::ostream& out);
 
 // Medit ASCII (.mesh, MeshVersionFormatted 2): vertices, cells with their groups as
 // references, and the boundary facets of facet groups (edges in 2D, triangles and
-// quadrilaterals in 3D) with theirs. Group names and fields are not kept: Medit has none.
+// quadrilaterals in 3D) with theirs; vertex references from the point data "medit:ref" (else
+// 0). Group names, fields and other data are not kept: Medit has no place for them.
 void write_medit(const GatheredMesh& mesh, std::ostream& out);
 
 // Exodus II (.exo, .e, .ex2) through the Exodus library, to the file `path` (messages name
 // `target`): coordinates (num_dim 2 for a 2D mesh in the plane z = 0), an element block per
 // cell group and cell type (id: the group's tag; name: the group's), a side set per facet
-// group. Fields and point groups are not written.
+// group, the input's point and cell data as nodal and element variables of one time step
+// (time 0; exodus_file.hpp names their components). Fields and point groups are not written.
 void write_exodus(const GatheredMesh& mesh, const std::filesystem::path& path,
                   const std::string& target);
 

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <map>
+#include <string>
 
 #include <fmt/ostream.h>
 
@@ -28,10 +29,12 @@ struct Entities {
   }
 };
 
-// An element block: elements of one type on one entity, as vertex lists (input numbers).
+// An element block: elements of one type on one entity, as vertex lists (input numbers), and
+// for cells their input numbers.
 struct Block {
   int dim, entity, type;
   std::vector<std::vector<PetscInt>> elements;
+  std::vector<PetscInt> cells;
 };
 
 void write_entities(std::ostream& f, const std::vector<double>& xyz, const Entities& entities) {
@@ -68,6 +71,7 @@ std::vector<Block> element_blocks(const GatheredMesh& g, const WrittenGroups& gr
     const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
     for (int i = 0; i < num_vertices(t); ++i) vertices[i] = cell[gmsh_from_canonical(t)[i]];
     block.elements.push_back(std::move(vertices));
+    block.cells.push_back(c);
   }
   for (const TaggedEntities* tagged : {&mesh.facets, &mesh.points})
     for (PetscInt k = 0; k < tagged->size(); ++k) {
@@ -81,12 +85,31 @@ std::vector<Block> element_blocks(const GatheredMesh& g, const WrittenGroups& gr
   std::vector<Block> out;
   for (auto& [key, block] : blocks) {
     const auto [dim, physical, type] = key;
-    out.push_back({dim, entities.tag.at({dim, physical}), type, std::move(block.elements)});
+    out.push_back({dim, entities.tag.at({dim, physical}), type, std::move(block.elements),
+                   std::move(block.cells)});
   }
   // Cells first, then facets and points: element numbers then follow the input's cells.
   std::stable_sort(out.begin(), out.end(),
                    [](const Block& a, const Block& b) { return a.dim > b.dim; });
   return out;
+}
+
+// $NodeData or $ElementData of an array: name, time 0, step 0, the values by node or element
+// tag (`tags[i]`: the tag of entity i).
+void write_data(std::ostream& f, const char* section, const DataArray& a,
+                const std::vector<std::size_t>& tags) {
+  std::string name = a.name;  // a string tag is one line between quotes
+  std::replace_if(
+      name.begin(), name.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::replace(name.begin(), name.end(), '"', '\'');
+  fmt::print(f, "${}\n1\n\"{}\"\n1\n0\n3\n0\n{}\n{}\n", section, name, a.components, tags.size());
+  for (std::size_t i = 0; i < tags.size(); ++i) {
+    fmt::print(f, "{}", tags[i]);
+    for (int k = 0; k < a.components; ++k)
+      fmt::print(f, " {:.17g}", a.values[i * a.components + k]);
+    fmt::print(f, "\n");
+  }
+  fmt::print(f, "$End{}\n", section);
 }
 
 }  // namespace
@@ -137,15 +160,22 @@ void write_msh(const GatheredMesh& g, std::ostream& f) {
   for (const Block& b : blocks) total += b.elements.size();
   fmt::print(f, "$Elements\n{} {} 1 {}\n", blocks.size(), total, total);
   std::size_t tag = 0;
+  std::vector<std::size_t> element_of(mesh.num_cells());  // per cell its element tag
   for (const Block& b : blocks) {
     fmt::print(f, "{} {} {} {}\n", b.dim, b.entity, b.type, b.elements.size());
-    for (const auto& element : b.elements) {
+    for (std::size_t k = 0; k < b.elements.size(); ++k) {
       fmt::print(f, "{}", ++tag);
-      for (PetscInt v : element) fmt::print(f, " {}", v + 1);
+      for (PetscInt v : b.elements[k]) fmt::print(f, " {}", v + 1);
       fmt::print(f, "\n");
+      if (k < b.cells.size()) element_of[b.cells[k]] = tag;
     }
   }
   fmt::print(f, "$EndElements\n");
+
+  std::vector<std::size_t> node_of(nv);
+  for (PetscInt v = 0; v < nv; ++v) node_of[v] = v + 1;
+  for (const DataArray& a : mesh.point_data) write_data(f, "NodeData", a, node_of);
+  for (const DataArray& a : mesh.cell_data) write_data(f, "ElementData", a, element_of);
 }
 
 }  // namespace neomesh

@@ -255,6 +255,8 @@ PlexMesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
   m->plane = std::move(input.plane);
   m->facets = std::move(root.facets);
   m->points = std::move(root.points);
+  m->point_data = std::move(input.point_data);
+  m->cell_data = std::move(input.cell_data);
 
   const auto original = distribute(*m, graph);
   build_view(*m, original, counts[2], root, std::move(surface));

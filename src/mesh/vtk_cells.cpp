@@ -1,6 +1,8 @@
 #include "mesh/vtk_cells.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <set>
 
 #include "core/error.hpp"
@@ -131,20 +133,67 @@ void add_cells(const VtkCells& c, const std::string& file, const std::vector<Pet
   }
 }
 
+// The facets (elements of dimension mesh.dim - 1) with a positive tag.
+void add_tagged_elements(const VtkCells& c, const std::string& file,
+                         const std::vector<PetscInt>& vertex, InputMesh& mesh) {
+  if (c.tags.empty()) return;
+  for (std::size_t i = 0; i < c.types.size(); ++i) {
+    const VtkType& t = *vtk_type(c.types[i]);
+    const int n = static_cast<int>(c.offsets[i + 1] - c.offsets[i]);
+    const bool facet = t.dim == mesh.dim - 1 && t.order == 1 &&
+                       (t.vertices > 0 || (t.vtk == kPolygon && (n == 3 || n == 4)));
+    if (c.tags[i] <= 0 || !facet) continue;
+    PetscInt v[4];
+    for (int k = 0; k < n; ++k) {
+      const std::int64_t p = c.points[c.offsets[i] + (t.vtk == kPixel && k >= 2 ? 5 - k : k)];
+      if (vertex[p] < 0)
+        fail("{}: element {} (0-based) of group {} is not on the mesh (point {} is on no cell)",
+             file, i, c.tags[i], p);
+      v[k] = vertex[p];
+    }
+    mesh.facets.add(v, n, c.tags[i]);
+  }
+}
+
 }  // namespace
+
+bool group_name_array(const std::vector<double>& values, PhysicalGroup& group) {
+  if (values.size() != 2) return false;
+  const double tag = values[0], dim = values[1];
+  if (!(tag >= 1 && tag < 2147483647.0 && tag == std::floor(tag))) return false;
+  if (!(dim >= 0 && dim <= 3 && dim == std::floor(dim))) return false;
+  group.tag = static_cast<int>(tag);
+  group.dim = static_cast<int>(dim);
+  return true;
+}
 
 InputMesh input_from_vtk_cells(const VtkCells& c, const std::string& file) {
   InputMesh mesh;
   mesh.dim = cell_dimension(c, file);
   std::vector<PetscInt> vertex(c.xyz.size() / 3, -1);
+  std::vector<std::int64_t> kept_cells, kept_points;
   for (std::size_t i = 0; i < c.types.size(); ++i)
-    if (vtk_type(c.types[i])->dim == mesh.dim)
+    if (vtk_type(c.types[i])->dim == mesh.dim) {
+      kept_cells.push_back(static_cast<std::int64_t>(i));
       for (std::int64_t k = c.offsets[i]; k < c.offsets[i + 1]; ++k) vertex[c.points[k]] = 0;
+    }
+  for (std::size_t p = 0; p < vertex.size(); ++p)
+    if (vertex[p] >= 0) kept_points.push_back(static_cast<std::int64_t>(p));
   number_used_vertices(vertex, c.xyz, file, mesh);
   add_cells(c, file, vertex, mesh);
-  const std::set<int> tags(mesh.cell_tags.begin(), mesh.cell_tags.end());
-  for (int tag : tags)
-    if (tag > 0) mesh.groups.push_back({mesh.dim, tag, ""});
+  add_tagged_elements(c, file, vertex, mesh);
+  mesh.point_data = select_data(c.point_data, vertex.size(), kept_points);
+  mesh.cell_data = select_data(c.cell_data, c.types.size(), kept_cells);
+  std::set<std::pair<int, int>> groups;  // (dim, tag)
+  for (int tag : mesh.cell_tags)
+    if (tag > 0) groups.emplace(mesh.dim, tag);
+  for (int tag : mesh.facets.tags) groups.emplace(mesh.dim - 1, tag);
+  std::map<std::pair<int, int>, std::string> names;  // the last name of each group
+  for (const PhysicalGroup& g : c.names) names[{g.dim, g.tag}] = g.name;
+  for (const auto& [dim, tag] : groups) {
+    const auto it = names.find({dim, tag});
+    mesh.groups.push_back({dim, tag, it == names.end() ? "" : it->second});
+  }
   return mesh;
 }
 

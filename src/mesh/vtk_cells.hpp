@@ -2,10 +2,17 @@
 // file lists them (VTK type and points of each) turned into an InputMesh.
 //
 // Cells: triangles, quadrilaterals (and pixels), tetrahedra, hexahedra (and voxels), wedges and
-// pyramids; polygons of 3 and 4 vertices are triangles and quadrilaterals. Vertices and lines
-// are skipped: the cells are the elements of the highest dimension, as for Gmsh files. Cells
-// keep their file order, vertices are the points some cell uses, in file order. A 2D mesh gets
-// coordinates in its plane (plane_embedding.hpp).
+// pyramids; polygons of 3 and 4 vertices are triangles and quadrilaterals. The cells are the
+// elements of the highest dimension, as for Gmsh files. Elements of one dimension lower
+// (lines in 2D; triangles, quadrilaterals in 3D) with a positive physical tag are the facets of
+// facet groups (as neomesh and meshio write Gmsh's boundary groups); other lower-dimensional
+// elements are skipped (vertex elements too, as Gmsh's point elements are). Cells keep their file
+// order, vertices are the points some cell uses, in file order. A 2D mesh gets coordinates in its
+// plane (plane_embedding.hpp).
+//
+// Point and cell data follow the vertices and cells (the data of skipped points and elements is
+// dropped). Group names come as meshio writes Gmsh's: a field data array per group, named by
+// the group, holding its tag and dimension.
 #pragma once
 
 #include <cstdint>
@@ -41,12 +48,22 @@ struct VtkCells {
   std::vector<std::int64_t> points;  // of each cell, in VTK order, each < xyz.size() / 3
   // Per cell: its physical group (> 0), or 0; empty when the file gives none.
   std::vector<int> tags;
+  // Per point and per cell of the file.
+  std::vector<DataArray> point_data;
+  std::vector<DataArray> cell_data;
+  // Group names (from field data): name, tag and dimension.
+  std::vector<PhysicalGroup> names;
 };
+
+// A name from field data that names a group: an array of two integers, tag (> 0) and
+// dimension (0..3). Returns false for any other array.
+bool group_name_array(const std::vector<double>& values, PhysicalGroup& group);
 
 // The mesh of the cells of the highest dimension. Throws Error naming `file` unless they are
 // 2D or 3D cells neomesh reads (second-order cells, polyhedra, polygons of more than 4
-// vertices, 1D cells only) or if a cell repeats a vertex. The positive tags of the cells
-// become cell groups (without names).
+// vertices, 1D cells only) or if a cell repeats a vertex. The positive tags of the cells become
+// cell groups, those of facets facet groups, named by `names` where they match. Throws Error
+// if a facet of a group is not on the mesh's vertices.
 InputMesh input_from_vtk_cells(const VtkCells& cells, const std::string& file);
 
 }  // namespace neomesh

@@ -305,11 +305,11 @@ class VtkParser {
       read_data_size(h);
       in_cell_data_ = is(keyword, "CELL_DATA");
     } else if (is(keyword, "FIELD"))
-      skip_field(h);
+      read_field(h);
     else if (is(keyword, "METADATA"))
       skip_metadata();
     else
-      skip_attribute(h);
+      read_attribute(h);
   }
 
   // Attributes may announce more tuples than follow (none at the end of the file).
@@ -427,8 +427,43 @@ class VtkParser {
     }
   }
 
+  // The values of an attribute or field array of `components` per tuple, kept as point or cell
+  // data (bit arrays are skipped).
+  void read_data(std::string_view name, long long tuples, long long components, const DataType& t) {
+    const long long n = values(tuples, components, t);
+    if (t.kind == Kind::Bit || components < 1 || components > 1024) {
+      skip_values(n, t);
+      return;
+    }
+    DataArray a{decoded(name),
+                static_cast<int>(components),
+                static_cast<ValueType>(static_cast<int>(t.kind) - 1),
+                {}};
+    a.values.resize(static_cast<std::size_t>(n));
+    for (double& v : a.values) v = value(t);
+    round_to_type(a);
+    (in_cell_data_ ? c_.cell_data : c_.point_data).push_back(std::move(a));
+  }
+
+  // A name as VTK writes it, with "%XX" for spaces and other special characters.
+  static std::string decoded(std::string_view name) {
+    std::string out;
+    for (std::size_t i = 0; i < name.size(); ++i) {
+      unsigned code = 0;
+      if (name[i] == '%' && i + 2 < name.size() &&
+          std::from_chars(name.data() + i + 1, name.data() + i + 3, code, 16).ptr ==
+              name.data() + i + 3) {
+        out += static_cast<char>(code);
+        i += 2;
+      } else {
+        out += name[i];
+      }
+    }
+    return out;
+  }
+
   // POINT_DATA and CELL_DATA attributes: "KEYWORD name ..." and data_size_ values per tuple.
-  void skip_attribute(const std::vector<std::string_view>& h) {
+  void read_attribute(const std::vector<std::string_view>& h) {
     const std::string_view keyword = h.empty() ? "" : h[0];
     const auto in_data = [&] {
       if (data_size_ < 0) invalid("{} comes before POINT_DATA or CELL_DATA", section_);
@@ -442,7 +477,7 @@ class VtkParser {
       if (in_cell_data_ && components == 1 && (name == "physical" || name == "gmsh:physical"))
         read_cell_groups(values(data_size_, 1, t), t);
       else
-        skip_values(values(data_size_, components, t), t);
+        read_data(name, data_size_, components, t);
     } else if (is(keyword, "LOOKUP_TABLE")) {
       const long long n = number(argument(h, 2, "size"), "a size");
       skip_values(values(n, 4, binary_ ? kUInt8 : kFloat), kUInt8);  // RGBA
@@ -461,7 +496,7 @@ class VtkParser {
         if (is(keyword, name)) {
           in_data();
           const DataType& t = data_type(argument(h, 2, "data type"));
-          skip_values(values(data_size_, components, t), t);
+          read_data(argument(h, 1, "name"), data_size_, components, t);
           return;
         }
       if (!is(keyword, "TEXTURE_COORDINATES")) invalid("unknown keyword '{}'", shown(keyword));
@@ -472,8 +507,9 @@ class VtkParser {
     }
   }
 
-  // "FIELD name n", then n arrays "name components tuples type" with their values.
-  void skip_field(const std::vector<std::string_view>& h) {
+  // "FIELD name n", then n arrays "name components tuples type" with their values: point or
+  // cell data after POINT_DATA or CELL_DATA, else the dataset's (group names, vtk_cells.hpp).
+  void read_field(const std::vector<std::string_view>& h) {
     // Each array has a header line of at least 4 bytes.
     const long long arrays =
         values(number(argument(h, 2, "number of arrays"), "a size"), 1, kInt32);
@@ -483,7 +519,20 @@ class VtkParser {
       if (a.empty()) truncated();
       const DataType& t = data_type(argument(a, 3, "data type"));
       const long long components = number(a[1], "a number of components");
-      skip_values(values(components, number(a[2], "a number of tuples"), t), t);
+      const long long tuples = number(a[2], "a number of tuples");
+      if (data_size_ >= 0 && tuples == data_size_) {
+        read_data(a[0], tuples, components, t);
+      } else if (data_size_ < 0 && components * tuples == 2 && t.kind != Kind::Bit) {
+        values(2, 1, t);
+        std::vector<double> pair = {value(t), value(t)};
+        PhysicalGroup group;
+        if (group_name_array(pair, group)) {
+          group.name = decoded(a[0]);
+          c_.names.push_back(std::move(group));
+        }
+      } else {
+        skip_values(values(components, tuples, t), t);
+      }
       if (header_if("METADATA")) skip_metadata();
     }
   }

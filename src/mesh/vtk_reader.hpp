@@ -7,8 +7,11 @@
 //                               are skipped)
 //
 // Cells as vtk_cells.hpp says. The cell scalars "physical" (or "gmsh:physical"), as neomesh
-// and meshio write them, are the cells' physical groups; other POINT_DATA, CELL_DATA, FIELD
-// and METADATA sections are skipped.
+// and meshio write them, are the elements' physical groups. The other POINT_DATA and CELL_DATA
+// attributes (SCALARS, VECTORS, NORMALS, TENSORS, TENSORS6, GLOBAL_IDS, PEDIGREE_IDS) and FIELD
+// arrays of as many tuples are point and cell data, named as the file names them ("%20" and
+// the like decoded); bit arrays, COLOR_SCALARS, LOOKUP_TABLE, TEXTURE_COORDINATES and METADATA
+// are skipped. The dataset's FIELD arrays of two integers name groups (vtk_cells.hpp).
 //
 // Binary files are big-endian (as VTK writes them). Errors name the line (ASCII) or the byte
 // offset (binary) where the file stops making sense.

@@ -11,6 +11,9 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -193,9 +196,10 @@ T binary_value(const char* p, const ScalarType& t, bool big_endian) {
     const int shift = 64 - 8 * t.bytes;
     return static_cast<T>(static_cast<std::int64_t>(bits << shift) >> shift);
   }
-  if (bits > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+  if (std::is_integral_v<T> &&
+      bits > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
     throw DataError(fmt::format("the value {} is out of range", bits));
-  return static_cast<T>(bits);
+  return static_cast<T>(bits);  // a double: data values (input_mesh.hpp, ValueType)
 }
 
 // The whitespace-separated numbers of an ASCII array, at most `count` of them.
@@ -258,6 +262,14 @@ class VtuReader {
     const pugi::xml_node grid = root_.child(std::string(type).c_str());
     if (!grid) invalid("it has no <{}> element", type);
     return grid;
+  }
+
+  // The ValueType of a numeric DataArray, or none for other types (String, Bit).
+  static std::optional<ValueType> value_type(pugi::xml_node array) {
+    const std::string_view name = array.attribute("type").value();
+    for (std::size_t k = 0; k < std::size(kScalarTypes); ++k)
+      if (name == kScalarTypes[k].name) return static_cast<ValueType>(k);
+    return std::nullopt;
   }
 
   template <typename... Args>
@@ -400,6 +412,39 @@ pugi::xml_node named_array(pugi::xml_node node, std::string_view name) {
   return {};
 }
 
+// Cell data that are not carried as data: the groups and the ghost marks.
+bool is_special_cell_data(std::string_view name) {
+  return name == "physical" || name == "gmsh:physical" || name == "vtkGhostType";
+}
+
+// The numeric arrays of <PointData> or <CellData> `node` with `count` tuples each, but those
+// `skip` names (arrays of other types, String, are left out).
+std::vector<DataArray> data_arrays(const VtuReader& r, pugi::xml_node node, std::size_t count,
+                                   const std::string& where, bool (*skip)(std::string_view)) {
+  std::vector<DataArray> out;
+  for (pugi::xml_node array : node.children("DataArray")) {
+    const std::string name = array.attribute("Name").value();
+    const std::optional<ValueType> type = VtuReader::value_type(array);
+    if (name.empty() || !type || (skip && skip(name))) continue;
+    const std::string what =
+        fmt::format("the {} '{}' of {}", node.name(), shown_text(name, 40), where);
+    int components = 1;
+    const std::string_view text = array.attribute("NumberOfComponents").value();
+    if (!text.empty()) {
+      const auto [next, ec] = std::from_chars(text.data(), text.data() + text.size(), components);
+      if (ec != std::errc() || next != text.data() + text.size() || components < 1 ||
+          components > 1024)
+        r.invalid("{} has {} components", what, shown_text(text, 24));
+    }
+    if (count > std::numeric_limits<std::size_t>::max() / 1024)
+      r.invalid("{} has too many values", what);
+    out.push_back({name, components, *type,
+                   r.values<double>(array, count * static_cast<std::size_t>(components), what)});
+    round_to_type(out.back());
+  }
+  return out;
+}
+
 // One <Piece> of a .vtu as the file lists it.
 struct Piece {
   VtkCells cells;
@@ -478,14 +523,34 @@ Piece read_piece(const VtuReader& r, pugi::xml_node node, int index) {
   if (*ids)
     p.global_ids = optional_integers(r, named_array(point_data, ids), points,
                                      fmt::format("the global ids '{}' of {}", ids, where));
+  p.cells.point_data = data_arrays(r, point_data, points, where, nullptr);
+  p.cells.cell_data = data_arrays(r, cell_data, cells, where, is_special_cell_data);
   return p;
 }
 
-std::vector<Piece> read_pieces(const VtuReader& r) {
+// The group names of the grid's <FieldData> (vtk_cells.hpp).
+void read_group_names(const VtuReader& r, pugi::xml_node grid, std::vector<PhysicalGroup>& names) {
+  for (pugi::xml_node array : grid.child("FieldData").children("DataArray")) {
+    const std::string name = array.attribute("Name").value();
+    const std::string_view components = array.attribute("NumberOfComponents").value();
+    if (name.empty() || !VtuReader::value_type(array) ||
+        !(components.empty() || components == "1" || components == "2"))
+      continue;
+    PhysicalGroup group;
+    if (group_name_array(r.values<double>(array, 2, "the field data '" + name + "'"), group)) {
+      group.name = name;
+      names.push_back(std::move(group));
+    }
+  }
+}
+
+std::vector<Piece> read_pieces(const VtuReader& r, std::vector<PhysicalGroup>& names) {
   std::vector<Piece> pieces;
-  for (pugi::xml_node node : r.grid("UnstructuredGrid").children("Piece"))
+  const pugi::xml_node grid = r.grid("UnstructuredGrid");
+  for (pugi::xml_node node : grid.children("Piece"))
     pieces.push_back(read_piece(r, node, static_cast<int>(pieces.size())));
   if (pieces.empty()) r.invalid("it has no <Piece>");
+  read_group_names(r, grid, names);
   return pieces;
 }
 
@@ -502,16 +567,60 @@ struct PointKeyHash {
   }
 };
 
+// The arrays of every piece (same name and components), empty, with the type of the first.
+std::vector<DataArray> common_arrays(const std::vector<Piece>& pieces, bool point) {
+  const auto arrays = [&](const Piece& p) -> const std::vector<DataArray>& {
+    return point ? p.cells.point_data : p.cells.cell_data;
+  };
+  std::map<std::pair<std::string, int>, std::size_t> count;  // pieces having each array
+  for (const Piece& p : pieces) {
+    std::set<std::pair<std::string, int>> names;
+    for (const DataArray& a : arrays(p)) names.emplace(a.name, a.components);
+    for (const auto& key : names) ++count[key];
+  }
+  std::vector<DataArray> out;
+  std::set<std::string> taken;
+  for (const DataArray& a : arrays(pieces.front()))
+    if (count[{a.name, a.components}] == pieces.size() && taken.insert(a.name).second)
+      out.push_back({a.name, a.components, a.type, {}});
+  return out;
+}
+
+// For each array of `to`: the index of the array of the same name and components in `from`.
+std::vector<std::size_t> matching(const std::vector<DataArray>& to,
+                                  const std::vector<DataArray>& from) {
+  std::map<std::pair<std::string, int>, std::size_t> index;
+  for (std::size_t k = from.size(); k-- > 0;) index[{from[k].name, from[k].components}] = k;
+  std::vector<std::size_t> out;
+  for (const DataArray& a : to) out.push_back(index.at({a.name, a.components}));
+  return out;
+}
+
+// Appends tuple `i` of the arrays `from[match[j]]` to the arrays `to[j]`.
+void append_tuple(std::vector<DataArray>& to, const std::vector<DataArray>& from,
+                  const std::vector<std::size_t>& match, std::size_t i) {
+  for (std::size_t j = 0; j < to.size(); ++j) {
+    const DataArray& a = from[match[j]];
+    const auto k = static_cast<std::size_t>(a.components);
+    to[j].values.insert(to[j].values.end(), a.values.begin() + i * k,
+                        a.values.begin() + (i + 1) * k);
+  }
+}
+
 // The pieces as one list of cells: a point shared by pieces is one point (see vtu_reader.hpp),
-// duplicate ghost cells are left out.
+// duplicate ghost cells are left out. Point data of shared points come from their first piece.
 VtkCells join_pieces(std::vector<Piece>& pieces) {
   const bool by_id = std::all_of(pieces.begin(), pieces.end(),
                                  [](const Piece& p) { return !p.global_ids.empty(); });
   std::unordered_map<std::int64_t, std::int64_t> by_global_id;
   std::unordered_map<PointKey, std::pair<std::int64_t, std::size_t>, PointKeyHash> by_position;
   VtkCells all;
+  all.point_data = common_arrays(pieces, true);
+  all.cell_data = common_arrays(pieces, false);
   for (std::size_t k = 0; k < pieces.size(); ++k) {
     const VtkCells& c = pieces[k].cells;
+    const auto point_match = matching(all.point_data, c.point_data);
+    const auto cell_match = matching(all.cell_data, c.cell_data);
     std::vector<std::int64_t> point(c.xyz.size() / 3);
     for (std::size_t i = 0; i < point.size(); ++i) {
       const std::int64_t next = static_cast<std::int64_t>(all.xyz.size() / 3);
@@ -525,7 +634,9 @@ VtkCells join_pieces(std::vector<Piece>& pieces) {
       } else {
         point[i] = next;
       }
-      if (point[i] == next) all.xyz.insert(all.xyz.end(), &c.xyz[3 * i], &c.xyz[3 * i + 3]);
+      if (point[i] != next) continue;
+      all.xyz.insert(all.xyz.end(), &c.xyz[3 * i], &c.xyz[3 * i + 3]);
+      append_tuple(all.point_data, c.point_data, point_match, i);
     }
     for (std::size_t i = 0; i < c.types.size(); ++i) {
       if (!pieces[k].ghost.empty() && (pieces[k].ghost[i] & kDuplicateCell)) continue;
@@ -533,6 +644,7 @@ VtkCells join_pieces(std::vector<Piece>& pieces) {
       for (std::int64_t j = c.offsets[i]; j < c.offsets[i + 1]; ++j)
         all.points.push_back(point[c.points[j]]);
       all.offsets.push_back(static_cast<std::int64_t>(all.points.size()));
+      append_tuple(all.cell_data, c.cell_data, cell_match, i);
       if (!c.tags.empty()) {
         all.tags.resize(all.types.size() - 1, 0);
         all.tags.push_back(c.tags[i]);
@@ -548,13 +660,17 @@ VtkCells join_pieces(std::vector<Piece>& pieces) {
 
 InputMesh read_vtu(const std::filesystem::path& path) {
   const VtuReader reader(path);
-  std::vector<Piece> pieces = read_pieces(reader);
-  return input_from_vtk_cells(join_pieces(pieces), reader.file());
+  std::vector<PhysicalGroup> names;
+  std::vector<Piece> pieces = read_pieces(reader, names);
+  VtkCells cells = join_pieces(pieces);
+  cells.names = std::move(names);
+  return input_from_vtk_cells(cells, reader.file());
 }
 
 InputMesh read_pvtu(const std::filesystem::path& path) {
   const VtuReader reader(path);
   std::vector<Piece> pieces;
+  std::vector<PhysicalGroup> names;
   for (pugi::xml_node node : reader.grid("PUnstructuredGrid").children("Piece")) {
     const std::string_view source = node.attribute("Source").value();
     if (source.empty()) reader.invalid("a <Piece> lacks its Source");
@@ -563,10 +679,12 @@ InputMesh read_pvtu(const std::filesystem::path& path) {
       fail("{}: piece {} is {}; the pieces of a .pvtu are .vtu files", reader.file(), pieces.size(),
            piece.string());
     const VtuReader piece_reader(piece);
-    for (Piece& p : read_pieces(piece_reader)) pieces.push_back(std::move(p));
+    for (Piece& p : read_pieces(piece_reader, names)) pieces.push_back(std::move(p));
   }
   if (pieces.empty()) reader.invalid("it has no <Piece>");
-  return input_from_vtk_cells(join_pieces(pieces), reader.file());
+  VtkCells cells = join_pieces(pieces);
+  cells.names = std::move(names);
+  return input_from_vtk_cells(cells, reader.file());
 }
 
 }  // namespace neomesh

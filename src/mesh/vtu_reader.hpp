@@ -9,9 +9,11 @@
 // are Float32 or Float64, the cell arrays of any integer type.
 //
 // Cells as vtk_cells.hpp says. The cell data "physical" (as neomesh writes it) or
-// "gmsh:physical" (as meshio converts Gmsh's groups) gives the cells' groups; cells whose
-// "vtkGhostType" marks them duplicates of another piece's are skipped; other point and cell
-// data are skipped.
+// "gmsh:physical" (as meshio converts Gmsh's groups) gives the elements' groups; cells whose
+// "vtkGhostType" marks them duplicates of another piece's are skipped. The other numeric point
+// and cell data arrays are the mesh's point and cell data (String arrays are skipped); in a
+// file of several pieces, the arrays that every piece has. The grid's <FieldData> arrays of two
+// integers name groups (vtk_cells.hpp).
 //
 // .pvtu: <VTKFile type="PUnstructuredGrid"> whose <Piece Source="..."> name .vtu files
 // (relative to the .pvtu's folder). The pieces, like the pieces of one .vtu, are read in order

@@ -87,14 +87,16 @@ def test_a_vtu_written_by_meshio_reads_as_meshio_wrote_it(tmp, case, level, enco
                                     "prism_v41.msh"])
 @pytest.mark.parametrize("ext", [".vtu", ".vtk", ".mesh", ".exo"])
 def test_neomesh_reads_its_own_output_back(tmp, source, ext):
-    """.msh -> ext -> .msh keeps coordinates, cells and cell groups (.mesh, .exo: facet groups
-    too; .vtk and .vtu have no place for them) of the .msh -> .msh conversion."""
+    """.msh -> ext -> .msh keeps coordinates, cells, cell groups and facet groups of the .msh ->
+    .msh conversion, and (but Medit, which has no names) the groups' names."""
     direct = read_mesh(convert(tmp, os.path.join(DATA, source), "direct.msh"))
     middle = convert(tmp, os.path.join(DATA, source), "middle" + ext)
     again = read_mesh(convert(tmp, middle, "again.msh"))
     expect_same(again, direct)
-    if ext not in (".vtu", ".vtk"):
-        assert facet_groups(again) == facet_groups(direct)
+    assert facet_groups(again) == facet_groups(direct)
+    if ext != ".mesh":
+        names = {k: v.tolist() for k, v in direct.field_data.items()}
+        assert {k: v.tolist() for k, v in again.field_data.items()} == names
 
 
 @pytest.mark.parametrize("ranks", RANKS)
