@@ -18,6 +18,7 @@ packages=(
   python3 python3-numpy python3-meshio python3-pytest gmsh  # tests: reader, runner, meshes
   python3-netcdf4              # tests: meshio's Exodus II reader and writer
   cgns-convert                 # tests: tetgen_to_cgns writes .cgns files
+  python3-vtk9                 # tests: VTK's own readers read neomesh's .vtu and .vtk
 )
 missing=()
 for p in "${packages[@]}"; do
