@@ -139,10 +139,17 @@ struct CellTarget {
   double volume;
   const double* shape_inverse_t = nullptr;
   double stiffness = 1.0;
+  // 1/s = v^(−1/d): the optimal cell's edge scale, which every evaluation needs (a Functional
+  // computes it once per desired volume, not per call: pow costs as much as a tetrahedron's
+  // energy).
+  double inverse_edge;
 
   // The ideal cell of `volume` (implicit: a volume is the thesis' target).
   CellTarget(double v, const double* s = nullptr, double k = 1.0)
-      : volume(v), shape_inverse_t(s), stiffness(k) {}
+      : CellTarget(v, std::pow(v, -1.0 / Dim), s, k) {}
+  // The same with v^(−1/d) given.
+  CellTarget(double v, double inverse_edge_, const double* s, double k)
+      : volume(v), shape_inverse_t(s), stiffness(k), inverse_edge(inverse_edge_) {}
   // The weight of the cell's integrals: k v (v, exactly, for k = 1).
   double weight() const { return stiffness == 1.0 ? volume : volume * stiffness; }
 
@@ -206,7 +213,7 @@ class CellKernel {
   // point or corner.
   double energy(const Coordinates& x, const Target& target) const {
     if (!barrier_holds(x)) return std::numeric_limits<double>::infinity();
-    const double scale = inverse_edge(target.volume);
+    const double scale = target.inverse_edge;
     double sum = 0.0;
     for (int q = 0; q < rule_.size; ++q) {
       const auto p = law_.point(x * target.pull_back(rule_.unit_gradients[q], scale).transpose());
@@ -221,7 +228,7 @@ class CellKernel {
   double energy_and_gradient(const Coordinates& x, const Target& target, Gradient& gradient) const {
     gradient.setZero();
     if (!barrier_holds(x)) return std::numeric_limits<double>::infinity();
-    const double scale = inverse_edge(target.volume);
+    const double scale = target.inverse_edge;
     double sum = 0.0;
     for (int q = 0; q < rule_.size; ++q) {
       const Gradient basis = target.pull_back(rule_.unit_gradients[q], scale);
@@ -240,7 +247,7 @@ class CellKernel {
   // Returns false (block unspecified) if the law is infinite at some point.
   bool hessian(const Coordinates& x, const Target& target, double alpha,
                Eigen::Ref<Block> block) const {
-    const double scale = inverse_edge(target.volume);
+    const double scale = target.inverse_edge;
     block.setZero();
     for (int q = 0; q < rule_.size; ++q) {
       const Gradient basis = target.pull_back(rule_.unit_gradients[q], scale);
@@ -259,7 +266,7 @@ class CellKernel {
   // Vector Laplacian on the target cell: ∫ ∇φ̂_i·∇φ̂_j δ_ab (= B3/μ); independent of X.
   void optimal_laplacian(const Target& target, Eigen::Ref<Block> block) const {
     block.setZero();
-    add_scalar_laplacian(scalar_laplacian(target, inverse_edge(target.volume)), block);
+    add_scalar_laplacian(scalar_laplacian(target, target.inverse_edge), block);
     make_exactly_symmetric(block);
   }
 
@@ -267,7 +274,7 @@ class CellKernel {
   // (G⁻ᵀ∇φ̂_j). Returns false (block unspecified) if det G ≤ 0 at some point.
   bool current_laplacian(const Coordinates& x, const Target& target,
                          Eigen::Ref<Block> block) const {
-    const double scale = inverse_edge(target.volume);
+    const double scale = target.inverse_edge;
     block.setZero();
     for (int q = 0; q < rule_.size; ++q) {
       const Gradient basis = target.pull_back(rule_.unit_gradients[q], scale);
@@ -283,7 +290,7 @@ class CellKernel {
 
   // Actual volume Σ_q v ŵ_q det G_q (exact for ≥ 2 Gauss points per direction) and min det G.
   CellMeasure measure(const Coordinates& x, const Target& target) const {
-    const double scale = inverse_edge(target.volume);
+    const double scale = target.inverse_edge;
     CellMeasure m{0.0, std::numeric_limits<double>::infinity()};
     for (int q = 0; q < rule_.size; ++q) {
       const double det =
@@ -299,9 +306,6 @@ class CellKernel {
     if constexpr (Law::barrier) return corners_admissible(x);
     return true;
   }
-
-  // 1/s with s = v^(1/d), the edge scale of the optimal cell of volume v.
-  static double inverse_edge(double volume) { return std::pow(volume, -1.0 / dim); }
 
   // Copies the lower triangle onto the upper one: the block is symmetric in exact arithmetic,
   // and this makes it so in floating point (PETSc may then rely on MAT_SYMMETRIC).

@@ -65,6 +65,24 @@ Kernels make_kernels(const EnergyOptions& options, double corner_weight = 0.0) {
                  NeoHookeKernel<CellType::Pyramid>(law3, n, w)};
 }
 
+// S⁻ᵀ scaled to det 1 per cell (fixed-size: a mesh has up to millions of them); fails for a
+// shape or weight that is not positive.
+template <int Dim>
+void invert_target_shapes(std::span<const double> shapes, const std::vector<double>& weights,
+                          std::vector<double>& inverse_t) {
+  constexpr std::size_t n = Dim * Dim;
+  for (std::size_t c = 0; c * n < shapes.size(); ++c) {
+    const Eigen::Map<const Matrix<Dim>> S(shapes.data() + c * n);
+    const double det = S.determinant();
+    if (!(det > 0.0) || !std::isfinite(det))
+      fail("the target shape of local cell {} has determinant {} (must be positive)", c, det);
+    if (!(weights[c] > 0.0) || !std::isfinite(weights[c]))
+      fail("the target weight of local cell {} is {} (must be positive)", c, weights[c]);
+    Eigen::Map<Matrix<Dim>>(inverse_t.data() + c * n) =
+        std::pow(det, 1.0 / Dim) * S.inverse().transpose();
+  }
+}
+
 double sum_over_ranks(double local, MPI_Comm comm) {
   double global = 0.0;
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
@@ -82,11 +100,12 @@ struct Functional::Impl {
   // kernels also find inverted cells (their sample points are where det G must be > 0).
   UntanglingKernels untangling_kernels;
   bool untangling = false;
-  std::vector<std::uint8_t> fixed;   // per local dof
-  std::vector<double> volumes;       // desired volume per local cell
-  std::vector<double> shapes;        // per local cell S (dim² each) as given; empty: ideal
-  std::vector<double> shapes_inv_t;  // per local cell S⁻ᵀ with det S = 1, for the kernels
-  std::vector<double> weights;       // per local cell with shapes: its energy's weight
+  std::vector<std::uint8_t> fixed;    // per local dof
+  std::vector<double> volumes;        // desired volume per local cell
+  std::vector<double> inverse_edges;  // per local cell v^(−1/d) (CellTarget)
+  std::vector<double> shapes;         // per local cell S (dim² each) as given; empty: ideal
+  std::vector<double> shapes_inv_t;   // per local cell S⁻ᵀ with det S = 1, for the kernels
+  std::vector<double> weights;        // per local cell with shapes: its energy's weight
   OwnedVec free_mask;
   SlidingVertices sliding;
   std::vector<PetscInt> projector_of;  // per local vertex: its index in sliding.vertices, or -1
@@ -127,8 +146,9 @@ struct Functional::Impl {
   // The target of local cell `cell` (cell_kernels.hpp).
   template <int Dim>
   CellTarget<Dim> target(PetscInt cell) const {
-    if (shapes_inv_t.empty()) return {volumes[cell]};
-    return {volumes[cell], shapes_inv_t.data() + Dim * Dim * cell, weights[cell]};
+    if (shapes_inv_t.empty()) return {volumes[cell], inverse_edges[cell], nullptr, 1.0};
+    return {volumes[cell], inverse_edges[cell], shapes_inv_t.data() + Dim * Dim * cell,
+            weights[cell]};
   }
 
   bool is_fixed_dof(PetscInt local_dof) const { return fixed[local_dof] != 0; }
@@ -404,6 +424,10 @@ void Functional::set_desired_volumes(std::span<const double> volumes) {
     if (!(volumes[c] > 0.0) || !std::isfinite(volumes[c]))
       fail("desired volume of local cell {} is {} (must be positive and finite)", c, volumes[c]);
   impl_->volumes.assign(volumes.begin(), volumes.end());
+  impl_->inverse_edges.resize(volumes.size());
+  const double power = -1.0 / impl_->view.dim;
+  for (std::size_t c = 0; c < volumes.size(); ++c)
+    impl_->inverse_edges[c] = std::pow(volumes[c], power);
 }
 
 const std::vector<double>& Functional::desired_volumes() const {
@@ -424,16 +448,10 @@ void Functional::set_target_shapes(std::span<const double> shapes,
   impl_->weights.assign(weights.begin(), weights.end());
   if (impl_->weights.empty() && !shapes.empty()) impl_->weights.assign(cells, 1.0);
   impl_->shapes_inv_t.resize(shapes.size());
-  for (std::size_t c = 0; c * n < shapes.size(); ++c) {
-    const Eigen::Map<const Eigen::MatrixXd> S(shapes.data() + c * n, d, d);
-    const double det = S.determinant();
-    if (!(det > 0.0) || !std::isfinite(det))
-      fail("the target shape of local cell {} has determinant {} (must be positive)", c, det);
-    if (!(impl_->weights[c] > 0.0) || !std::isfinite(impl_->weights[c]))
-      fail("the target weight of local cell {} is {} (must be positive)", c, impl_->weights[c]);
-    Eigen::Map<Eigen::MatrixXd>(impl_->shapes_inv_t.data() + c * n, d, d) =
-        std::pow(det, 1.0 / d) * S.inverse().transpose();
-  }
+  if (d == 2)
+    invert_target_shapes<2>(shapes, impl_->weights, impl_->shapes_inv_t);
+  else
+    invert_target_shapes<3>(shapes, impl_->weights, impl_->shapes_inv_t);
 }
 
 const std::vector<double>& Functional::target_shapes() const {

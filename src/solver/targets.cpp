@@ -29,7 +29,10 @@ struct InputCell {
   Eigen::Matrix<double, Dim, 1> log_stretches;  // ½ log λ, ascending
 
   explicit InputCell(const Mat<Dim>& shape) : S(shape) {
-    const Eigen::SelfAdjointEigenSolver<Mat<Dim>> eigen(S * S.transpose());
+    // The closed form of 2×2 and 3×3 (where two stretches are close its eigenvectors are less
+    // accurate, but log V does not depend on them there).
+    Eigen::SelfAdjointEigenSolver<Mat<Dim>> eigen;
+    eigen.computeDirect(S * S.transpose());
     Q = eigen.eigenvectors();
     log_stretches = 0.5 * eigen.eigenvalues().array().log();
   }
@@ -43,8 +46,9 @@ struct InputCell {
 
 template <int Dim>
 double log_anisotropy(const Mat<Dim>& log_stretch) {
-  const auto logs =
-      Eigen::SelfAdjointEigenSolver<Mat<Dim>>(log_stretch, Eigen::EigenvaluesOnly).eigenvalues();
+  const auto logs = Eigen::SelfAdjointEigenSolver<Mat<Dim>>()
+                        .computeDirect(log_stretch, Eigen::EigenvaluesOnly)
+                        .eigenvalues();
   return logs[Dim - 1] - logs[0];
 }
 
