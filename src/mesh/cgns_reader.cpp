@@ -222,8 +222,111 @@ class MeshBuilder {
           add_facet(s, e, names_.of(s.name, mesh_.dim - 1, mesh_));
   }
 
+  // The FlowSolutions at vertices and cell centres: the input's point and cell data (neomesh
+  // writes them back). Fields named vX, vY(, vZ) or v_0, v_1, ... in a row are one array of
+  // that many components, as write_cgns writes them; solutions elsewhere (faces) are left out.
+  void add_solutions() {
+    const int id = reader_.id();
+    int count = 0;
+    check(cg_nsols(id, kBase, kZone, &count), "reading the flow solutions");
+    char zone[33] = {};
+    cgsize_t size[3];
+    check(cg_zone_read(id, kBase, kZone, zone, size), "reading the zone");
+    for (int s = 1; s <= count; ++s) {
+      char solution[33] = {};
+      CGNS_ENUMT(GridLocation_t) location;
+      check(cg_sol_info(id, kBase, kZone, s, solution, &location), "reading a flow solution");
+      const bool at_vertices = location == CGNS_ENUMV(Vertex);
+      if (!at_vertices && location != CGNS_ENUMV(CellCenter)) continue;
+      const cgsize_t n = at_vertices ? size[0] : size[1];
+      if (!at_vertices && n != static_cast<cgsize_t>(mesh_.num_cells())) continue;
+      int fields = 0;
+      check(cg_nfields(id, kBase, kZone, s, &fields), "reading a flow solution");
+      std::vector<DataArray> arrays;
+      for (int f = 1; f <= fields; ++f) {
+        char name[33] = {};
+        CGNS_ENUMT(DataType_t) type;
+        check(cg_field_info(id, kBase, kZone, s, f, &type, name), "reading a flow solution");
+        std::vector<double> values(n);
+        cgsize_t first = 1, last = n;
+        check(cg_field_read(id, kBase, kZone, s, name, CGNS_ENUMV(RealDouble), &first, &last,
+                            values.data()),
+              fmt::format("reading the field '{}' of '{}'", name, solution));
+        DataArray a{.name = name, .components = 1, .type = value_type(type), .values = {}};
+        if (at_vertices) {
+          a.values.assign(mesh_.num_vertices(), 0.0);
+          for (cgsize_t v = 0; v < n; ++v)
+            if (vertex_[v] >= 0) a.values[vertex_[v]] = values[v];
+        } else {
+          a.values = std::move(values);
+        }
+        arrays.push_back(std::move(a));
+      }
+      std::vector<DataArray>& out = at_vertices ? mesh_.point_data : mesh_.cell_data;
+      for (DataArray& a : join_components(std::move(arrays))) out.push_back(std::move(a));
+    }
+  }
+
  private:
   void check(int status, std::string_view what) const { reader_.check(status, what); }
+
+  static ValueType value_type(CGNS_ENUMT(DataType_t) type) {
+    switch (type) {
+      case CGNS_ENUMV(Integer):
+        return ValueType::Int32;
+      case CGNS_ENUMV(LongInteger):
+        return ValueType::Int64;
+      case CGNS_ENUMV(RealSingle):
+        return ValueType::Float32;
+      default:
+        return ValueType::Float64;
+    }
+  }
+
+  // The suffix of component k of an array of `components` (write_cgns' names).
+  static std::string suffix(int k, int components) {
+    return components <= 3 ? std::string(1, "XYZ"[k]) : fmt::format("_{}", k);
+  }
+
+  // Scalar fields vX, vY(, vZ) or v_0, ..., v_{m-1} in a row, of one type, joined into one array
+  // v of 2, 3 or m components.
+  static std::vector<DataArray> join_components(std::vector<DataArray> fields) {
+    std::vector<DataArray> out;
+    for (std::size_t i = 0; i < fields.size();) {
+      std::size_t joined = 1;
+      // vX vY vZ before vX vY; v_0 ... v_{m-1} for any m > 3.
+      const std::string& first = fields[i].name;
+      int many = 0;
+      if (first.size() > 2 && first.ends_with("_0")) {
+        const std::string stem = first.substr(0, first.size() - 2);
+        while (i + many < fields.size() && fields[i + many].name == stem + suffix(many, 4) &&
+               fields[i + many].type == fields[i].type)
+          ++many;
+      }
+      for (int m : {many, 3, 2}) {
+        if (m < 2 || (m == many && m <= 3)) continue;
+        const std::string tail = suffix(0, m);
+        if (first.size() <= tail.size() || !first.ends_with(tail)) continue;
+        const std::string stem = first.substr(0, first.size() - tail.size());
+        int k = 0;
+        while (k < m && i + k < fields.size() && fields[i + k].name == stem + suffix(k, m) &&
+               fields[i + k].type == fields[i].type)
+          ++k;
+        if (k < m) continue;
+        DataArray a{.name = stem, .components = m, .type = fields[i].type, .values = {}};
+        const std::size_t n = fields[i].values.size();
+        a.values.resize(n * m);
+        for (int c = 0; c < m; ++c)
+          for (std::size_t e = 0; e < n; ++e) a.values[m * e + c] = fields[i + c].values[e];
+        out.push_back(std::move(a));
+        joined = m;
+        break;
+      }
+      if (joined == 1) out.push_back(std::move(fields[i]));
+      i += joined;
+    }
+    return out;
+  }
 
   std::optional<std::string> family(int bc) {
     char name[33] = {};
@@ -294,6 +397,7 @@ InputMesh read_cgns(const std::filesystem::path& path) {
   builder.number_vertices(reader.coordinates());
   builder.add_cells();
   if (builder.add_boundary_conditions() == 0) builder.add_section_facets();
+  builder.add_solutions();
   std::sort(mesh.groups.begin(), mesh.groups.end(), [](const auto& a, const auto& b) {
     return std::pair(a.dim, a.tag) < std::pair(b.dim, b.tag);
   });

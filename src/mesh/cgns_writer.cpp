@@ -129,6 +129,81 @@ void write_coordinates(const CgnsFile& file, int base, int zone, const InputMesh
   }
 }
 
+// The CGNS type an array is written as: its own where CGNS has it, else the next wider one.
+CGNS_ENUMT(DataType_t) cgns_type(ValueType type) {
+  switch (type) {
+    case ValueType::Float32:
+      return CGNS_ENUMV(RealSingle);
+    case ValueType::Float64:
+      return CGNS_ENUMV(RealDouble);
+    case ValueType::UInt32:
+    case ValueType::Int64:
+    case ValueType::UInt64:
+      return CGNS_ENUMV(LongInteger);
+    default:
+      return CGNS_ENUMV(Integer);
+  }
+}
+
+// One field of a FlowSolution: component k of `values` (`components` per entity) as `type`.
+void write_field(const CgnsFile& file, int base, int zone, int solution, const std::string& name,
+                 CGNS_ENUMT(DataType_t) type, const std::vector<double>& values, int components,
+                 int k) {
+  const std::size_t n = values.size() / components;
+  auto pick = [&]<typename T>(T) {
+    std::vector<T> out(n);
+    for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<T>(values[components * i + k]);
+    return out;
+  };
+  int index = 0;
+  const std::string what = fmt::format("writing the data '{}'", name);
+  if (type == CGNS_ENUMV(RealDouble)) {
+    const auto v = pick(double{});
+    file.check(
+        cg_field_write(file.id(), base, zone, solution, type, name.c_str(), v.data(), &index),
+        what);
+  } else if (type == CGNS_ENUMV(RealSingle)) {
+    const auto v = pick(float{});
+    file.check(
+        cg_field_write(file.id(), base, zone, solution, type, name.c_str(), v.data(), &index),
+        what);
+  } else if (type == CGNS_ENUMV(LongInteger)) {
+    const auto v = pick(cglong_t{});
+    file.check(
+        cg_field_write(file.id(), base, zone, solution, type, name.c_str(), v.data(), &index),
+        what);
+  } else {
+    const auto v = pick(int{});
+    file.check(
+        cg_field_write(file.id(), base, zone, solution, type, name.c_str(), v.data(), &index),
+        what);
+  }
+}
+
+// The input's arrays at `location` as one FlowSolution, a field per component: "vX", "vY", "vZ"
+// for a vector of 2 or 3 components (the SIDS' convention), "v_0", "v_1", ... for more
+// (read_cgns joins them back). Names are cut to CGNS' 32 characters. neomesh's own fields are
+// not written: a solution at cell centres beside sections of boundary faces is valid CGNS, but
+// meshio's reader refuses such a file, and a file without data should stay readable to it.
+void write_solution(const CgnsFile& file, int base, int zone, const char* name,
+                    CGNS_ENUMT(GridLocation_t) location, const std::vector<DataArray>& data) {
+  if (data.empty()) return;
+  int solution = 0;
+  file.check(cg_sol_write(file.id(), base, zone, name, location, &solution),
+             "writing a flow solution");
+  auto write = [&](const std::string& array, CGNS_ENUMT(DataType_t) type,
+                   const std::vector<double>& values, int components) {
+    for (int k = 0; k < components; ++k) {
+      std::string field = array;
+      if (components > 1)
+        field += components <= 3 ? std::string(1, "XYZ"[k]) : fmt::format("_{}", k);
+      if (field.size() > 32) field.resize(32);
+      write_field(file, base, zone, solution, field, type, values, components, k);
+    }
+  };
+  for (const DataArray& a : data) write(a.name, cgns_type(a.type), a.values, a.components);
+}
+
 }  // namespace
 
 void write_cgns(const GatheredMesh& g, const std::filesystem::path& path,
@@ -162,6 +237,8 @@ void write_cgns(const GatheredMesh& g, const std::filesystem::path& path,
                                    mesh.dim == 3 ? CGNS_ENUMV(FaceCenter) : CGNS_ENUMV(EdgeCenter)),
         "writing a boundary condition");
   }
+  write_solution(file, base, zone, "VertexData", CGNS_ENUMV(Vertex), mesh.point_data);
+  write_solution(file, base, zone, "CellData", CGNS_ENUMV(CellCenter), mesh.cell_data);
   file.close();
 }
 
