@@ -17,6 +17,11 @@ constexpr CgnsElement kElements[] = {{CGNS_ENUMV(NODE), 0, 1, std::nullopt},
                                      {CGNS_ENUMV(PENTA_6), 3, 6, CellType::Wedge},
                                      {CGNS_ENUMV(HEXA_8), 3, 8, CellType::Hexahedron}};
 
+// cg_close as a function (the CGNS functions are called through macros, cgns_library.hpp).
+int close_cgns(int file) {
+  return cg_close(file);
+}
+
 std::optional<std::string> cgns_failure(int status) {
   if (status == CG_OK) return std::nullopt;
   return std::string(cg_get_error());
@@ -25,7 +30,7 @@ std::optional<std::string> cgns_failure(int status) {
 }  // namespace
 
 CgnsFile::CgnsFile(const std::filesystem::path& path, Mode mode, const std::string& shown)
-    : LibraryFile(shown, cg_close, cgns_failure) {
+    : LibraryFile(shown, close_cgns, cgns_failure) {
   const bool read = mode == Mode::Read;
   if (cg_open(path.c_str(), read ? CG_MODE_READ : CG_MODE_WRITE, &id_) == CG_OK) return;
   id_ = -1;

@@ -11,9 +11,8 @@
 #include <string>
 #include <string_view>
 
-#include <cgnslib.h>
-
 #include "mesh/cell_type.hpp"
+#include "mesh/cgns_library.hpp"
 #include "mesh/library_file.hpp"
 
 namespace neomesh {

@@ -1,6 +1,6 @@
 #include "mesh/cgns_reader.hpp"
+#include "mesh/cgns_library.hpp"
 
-#include <cgnslib.h>
 #include <gtest/gtest.h>
 
 #include "core/testing/test_data.hpp"

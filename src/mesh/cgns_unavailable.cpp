@@ -1,4 +1,4 @@
-// CGNS in a build without the CGNS library (CMake option NEOMESH_CGNS, off by default: see
+// CGNS in a build without the CGNS library (cmake -DNEOMESH_CGNS=OFF; see
 // CMakeLists.txt): .cgns files are refused in one line.
 #include "core/error.hpp"
 #include "mesh/cgns_reader.hpp"

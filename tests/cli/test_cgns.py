@@ -15,7 +15,7 @@ from test_formats import cells, convert, expect_same, facet_groups, generated
 
 meshio = pytest.importorskip("meshio", reason="python3-meshio is not installed")
 pytestmark = pytest.mark.skipif(os.environ.get("NEOMESH_CGNS") == "0",
-                                reason="neomesh is built without CGNS (cmake -DNEOMESH_CGNS=ON)")
+                                reason="neomesh is built without CGNS (cmake -DNEOMESH_CGNS=OFF)")
 TETGEN_TO_CGNS = shutil.which("tetgen_to_cgns")
 
 

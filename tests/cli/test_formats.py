@@ -186,7 +186,7 @@ def test_what_cannot_be_read_is_refused_in_one_line(tmp):
 
 @pytest.mark.skipif(os.environ.get("NEOMESH_CGNS") != "0", reason="neomesh is built with CGNS")
 def test_without_cgns_a_cgns_file_is_refused_in_one_line(tmp):
-    """A build without -DNEOMESH_CGNS=ON refuses .cgns (read and write) in one line, no file."""
+    """A build with -DNEOMESH_CGNS=OFF refuses .cgns (read and write) in one line, no file."""
     out = os.path.join(tmp, "never.cgns")
     proc = neomesh("convert", os.path.join(DATA, "square_quad_v41.msh"), "-o", out, expect=None)
     expect_one_error_line(proc, ["never.cgns", "without CGNS"], [out])
