@@ -20,13 +20,8 @@ import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-# The FEAT3 meshes whose charts are in a file of their own (corpus/README.md).
-CHARTS = {"screws_2d_mesh_quad_smaller_360_1": "screws_2d_chart_bezier_24_28_smaller.xml",
-          "screws_2d_mesh_quad_opt_ss_smaller_360_1": "screws_2d_chart_bezier_24_28_smaller.xml",
-          "screws_2d_mesh_quad_360_1": "screws_2d_chart_bezier_24_28.xml",
-          "screws_2d_mesh_quad_opt_ss_360_1": "screws_2d_chart_bezier_24_28.xml",
-          "screws_2d_mesh_tria_360_1": "screws_2d_chart_bezier_24_28.xml",
-          "screws_3d_mesh_hexa_360_1": "screws_3d_chart_surfacemesh_7200_7200.xml"}
+sys.path.insert(0, os.path.join(HERE, "..", "tests", "cli"))
+from feat3_charts import CHARTS  # noqa: E402
 
 
 def meshes(corpus):

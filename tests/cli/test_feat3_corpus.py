@@ -10,15 +10,9 @@ import os
 import pytest
 
 from conftest import DATA, SOURCE, neomesh
+from feat3_charts import CHARTS
 
 CORPUS = os.path.join(SOURCE, "..", "shared", "corpus", "feat3")
-# corpus/README.md: which chart file goes with which mesh.
-CHARTS = {"screws_2d_mesh_quad_smaller_360_1": "screws_2d_chart_bezier_24_28_smaller.xml",
-          "screws_2d_mesh_quad_opt_ss_smaller_360_1": "screws_2d_chart_bezier_24_28_smaller.xml",
-          "screws_2d_mesh_quad_360_1": "screws_2d_chart_bezier_24_28.xml",
-          "screws_2d_mesh_quad_opt_ss_360_1": "screws_2d_chart_bezier_24_28.xml",
-          "screws_2d_mesh_tria_360_1": "screws_2d_chart_bezier_24_28.xml",
-          "screws_3d_mesh_hexa_360_1": "screws_3d_chart_surfacemesh_7200_7200.xml"}
 # The worst cell ends up below the file's, at most down to this: the vertices placed on their
 # charts (FEAT3's semantics) lower it, and the quality guard cannot pull a cell back above where
 # the placement left it (6-digit coordinates: 1e-4 and less; unit-axe-tria: vertices up to 0.161
