@@ -248,10 +248,11 @@ struct SmoothOptions {
   // corner samples (docs/method.md, "Corners"), and no cell of the result is worse than the
   // input's worst (vertices pulled back, solver/quality_guard.hpp). false: the thesis' optimum.
   bool quality_guard = true;
-  // With the quality guard: after the optimum, interior vertices of the worst cells are moved
-  // one at a time to where the worst cell around them is best (solver/worst_cell_repair.hpp).
-  // Off by default: a max–min search is discontinuous, so meshes equal up to round-off (a
-  // mirrored twin, another number of ranks) may come out visibly different.
+  // With the quality guard: after the optimum, the vertices of the worst cells (boundary ones
+  // sliding) are moved one at a time to where the worst cell around them is best
+  // (solver/worst_cell_repair.hpp). Off by default: a max–min search is discontinuous, so meshes
+  // equal up to round-off (a mirrored twin, another number of ranks) may come out visibly
+  // different.
   bool repair_worst_cells = false;
 
   // `base` with the thesis' conventions: uniform desired volumes, fixed boundary vertices, no

@@ -231,7 +231,7 @@ void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& m
     result.corner_phase = lift_flat_corners(*functional, view(), dofs(), x, method, cell_size,
                                             result, observer.iteration);
     if (repair) {
-      const WorstCellRepair r = repair_worst_cells(view(), dofs(), movable_vertices(), x);
+      const WorstCellRepair r = repair_worst_cells(view(), dofs(), repair_freedom(), x);
       result.worst_cell_repair = {.min_scaled_jacobian_before = r.min_before,
                                   .min_scaled_jacobian_after = r.min_after,
                                   .vertices_moved = r.vertices_moved,
@@ -247,22 +247,29 @@ void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& m
   if (result.quality_guard->vertices_moved > 0) result.final_energy = functional->value(x);
 }
 
-std::vector<std::uint8_t> Optimizer::Impl::movable_vertices() const {
+RepairFreedom Optimizer::Impl::repair_freedom() const {
   const int d = view().dim;
-  const std::vector<std::uint8_t> fixed = boundary->fixed_dofs().flags;
-  std::vector<std::uint8_t> movable(view().num_vertices);
-  for (PetscInt v = 0; v < view().num_vertices; ++v)
-    movable[v] =
-        !view().on_boundary[v] && std::none_of(fixed.begin() + d * v, fixed.begin() + d * (v + 1),
-                                               [](std::uint8_t f) { return f != 0; });
-  for (PetscInt v : boundary->sliding_vertices().vertices) movable[v] = 0;
-  // A cell that keeps (part of) its input cell is the mesh's design: its vertices stay.
-  if (!input_share.empty())
+  RepairFreedom f{.fixed = boundary->fixed_dofs().flags,
+                  .geometry = boundary->sliding_geometry(),
+                  .project = [this, d](int g, std::span<double> p) {
+                    Point at = Point::Zero();
+                    for (int a = 0; a < d; ++a) at[a] = p[a];
+                    const Point q = boundary->closest_point(g, at);
+                    for (int a = 0; a < d; ++a) p[a] = q[a];
+                  }};
+  // A cell that keeps (part of) its input cell is the mesh's design: its vertices stay, unless
+  // its angles are poor (a stretched design cell is a rectangle or brick, scaled Jacobian near
+  // 1; a skewed one is not a design to keep).
+  if (!input_share.empty()) {
+    const std::vector<double> input_sj = cell_scaled_jacobians(view(), view().coords);
     for (const CellBlock& block : view().blocks)
       for (PetscInt c = 0; c < block.size(); ++c)
-        if (input_share[block.first_cell + c] > 0.0)
-          for (int i = 0; i < facts(block.type).vertices; ++i) movable[block.cell(c)[i]] = 0;
-  return movable;
+        if (input_share[block.first_cell + c] > 0.0 &&
+            input_sj[block.first_cell + c] >= kKeptCellMinScaledJacobian)
+          for (int i = 0; i < facts(block.type).vertices; ++i)
+            std::fill_n(f.fixed.begin() + d * block.cell(c)[i], d, 1);
+  }
+  return f;
 }
 
 VolumeRatioStats Optimizer::Impl::volume_ratio() const {

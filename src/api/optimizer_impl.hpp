@@ -20,6 +20,7 @@
 #include "mesh/plex_mesh.hpp"
 #include "solver/quasi_newton.hpp"
 #include "solver/targets.hpp"
+#include "solver/worst_cell_repair.hpp"
 
 namespace neomesh {
 
@@ -82,9 +83,9 @@ struct Optimizer::Impl {
   QuasiNewtonOptions method(const SolverOptions& solver) const;
   // Volume of each local cell at the mesh's coordinates (where a call starts).
   std::vector<double> cell_volumes() const;
-  // Per local vertex: 1 if it may move in the worst-cell repair (interior, no fixed
-  // coordinate, not sliding).
-  std::vector<std::uint8_t> movable_vertices() const;
+  // How each vertex may move in the worst-cell repair: as it does in the optimization, except
+  // that the vertices of cells keeping their input cell stay.
+  RepairFreedom repair_freedom() const;
   // Moves the mesh to x and sets result's quality_after and boundary change; throws
   // Error if a cell is inverted (the energy is infinite there, so the method cannot produce
   // one: a promise kept for every output).

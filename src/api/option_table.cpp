@@ -399,8 +399,9 @@ const OptionTable<SmoothOptions>& smooth_own_option_table() {
        .report_object = "smooth_options"},
       {.path = "repair_worst_cells",
        .flag = "--repair-worst-cells",
-       .help = "after the optimum, move interior vertices of the worst cells one at a time to "
-               "where the worst cell around them is best (a max-min search; meshes equal up to "
+       .help = "after the optimum, move the vertices of the worst cells (boundary ones sliding) "
+               "one at a time to where the worst cell around them is best (a max-min search; "
+               "meshes equal up to "
                "round-off may come out visibly different; not with --no-guard)",
        .field = member(&O::repair_worst_cells),
        .report_object = "smooth_options"},

@@ -522,6 +522,25 @@ void Boundary::project(Vec x) const {
   impl_->project(x);
 }
 
+std::vector<int> Boundary::sliding_geometry() const {
+  const Impl& b = *impl_;
+  // Patches first, then ridges.
+  std::map<const void*, int> index;
+  for (const auto& s : b.patch_surface) index.emplace(s.get(), static_cast<int>(index.size()));
+  for (const auto& c : b.ridge_curve) index.emplace(c.get(), static_cast<int>(index.size()));
+  std::vector<int> geometry(static_cast<std::size_t>(b.view.num_vertices), -1);
+  for (std::size_t i = 0; i < b.sliding.size(); ++i)
+    geometry[b.sliding[i]] =
+        b.sliding_surface[i] ? index.at(b.sliding_surface[i]) : index.at(b.sliding_curve[i]);
+  return geometry;
+}
+
+Point Boundary::closest_point(int g, const Point& p) const {
+  const auto patches = static_cast<int>(impl_->patch_surface.size());
+  return g < patches ? impl_->patch_surface[g]->closest_point(p)
+                     : impl_->ridge_curve[g - patches]->closest_point(p);
+}
+
 void Boundary::place_on_charts(Vec x) const {
   impl_->place_on_charts(x);
 }

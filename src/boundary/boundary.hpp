@@ -26,6 +26,7 @@
 #include <neomesh/options.hpp>
 #include <neomesh/result.hpp>
 
+#include "boundary/shape.hpp"
 #include "energy/functional.hpp"
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
@@ -49,6 +50,12 @@ class Boundary {
   SlidingVertices sliding_vertices() const;
   // Moves the owned sliding vertices of the global Vec x onto their geometry.
   void project(Vec x) const;
+  // Per local vertex, the geometry it slides on: an index that names the same patch or ridge
+  // on every rank, or -1 for a vertex that does not slide (interior, fixed, or in an
+  // axis-aligned plane or line, which its fixed dofs keep it on).
+  std::vector<int> sliding_geometry() const;
+  // The point of geometry g (an index from sliding_geometry) closest to p.
+  Point closest_point(int g, const Point& p) const;
   // Moves the owned boundary vertices of parts with a FEAT3 chart (corners too) onto it, as
   // FEAT3 does when it loads a mesh; summary() counts them. The constructor throws Error for a
   // vertex more than a few local mesh sizes off its chart (docs/boundary.md).

@@ -1,6 +1,7 @@
 #include "solver/worst_cell_repair.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -22,13 +23,18 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kSteps[] = {0.3, 0.1, 0.03, 0.01};
 // A move must raise the worst cell around the vertex by more than this.
 constexpr double kGain = 1e-9;
+// ... and keep the vertex at least this fraction of its distance at the repair's start from
+// each vertex of its cells: the scaled Jacobian measures angles, so without it a vertex sliding
+// along the boundary could collapse an edge of a cell and still "improve" it.
+constexpr double kMinDistanceFraction = 0.5;
 
 // The whole mesh on rank 0, vertices and cells in input order.
 struct WholeMesh {
   int dim = 0;
   std::vector<std::int64_t> vertex_id;  // input number per vertex (ascending)
   std::vector<double> coords;           // dim per vertex
-  std::vector<std::uint8_t> movable;    // per vertex
+  std::vector<std::uint8_t> fixed;      // per coordinate
+  std::vector<int> geometry;            // per vertex: what it slides on, or -1
   std::vector<CellType> types;          // per cell (ascending input number)
   std::vector<std::int64_t> offsets;    // cell c's vertices: vertices[offsets[c], offsets[c+1])
   std::vector<std::int64_t> vertices;   // indices into vertex_id
@@ -36,16 +42,17 @@ struct WholeMesh {
 
 // Gathers owned vertices and all cells to rank 0 by input number.
 WholeMesh gather_whole_mesh(const MeshView& view, std::span<const double> local,
-                            std::span<const std::uint8_t> movable, MPI_Comm comm) {
+                            const RepairFreedom& freedom, MPI_Comm comm) {
   const int d = view.dim;
   std::vector<std::int64_t> ids;
   std::vector<double> coords;
-  std::vector<int> flags;
+  std::vector<int> flags, geometry;
   for (PetscInt v = 0; v < view.num_vertices; ++v) {
     if (!view.owned[v]) continue;
     ids.push_back(view.input_vertex[v]);
     coords.insert(coords.end(), local.begin() + d * v, local.begin() + d * (v + 1));
-    flags.push_back(movable[v]);
+    flags.insert(flags.end(), freedom.fixed.begin() + d * v, freedom.fixed.begin() + d * (v + 1));
+    geometry.push_back(freedom.geometry[v]);
   }
   std::vector<std::int64_t> cell_ids, cell_vertices;
   std::vector<int> types;
@@ -60,6 +67,7 @@ WholeMesh gather_whole_mesh(const MeshView& view, std::span<const double> local,
   const auto all_ids = gatherv(comm, ids, MPI_INT64_T);
   const auto all_coords = gatherv(comm, coords, MPI_DOUBLE);
   const auto all_flags = gatherv(comm, flags, MPI_INT);
+  const auto all_geometry = gatherv(comm, geometry, MPI_INT);
   const auto all_cell_ids = gatherv(comm, cell_ids, MPI_INT64_T);
   const auto all_types = gatherv(comm, types, MPI_INT);
   const auto all_cell_vertices = gatherv(comm, cell_vertices, MPI_INT64_T);
@@ -73,7 +81,8 @@ WholeMesh gather_whole_mesh(const MeshView& view, std::span<const double> local,
   for (std::size_t k : order) {
     m.vertex_id.push_back(all_ids[k]);
     m.coords.insert(m.coords.end(), all_coords.begin() + d * k, all_coords.begin() + d * (k + 1));
-    m.movable.push_back(static_cast<std::uint8_t>(all_flags[k]));
+    for (int a = 0; a < d; ++a) m.fixed.push_back(static_cast<std::uint8_t>(all_flags[d * k + a]));
+    m.geometry.push_back(all_geometry[k]);
   }
   auto index_of = [&m](std::int64_t id) {
     return std::lower_bound(m.vertex_id.begin(), m.vertex_id.end(), id) - m.vertex_id.begin();
@@ -118,11 +127,13 @@ std::vector<std::vector<double>> directions(int dim) {
 // The search on rank 0. Returns the indices of the moved vertices.
 class Repair {
  public:
-  explicit Repair(WholeMesh& m)
+  Repair(WholeMesh& m, const RepairFreedom& freedom)
       : m_(m),
+        project_(freedom.project),
         star_first_(m.vertex_id.size() + 1, 0),
         star_(m.vertices.size()),
-        sj_(m.types.size()) {
+        sj_(m.types.size()),
+        start_(m.coords) {
     for (std::int64_t v : m.vertices) ++star_first_[v + 1];
     std::partial_sum(star_first_.begin(), star_first_.end(), star_first_.begin());
     std::vector<std::int64_t> next(star_first_.begin(), star_first_.end() - 1);
@@ -151,7 +162,7 @@ class Repair {
       for (std::int64_t v : cell_vertices(cells[w]))
         for (std::int64_t c : star(v))
           for (std::int64_t u : cell_vertices(c))
-            if (m_.movable[u]) candidates.insert(u);
+            if (movable(u)) candidates.insert(u);
     bool any = false;
     for (std::int64_t v : candidates)
       if (improve(v)) {
@@ -173,80 +184,109 @@ class Repair {
             static_cast<std::size_t>(star_first_[v + 1] - star_first_[v])};
   }
 
-  double scaled_jacobian(std::int64_t c) const {
+  bool movable(std::int64_t v) const {
+    const auto f = m_.fixed.begin() + m_.dim * v;
+    return std::find(f, f + m_.dim, 0) != f + m_.dim;
+  }
+
+  // Where v lands for the move `by`: its fixed coordinates stay, then onto its geometry.
+  void move(std::int64_t v, std::span<const double> from, std::span<const double> by) {
     const int d = m_.dim;
-    double x[3 * 8];
+    std::span<double> p(m_.coords.data() + d * v, d);
+    for (int a = 0; a < d; ++a) p[a] = from[a] + (m_.fixed[d * v + a] ? 0.0 : by[a]);
+    if (m_.geometry[v] >= 0) project_(m_.geometry[v], p);
+  }
+
+  // The coordinates of cell c's vertices, dim per vertex.
+  std::array<double, 3 * 8> cell_coords(std::int64_t c) const {
+    const int d = m_.dim;
+    std::array<double, 3 * 8> x{};
     int i = 0;
     for (std::int64_t v : cell_vertices(c)) {
       for (int a = 0; a < d; ++a) x[d * i + a] = m_.coords[d * v + a];
       ++i;
     }
-    return cell_scaled_jacobian(m_.types[c], x);
+    return x;
+  }
+  double scaled_jacobian(std::int64_t c) const {
+    return cell_scaled_jacobian(m_.types[c], cell_coords(c).data());
+  }
+  double distance(std::span<const double> x, std::int64_t u, std::int64_t v) const {
+    double s = 0.0;
+    for (int a = 0; a < m_.dim; ++a) s += std::pow(x[m_.dim * u + a] - x[m_.dim * v + a], 2);
+    return std::sqrt(s);
   }
 
+  // The worst scaled Jacobian of v's cells, or -infinity if v came too close to one of their
+  // vertices.
   double worst_around(std::int64_t v) const {
     double q = kInfinity;
-    for (std::int64_t c : star(v)) q = std::min(q, scaled_jacobian(c));
+    for (std::int64_t c : star(v)) {
+      for (std::int64_t u : cell_vertices(c))
+        if (u != v && !(distance(m_.coords, u, v) >= kMinDistanceFraction * distance(start_, u, v)))
+          return -kInfinity;
+      q = std::min(q, scaled_jacobian(c));
+    }
     return q;
   }
 
   // Moves v to the best of the trial points if that raises the worst cell around it.
   bool improve(std::int64_t v) {
     const int d = m_.dim;
-    double* p = m_.coords.data() + d * v;
+    const std::vector<double> from(m_.coords.begin() + d * v, m_.coords.begin() + d * (v + 1));
     double h = kInfinity;  // the shortest edge length from v in its cells (an upper bound)
     for (std::int64_t c : star(v))
       for (std::int64_t u : cell_vertices(c))
-        if (u != v) {
-          double s = 0.0;
-          for (int a = 0; a < d; ++a) s += std::pow(m_.coords[d * u + a] - p[a], 2);
-          h = std::min(h, std::sqrt(s));
-        }
+        if (u != v) h = std::min(h, distance(m_.coords, u, v));
     if (!(h > 0.0) || !std::isfinite(h)) return false;
     const double base = worst_around(v);
     double best = base;
-    std::vector<double> best_move;
+    std::vector<double> best_move, by(d);
     for (double step : kSteps) {
       for (const std::vector<double>& dir : dirs_) {
-        for (int a = 0; a < d; ++a) p[a] += step * h * dir[a];
+        for (int a = 0; a < d; ++a) by[a] = step * h * dir[a];
+        move(v, from, by);
         const double q = worst_around(v);
-        for (int a = 0; a < d; ++a) p[a] -= step * h * dir[a];
         if (q > best + kGain) {
           best = q;
-          best_move.assign(dir.begin(), dir.end());
-          for (double& x : best_move) x *= step * h;
+          best_move = by;
         }
       }
       if (!best_move.empty()) break;
     }
-    if (best_move.empty()) return false;
-    for (int a = 0; a < d; ++a) p[a] += best_move[a];
+    if (best_move.empty()) {
+      std::copy(from.begin(), from.end(), m_.coords.begin() + d * v);
+      return false;
+    }
+    move(v, from, best_move);
     for (std::int64_t c : star(v)) sj_[c] = scaled_jacobian(c);
     return true;
   }
 
   WholeMesh& m_;
+  const std::function<void(int, std::span<double>)>& project_;
   std::vector<std::int64_t> star_first_,
-      star_;                // the cells of vertex v: star_[first[v], first[v+1])
-  std::vector<double> sj_;  // per cell
+      star_;                         // the cells of vertex v: star_[first[v], first[v+1])
+  std::vector<double> sj_;           // per cell
+  const std::vector<double> start_;  // the coordinates at the repair's start
   std::vector<std::vector<double>> dirs_ = directions(m_.dim);
 };
 
 }  // namespace
 
 WorstCellRepair repair_worst_cells(const MeshView& view, const DofMap& dofs,
-                                   std::span<const std::uint8_t> movable, Vec x) {
+                                   const RepairFreedom& freedom, Vec x) {
   const MPI_Comm comm = dofs.comm();
   const int d = view.dim;
   std::vector<double> local(dofs.num_local_dofs());
   dofs.global_to_local(x, local);
-  WholeMesh mesh = gather_whole_mesh(view, local, movable, comm);
+  WholeMesh mesh = gather_whole_mesh(view, local, freedom, comm);
 
   WorstCellRepair summary;
   std::vector<std::int64_t> moved_ids;
   std::vector<double> moved_coords;
   if (mpi_rank(comm) == 0) {
-    Repair repair(mesh);
+    Repair repair(mesh, freedom);
     summary.min_before = repair.min_quality();
     std::set<std::int64_t> moved;
     // Until a sweep no longer lifts the worst cell (moves elsewhere may go on improving a

@@ -8,12 +8,16 @@
 // Plassmann's max–min), accepting a move only if it raises the minimum scaled Jacobian of the
 // vertex's cells. So no cell gets worse than the worst cell was, and the mean barely moves.
 //
-// Boundary vertices stay (sliding ones would need their geometry). The search runs on rank 0
-// over the whole mesh in input numbering, so every number of ranks gives the same result.
+// A boundary vertex moves as it slides: its fixed coordinates stay, and a trial point of a
+// vertex on a curved boundary is put onto that boundary (the chart, shape or input facets it
+// slides on) before it is judged. The search runs on rank 0 over the whole mesh in input
+// numbering, so every number of ranks gives the same result.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
+#include <vector>
 
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
@@ -31,10 +35,20 @@ struct WorstCellRepair {
 // first sweep that does not lift the worst cell.
 inline constexpr int kRepairWorstCells = 6;
 inline constexpr int kRepairMaxSweeps = 100;
+// The vertices of a cell that keeps its input cell as its target stay in the repair if that
+// input cell's scaled Jacobian is at least this.
+inline constexpr double kKeptCellMinScaledJacobian = 0.5;
 
-// `movable`: per local vertex, 1 if it may move. x (a global Vec laid out by `dofs`) is changed
-// in place. Collective.
+// How each local vertex may move.
+struct RepairFreedom {
+  std::vector<std::uint8_t> fixed;  // per local dof: 1 if that coordinate stays
+  std::vector<int> geometry;        // per local vertex: what it slides on, or -1 (none)
+  // Puts the point p (dim values) onto geometry g; called on rank 0 only.
+  std::function<void(int g, std::span<double> p)> project;
+};
+
+// x (a global Vec laid out by `dofs`) is changed in place. Collective.
 WorstCellRepair repair_worst_cells(const MeshView& view, const DofMap& dofs,
-                                   std::span<const std::uint8_t> movable, Vec x);
+                                   const RepairFreedom& freedom, Vec x);
 
 }  // namespace neomesh

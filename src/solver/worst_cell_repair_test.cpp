@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <span>
 
 #include "geometry/quality.hpp"
 #include "mesh/generate.hpp"
@@ -32,10 +34,13 @@ TEST(WorstCellRepair, LiftsTheWorstCellsAndNeverLowersTheMinimum) {
   const std::vector<double> before = scaled_jacobians(view, x);
   const double worst_before = *std::min_element(before.begin(), before.end());
   ASSERT_LT(worst_before, 0.8) << "the setup must make a bad cell";
-  std::vector<std::uint8_t> movable(view.num_vertices);
-  for (PetscInt v = 0; v < view.num_vertices; ++v) movable[v] = !view.on_boundary[v];
+  RepairFreedom freedom{.fixed = std::vector<std::uint8_t>(2 * view.num_vertices),
+                        .geometry = std::vector<int>(view.num_vertices, -1),
+                        .project = {}};
+  for (PetscInt v = 0; v < view.num_vertices; ++v)
+    freedom.fixed[2 * v] = freedom.fixed[2 * v + 1] = view.on_boundary[v];
 
-  const WorstCellRepair r = repair_worst_cells(view, dofs, movable, x);
+  const WorstCellRepair r = repair_worst_cells(view, dofs, freedom, x);
 
   const std::vector<double> after = scaled_jacobians(view, x);
   const double worst_after = *std::min_element(after.begin(), after.end());
@@ -52,14 +57,57 @@ TEST(WorstCellRepair, LiftsTheWorstCellsAndNeverLowersTheMinimum) {
     }
 }
 
+// Boundary vertices slide: one on the bottom side pushed along it comes back along it, kept on
+// its geometry (the line y = 0, by projection), and one on the left side pushed along it comes
+// back with its fixed coordinate x untouched.
+TEST(WorstCellRepair, SlidesBoundaryVerticesAlongTheirGeometry) {
+  MeshData grid = square_random(6, 0.0, 3);
+  auto vertex_at = [&grid](double x, double y) {
+    for (std::size_t v = 0; 2 * v < grid.coords.size(); ++v)
+      if (std::abs(grid.coords[2 * v] - x) < 1e-12 && std::abs(grid.coords[2 * v + 1] - y) < 1e-12)
+        return static_cast<PetscInt>(v);
+    ADD_FAILURE() << "no vertex at " << x << ", " << y;
+    return PetscInt{0};
+  };
+  const PetscInt bottom = vertex_at(0.5, 0.0), left = vertex_at(0.0, 0.5);
+  grid.coords[2 * bottom] += 0.12;
+  grid.coords[2 * left + 1] += 0.12;
+  const MeshView view = serial_view(grid);
+  const DofMap dofs = DofMap::serial(2, view.num_vertices);
+  OwnedVec x = vector_of(dofs, grid.coords);
+  RepairFreedom freedom{.fixed = std::vector<std::uint8_t>(2 * view.num_vertices),
+                        .geometry = std::vector<int>(view.num_vertices, -1),
+                        .project = [](int g, std::span<double> p) {
+                          ASSERT_EQ(g, 0);
+                          p[1] = 0.0;
+                        }};
+  for (PetscInt v = 0; v < view.num_vertices; ++v)
+    freedom.fixed[2 * v] = freedom.fixed[2 * v + 1] = view.on_boundary[v];
+  freedom.fixed[2 * bottom] = freedom.fixed[2 * bottom + 1] = 0;
+  freedom.geometry[bottom] = 0;
+  freedom.fixed[2 * left + 1] = 0;
+
+  const WorstCellRepair r = repair_worst_cells(view, dofs, freedom, x);
+
+  EXPECT_LT(r.min_before, 0.85);
+  EXPECT_GT(r.min_after, 0.95);
+  VecReadView xv(x);
+  EXPECT_LT(std::abs(xv[2 * bottom] - 0.5), 0.05) << "slid back towards its place";
+  EXPECT_EQ(xv[2 * bottom + 1], 0.0) << "on its geometry";
+  EXPECT_LT(std::abs(xv[2 * left + 1] - 0.5), 0.05) << "slid back towards its place";
+  EXPECT_EQ(xv[2 * left], 0.0) << "its fixed coordinate";
+}
+
 TEST(WorstCellRepair, MovesNothingThatIsNotMovable) {
   MeshData grid = square_random(6, 0.0, 3);
   grid.coords[2 * 8] += 0.12;
   const MeshView view = serial_view(grid);
   const DofMap dofs = DofMap::serial(2, view.num_vertices);
   OwnedVec x = vector_of(dofs, grid.coords);
-  const std::vector<std::uint8_t> movable(view.num_vertices, 0);
-  const WorstCellRepair r = repair_worst_cells(view, dofs, movable, x);
+  const RepairFreedom freedom{.fixed = std::vector<std::uint8_t>(2 * view.num_vertices, 1),
+                              .geometry = std::vector<int>(view.num_vertices, -1),
+                              .project = {}};
+  const WorstCellRepair r = repair_worst_cells(view, dofs, freedom, x);
   EXPECT_EQ(r.vertices_moved, 0);
   EXPECT_EQ(r.min_after, r.min_before);
   VecReadView xv(x);
