@@ -358,6 +358,53 @@ TEST(GmshData, ReadsNodeAndElementDataByTag) {
   EXPECT_EQ(mesh.cell_data[0].values, (std::vector<double>{2.5, 3.5, 0.5, 1.5}));
 }
 
+// The same file in binary (2.2: int tags and double values after each section's integer
+// tags) reads as its ASCII twin above.
+TEST(GmshData, ReadsBinaryDataAsItsAsciiTwin) {
+  std::string bytes;
+  auto put = [&](const auto... values) {
+    (bytes.append(reinterpret_cast<const char*>(&values), sizeof(values)), ...);
+  };
+  auto data = [&](const char* head, std::initializer_list<std::array<double, 3>> entries,
+                  int components, const char* end) {
+    bytes += head;
+    for (const auto& e : entries) {
+      put(static_cast<int>(e[0]));
+      for (int j = 0; j < components; ++j) put(e[1 + j]);
+    }
+    bytes += end;
+  };
+  bytes = "$MeshFormat\n2.2 1 8\n";
+  put(1);
+  bytes += "\n$EndMeshFormat\n$Nodes\n4\n";
+  put(10, 0.0, 0.0, 0.0, 20, 1.0, 0.0, 0.0, 30, 1.0, 1.0, 0.0, 40, 0.0, 1.0, 0.0);
+  bytes += "\n$EndNodes\n$Elements\n3\n";
+  put(2, 2, 2, 7, 1, 1, 10, 20, 30, 5, 1, 1, 10, 30, 40, 1, 1, 2, 9, 2, 2, 10, 20);
+  bytes += "\n$EndElements\n";
+  data("$NodeData\n1\n\"T\"\n1\n0\n3\n0\n1\n4\n", {{10, 1}, {20, 2}, {30, 3}, {40, 4}}, 1,
+       "\n$EndNodeData\n");
+  data("$NodeData\n1\n\"T\"\n1\n1\n3\n1\n1\n3\n", {{40, 8}, {10, 5}, {20, 6}}, 1,
+       "\n$EndNodeData\n");
+  data("$ElementData\n1\n\"the u\"\n1\n0\n3\n0\n2\n3\n", {{5, .5, 1.5}, {9, 9, 9}, {7, 2.5, 3.5}},
+       2, "\n$EndElementData\n");
+  const auto path = scratch_dir("GmshDataBinary") / "in.msh";
+  std::ofstream(path, std::ios::binary) << bytes;
+  const InputMesh mesh = read_gmsh(path);
+  ASSERT_EQ(mesh.point_data.size(), 1u);
+  const std::vector<double>& t = mesh.point_data[0].values;
+  ASSERT_EQ(t.size(), 4u);
+  EXPECT_EQ(t[0], 5);
+  EXPECT_EQ(t[1], 6);
+  EXPECT_TRUE(std::isnan(t[2]));
+  EXPECT_EQ(t[3], 8);
+  ASSERT_EQ(mesh.cell_data.size(), 1u);
+  EXPECT_EQ(mesh.cell_data[0].name, "the u");
+  EXPECT_EQ(mesh.cell_data[0].values, (std::vector<double>{2.5, 3.5, 0.5, 1.5}));
+  // A data section cut short is an error naming it.
+  std::ofstream(path, std::ios::binary) << bytes.substr(0, bytes.size() - 30);
+  EXPECT_THROW(read_gmsh(path), Error);
+}
+
 // A name .msh cannot hold (a quote, a line break) is written readable; .vtu keeps it.
 TEST(GmshData, NamesStayOnOneLine) {
   std::string text = kVtu;

@@ -137,13 +137,15 @@ def test_data_of_unused_points_and_facets_are_dropped_with_them(tmp):
 
 @pytest.mark.parametrize("ranks", RANKS)
 @pytest.mark.parametrize("target", [".msh", ".vtu"])
-def test_gmsh_node_and_element_data_are_kept(tmp, target, ranks):
-    """meshio writes point and cell data to .msh as $NodeData and $ElementData."""
+@pytest.mark.parametrize("version,binary", [("gmsh22", False), ("gmsh22", True), ("gmsh", True)])
+def test_gmsh_node_and_element_data_are_kept(tmp, target, ranks, version, binary):
+    """meshio writes point and cell data to .msh as $NodeData and $ElementData, in ASCII and in
+    binary files (2.2 and 4.1)."""
     mesh = with_data(tmp, "box-quad", "2")
     mesh.cell_data["gmsh:physical"] = [np.full(len(b.data), 1, dtype=np.int32) for b in mesh.cells]
     mesh.cell_data["gmsh:geometrical"] = mesh.cell_data["gmsh:physical"]
     path = os.path.join(tmp, "in.msh")
-    meshio.write(path, mesh, file_format="gmsh22", binary=False)
+    meshio.write(path, mesh, file_format=version, binary=binary)
     out = os.path.join(tmp, "out" + target)
     neomesh("smooth", path, "-o", out, "--quiet", ranks=ranks)
     got, expected = read_mesh(out), read_mesh(path)
