@@ -443,9 +443,9 @@ TEST(MeditData, VertexReferencesSurviveOtherFormats) {
 }
 
 // An Exodus file written through the library as other programs write it: two blocks, two time
-// steps, an element variable that only the second block has (truth table). The last step is
-// read; the first block's cells get NaN.
-TEST(ExodusVariables, TheLastStepIsReadAndAMissingBlockGetsNaN) {
+// steps (times 1 and 2), an element variable that only the second block has (truth table), a
+// global variable "energy" (100 times the step).
+std::filesystem::path two_steps() {
   const auto path = scratch_dir("ExodusVariables") / "in.exo";
   {
     ExodusFile file(path, ExodusFile::Mode::Create, path.string());
@@ -471,9 +471,14 @@ TEST(ExodusVariables, TheLastStepIsReadAndAMissingBlockGetsNaN) {
     file.check(ex_put_variable_names(file.id(), EX_ELEM_BLOCK, 2, element), "names");
     int truth[] = {0, 0, 1, 1};  // block 10: none; block 20: both
     file.check(ex_put_truth_table(file.id(), EX_ELEM_BLOCK, 2, 2, truth), "truth");
+    char energy[] = "energy";
+    char* global[] = {energy};
+    file.check(ex_put_variable_param(file.id(), EX_GLOBAL, 1), "vars");
+    file.check(ex_put_variable_names(file.id(), EX_GLOBAL, 1, global), "names");
     for (int step = 1; step <= 2; ++step) {
-      const double time = step;
+      const double time = step, e = 100.0 * step;
       file.check(ex_put_time(file.id(), step, &time), "time");
+      file.check(ex_put_var(file.id(), step, EX_GLOBAL, 1, 0, 1, &e), "var");
       const double nodes[] = {step * 1.0, step * 2.0, step * 3.0, step * 4.0, step * 5.0};
       file.check(ex_put_var(file.id(), step, EX_NODAL, 1, 1, 5, nodes), "var");
       const double ux = 10.0 * step, uy = -ux;
@@ -482,7 +487,12 @@ TEST(ExodusVariables, TheLastStepIsReadAndAMissingBlockGetsNaN) {
     }
     file.close();
   }
-  const InputMesh mesh = read_exodus(path);
+  return path;
+}
+
+// The last step is the point and cell data; the first block's cells get NaN.
+TEST(ExodusVariables, TheLastStepIsReadAndAMissingBlockGetsNaN) {
+  const InputMesh mesh = read_exodus(two_steps());
   ASSERT_EQ(mesh.point_data.size(), 1u);
   EXPECT_EQ(mesh.point_data[0].values, (std::vector<double>{2, 4, 6, 8, 10}));
   ASSERT_EQ(mesh.cell_data.size(), 1u);
@@ -492,6 +502,33 @@ TEST(ExodusVariables, TheLastStepIsReadAndAMissingBlockGetsNaN) {
   EXPECT_TRUE(std::isnan(mesh.cell_data[0].values[1]));
   EXPECT_EQ(mesh.cell_data[0].values[2], 20);
   EXPECT_EQ(mesh.cell_data[0].values[3], -20);
+}
+
+// Every step, with its time and global variables, is read and written back by .exo.
+TEST(ExodusVariables, EveryTimeStepAndTheGlobalVariablesAreKeptByExodus) {
+  const auto check = [](const InputMesh& mesh) {
+    const TimeSteps& steps = mesh.steps;
+    EXPECT_EQ(steps.times, (std::vector<double>{1, 2}));
+    EXPECT_EQ(steps.global_names, (std::vector<std::string>{"energy"}));
+    EXPECT_EQ(steps.globals, (std::vector<std::vector<double>>{{100}, {200}}));
+    ASSERT_EQ(steps.point_data.size(), 1u);
+    ASSERT_EQ(steps.point_data[0].size(), 1u);
+    EXPECT_EQ(steps.point_data[0][0].values, (std::vector<double>{1, 2, 3, 4, 5}));
+    ASSERT_EQ(steps.cell_data.size(), 1u);
+    ASSERT_EQ(steps.cell_data[0].size(), 1u);
+    const std::vector<double>& u = steps.cell_data[0][0].values;
+    ASSERT_EQ(u.size(), 4u);
+    EXPECT_TRUE(std::isnan(u[0]));
+    EXPECT_EQ(u[2], 10);
+    EXPECT_EQ(u[3], -10);
+  };
+  const auto in = two_steps();
+  check(read_exodus(in));
+  const auto out = scratch_dir("ExodusSteps") / "out.exo";
+  write_mesh(PlexMesh::load(in), out);
+  const InputMesh back = read_exodus(out);
+  check(back);
+  EXPECT_EQ(back.point_data[0].values, (std::vector<double>{2, 4, 6, 8, 10}));
 }
 
 TEST(ExodusVariables, VectorsAreWrittenByComponentAndJoinedAgain) {
