@@ -5,7 +5,9 @@
 #include <limits>
 #include <map>
 
+#include <dlfcn.h>
 #include <exodusII.h>
+#include <netcdf.h>
 
 #include "core/error.hpp"
 #include "mesh/cell_order.hpp"
@@ -126,9 +128,13 @@ class ExodusReader {
   std::vector<double> variable(int step, ex_entity_type kind, int var, std::int64_t id,
                                std::int64_t n) {
     std::vector<double> values(n);
-    if (n > 0)
-      file_.check(ex_get_var(file_.id(), step, kind, var, id, n, values.data()),
-                  "reading a variable");
+    if (n == 0) return values;
+    const int status = ex_get_var(file_.id(), step, kind, var, id, n, values.data());
+    file_.check(status, "reading a variable");
+    // A warning: the library found no values (all would read as 0).
+    if (status > 0 && !(kind == EX_NODAL && separate_nodal_variable(step, var, values)))
+      fail("{}: reading variable {} of time step {} failed (the Exodus library finds no values)",
+           name(), var, step);
     return values;
   }
 
@@ -143,6 +149,25 @@ class ExodusReader {
   }
 
  private:
+  // meshio writes each nodal variable as a netCDF variable of its own (vals_nod_var1, ...), as
+  // Exodus' "large model" does, without the attribute file_size that says so; the Exodus library
+  // then looks for them all in one (vals_nod_var) and warns. Reads such a variable through the
+  // netCDF library that the Exodus library uses (an Exodus id is its netCDF id), found in the
+  // process, not linked: Debian's libexodusii uses the MPI netCDF while libnetcdf-dev links the
+  // serial one, and two netCDF libraries do not share their ids. Returns whether it was there.
+  bool separate_nodal_variable(int step, int var, std::vector<double>& values) {
+    const auto inq_varid =
+        reinterpret_cast<decltype(&nc_inq_varid)>(dlsym(RTLD_DEFAULT, "nc_inq_varid"));
+    const auto get_vara =
+        reinterpret_cast<decltype(&nc_get_vara_double)>(dlsym(RTLD_DEFAULT, "nc_get_vara_double"));
+    int varid = 0;
+    const std::string variable = fmt::format("vals_nod_var{}", var);
+    const std::size_t start[2] = {static_cast<std::size_t>(step - 1), 0},
+                      count[2] = {1, values.size()};
+    return inq_varid && get_vara && inq_varid(file_.id(), variable.c_str(), &varid) == NC_NOERR &&
+           get_vara(file_.id(), varid, start, count, values.data()) == NC_NOERR;
+  }
+
   Block block(std::int64_t id) {
     Block b;
     b.id = id;
