@@ -5,10 +5,10 @@
 #include <bit>
 #include <cstdint>
 #include <map>
-#include <numeric>
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "core/union_find.hpp"
 #include "mesh/cell_order.hpp"
 #include "mesh/cgns_file.hpp"
 #include "mesh/input_file.hpp"
@@ -175,28 +175,6 @@ std::optional<std::pair<const Section*, cgsize_t>> element(const std::vector<Sec
   return std::pair(&*(s - 1), e - (s - 1)->start);
 }
 
-// The file's nodes (all zones) as sets of joined nodes, each named by its smallest node, which
-// is its first zone's (union-find).
-class JoinedNodes {
- public:
-  explicit JoinedNodes(std::int64_t n) : parent_(n) {
-    std::iota(parent_.begin(), parent_.end(), std::int64_t{0});
-  }
-  std::int64_t find(std::int64_t a) {
-    while (parent_[a] != a) a = parent_[a] = parent_[parent_[a]];
-    return a;
-  }
-  void join(std::int64_t a, std::int64_t b) {
-    a = find(a);
-    b = find(b);
-    if (a > b) std::swap(a, b);
-    parent_[b] = a;
-  }
-
- private:
-  std::vector<std::int64_t> parent_;
-};
-
 // The arrays of one zone's flow solutions: per node of the zone and per cell of the zone.
 struct ZoneData {
   std::vector<DataArray> point, cell;
@@ -210,7 +188,8 @@ class MeshBuilder {
   // equal) and numbers those cells use.
   void number_vertices(const std::vector<double>& xyz) {
     const std::int64_t nn = reader_.num_nodes();
-    JoinedNodes joined(nn);
+    // (joined nodes are named by their smallest node: their first zone's)
+    UnionFind joined(nn);
     if (reader_.zones().size() > 1 && !join_by_connectivity(joined)) join_coinciding(xyz, joined);
     vertex_.assign(nn, -1);
     for (const Zone& zone : reader_.zones())
@@ -315,7 +294,7 @@ class MeshBuilder {
   // Joins the nodes that the zones' 1-to-1 connectivities pair (Abutting1to1 at Vertex, a
   // PointList or PointRange with a PointListDonor, as Pointwise writes between its blocks).
   // Returns whether there were any.
-  bool join_by_connectivity(JoinedNodes& joined) {
+  bool join_by_connectivity(UnionFind& joined) {
     const int id = reader_.id();
     const std::vector<Zone>& zones = reader_.zones();
     bool any = false;
@@ -369,7 +348,7 @@ class MeshBuilder {
 
   // Joins each node to an earlier zone's node of bitwise equal coordinates (nodes of one zone
   // stay apart, as meshers may repeat nodes along a cut).
-  void join_coinciding(const std::vector<double>& xyz, JoinedNodes& joined) {
+  void join_coinciding(const std::vector<double>& xyz, UnionFind& joined) {
     using Key = std::array<std::uint64_t, 3>;
     struct Hash {
       std::size_t operator()(const Key& k) const {
