@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "core/error.hpp"
 #include "core/testing/test_data.hpp"
 
 namespace neomesh {
@@ -179,6 +180,28 @@ TEST(ReadCgns, ZonesAreJoinedByTheirConnectivityIntoOneMeshWithGroupsByName) {
 TEST(ReadCgns, ZonesWithoutConnectivityAreJoinedWhereTheirCoordinatesAreEqual) {
   EXPECT_EQ(read_cgns(two_zones(false, 0)).num_vertices(), 10);
   EXPECT_EQ(read_cgns(two_zones(false, 1e-9)).num_vertices(), 12);  // not equal: apart
+}
+
+TEST(ReadCgns, AStructuredZoneIsRefusedInOneLineNamingIt) {
+  const auto path = testing::scratch_dir("ReadCgns") / "structured.cgns";
+  int file = 0, base = 0, zone = 0, index = 0;
+  ok(cg_open(path.c_str(), CG_MODE_WRITE, &file));
+  ok(cg_base_write(file, "Base", 2, 2, &base));
+  const cgsize_t size[6] = {2, 2, 1, 1, 0, 0};  // 2 x 2 vertices, 1 x 1 cells
+  ok(cg_zone_write(file, base, "block", size, CGNS_ENUMV(Structured), &zone));
+  const double x[4] = {0, 1, 0, 1}, y[4] = {0, 0, 1, 1};
+  ok(cg_coord_write(file, base, zone, CGNS_ENUMV(RealDouble), "CoordinateX", x, &index));
+  ok(cg_coord_write(file, base, zone, CGNS_ENUMV(RealDouble), "CoordinateY", y, &index));
+  ok(cg_close(file));
+  try {
+    read_cgns(path);
+    FAIL() << "read";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("structured.cgns: zone 'block' is a structured grid"), std::string::npos)
+        << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos);
+  }
 }
 
 }  // namespace
