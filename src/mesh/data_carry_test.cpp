@@ -358,6 +358,53 @@ TEST(GmshData, ReadsNodeAndElementDataByTag) {
   EXPECT_EQ(mesh.cell_data[0].values, (std::vector<double>{2.5, 3.5, 0.5, 1.5}));
 }
 
+// The same file in binary (2.2: int tags and double values after each section's integer
+// tags) reads as its ASCII twin above.
+TEST(GmshData, ReadsBinaryDataAsItsAsciiTwin) {
+  std::string bytes;
+  auto put = [&](const auto... values) {
+    (bytes.append(reinterpret_cast<const char*>(&values), sizeof(values)), ...);
+  };
+  auto data = [&](const char* head, std::initializer_list<std::array<double, 3>> entries,
+                  int components, const char* end) {
+    bytes += head;
+    for (const auto& e : entries) {
+      put(static_cast<int>(e[0]));
+      for (int j = 0; j < components; ++j) put(e[1 + j]);
+    }
+    bytes += end;
+  };
+  bytes = "$MeshFormat\n2.2 1 8\n";
+  put(1);
+  bytes += "\n$EndMeshFormat\n$Nodes\n4\n";
+  put(10, 0.0, 0.0, 0.0, 20, 1.0, 0.0, 0.0, 30, 1.0, 1.0, 0.0, 40, 0.0, 1.0, 0.0);
+  bytes += "\n$EndNodes\n$Elements\n3\n";
+  put(2, 2, 2, 7, 1, 1, 10, 20, 30, 5, 1, 1, 10, 30, 40, 1, 1, 2, 9, 2, 2, 10, 20);
+  bytes += "\n$EndElements\n";
+  data("$NodeData\n1\n\"T\"\n1\n0\n3\n0\n1\n4\n", {{10, 1}, {20, 2}, {30, 3}, {40, 4}}, 1,
+       "\n$EndNodeData\n");
+  data("$NodeData\n1\n\"T\"\n1\n1\n3\n1\n1\n3\n", {{40, 8}, {10, 5}, {20, 6}}, 1,
+       "\n$EndNodeData\n");
+  data("$ElementData\n1\n\"the u\"\n1\n0\n3\n0\n2\n3\n", {{5, .5, 1.5}, {9, 9, 9}, {7, 2.5, 3.5}},
+       2, "\n$EndElementData\n");
+  const auto path = scratch_dir("GmshDataBinary") / "in.msh";
+  std::ofstream(path, std::ios::binary) << bytes;
+  const InputMesh mesh = read_gmsh(path);
+  ASSERT_EQ(mesh.point_data.size(), 1u);
+  const std::vector<double>& t = mesh.point_data[0].values;
+  ASSERT_EQ(t.size(), 4u);
+  EXPECT_EQ(t[0], 5);
+  EXPECT_EQ(t[1], 6);
+  EXPECT_TRUE(std::isnan(t[2]));
+  EXPECT_EQ(t[3], 8);
+  ASSERT_EQ(mesh.cell_data.size(), 1u);
+  EXPECT_EQ(mesh.cell_data[0].name, "the u");
+  EXPECT_EQ(mesh.cell_data[0].values, (std::vector<double>{2.5, 3.5, 0.5, 1.5}));
+  // A data section cut short is an error naming it.
+  std::ofstream(path, std::ios::binary) << bytes.substr(0, bytes.size() - 30);
+  EXPECT_THROW(read_gmsh(path), Error);
+}
+
 // A name .msh cannot hold (a quote, a line break) is written readable; .vtu keeps it.
 TEST(GmshData, NamesStayOnOneLine) {
   std::string text = kVtu;
@@ -396,9 +443,9 @@ TEST(MeditData, VertexReferencesSurviveOtherFormats) {
 }
 
 // An Exodus file written through the library as other programs write it: two blocks, two time
-// steps, an element variable that only the second block has (truth table). The last step is
-// read; the first block's cells get NaN.
-TEST(ExodusVariables, TheLastStepIsReadAndAMissingBlockGetsNaN) {
+// steps (times 1 and 2), an element variable that only the second block has (truth table), a
+// global variable "energy" (100 times the step).
+std::filesystem::path two_steps() {
   const auto path = scratch_dir("ExodusVariables") / "in.exo";
   {
     ExodusFile file(path, ExodusFile::Mode::Create, path.string());
@@ -424,9 +471,14 @@ TEST(ExodusVariables, TheLastStepIsReadAndAMissingBlockGetsNaN) {
     file.check(ex_put_variable_names(file.id(), EX_ELEM_BLOCK, 2, element), "names");
     int truth[] = {0, 0, 1, 1};  // block 10: none; block 20: both
     file.check(ex_put_truth_table(file.id(), EX_ELEM_BLOCK, 2, 2, truth), "truth");
+    char energy[] = "energy";
+    char* global[] = {energy};
+    file.check(ex_put_variable_param(file.id(), EX_GLOBAL, 1), "vars");
+    file.check(ex_put_variable_names(file.id(), EX_GLOBAL, 1, global), "names");
     for (int step = 1; step <= 2; ++step) {
-      const double time = step;
+      const double time = step, e = 100.0 * step;
       file.check(ex_put_time(file.id(), step, &time), "time");
+      file.check(ex_put_var(file.id(), step, EX_GLOBAL, 1, 0, 1, &e), "var");
       const double nodes[] = {step * 1.0, step * 2.0, step * 3.0, step * 4.0, step * 5.0};
       file.check(ex_put_var(file.id(), step, EX_NODAL, 1, 1, 5, nodes), "var");
       const double ux = 10.0 * step, uy = -ux;
@@ -435,7 +487,12 @@ TEST(ExodusVariables, TheLastStepIsReadAndAMissingBlockGetsNaN) {
     }
     file.close();
   }
-  const InputMesh mesh = read_exodus(path);
+  return path;
+}
+
+// The last step is the point and cell data; the first block's cells get NaN.
+TEST(ExodusVariables, TheLastStepIsReadAndAMissingBlockGetsNaN) {
+  const InputMesh mesh = read_exodus(two_steps());
   ASSERT_EQ(mesh.point_data.size(), 1u);
   EXPECT_EQ(mesh.point_data[0].values, (std::vector<double>{2, 4, 6, 8, 10}));
   ASSERT_EQ(mesh.cell_data.size(), 1u);
@@ -445,6 +502,33 @@ TEST(ExodusVariables, TheLastStepIsReadAndAMissingBlockGetsNaN) {
   EXPECT_TRUE(std::isnan(mesh.cell_data[0].values[1]));
   EXPECT_EQ(mesh.cell_data[0].values[2], 20);
   EXPECT_EQ(mesh.cell_data[0].values[3], -20);
+}
+
+// Every step, with its time and global variables, is read and written back by .exo.
+TEST(ExodusVariables, EveryTimeStepAndTheGlobalVariablesAreKeptByExodus) {
+  const auto check = [](const InputMesh& mesh) {
+    const TimeSteps& steps = mesh.steps;
+    EXPECT_EQ(steps.times, (std::vector<double>{1, 2}));
+    EXPECT_EQ(steps.global_names, (std::vector<std::string>{"energy"}));
+    EXPECT_EQ(steps.globals, (std::vector<std::vector<double>>{{100}, {200}}));
+    ASSERT_EQ(steps.point_data.size(), 1u);
+    ASSERT_EQ(steps.point_data[0].size(), 1u);
+    EXPECT_EQ(steps.point_data[0][0].values, (std::vector<double>{1, 2, 3, 4, 5}));
+    ASSERT_EQ(steps.cell_data.size(), 1u);
+    ASSERT_EQ(steps.cell_data[0].size(), 1u);
+    const std::vector<double>& u = steps.cell_data[0][0].values;
+    ASSERT_EQ(u.size(), 4u);
+    EXPECT_TRUE(std::isnan(u[0]));
+    EXPECT_EQ(u[2], 10);
+    EXPECT_EQ(u[3], -10);
+  };
+  const auto in = two_steps();
+  check(read_exodus(in));
+  const auto out = scratch_dir("ExodusSteps") / "out.exo";
+  write_mesh(PlexMesh::load(in), out);
+  const InputMesh back = read_exodus(out);
+  check(back);
+  EXPECT_EQ(back.point_data[0].values, (std::vector<double>{2, 4, 6, 8, 10}));
 }
 
 TEST(ExodusVariables, VectorsAreWrittenByComponentAndJoinedAgain) {

@@ -5,7 +5,9 @@
 #include <limits>
 #include <map>
 
+#include <dlfcn.h>
 #include <exodusII.h>
+#include <netcdf.h>
 
 #include "core/error.hpp"
 #include "mesh/cell_order.hpp"
@@ -97,10 +99,10 @@ class ExodusReader {
 
   const ex_init_params& init() const { return init_; }
 
-  // The variables of `kind` (EX_NODAL, EX_ELEM_BLOCK) at the last time step: their names, or
-  // none without time steps.
+  // The variables of `kind` (EX_GLOBAL, EX_NODAL, EX_ELEM_BLOCK): their names, or none
+  // without time steps.
   std::vector<std::string> variable_names(ex_entity_type kind) {
-    if (ex_inquire_int(file_.id(), EX_INQ_TIME) <= 0) return {};
+    if (num_steps() <= 0) return {};
     int count = 0;
     file_.check(ex_get_variable_param(file_.id(), kind, &count), "reading the variables");
     std::vector<std::string> names(count, std::string(name_length_ + 1, '\0'));
@@ -113,14 +115,26 @@ class ExodusReader {
     return names;
   }
 
-  int last_step() { return static_cast<int>(ex_inquire_int(file_.id(), EX_INQ_TIME)); }
+  int num_steps() { return static_cast<int>(ex_inquire_int(file_.id(), EX_INQ_TIME)); }
 
-  // Variable `var` (1-based) of entity `id` at the last step: `n` values.
-  std::vector<double> variable(ex_entity_type kind, int var, std::int64_t id, std::int64_t n) {
+  std::vector<double> times() {
+    std::vector<double> out(std::max(num_steps(), 0));
+    if (!out.empty()) file_.check(ex_get_all_times(file_.id(), out.data()), "reading the times");
+    return out;
+  }
+
+  // Variable `var` (1-based) of entity `id` at time step `step` (1-based): `n` values (of a
+  // global variable: the n global variables from `var` on).
+  std::vector<double> variable(int step, ex_entity_type kind, int var, std::int64_t id,
+                               std::int64_t n) {
     std::vector<double> values(n);
-    if (n > 0)
-      file_.check(ex_get_var(file_.id(), last_step(), kind, var, id, n, values.data()),
-                  "reading a variable");
+    if (n == 0) return values;
+    const int status = ex_get_var(file_.id(), step, kind, var, id, n, values.data());
+    file_.check(status, "reading a variable");
+    // A warning: the library found no values (all would read as 0).
+    if (status > 0 && !(kind == EX_NODAL && separate_nodal_variable(step, var, values)))
+      fail("{}: reading variable {} of time step {} failed (the Exodus library finds no values)",
+           name(), var, step);
     return values;
   }
 
@@ -135,6 +149,25 @@ class ExodusReader {
   }
 
  private:
+  // meshio writes each nodal variable as a netCDF variable of its own (vals_nod_var1, ...), as
+  // Exodus' "large model" does, without the attribute file_size that says so; the Exodus library
+  // then looks for them all in one (vals_nod_var) and warns. Reads such a variable through the
+  // netCDF library that the Exodus library uses (an Exodus id is its netCDF id), found in the
+  // process, not linked: Debian's libexodusii uses the MPI netCDF while libnetcdf-dev links the
+  // serial one, and two netCDF libraries do not share their ids. Returns whether it was there.
+  bool separate_nodal_variable(int step, int var, std::vector<double>& values) {
+    const auto inq_varid =
+        reinterpret_cast<decltype(&nc_inq_varid)>(dlsym(RTLD_DEFAULT, "nc_inq_varid"));
+    const auto get_vara =
+        reinterpret_cast<decltype(&nc_get_vara_double)>(dlsym(RTLD_DEFAULT, "nc_get_vara_double"));
+    int varid = 0;
+    const std::string variable = fmt::format("vals_nod_var{}", var);
+    const std::size_t start[2] = {static_cast<std::size_t>(step - 1), 0},
+                      count[2] = {1, values.size()};
+    return inq_varid && get_vara && inq_varid(file_.id(), variable.c_str(), &varid) == NC_NOERR &&
+           get_vara(file_.id(), varid, start, count, values.data()) == NC_NOERR;
+  }
+
   Block block(std::int64_t id) {
     Block b;
     b.id = id;
@@ -266,39 +299,82 @@ void add_side_sets(ExodusReader& reader, const std::vector<Block>& blocks,
   }
 }
 
-// The nodal and element variables at the last time step, as point and cell data (element
-// variables that a block of cells lacks are NaN there).
+// The nodal and element variables of one time step as point and cell data (element variables
+// that a block of cells lacks are NaN there).
+class StepData {
+ public:
+  StepData(ExodusReader& reader, const std::vector<Block>& blocks,
+           const std::vector<PetscInt>& vertex, int dim)
+      : reader_(reader), blocks_(blocks), num_nodes_(vertex.size()), dim_(dim) {
+    for (std::size_t n = 0; n < vertex.size(); ++n)
+      if (vertex[n] >= 0) used_.push_back(static_cast<std::int64_t>(n));
+    nodal_ = reader.variable_names(EX_NODAL);
+    element_ = reader.variable_names(EX_ELEM_BLOCK);
+    truth_ = reader.truth_table(static_cast<std::int64_t>(blocks.size()),
+                                static_cast<int>(element_.size()));
+  }
+
+  std::vector<DataArray> point_data(int step) {
+    std::vector<DataArray> nodal;
+    for (std::size_t k = 0; k < nodal_.size(); ++k)
+      nodal.push_back({nodal_[k], 1, ValueType::Float64,
+                       reader_.variable(step, EX_NODAL, static_cast<int>(k) + 1, 1,
+                                        static_cast<std::int64_t>(num_nodes_))});
+    return join_exodus_variables(select_data(nodal, num_nodes_, used_));
+  }
+
+  std::vector<DataArray> cell_data(int step) {
+    const int vars = static_cast<int>(element_.size());
+    std::vector<DataArray> element;
+    for (int k = 0; k < vars; ++k) {
+      DataArray a{element_[k], 1, ValueType::Float64, {}};
+      for (std::size_t b = 0; b < blocks_.size(); ++b) {
+        if (blocks_[b].dim != dim_) continue;
+        if (truth_[b * vars + k]) {
+          const auto v =
+              reader_.variable(step, EX_ELEM_BLOCK, k + 1, blocks_[b].id, blocks_[b].size);
+          a.values.insert(a.values.end(), v.begin(), v.end());
+        } else {
+          a.values.resize(a.values.size() + blocks_[b].size, std::nan(""));
+        }
+      }
+      element.push_back(std::move(a));
+    }
+    return join_exodus_variables(std::move(element));
+  }
+
+ private:
+  ExodusReader& reader_;
+  const std::vector<Block>& blocks_;
+  std::size_t num_nodes_;
+  int dim_;
+  std::vector<std::int64_t> used_;  // the nodes that are vertices
+  std::vector<std::string> nodal_, element_;
+  std::vector<int> truth_;
+};
+
+// Every time step: its time and global variables, and its nodal and element variables as point
+// and cell data (the last step's as mesh.point_data and cell_data).
 void add_variables(ExodusReader& reader, const std::vector<Block>& blocks,
                    const std::vector<PetscInt>& vertex, InputMesh& mesh) {
-  std::vector<std::int64_t> used;
-  for (std::size_t n = 0; n < vertex.size(); ++n)
-    if (vertex[n] >= 0) used.push_back(static_cast<std::int64_t>(n));
-  std::vector<DataArray> nodal;
-  const std::vector<std::string> nodal_names = reader.variable_names(EX_NODAL);
-  for (std::size_t k = 0; k < nodal_names.size(); ++k)
-    nodal.push_back({nodal_names[k], 1, ValueType::Float64,
-                     reader.variable(EX_NODAL, static_cast<int>(k) + 1, 1,
-                                     static_cast<std::int64_t>(vertex.size()))});
-  mesh.point_data = join_exodus_variables(select_data(nodal, vertex.size(), used));
-
-  const std::vector<std::string> names = reader.variable_names(EX_ELEM_BLOCK);
-  const int vars = static_cast<int>(names.size());
-  const std::vector<int> truth = reader.truth_table(static_cast<std::int64_t>(blocks.size()), vars);
-  std::vector<DataArray> element;
-  for (int k = 0; k < vars; ++k) {
-    DataArray a{names[k], 1, ValueType::Float64, {}};
-    for (std::size_t b = 0; b < blocks.size(); ++b) {
-      if (blocks[b].dim != mesh.dim) continue;
-      if (truth[b * vars + k]) {
-        const auto v = reader.variable(EX_ELEM_BLOCK, k + 1, blocks[b].id, blocks[b].size);
-        a.values.insert(a.values.end(), v.begin(), v.end());
-      } else {
-        a.values.resize(a.values.size() + blocks[b].size, std::nan(""));
-      }
+  TimeSteps& steps = mesh.steps;
+  steps.times = reader.times();
+  const int last = static_cast<int>(steps.times.size());
+  if (last == 0) return;
+  steps.global_names = reader.variable_names(EX_GLOBAL);
+  StepData data(reader, blocks, vertex, mesh.dim);
+  for (int step = 1; step <= last; ++step) {
+    steps.globals.push_back(reader.variable(step, EX_GLOBAL, 1, 0,
+                                            static_cast<std::int64_t>(steps.global_names.size())));
+    std::vector<DataArray> point = data.point_data(step), cell = data.cell_data(step);
+    if (step == last) {
+      mesh.point_data = std::move(point);
+      mesh.cell_data = std::move(cell);
+    } else {
+      steps.point_data.push_back(std::move(point));
+      steps.cell_data.push_back(std::move(cell));
     }
-    element.push_back(std::move(a));
   }
-  mesh.cell_data = join_exodus_variables(std::move(element));
 }
 
 }  // namespace

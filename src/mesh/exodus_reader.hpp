@@ -9,8 +9,9 @@
 // a solid's boundary, BAR/BEAM/TRUSS lines, SPHERE points) are not kept. Side sets are facet groups
 // (tag: the set's id; name: the set's, or "sideset_<id>"). Nodal and element variables (results)
 // of the last time step are point and cell data ("<name>_x", "_y", "_z" next to each other
-// joined into vectors; an element variable a block of cells lacks is NaN on its cells); earlier
-// time steps, global variables, node sets, attributes and maps are not kept.
+// joined into vectors; an element variable a block of cells lacks is NaN on its cells); every
+// step's time and global variables and the earlier steps' nodal and element variables are
+// InputMesh::steps. Node sets, attributes and maps are not kept.
 #pragma once
 
 #include <filesystem>

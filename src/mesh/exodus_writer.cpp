@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include <exodusII.h>
@@ -168,15 +169,11 @@ int longest_name(const WrittenGroups& groups, const InputMesh& mesh) {
     for (const DataArray& a : *data)
       for (const std::string& name : exodus_variable_names(a))
         longest = std::max(longest, name.size());
+  for (const std::string& name : mesh.steps.global_names) longest = std::max(longest, name.size());
   return static_cast<int>(longest);
 }
 
-// Declares the variables of `kind` (one per component of each array).
-void put_variable_names(const ExodusFile& file, ex_entity_type kind,
-                        const std::vector<DataArray>& arrays) {
-  std::vector<std::string> names;
-  for (const DataArray& a : arrays)
-    for (std::string& name : exodus_variable_names(a)) names.push_back(std::move(name));
+void put_names(const ExodusFile& file, ex_entity_type kind, std::vector<std::string> names) {
   if (names.empty()) return;
   std::vector<char*> list;
   for (std::string& name : names) list.push_back(name.data());
@@ -185,36 +182,84 @@ void put_variable_names(const ExodusFile& file, ex_entity_type kind,
   file.check(ex_put_variable_names(file.id(), kind, n, list.data()), "writing the variables");
 }
 
-// The input's point and cell data as nodal and element variables of one time step (time 0).
-void write_variables(const ExodusFile& file, const InputMesh& mesh,
-                     const std::vector<Block>& blocks) {
-  if (mesh.point_data.empty() && mesh.cell_data.empty()) return;
-  put_variable_names(file, EX_NODAL, mesh.point_data);
-  put_variable_names(file, EX_ELEM_BLOCK, mesh.cell_data);
-  const double time = 0.0;
-  file.check(ex_put_time(file.id(), 1, &time), "writing the time step");
+// Declares the variables of `kind` (one per component of each array).
+void put_variable_names(const ExodusFile& file, ex_entity_type kind,
+                        const std::vector<DataArray>& arrays) {
+  std::vector<std::string> names;
+  for (const DataArray& a : arrays)
+    for (std::string& name : exodus_variable_names(a)) names.push_back(std::move(name));
+  put_names(file, kind, std::move(names));
+}
+
+// The values of `a` at an earlier step: the step's array of its name and shape, or NaN.
+std::vector<double> at_step(const DataArray& a, const std::vector<DataArray>* step) {
+  if (!step) return a.values;
+  for (const DataArray& b : *step)
+    if (b.name == a.name && b.components == a.components && b.values.size() == a.values.size())
+      return b.values;
+  return std::vector<double>(a.values.size(), std::nan(""));
+}
+
+// The point and cell data of time step `step` (`point` and `cell`: an earlier step's arrays, or
+// null for the last step's, mesh.point_data and cell_data).
+void write_step(const ExodusFile& file, int step, const InputMesh& mesh,
+                const std::vector<Block>& blocks, const std::vector<DataArray>* point,
+                const std::vector<DataArray>* cell) {
   int var = 0;
   const PetscInt nv = mesh.num_vertices();
-  for (const DataArray& a : mesh.point_data)
+  for (const DataArray& a : mesh.point_data) {
+    const std::vector<double> all = at_step(a, point);
     for (int k = 0; k < a.components; ++k) {
       std::vector<double> values(nv);
-      for (PetscInt v = 0; v < nv; ++v) values[v] = a.values[v * a.components + k];
-      file.check(ex_put_var(file.id(), 1, EX_NODAL, ++var, 1, nv, values.data()),
+      for (PetscInt v = 0; v < nv; ++v) values[v] = all[v * a.components + k];
+      file.check(ex_put_var(file.id(), step, EX_NODAL, ++var, 1, nv, values.data()),
                  "writing a nodal variable");
     }
+  }
   var = 0;
-  for (const DataArray& a : mesh.cell_data)
+  for (const DataArray& a : mesh.cell_data) {
+    const std::vector<double> all = at_step(a, cell);
     for (int k = 0; k < a.components; ++k) {
       ++var;
       for (const Block& b : blocks) {
         std::vector<double> values;
         values.reserve(b.cells.size());
-        for (PetscInt c : b.cells) values.push_back(a.values[c * a.components + k]);
-        file.check(ex_put_var(file.id(), 1, EX_ELEM_BLOCK, var, b.id,
+        for (PetscInt c : b.cells) values.push_back(all[c * a.components + k]);
+        file.check(ex_put_var(file.id(), step, EX_ELEM_BLOCK, var, b.id,
                               static_cast<std::int64_t>(values.size()), values.data()),
                    "writing an element variable");
       }
     }
+  }
+}
+
+// The input's point and cell data as nodal and element variables and its global variables, at
+// each of the input's time steps (an Exodus input's), or else at one step at time 0.
+void write_variables(const ExodusFile& file, const InputMesh& mesh,
+                     const std::vector<Block>& blocks) {
+  const TimeSteps& steps = mesh.steps;
+  if (mesh.point_data.empty() && mesh.cell_data.empty() && steps.global_names.empty()) return;
+  put_variable_names(file, EX_NODAL, mesh.point_data);
+  put_variable_names(file, EX_ELEM_BLOCK, mesh.cell_data);
+  put_names(file, EX_GLOBAL, steps.global_names);
+  const auto count = std::max<std::size_t>(steps.times.size(), 1);
+  for (std::size_t s = 0; s < count; ++s) {
+    const int step = static_cast<int>(s) + 1;
+    const double time = steps.times.empty() ? 0.0 : steps.times[s];
+    file.check(ex_put_time(file.id(), step, &time), "writing the time step");
+    // An earlier step's arrays (none: NaN, for a step the input lacked), or null for the last.
+    static const std::vector<DataArray> none;
+    const auto arrays = [&](const std::vector<std::vector<DataArray>>& all) {
+      return s + 1 == count ? nullptr : s < all.size() ? &all[s] : &none;
+    };
+    write_step(file, step, mesh, blocks, arrays(steps.point_data), arrays(steps.cell_data));
+    if (!steps.global_names.empty() && s < steps.globals.size() &&
+        steps.globals[s].size() == steps.global_names.size())
+      file.check(
+          ex_put_var(file.id(), step, EX_GLOBAL, 1, 0,
+                     static_cast<std::int64_t>(steps.globals[s].size()), steps.globals[s].data()),
+          "writing the global variables");
+  }
 }
 
 }  // namespace

@@ -190,6 +190,7 @@ GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
   out.mesh.plane = m.plane;
   out.mesh.point_data = m.point_data;
   out.mesh.cell_data = m.cell_data;
+  out.mesh.steps = m.steps;
   return out;
 }
 

@@ -72,7 +72,7 @@ struct Elements {
   int order = 1;
 };
 
-// A $NodeData or $ElementData section (ASCII): its name, and per node or element its tag and
+// A $NodeData or $ElementData section: its name, and per node or element its tag and
 // `components` values.
 struct TaggedData {
   std::string name;
@@ -123,7 +123,7 @@ class GmshParser {
         read_nodes();
       else if (section == "$Elements")
         read_elements();
-      else if ((section == "$NodeData" || section == "$ElementData") && !binary_)
+      else if (section == "$NodeData" || section == "$ElementData")
         read_data(section == "$NodeData" ? c_.node_data : c_.element_data);
       else
         skip_section(section);
@@ -298,8 +298,9 @@ class GmshParser {
   }
 
   // $NodeData/$ElementData: string tags (the first is the name), real tags (the time), integer
-  // tags (time step, components, count), then per node or element its tag and values. A later
-  // section of the same name (a later time step) replaces an earlier one.
+  // tags (time step, components, count), then per node or element its tag and values (binary
+  // files: an int and `components` doubles, after the newline that ends the integer tags). A
+  // later section of the same name (a later time step) replaces an earlier one.
   void read_data(std::vector<TaggedData>& all) {
     TaggedData d;
     const long long strings = count(integer(), 2);
@@ -323,12 +324,14 @@ class GmshParser {
       if (i < 3) ints[i] = v;
     }
     d.components = static_cast<int>(integer_in(ints[1], 1, 1024, "the number of components"));
-    const long long n = count(ints[2], 2 * (1 + d.components));
+    // (an entry takes an int and its doubles, or in ASCII at least a digit and a space each)
+    const long long n = count(ints[2], binary_ ? 4 + 8LL * d.components : 2LL * (1 + d.components));
     d.tags.reserve(n);
     d.values.reserve(n * d.components);
+    if (binary_) skip_newline();
     for (long long k = 0; k < n; ++k) {
-      d.tags.push_back(tag(integer(), "tag"));
-      for (int j = 0; j < d.components; ++j) d.values.push_back(real());
+      d.tags.push_back(tag(binary_ ? binary<int>() : integer(), "tag"));
+      for (int j = 0; j < d.components; ++j) d.values.push_back(real_value());
     }
     expect_end(section_);
     if (d.name.empty()) return;

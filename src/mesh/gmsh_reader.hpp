@@ -6,10 +6,10 @@
 // vertices in the order of $Nodes, counting the nodes that are a corner of some element.
 // Facet elements keep the first physical tag; point elements are not kept.
 //
-// $NodeData and $ElementData (ASCII files) are point and cell data: named by their first string
-// tag, by node and element tag; the last section of a name (the last time step) is kept; nodes
-// and cells it gives no value get NaN, values of other elements are dropped. Binary files'
-// data sections, $ElementNodeData and $InterpolationScheme are skipped.
+// $NodeData and $ElementData (ASCII and binary files) are point and cell data: named by their
+// first string tag, by node and element tag; the last section of a name (the last time step) is
+// kept; nodes and cells it gives no value get NaN, values of other elements are dropped.
+// $ElementNodeData and $InterpolationScheme are skipped.
 #pragma once
 
 #include <filesystem>

@@ -72,6 +72,16 @@ void round_to_type(DataArray& array);
 std::vector<DataArray> select_data(const std::vector<DataArray>& arrays, std::size_t count,
                                    const std::vector<std::int64_t>& kept);
 
+// The time steps of an input that has them (Exodus): each step's time and global variables,
+// and the point and cell data of the steps before the last (point_data and cell_data are the
+// last step's), in input numbering. Only .exo writes them back.
+struct TimeSteps {
+  std::vector<double> times;                                  // per step
+  std::vector<std::string> global_names;                      // the global variables
+  std::vector<std::vector<double>> globals;                   // per step: a value per name
+  std::vector<std::vector<DataArray>> point_data, cell_data;  // per step before the last
+};
+
 struct InputMesh {
   int dim = 2;
   std::vector<double> coords;  // `dim` values per vertex (2D: in the mesh's plane)
@@ -92,6 +102,7 @@ struct InputMesh {
   // Data the file gives per vertex and per cell, in input numbering, written back unchanged.
   std::vector<DataArray> point_data;
   std::vector<DataArray> cell_data;
+  TimeSteps steps;
 
   PetscInt num_vertices() const { return static_cast<PetscInt>(coords.size()) / dim; }
   PetscInt num_cells() const { return static_cast<PetscInt>(cell_types.size()); }

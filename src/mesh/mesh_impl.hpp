@@ -26,6 +26,7 @@ struct PlexMesh::Impl {
   TaggedEntities facets, points;
   // Rank 0 only: the input's point and cell data in input numbering, written back unchanged.
   std::vector<DataArray> point_data, cell_data;
+  TimeSteps steps;                              // rank 0 only, as the data
   std::shared_ptr<const PlaneEmbedding> plane;  // 2D off z = 0 (input_mesh.hpp)
   // The coordinates' one owner is view->coords; the DMPlex's are brought up to date only when
   // someone asks for the DM (PlexMesh::dm()), not at every move.

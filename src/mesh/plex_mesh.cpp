@@ -257,6 +257,7 @@ PlexMesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
   m->points = std::move(root.points);
   m->point_data = std::move(input.point_data);
   m->cell_data = std::move(input.cell_data);
+  m->steps = std::move(input.steps);
 
   const auto original = distribute(*m, graph);
   build_view(*m, original, counts[2], root, std::move(surface));

@@ -87,6 +87,35 @@ def test_exodus_keeps_the_data_as_variables(tmp, ranks):
     assert np.array_equal(cell_values(got, "material"), cell_values(mesh, "material"))
 
 
+@pytest.mark.parametrize("ranks", RANKS)
+def test_exodus_keeps_every_time_step_and_the_global_variables(tmp, ranks):
+    """An .exo of two time steps (times 0.5 and 1.5) and a global variable "energy", as
+    meshio writes one step and netCDF4 adds the rest: smoothed to .exo, every step comes back
+    with its time, nodal values and global values. (meshio stores a netCDF variable per nodal
+    variable without saying so, where the Exodus library looks for one of them all.)"""
+    netCDF4 = pytest.importorskip("netCDF4", reason="python3-netcdf4 is not installed")
+    mesh = with_data(tmp, "box-hex", "1")
+    t = mesh.point_data["temperature"]
+    path = os.path.join(tmp, "in.exo")
+    meshio.write(path, meshio.Mesh(mesh.points, mesh.cells, point_data={"temperature": t}))
+    with netCDF4.Dataset(path, "a") as nc:
+        nc["time_whole"][:2] = [0.5, 1.5]
+        nc["vals_nod_var1"][1, :] = 2 * t
+        nc.createDimension("num_glo_var", 1)
+        name = nc.createVariable("name_glo_var", "S1", ("num_glo_var", "len_string"))
+        name[0, :] = netCDF4.stringtochar(np.array(["energy"], f"S{len(nc.dimensions['len_string'])}"))
+        nc.createVariable("vals_glo_var", "f8", ("time_step", "num_glo_var"))[:, 0] = [10, 20]
+    out = os.path.join(tmp, "out.exo")
+    neomesh("smooth", path, "-o", out, "--quiet", ranks=ranks)
+    with netCDF4.Dataset(out) as nc:
+        assert nc["time_whole"][:].tolist() == [0.5, 1.5]
+        assert nc["vals_glo_var"][:].tolist() == [[10], [20]]
+        assert np.array_equal(nc["vals_nod_var1"][0, :], t)
+        assert np.array_equal(nc["vals_nod_var1"][1, :], 2 * t)
+        assert not np.allclose(np.stack([nc["coordx"][:], nc["coordy"][:], nc["coordz"][:]], 1),
+                               mesh.points)
+
+
 def test_the_groups_of_a_msh_survive_vtu_written_by_meshio(tmp):
     """meshio converts a .msh's boundary groups to lines with "gmsh:physical"; neomesh reads
     them as facet groups, and writes them back (with their names, which meshio drops)."""
@@ -137,13 +166,15 @@ def test_data_of_unused_points_and_facets_are_dropped_with_them(tmp):
 
 @pytest.mark.parametrize("ranks", RANKS)
 @pytest.mark.parametrize("target", [".msh", ".vtu"])
-def test_gmsh_node_and_element_data_are_kept(tmp, target, ranks):
-    """meshio writes point and cell data to .msh as $NodeData and $ElementData."""
+@pytest.mark.parametrize("version,binary", [("gmsh22", False), ("gmsh22", True), ("gmsh", True)])
+def test_gmsh_node_and_element_data_are_kept(tmp, target, ranks, version, binary):
+    """meshio writes point and cell data to .msh as $NodeData and $ElementData, in ASCII and in
+    binary files (2.2 and 4.1)."""
     mesh = with_data(tmp, "box-quad", "2")
     mesh.cell_data["gmsh:physical"] = [np.full(len(b.data), 1, dtype=np.int32) for b in mesh.cells]
     mesh.cell_data["gmsh:geometrical"] = mesh.cell_data["gmsh:physical"]
     path = os.path.join(tmp, "in.msh")
-    meshio.write(path, mesh, file_format="gmsh22", binary=False)
+    meshio.write(path, mesh, file_format=version, binary=binary)
     out = os.path.join(tmp, "out" + target)
     neomesh("smooth", path, "-o", out, "--quiet", ranks=ranks)
     got, expected = read_mesh(out), read_mesh(path)
