@@ -351,6 +351,16 @@ double cell_scaled_jacobian(CellType type, const double* coords) {
   return sj;
 }
 
+double cell_edge_ratio(CellType type, const double* coords) {
+  double ratio = 0.0;
+  visit_cell_type(type, [&]<CellType Type>(CellTag<Type>) {
+    using Traits = CellTraits<Type>;
+    ratio = edge_ratio<Type>(
+        Eigen::Map<const typename Traits::Coordinates>(coords, Traits::dim, Traits::vertices));
+  });
+  return ratio;
+}
+
 std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const double> coords) {
   std::vector<double> ratio(view.num_cells);
   for_each_cell(view, coords, [&ratio]<CellType Type>(std::size_t i, const auto& x) {

@@ -65,6 +65,8 @@ std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const doubl
 // The scaled Jacobian of one cell of `type` with vertex coordinates `coords` (dim values per
 // vertex, in the cell's canonical order).
 double cell_scaled_jacobian(CellType type, const double* coords);
+// Its longest over its shortest edge, likewise.
+double cell_edge_ratio(CellType type, const double* coords);
 
 // The metrics of `quality` as the per-cell fields of an output (.vtu), by the names the
 // reports and `--picture-field` use.

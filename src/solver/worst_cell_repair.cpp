@@ -141,6 +141,7 @@ class Repair {
       for (std::int64_t k = m.offsets[c]; k < m.offsets[c + 1]; ++k)
         star_[next[m.vertices[k]]++] = static_cast<std::int64_t>(c);
       sj_[c] = scaled_jacobian(c);
+      max_edge_ratio_ = std::max(max_edge_ratio_, edge_ratio(c));
     }
   }
 
@@ -211,6 +212,9 @@ class Repair {
   double scaled_jacobian(std::int64_t c) const {
     return cell_scaled_jacobian(m_.types[c], cell_coords(c).data());
   }
+  double edge_ratio(std::int64_t c) const {
+    return cell_edge_ratio(m_.types[c], cell_coords(c).data());
+  }
   double distance(std::span<const double> x, std::int64_t u, std::int64_t v) const {
     double s = 0.0;
     for (int a = 0; a < m_.dim; ++a) s += std::pow(x[m_.dim * u + a] - x[m_.dim * v + a], 2);
@@ -225,6 +229,7 @@ class Repair {
       for (std::int64_t u : cell_vertices(c))
         if (u != v && !(distance(m_.coords, u, v) >= kMinDistanceFraction * distance(start_, u, v)))
           return -kInfinity;
+      if (!(edge_ratio(c) <= max_edge_ratio_)) return -kInfinity;
       q = std::min(q, scaled_jacobian(c));
     }
     return q;
@@ -268,6 +273,7 @@ class Repair {
   std::vector<std::int64_t> star_first_,
       star_;                         // the cells of vertex v: star_[first[v], first[v+1])
   std::vector<double> sj_;           // per cell
+  double max_edge_ratio_ = 0.0;      // the mesh's largest at the repair's start
   const std::vector<double> start_;  // the coordinates at the repair's start
   std::vector<std::vector<double>> dirs_ = directions(m_.dim);
 };
