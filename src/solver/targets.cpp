@@ -136,6 +136,10 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
   MPI_Allreduce(MPI_IN_PLACE, &total, 1, MPI_DOUBLE, MPI_SUM, dofs.comm());
   t.shapes.assign(cells * Dim * Dim, 0.0);
   t.weights.assign(cells, 1.0);
+  std::vector<double> stiffness(cells, kKeptStiffness);
+  for (const CellBlock& block : view.blocks)
+    if (block.type == CellType::Wedge)
+      std::fill_n(stiffness.begin() + block.first_cell, block.size(), kKeptWedgeStiffness);
   for (std::size_t c = 0; c < cells; ++c) {
     Eigen::Map<Mat<Dim>> S(t.shapes.data() + c * Dim * Dim);
     const double w = t.kept[c];
@@ -146,8 +150,7 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
     S = input[c]->kept_shape(w);
     t.volumes[c] = std::exp(w * std::log(cell_volumes[c]) + (1.0 - w) * std::log(t.volumes[c]));
     // a = σ_max^d: the isotropic cell spanning the longest edge over the cell's volume.
-    t.weights[c] =
-        std::exp(w * (std::log(kKeptStiffness) + Dim * input[c]->log_stretches[Dim - 1]));
+    t.weights[c] = std::exp(w * (std::log(stiffness[c]) + Dim * input[c]->log_stretches[Dim - 1]));
   }
   normalize_volumes(t.volumes, total, dofs.comm());
   return t;

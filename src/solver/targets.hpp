@@ -28,7 +28,9 @@
 // A kept cell is as thin as its shortest edge, so its energy is small against that of its
 // neighbours, which would squash it (a boundary layer's first heights: ±8 % with k = 1):
 // its weight k = (C a)^w, with a = σ_max(V)^d the volume of the isotropic cell spanning its
-// longest edge over its own, C = kKeptStiffness (docs/method.md has the measurements).
+// longest edge over its own, C = kKeptStiffness; prisms, what 3D layers are made of, are held
+// by the many tetrahedra around them only with C = kKeptWedgeStiffness (docs/method.md has the
+// measurements).
 // When no cell is kept the targets are the ideal ones exactly (no shapes). Inverted input
 // cells have no shape of their own: their targets are ideal (Optimizer::smooth takes ideal
 // targets for every cell of a tangled input).
@@ -52,6 +54,7 @@ struct Ramp {
 };
 inline constexpr Ramp kCoherence{0.5, 0.8}, kStretched{2.0, 3.5}, kSheared{2.0, 4.0};
 inline constexpr double kKeptStiffness = 7.0;
+inline constexpr double kKeptWedgeStiffness = 100.0;
 
 struct CellTargets {
   std::vector<double> volumes;  // per local cell, summing to the mesh volume over all ranks
