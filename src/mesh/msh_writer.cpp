@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <map>
+#include <numeric>
 #include <string>
 
 #include <fmt/ostream.h>
@@ -94,19 +95,24 @@ std::vector<Block> element_blocks(const GatheredMesh& g, const WrittenGroups& gr
   return out;
 }
 
-// $NodeData or $ElementData of an array: name, time 0, step 0, the values by node or element
-// tag (`tags[i]`: the tag of entity i).
+// $NodeData or $ElementData of an array: name, time 0, step 0, the values of every node or
+// element, by tag 1, 2, ... (`index[t - 1]`: the entry of the array for tag t, or -1 for an
+// element that is not a cell, a facet or point of a group: NaN, since meshio reads an
+// $ElementData only if it covers every element).
 void write_data(std::ostream& f, const char* section, const DataArray& a,
-                const std::vector<std::size_t>& tags) {
+                const std::vector<std::ptrdiff_t>& index) {
   std::string name = a.name;  // a string tag is one line between quotes
   std::replace_if(
       name.begin(), name.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   std::replace(name.begin(), name.end(), '"', '\'');
-  fmt::print(f, "${}\n1\n\"{}\"\n1\n0\n3\n0\n{}\n{}\n", section, name, a.components, tags.size());
-  for (std::size_t i = 0; i < tags.size(); ++i) {
-    fmt::print(f, "{}", tags[i]);
+  fmt::print(f, "${}\n1\n\"{}\"\n1\n0\n3\n0\n{}\n{}\n", section, name, a.components, index.size());
+  for (std::size_t t = 0; t < index.size(); ++t) {
+    fmt::print(f, "{}", t + 1);
     for (int k = 0; k < a.components; ++k)
-      fmt::print(f, " {:.17g}", a.values[i * a.components + k]);
+      if (index[t] < 0)
+        fmt::print(f, " nan");
+      else
+        fmt::print(f, " {:.17g}", a.values[index[t] * a.components + k]);
     fmt::print(f, "\n");
   }
   fmt::print(f, "$End{}\n", section);
@@ -159,23 +165,23 @@ void write_msh(const GatheredMesh& g, std::ostream& f) {
   std::size_t total = 0;
   for (const Block& b : blocks) total += b.elements.size();
   fmt::print(f, "$Elements\n{} {} 1 {}\n", blocks.size(), total, total);
-  std::size_t tag = 0;
-  std::vector<std::size_t> element_of(mesh.num_cells());  // per cell its element tag
+  std::vector<std::ptrdiff_t> cell_of;  // per element (tag - 1): its cell, or -1
+  cell_of.reserve(total);
   for (const Block& b : blocks) {
     fmt::print(f, "{} {} {} {}\n", b.dim, b.entity, b.type, b.elements.size());
     for (std::size_t k = 0; k < b.elements.size(); ++k) {
-      fmt::print(f, "{}", ++tag);
+      fmt::print(f, "{}", cell_of.size() + 1);
       for (PetscInt v : b.elements[k]) fmt::print(f, " {}", v + 1);
       fmt::print(f, "\n");
-      if (k < b.cells.size()) element_of[b.cells[k]] = tag;
+      cell_of.push_back(k < b.cells.size() ? static_cast<std::ptrdiff_t>(b.cells[k]) : -1);
     }
   }
   fmt::print(f, "$EndElements\n");
 
-  std::vector<std::size_t> node_of(nv);
-  for (PetscInt v = 0; v < nv; ++v) node_of[v] = v + 1;
-  for (const DataArray& a : mesh.point_data) write_data(f, "NodeData", a, node_of);
-  for (const DataArray& a : mesh.cell_data) write_data(f, "ElementData", a, element_of);
+  std::vector<std::ptrdiff_t> node(nv);
+  std::iota(node.begin(), node.end(), 0);
+  for (const DataArray& a : mesh.point_data) write_data(f, "NodeData", a, node);
+  for (const DataArray& a : mesh.cell_data) write_data(f, "ElementData", a, cell_of);
 }
 
 }  // namespace neomesh

@@ -7,7 +7,7 @@ import os
 import numpy as np
 import pytest
 
-from conftest import DATA, RANKS, expect_one_error_line, neomesh, read_mesh
+from conftest import DATA, RANKS, expect_one_error_line, neomesh, read_mesh, run
 
 meshio = pytest.importorskip("meshio", reason="python3-meshio is not installed")
 
@@ -195,3 +195,24 @@ def test_without_cgns_a_cgns_file_is_refused_in_one_line(tmp):
         f.write("HDF5 or not, this build does not look\n")
     proc = neomesh("quality", fake, expect=None)
     expect_one_error_line(proc, ["in.cgns", "without CGNS"])
+
+
+@pytest.mark.parametrize("ext", [".vtu", ".vtk", ".mesh", ".exo", ".cgns"])
+def test_smoothing_a_mixed_3d_mesh_keeps_its_groups_in_every_format(tmp, ext):
+    """Hexahedra beside wedges with named boundary groups (tests/data/mixed_hex_wedge.geo, by
+    Gmsh): `smooth in.EXT -o out.EXT` gives back the same cells, and the same facets in each
+    group (Medit has no group names: there, the same facets per reference)."""
+    msh = os.path.join(tmp, "mixed.msh")
+    run(["gmsh", "-3", os.path.join(DATA, "mixed_hex_wedge.geo"), "-format", "msh41", "-o", msh])
+    source = convert(tmp, msh, "in" + ext)
+    out = os.path.join(tmp, "out" + ext)
+    neomesh("smooth", source, "-o", out, "--quiet")
+    before, after = read_mesh(convert(tmp, source, "before.msh")), \
+        read_mesh(convert(tmp, out, "after.msh"))
+    assert not np.allclose(before.points, after.points)  # it smoothed
+    expect_same(before, after, atol=np.inf)
+    assert set(cells(after)[0]) == {"hexahedron", "wedge"}
+    assert facet_groups(after) == facet_groups(before) != []
+    if ext != ".mesh":
+        assert set(after.field_data) == set(before.field_data) == \
+            {"fluid", "bottom", "top", "inlet", "outlet"}
