@@ -66,9 +66,8 @@ class Optimizer {
   // OptionError if the options are out of range. Collective.
   double evaluate(const SmoothOptions& options = {});
 
-  struct Impl;  // src/api/optimizer_impl.hpp
-
  private:
+  struct Impl;  // src/api/optimizer_impl.hpp
   std::unique_ptr<Impl> impl_;
 };
 
