@@ -149,12 +149,17 @@ struct FitSummary {
   int iterations = 0;          // the fit's, the last ones of Result::history
 };
 
-struct Result {
+// The quasi-Newton iterations and how they ended: what the solver reports of one minimization,
+// and the first part of a Result.
+struct SolverRun {
   std::vector<IterationRecord> history;  // the iterations on the Neo-Hookean energy
   StopReason reason = StopReason::MaxIterations;
   double initial_energy = 0.0, final_energy = 0.0;
   double initial_defect = 0.0, final_defect = 0.0;
   PhaseTimes times;
+};
+
+struct Result : SolverRun {
   QualitySummary quality_before, quality_after;
   ProblemSummary problem;  // what was optimized
   // How the domain changed: the largest distance of a boundary vertex from the boundary where

@@ -441,12 +441,11 @@ const PhaseTimes& QuasiNewton::times() const {
   return impl_->times;
 }
 
-QuasiNewtonResult minimize(const Functional& functional, Vec x, const QuasiNewtonOptions& options,
-                           Vec cell_size,
-                           const std::function<void(const IterationRecord&)>& observe) {
+SolverRun minimize(const Functional& functional, Vec x, const QuasiNewtonOptions& options,
+                   Vec cell_size, const std::function<void(const IterationRecord&)>& observe) {
   QuasiNewton method(functional, options, cell_size);
   method.restart(x);
-  QuasiNewtonResult result;
+  SolverRun result;
   result.initial_energy = method.energy();
   result.initial_defect = method.defect();
   while (!method.stop_reason()) {

@@ -41,7 +41,7 @@ Outcome graded_box(CellType type, int n, BoundaryMode boundary) {
 
   QuasiNewtonOptions options;
   options.energy_roundoff = energy_roundoff(p.energy, d, p.volume);
-  const QuasiNewtonResult result = p.minimize(options);
+  const SolverRun result = p.minimize(options);
   EXPECT_NE(result.reason, StopReason::LineSearchFailed);
   EXPECT_NE(result.reason, StopReason::MaxIterations);
 
@@ -96,7 +96,7 @@ RingOutcome smooth_ring(CellType type, int n, int m,
   BoundaryOptions options(BoundaryMode::Slide);
   options.shapes = shapes;
   ThesisProblem p(ring(type, n, m, 3.0), {}, options);
-  const QuasiNewtonResult result =
+  const SolverRun result =
       p.minimize(QuasiNewtonOptions{{}, energy_roundoff(p.energy, p.view.dim, p.volume)});
   EXPECT_NE(result.reason, StopReason::LineSearchFailed);
   EXPECT_NE(result.reason, StopReason::MaxIterations);
@@ -186,7 +186,7 @@ TEST(SlidingBoundary, RejectedDirectionsAreTurnedJustEnoughTowardsTheAntigradien
     ThesisProblem p(ring(CellType::Triangle, 48, 4, 3.0), {}, BoundaryMode::Slide);
     QuasiNewtonOptions options{{}, energy_roundoff(p.energy, p.view.dim, p.volume)};
     options.rejected_direction = choice;
-    const QuasiNewtonResult result = p.minimize(options);
+    const SolverRun result = p.minimize(options);
     EXPECT_NE(result.reason, StopReason::LineSearchFailed);
     int blended = 0;
     for (const IterationRecord& r : result.history) {

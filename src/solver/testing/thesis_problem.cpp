@@ -44,7 +44,7 @@ QuasiNewtonOptions ThesisProblem::thesis_options() const {
   return o;
 }
 
-QuasiNewtonResult ThesisProblem::minimize(const QuasiNewtonOptions& options) {
+SolverRun ThesisProblem::minimize(const QuasiNewtonOptions& options) {
   return neomesh::minimize(*functional, x, options, cell_size);
 }
 
