@@ -111,7 +111,7 @@ TEST(SquareMidpoint, ConvergesForEveryKminAt128x128) {
     SCOPED_TRACE(fmt::format("kmin {}", kmin));
     ThesisProblem p(square_midpoint(128));
     QuasiNewtonOptions o = p.thesis_options();
-    o.kmin = kmin;
+    o.advanced.kmin = kmin;
     o.linear_solver = LinearSolverKind::Amg;
     const SolverRun r = p.minimize(o);
     EXPECT_LT(r.final_defect, 1e-10);
@@ -139,7 +139,7 @@ TEST(SquareMidpoint, LaplacianPreconditionerReachesTheGrid) {
     ThesisProblem p(square_midpoint(64));
     QuasiNewtonOptions o = p.thesis_options();
     o.linear_solver = LinearSolverKind::Amg;
-    o.hessian_pc = pc;
+    o.advanced.hessian_pc = pc;
     const SolverRun r = p.minimize(o);
     EXPECT_LT(r.final_defect, 1e-10);
     EXPECT_LT(distance_to_uniform_grid(p, 64), 1e-8);
@@ -178,7 +178,7 @@ TEST(CubeMidpoint, ReproducesThesisTable518) {
 TEST(SquareRandom, ConvergesToTheUniformGrid) {
   ThesisProblem p(square_random(16, 0.2, 1));
   QuasiNewtonOptions o = p.thesis_options();
-  o.kmin = 2;  // thesis Table 5.13
+  o.advanced.kmin = 2;  // thesis Table 5.13
   const SolverRun r = p.minimize(o);
   EXPECT_LT(r.final_defect, 1e-10);
   EXPECT_LE(r.history.size(), 12u);
@@ -234,15 +234,15 @@ SolverRun reach_the_grid(const std::function<void(QuasiNewtonOptions&)>& configu
   return r;
 }
 
-// The δ̃ solve loosened far from the minimum (SolverOptions::hessian_forcing_max): the same
-// quasi-Newton iterations to the same mesh (within 1e-6 cell widths, as the practical
+// The δ̃ solve loosened far from the minimum (SolverOptions::Advanced::hessian_forcing_max): the
+// same quasi-Newton iterations to the same mesh (within 1e-6 cell widths, as the practical
 // criterion promises), with fewer Krylov iterations than the thesis' fixed tolerance.
 TEST(SquareRandom, LooserQuasiNewtonSolvesFarFromTheMinimumSaveKrylovIterations) {
   std::vector<SolverRun> runs;
   for (const double forcing_max : {0.0, 1e-2}) {
     SCOPED_TRACE(fmt::format("hessian_forcing_max {}", forcing_max));
-    runs.push_back(
-        reach_the_grid([&](QuasiNewtonOptions& o) { o.hessian_forcing_max = forcing_max; }));
+    runs.push_back(reach_the_grid(
+        [&](QuasiNewtonOptions& o) { o.advanced.hessian_forcing_max = forcing_max; }));
   }
   const auto krylov = [](const SolverRun& r) {
     int sum = 0;
@@ -261,7 +261,7 @@ TEST(SquareMidpoint, AntigradientTrialStepsBeyondTheMoveBoundAreSkipped) {
     ThesisProblem p(square_midpoint(64));
     QuasiNewtonOptions o;
     o.linear_solver = LinearSolverKind::Amg;
-    o.max_trial_move = bound;
+    o.advanced.max_trial_move = bound;
     runs.push_back(p.minimize(o));
   }
   ASSERT_EQ(runs[1].history.size(), runs[0].history.size());
@@ -275,16 +275,15 @@ TEST(SquareMidpoint, AntigradientTrialStepsBeyondTheMoveBoundAreSkipped) {
   EXPECT_LT(trials[1], trials[0]);  // 15 and 10 when written
 }
 
-// SolverOptions::lazy_riesz: the quasi-Newton steps take the angle test from one V-cycle of
-// L's hierarchy instead of the Riesz solve. The same directions are taken in the same
-// iterations to the same grid; the estimated cosine is within 0.03 of the one with s; no
-// quasi-Newton step solved s (every η here is far above the √2 η margin); the antigradient
-// steps still do.
+// SolverOptions::Advanced::lazy_riesz: the quasi-Newton steps take the angle test from one V-cycle
+// of L's hierarchy instead of the Riesz solve. The same directions are taken in the same iterations
+// to the same grid; the estimated cosine is within 0.03 of the one with s; no quasi-Newton step
+// solved s (every η here is far above the √2 η margin); the antigradient steps still do.
 TEST(SquareRandom, AngleTestWithoutTheRieszSolveTakesTheSameSteps) {
   std::vector<SolverRun> runs;
   for (const bool lazy : {false, true}) {
     SCOPED_TRACE(fmt::format("lazy_riesz {}", lazy));
-    runs.push_back(reach_the_grid([&](QuasiNewtonOptions& o) { o.lazy_riesz = lazy; }));
+    runs.push_back(reach_the_grid([&](QuasiNewtonOptions& o) { o.advanced.lazy_riesz = lazy; }));
   }
   const std::vector<IterationRecord>& every = runs[0].history;
   const std::vector<IterationRecord>& lazy = runs[1].history;
@@ -323,7 +322,7 @@ class ThesisQualitativeCase : public ::testing::TestWithParam<QualitativeCase> {
 TEST_P(ThesisQualitativeCase, ConvergesWithoutStalling) {
   ThesisProblem p(GetParam().mesh());
   QuasiNewtonOptions o = p.thesis_options();
-  o.kmin = 2;
+  o.advanced.kmin = 2;
   o.linear_solver = LinearSolverKind::Amg;
   const SolverRun r = p.minimize(o);
   EXPECT_EQ(r.reason, StopReason::DefectAbsolute) << describe(r.reason);

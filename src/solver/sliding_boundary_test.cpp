@@ -185,14 +185,14 @@ TEST(SlidingBoundary, RejectedDirectionsAreTurnedJustEnoughTowardsTheAntigradien
   for (RejectedDirection choice : {RejectedDirection::Blend, RejectedDirection::Antigradient}) {
     ThesisProblem p(ring(CellType::Triangle, 48, 4, 3.0), {}, BoundaryMode::Slide);
     QuasiNewtonOptions options{{}, energy_roundoff(p.energy, p.view.dim, p.volume)};
-    options.rejected_direction = choice;
+    options.advanced.rejected_direction = choice;
     const SolverRun result = p.minimize(options);
     EXPECT_NE(result.reason, StopReason::LineSearchFailed);
     int blended = 0;
     for (const IterationRecord& r : result.history) {
       if (!r.blended) continue;
       ++blended;
-      EXPECT_NEAR(r.eta, options.eta, 1e-12) << "iteration " << r.k;
+      EXPECT_NEAR(r.eta, options.advanced.eta, 1e-12) << "iteration " << r.k;
       EXPECT_FALSE(r.used_s);
       EXPECT_FALSE(r.delta_truncated) << "iteration " << r.k << ": negative curvature";
     }
