@@ -46,6 +46,10 @@ class Optimizer {
   // cross processes.
   Result adapt(const SizeField& field, const LevelSet& fit_to, const AdaptOptions& options = {},
                const Observer& observer = {});
+  // The same with φ itself as the size field (d = |φ|, SizeField::level_set of its expression)
+  // at its time: one object to move (set_time) for a geometry that is both adapted to and fitted.
+  Result adapt(const LevelSet& phi, const AdaptOptions& options = {},
+               const Observer& observer = {});
   // The next adapt() starts cold (the mesh was changed in another way, say).
   void forget_warm_start();
 

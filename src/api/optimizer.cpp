@@ -398,6 +398,13 @@ Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const Ad
   return result;
 }
 
+Result Optimizer::adapt(const LevelSet& phi, const AdaptOptions& options,
+                        const Observer& observer) {
+  SizeField field = SizeField::level_set(phi.expression());
+  field.set_time(phi.time());
+  return adapt(field, phi, options, observer);
+}
+
 void Optimizer::forget_warm_start() {
   impl_->warm = false;
 }
