@@ -80,13 +80,11 @@ int main(int argc, char** argv) {
 
     // A bubble of radius 0.2 rising from y = -0.5: small cells near its surface, and a closed
     // chain of edges on it.
-    neomesh::SizeField bubble = neomesh::SizeField::level_set("sqrt(x^2+(y+0.5-0.25*t)^2)-0.2");
-    neomesh::LevelSet surface = neomesh::LevelSet::expression("sqrt(x^2+(y+0.5-0.25*t)^2)-0.2");
+    neomesh::LevelSet bubble = neomesh::LevelSet::expression("sqrt(x^2+(y+0.5-0.25*t)^2)-0.2");
     neomesh::AdaptOptions adapt;
     for (int step = 0; step <= 4; ++step) {
       bubble.set_time(step);
-      surface.set_time(step);
-      const neomesh::Result r = optimizer.adapt(bubble, surface, adapt);
+      const neomesh::Result r = optimizer.adapt(bubble, adapt);
       if (rank == 0)
         std::printf("step %d (bubble at y = %+.2f): %3zu iterations, %zu updates, %.2f s\n", step,
                     -0.5 + 0.25 * step, r.history.size(), r.update_iterations.size(), r.seconds);

@@ -11,6 +11,7 @@
 
 #include <neomesh/cell_type.hpp>
 #include <neomesh/error.hpp>
+#include <neomesh/field.hpp>
 #include <neomesh/generate.hpp>
 #include <neomesh/level_set.hpp>
 #include <neomesh/mesh.hpp>

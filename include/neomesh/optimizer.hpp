@@ -46,6 +46,10 @@ class Optimizer {
   // cross processes.
   Result adapt(const SizeField& field, const LevelSet& fit_to, const AdaptOptions& options = {},
                const Observer& observer = {});
+  // The same with φ itself as the size field (d = |φ|, SizeField::level_set of its expression)
+  // at its time: one object to move (set_time) for a geometry that is both adapted to and fitted.
+  Result adapt(const LevelSet& phi, const AdaptOptions& options = {},
+               const Observer& observer = {});
   // The next adapt() starts cold (the mesh was changed in another way, say).
   void forget_warm_start();
 
@@ -66,9 +70,8 @@ class Optimizer {
   // OptionError if the options are out of range. Collective.
   double evaluate(const SmoothOptions& options = {});
 
-  struct Impl;  // src/api/optimizer_impl.hpp
-
  private:
+  struct Impl;  // src/api/optimizer_impl.hpp
   std::unique_ptr<Impl> impl_;
 };
 

@@ -93,12 +93,6 @@ RejectedDirection parse_rejected_direction(std::string_view name);
 
 // The quasi-Newton method of thesis §5.1 (docs/method.md §4).
 struct SolverOptions {
-  // Initial α of H(α) = B1 + α B2 + B3. Unset: initial_alpha() picks it (docs/method.md §4).
-  std::optional<double> alpha0 = std::nullopt;
-  static constexpr double kThesisAlpha0 = 0.3;
-  double eta = 0.6;  // angle test: accept δ̃ if η_k ≥ η
-  RejectedDirection rejected_direction = RejectedDirection::Blend;  // the thesis: Antigradient
-  int kmin = 2;  // initial antigradient steps (thesis §5.5 recommends 2)
   int max_iterations = 200;
   // Wall-clock seconds for a whole smooth() or adapt() call; 0: no limit. When it runs out the
   // call ends with the mesh as it is (every iterate is valid, and better than the last), the
@@ -115,48 +109,64 @@ struct SolverOptions {
   // unchanged, σ = 1) that moved no vertex more than newton_move_rtol times its local cell
   // size; the next step would move them by about the square of that (0: off).
   double newton_move_rtol = 1e-3;
-  double armijo_beta = 1e-2;  // sufficient decrease (thesis (2.5.4))
-  int max_halvings = 40;      // σ ≥ 0.5^40 ≈ 1e-12, then give up
-  // Along −s (antigradient steps), the line search's first trial σ is the largest of 1, 1/2,
-  // 1/4, ... that moves no vertex more than this many times its local cell size: larger trials
-  // of the same halving sequence are skipped, not tried. −s has L's scale, not the mesh's: the
-  // first antigradient steps of square-midpoint 1024² evaluated the energy 12 and 8 times to
-  // accept 2⁻¹¹ and 2⁻⁷, now 5 and 1 (docs/method.md §4). A quasi-Newton step's σ = 1 is its
-  // natural length and is always tried. 0: start at σ = 1 (the thesis).
-  double max_trial_move = 64.0;
-  // ‖g_{-1}‖ for the first α update; 10 reproduces the thesis' tables (docs/method.md §4).
-  double initial_previous_defect = 10.0;
   LinearSolverKind linear_solver = LinearSolverKind::Amg;
-  double hessian_rtol = 1e-4;           // loose δ̃ solve: 4 digits ...
-  double hessian_defect_factor = 1e-3;  // ... or residual ≤ 1e-3 ‖g‖ (thesis §5.2)
-  // Far from the minimum the δ̃ solve may stop sooner, at a residual of f ‖g‖ with
-  // f = ‖g‖/‖g₀‖ clamped to [hessian_defect_factor, hessian_forcing_max]: the first steps need
-  // a direction, not digits, and the last (Newton) steps are solved as in the thesis, so they
-  // converge as fast (docs/method.md §4). 0: the thesis' solve throughout.
-  double hessian_forcing_max = 1e-2;
+  double hessian_rtol = 1e-4;  // loose δ̃ solve: 4 digits (or Advanced::hessian_defect_factor)
   // s only steers: it is the antigradient direction of the first k_min steps and enters the
   // angle test's cosine, so three digits do (same Newton iterations on every case measured,
   // half the Krylov iterations of 1e-8; docs/benchmarks.md). The thesis solves to 1e-8.
   double riesz_rtol = 1e-3;
   static constexpr double kThesisRieszRtol = 1e-8;
-  // A quasi-Newton step needs s only for the angle test's cosine η (and a blend): with AMG,
-  // η is first estimated without s, from (s, δ̃)_L = gᵀδ̃ and ‖s‖²_L ≈ gᵀM⁻¹g with one
-  // application M⁻¹ of L's hierarchy; s is solved only if the estimate does not pass the test
-  // with a margin that covers a V-cycle's error (docs/method.md §4). false: s every iteration
-  // (the thesis).
-  bool lazy_riesz = true;
-  // With Amg and hessian_pc = Hessian: keep the AMG hierarchy of an earlier H(α) while the δ̃
-  // solve needs at most this many times the Krylov iterations it needed when the hierarchy was
-  // built (0: rebuild always).
-  double hessian_pc_reuse = 1.5;
-  HessianPreconditioner hessian_pc = HessianPreconditioner::Laplacian;
-  RieszLaplacian riesz = RieszLaplacian::OptimalCells;
 
-  // alpha0 if set; else 1 (start in the Newton regime) unless some vertex slides on a curved
-  // or oblique boundary, where the thesis' 0.3 measured better (docs/benchmarks.md).
-  double initial_alpha(bool slides) const { return alpha0.value_or(slides ? kThesisAlpha0 : 1.0); }
+  // The method's research switches: the thesis' parameters and what neomesh changed in its
+  // steps, line search and linear solves (docs/method.md §4, §10). The defaults are what
+  // docs/benchmarks.md measured best; thesis() sets the thesis' choices.
+  struct Advanced {
+    // Initial α of H(α) = B1 + α B2 + B3. Unset: initial_alpha() picks it (docs/method.md §4).
+    std::optional<double> alpha0 = std::nullopt;
+    static constexpr double kThesisAlpha0 = 0.3;
+    double eta = 0.6;  // angle test: accept δ̃ if η_k ≥ η
+    RejectedDirection rejected_direction = RejectedDirection::Blend;  // the thesis: Antigradient
+    int kmin = 2;               // initial antigradient steps (thesis §5.5 recommends 2)
+    double armijo_beta = 1e-2;  // sufficient decrease (thesis (2.5.4))
+    int max_halvings = 40;      // σ ≥ 0.5^40 ≈ 1e-12, then give up
+    // Along −s (antigradient steps), the line search's first trial σ is the largest of 1, 1/2,
+    // 1/4, ... that moves no vertex more than this many times its local cell size: larger
+    // trials of the same halving sequence are skipped, not tried. −s has L's scale, not the
+    // mesh's: the first antigradient steps of square-midpoint 1024² evaluated the energy 12 and
+    // 8 times to accept 2⁻¹¹ and 2⁻⁷, now 5 and 1 (docs/method.md §4). A quasi-Newton step's
+    // σ = 1 is its natural length and is always tried. 0: start at σ = 1 (the thesis).
+    double max_trial_move = 64.0;
+    // ‖g_{-1}‖ for the first α update; 10 reproduces the thesis' tables (docs/method.md §4).
+    double initial_previous_defect = 10.0;
+    double hessian_defect_factor = 1e-3;  // δ̃ solve: or residual ≤ 1e-3 ‖g‖ (thesis §5.2)
+    // Far from the minimum the δ̃ solve may stop sooner, at a residual of f ‖g‖ with
+    // f = ‖g‖/‖g₀‖ clamped to [hessian_defect_factor, hessian_forcing_max]: the first steps
+    // need a direction, not digits, and the last (Newton) steps are solved as in the thesis,
+    // so they converge as fast (docs/method.md §4). 0: the thesis' solve throughout.
+    double hessian_forcing_max = 1e-2;
+    // A quasi-Newton step needs s only for the angle test's cosine η (and a blend): with AMG,
+    // η is first estimated without s, from (s, δ̃)_L = gᵀδ̃ and ‖s‖²_L ≈ gᵀM⁻¹g with one
+    // application M⁻¹ of L's hierarchy; s is solved only if the estimate does not pass the
+    // test with a margin that covers a V-cycle's error (docs/method.md §4). false: s every
+    // iteration (the thesis).
+    bool lazy_riesz = true;
+    // With Amg and hessian_pc = Hessian: keep the AMG hierarchy of an earlier H(α) while the
+    // δ̃ solve needs at most this many times the Krylov iterations it needed when the
+    // hierarchy was built (0: rebuild always).
+    double hessian_pc_reuse = 1.5;
+    HessianPreconditioner hessian_pc = HessianPreconditioner::Laplacian;
+    RieszLaplacian riesz = RieszLaplacian::OptimalCells;
+  };
+  Advanced advanced;
 
-  // Throws OptionError ("solver.eta must be in (0, 1) (got 2)") for a field out of range.
+  // advanced.alpha0 if set; else 1 (start in the Newton regime) unless some vertex slides on a
+  // curved or oblique boundary, where the thesis' 0.3 measured better (docs/benchmarks.md).
+  double initial_alpha(bool slides) const {
+    return advanced.alpha0.value_or(slides ? Advanced::kThesisAlpha0 : 1.0);
+  }
+
+  // Throws OptionError ("solver.advanced.eta must be in (0, 1) (got 2)") for a field out of
+  // range.
   void validate() const;
 };
 

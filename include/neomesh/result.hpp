@@ -16,8 +16,8 @@ namespace neomesh {
 struct IterationRecord {
   int k = 0;             // 1-based, as the thesis prints it
   int armijo_steps = 0;  // halvings: σ = 0.5^armijo_steps
-  int trials = 0;        // energies the line search evaluated (SolverOptions::max_trial_move)
-  double defect = 0.0;   // ‖g_k‖ over free dofs at the start of the iteration
+  int trials = 0;  // energies the line search evaluated (SolverOptions::Advanced::max_trial_move)
+  double defect = 0.0;          // ‖g_k‖ over free dofs at the start of the iteration
   double direction_norm = 0.0;  // ‖δ‖ before scaling by σ
   double energy = 0.0;          // F after the step
   double eta = 1.0;             // η_k of the angle test (1 for antigradient steps)
@@ -29,7 +29,7 @@ struct IterationRecord {
   bool delta_truncated = false;   // CG stopped at negative curvature; its iterate was used
   bool hessian_pc_built = false;  // amg: the H(α) hierarchy was built for this solve
   int krylov_s = 0;               // Krylov iterations for s
-  bool s_solved = false;          // s was solved (SolverOptions::lazy_riesz: not always)
+  bool s_solved = false;          // s was solved (SolverOptions::Advanced::lazy_riesz: not always)
   bool used_s = false;            // the step went along −s
   bool blended = false;           // δ̃ failed the angle test and was turned towards −s
   bool roundoff_step = false;     // Armijo skipped: predicted decrease below round-off
@@ -149,12 +149,17 @@ struct FitSummary {
   int iterations = 0;          // the fit's, the last ones of Result::history
 };
 
-struct Result {
+// The quasi-Newton iterations and how they ended: what the solver reports of one minimization,
+// and the first part of a Result.
+struct SolverRun {
   std::vector<IterationRecord> history;  // the iterations on the Neo-Hookean energy
   StopReason reason = StopReason::MaxIterations;
   double initial_energy = 0.0, final_energy = 0.0;
   double initial_defect = 0.0, final_defect = 0.0;
   PhaseTimes times;
+};
+
+struct Result : SolverRun {
   QualitySummary quality_before, quality_after;
   ProblemSummary problem;  // what was optimized
   // How the domain changed: the largest distance of a boundary vertex from the boundary where

@@ -11,13 +11,9 @@
 #include <string>
 #include <vector>
 
-#include <mpi.h>
-
 #include <neomesh/options.hpp>
 
 namespace neomesh {
-
-struct MeshView;  // src/mesh/mesh_view.hpp
 
 class SizeField {
  public:
@@ -36,13 +32,6 @@ class SizeField {
   // One value per line, in the input mesh's cell order.
   static SizeField read_cell_values(const std::filesystem::path& file);
 
-  // Relative desired volume v_K of every local cell of `view` (MeshView order) at the
-  // coordinates `coords` (num_vertices × dim, the view's local vertex order). Throws Error if
-  // the field does not fit the mesh or is not a positive finite number somewhere. Collective
-  // (the per-cell values are checked against the global number of cells).
-  std::vector<double> relative_volumes(const MeshView& view, std::span<const double> coords,
-                                       const SizeFieldOptions& options, MPI_Comm comm) const;
-
   // The time t of a level-set expression (a geometry that moves); other fields ignore it.
   void set_time(double t);
 
@@ -50,6 +39,7 @@ class SizeField {
   const std::string& description() const { return description_; }
 
  private:
+  friend struct SizeFieldAccess;  // src/adapt/size_field.cpp evaluates the field on a mesh
   using Distance = std::function<double(std::span<const double> point)>;
   SizeField(std::string description, int dim, Distance distance);
 

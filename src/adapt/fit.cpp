@@ -125,7 +125,7 @@ FitResult fit_interface(const MeshView& view, const DofMap& dofs, Vec x,
     if (ok) {
       PicardOptions stage = last_stage;
       QuasiNewtonOptions stage_method = method;
-      stage_method.kmin = std::min(stage_method.kmin, kStageKmin);
+      stage_method.advanced.kmin = std::min(stage_method.advanced.kmin, kStageKmin);
       if (to < 1.0) {
         stage.min_updates = 0;  // the volumes of the stage's start will do
         if (options.stage_iterations > 0) stage_method.max_iterations = options.stage_iterations;

@@ -26,7 +26,7 @@
 namespace neomesh {
 
 struct PicardResult {
-  QuasiNewtonResult run;  // all iterations, over all sets of desired volumes
+  SolverRun run;  // all iterations, over all sets of desired volumes
   // The iterations (IterationRecord::k) after which the desired volumes were updated.
   std::vector<int> update_iterations;
 };

@@ -187,25 +187,36 @@ std::vector<double> cell_centroids(const MeshView& view, std::span<const double>
   return centroids;
 }
 
-std::vector<double> SizeField::relative_volumes(const MeshView& view,
-                                                std::span<const double> coords,
-                                                const SizeFieldOptions& options,
-                                                MPI_Comm comm) const {
-  if (dim_ != 0 && dim_ != view.dim)
-    fail("the size field ({}) is {}D but the mesh is {}D", description_, dim_, view.dim);
+// What relative_volumes() reads of a SizeField, which keeps it private.
+struct SizeFieldAccess {
+  static const std::string& description(const SizeField& f) { return f.description_; }
+  static int dim(const SizeField& f) { return f.dim_; }
+  static const SizeField::Distance& distance(const SizeField& f) { return f.distance_; }
+  static const std::vector<double>& cell_values(const SizeField& f) { return f.cell_values_; }
+};
+
+std::vector<double> relative_volumes(const SizeField& field, const MeshView& view,
+                                     std::span<const double> coords,
+                                     const SizeFieldOptions& options, MPI_Comm comm) {
+  const std::string& description = SizeFieldAccess::description(field);
+  const int field_dim = SizeFieldAccess::dim(field);
+  const auto& distance = SizeFieldAccess::distance(field);
+  const std::vector<double>& values = SizeFieldAccess::cell_values(field);
+  if (field_dim != 0 && field_dim != view.dim)
+    fail("the size field ({}) is {}D but the mesh is {}D", description, field_dim, view.dim);
   const int d = view.dim;
   const std::vector<double> centroids = cell_centroids(view, coords);
   std::vector<double> v(view.num_cells);
-  if (!cell_values_.empty()) {
+  if (!values.empty()) {
     long long cells = view.num_cells, total = 0;
     MPI_Allreduce(&cells, &total, 1, MPI_LONG_LONG, MPI_SUM, comm);
-    if (static_cast<long long>(cell_values_.size()) != total)
-      fail("the size field has {} values but the mesh has {} cells", cell_values_.size(), total);
-    for (PetscInt c = 0; c < view.num_cells; ++c) v[c] = cell_values_[view.global_cell[c]];
+    if (static_cast<long long>(values.size()) != total)
+      fail("the size field has {} values but the mesh has {} cells", values.size(), total);
+    for (PetscInt c = 0; c < view.num_cells; ++c) v[c] = values[view.global_cell[c]];
   } else {
     for (PetscInt c = 0; c < view.num_cells; ++c)
-      v[c] = options.floor +
-             std::pow(distance_(std::span(centroids).subspan(c * d, d)), options.power);
+      v[c] =
+          options.floor + std::pow(distance(std::span(centroids).subspan(c * d, d)), options.power);
   }
   for (PetscInt c = 0; c < view.num_cells; ++c) {
     const char* problem = std::isnan(v[c])   ? "NaN"
@@ -215,7 +226,7 @@ std::vector<double> SizeField::relative_volumes(const MeshView& view,
                                              : nullptr;
     if (problem)
       fail("size field is {} at cell {} (centroid {}): {}; desired sizes must be positive", problem,
-           view.global_cell[c], coordinates(std::span(centroids).subspan(c * d, d)), description_);
+           view.global_cell[c], coordinates(std::span(centroids).subspan(c * d, d)), description);
   }
   return v;
 }
@@ -223,7 +234,7 @@ std::vector<double> SizeField::relative_volumes(const MeshView& view,
 std::vector<double> desired_volumes(const SizeField& field, const SizeFieldOptions& options,
                                     const MeshView& view, const DofMap& dofs,
                                     std::span<const double> coords, double total) {
-  std::vector<double> v = field.relative_volumes(view, coords, options, dofs.comm());
+  std::vector<double> v = relative_volumes(field, view, coords, options, dofs.comm());
   if (const double ratio = options.ratio(); ratio > 0) {
     const double largest = v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
     const double smallest = global_max(largest, dofs.comm()) / ratio;

@@ -32,6 +32,14 @@ void check_plane(const std::vector<double>& point, const std::vector<double>& no
 // Centroid (vertex mean) of every local cell: num_cells × dim values.
 std::vector<double> cell_centroids(const MeshView& view, std::span<const double> coords);
 
+// Relative desired volume v_K of every local cell of `view` (MeshView order) at the
+// coordinates `coords` (num_vertices × dim, the view's local vertex order). Throws Error if
+// the field does not fit the mesh or is not a positive finite number somewhere. Collective
+// (the per-cell values are checked against the global number of cells).
+std::vector<double> relative_volumes(const SizeField& field, const MeshView& view,
+                                     std::span<const double> coords,
+                                     const SizeFieldOptions& options, MPI_Comm comm);
+
 // Absolute desired volumes: the field's relative volumes at `coords`, made consistent as
 // `options` asks, scaled to sum to `total` (the mesh volume). Collective.
 std::vector<double> desired_volumes(const SizeField& field, const SizeFieldOptions& options,

@@ -25,7 +25,7 @@ double distance_at(const SizeField& field, std::vector<double> point) {
   // Collapse every vertex onto the point: the centroid is the point.
   std::vector<double> coords(view.coords.size());
   for (std::size_t i = 0; i < coords.size(); ++i) coords[i] = point[i % point.size()];
-  return field.relative_volumes(view, coords, {.floor = 0.0, .power = 1.0}, PETSC_COMM_SELF)[0];
+  return relative_volumes(field, view, coords, {.floor = 0.0, .power = 1.0}, PETSC_COMM_SELF)[0];
 }
 
 void expect_error(const std::function<void()>& f, const std::string& message) {
@@ -72,7 +72,7 @@ TEST(SizeField, FloorAndPower) {
   const SizeField circle = SizeField::sphere({0.0, 0.0}, 0.2);
   const double d = std::sqrt(0.5) - 0.2;
   for (double v :
-       circle.relative_volumes(view, view.coords, {.floor = 0.1, .power = 3.0}, PETSC_COMM_SELF))
+       relative_volumes(circle, view, view.coords, {.floor = 0.1, .power = 3.0}, PETSC_COMM_SELF))
     EXPECT_NEAR(v, 0.1 + d * d * d, 1e-15);
 }
 
@@ -118,14 +118,14 @@ TEST(SizeField, CellValuesFromAFile) {
   const auto dir = testing::scratch_dir("SizeField.CellValuesFromAFile");
   std::ofstream(dir / "sizes.txt") << "1\n2.5\n  3e-1 \n4\n\n";
   const SizeField field = SizeField::read_cell_values(dir / "sizes.txt");
-  EXPECT_THAT(field.relative_volumes(view, view.coords, {}, PETSC_COMM_SELF),
+  EXPECT_THAT(relative_volumes(field, view, view.coords, {}, PETSC_COMM_SELF),
               ::testing::ElementsAre(1.0, 2.5, 0.3, 4.0));
 
   std::ofstream(dir / "short.txt") << "1\n2\n3\n";
   expect_error(
       [&] {
-        SizeField::read_cell_values(dir / "short.txt")
-            .relative_volumes(view, view.coords, {}, PETSC_COMM_SELF);
+        relative_volumes(SizeField::read_cell_values(dir / "short.txt"), view, view.coords, {},
+                         PETSC_COMM_SELF);
       },
       "the size field has 3 values but the mesh has 4 cells");
   std::ofstream(dir / "text.txt") << "1\n2\nlarge\n4\n";
@@ -134,8 +134,8 @@ TEST(SizeField, CellValuesFromAFile) {
   std::ofstream(dir / "negative.txt") << "1\n2\n-3\n4\n";
   expect_error(
       [&] {
-        SizeField::read_cell_values(dir / "negative.txt")
-            .relative_volumes(view, view.coords, {}, PETSC_COMM_SELF);
+        relative_volumes(SizeField::read_cell_values(dir / "negative.txt"), view, view.coords, {},
+                         PETSC_COMM_SELF);
       },
       "size field is negative at cell 2 (centroid -0.5, 0.5)");
   expect_error([&] { SizeField::read_cell_values(dir / "missing.txt"); },
@@ -160,18 +160,18 @@ TEST(SizeField, BadInputIsReportedInOneLine) {
   const MeshView view = serial_view(mesh);
   expect_error(
       [&] {
-        SizeField::level_set("sqrt(x)").relative_volumes(view, view.coords, {}, PETSC_COMM_SELF);
+        relative_volumes(SizeField::level_set("sqrt(x)"), view, view.coords, {}, PETSC_COMM_SELF);
       },
       "size field is NaN at cell 0 (centroid -0.5, -0.5)");
   expect_error(
       [&] {
-        SizeField::level_set("1/(x+0.5)").relative_volumes(view, view.coords, {}, PETSC_COMM_SELF);
+        relative_volumes(SizeField::level_set("1/(x+0.5)"), view, view.coords, {}, PETSC_COMM_SELF);
       },
       "size field is infinite at cell 0");
   expect_error(
       [&] {
-        SizeField::sphere({0.0, 0.0, 0.0}, 1.0)
-            .relative_volumes(view, view.coords, {}, PETSC_COMM_SELF);
+        relative_volumes(SizeField::sphere({0.0, 0.0, 0.0}, 1.0), view, view.coords, {},
+                         PETSC_COMM_SELF);
       },
       "is 3D but the mesh is 2D");
 }

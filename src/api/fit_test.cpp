@@ -92,6 +92,24 @@ TEST(Fit, PullsAClosedChainOfEdgesOntoTheCircle) {
   EXPECT_TRUE(optimizer.vertex_fields().empty());
 }
 
+// A LevelSet alone is the size field |φ| and the interface, at its one time.
+TEST(Fit, OneLevelSetIsTheSizeFieldAndTheInterface) {
+  const std::string phi = "sqrt(x^2+(y-0.1*t)^2)-0.5";
+  Mesh two = grid(16), one = grid(16);
+  SizeField field = SizeField::level_set(phi);
+  LevelSet interface = LevelSet::expression(phi);
+  field.set_time(1.0);
+  interface.set_time(1.0);
+  const Result apart = Optimizer(two).adapt(field, interface);
+  LevelSet moving = LevelSet::expression(phi);
+  moving.set_time(1.0);
+  const Result together = Optimizer(one).adapt(moving);
+  ASSERT_TRUE(together.fit.has_value());
+  EXPECT_EQ(together.fit->facets, apart.fit->facets);
+  EXPECT_EQ(together.history.size(), apart.history.size());
+  EXPECT_EQ(one.coordinates(), two.coordinates());
+}
+
 TEST(Fit, TheNextSmoothReleasesTheInterfaceToo) {
   Mesh mesh = grid(16);
   Optimizer optimizer(mesh);

@@ -136,7 +136,7 @@ Mesh Mesh::generate(const GenerateOptions& options, MPI_Comm comm) {
     if (options.rotate_degrees != 0.0) rotate(data, options.rotate_degrees);
   }
   return Mesh(std::make_unique<PlexMesh>(
-      PlexMesh::from_data(data, options.name, comm, InvertedCells::Keep)));
+      PlexMesh::from_data(data, options.name, comm, /*keep_inverted=*/true)));
 }
 
 }  // namespace neomesh

@@ -61,14 +61,24 @@ InputMesh input_from_arrays(int dim, std::span<const double> coordinates,
 
 }  // namespace
 
+void check_readable_format(const std::filesystem::path& path) {
+  require_readable_format(path);
+}
+
+void check_writable_format(const std::filesystem::path& path) {
+  require_writable_format(path);
+}
+
 Mesh Mesh::read(const std::filesystem::path& path, MPI_Comm comm, InvertedCells inverted) {
-  return Mesh(std::make_unique<PlexMesh>(PlexMesh::load(path, comm, inverted)));
+  return Mesh(
+      std::make_unique<PlexMesh>(PlexMesh::load(path, comm, inverted == InvertedCells::Keep)));
 }
 
 Mesh Mesh::read(const std::vector<std::filesystem::path>& paths, MPI_Comm comm,
                 InvertedCells inverted) {
   if (paths.empty()) fail("no mesh file given");
-  return Mesh(std::make_unique<PlexMesh>(PlexMesh::load(paths, comm, inverted)));
+  return Mesh(
+      std::make_unique<PlexMesh>(PlexMesh::load(paths, comm, inverted == InvertedCells::Keep)));
 }
 
 Mesh Mesh::from_arrays(MPI_Comm comm, int dim, std::span<const double> coordinates,
@@ -78,13 +88,15 @@ Mesh Mesh::from_arrays(MPI_Comm comm, int dim, std::span<const double> coordinat
   collectively(comm, [&] {
     if (mpi_rank(comm) == 0) input = input_from_arrays(dim, coordinates, cells, types, name);
   });
-  return Mesh(std::make_unique<PlexMesh>(PlexMesh::from_input(input, name, comm, inverted)));
+  return Mesh(std::make_unique<PlexMesh>(
+      PlexMesh::from_input(input, name, comm, inverted == InvertedCells::Keep)));
 }
 
 Mesh Mesh::from_dm(DM dm, const std::string& name, InvertedCells inverted) {
   InputMesh input = input_from_dm(dm, name);
   const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
-  return Mesh(std::make_unique<PlexMesh>(PlexMesh::from_input(input, name, comm, inverted)));
+  return Mesh(std::make_unique<PlexMesh>(
+      PlexMesh::from_input(input, name, comm, inverted == InvertedCells::Keep)));
 }
 
 struct Mesh::QualityCache {

@@ -36,17 +36,6 @@ bool same(const BoundaryOptions& a, const BoundaryOptions& b) {
   return a.mode == b.mode && a.feature_angle == b.feature_angle && a.shapes == b.shapes;
 }
 
-// The run's iterations, stop reason, energies, defects and times into `result`.
-void copy_run(const QuasiNewtonResult& run, Result& result) {
-  result.history = run.history;
-  result.reason = run.reason;
-  result.initial_energy = run.initial_energy;
-  result.final_energy = run.final_energy;
-  result.initial_defect = run.initial_defect;
-  result.final_defect = run.final_defect;
-  result.times = run.times;
-}
-
 UntanglingSummary summarize(const UntangleResult& u) {
   return {.inverted_before = u.before.count,
           .inverted_after = u.after.count,
@@ -294,7 +283,7 @@ void Optimizer::Impl::adapt(const SizeField& field, const AdaptOptions& options,
       [this](const std::vector<double>& v) { set_desired_volumes(v); }, picard,
       method(options.solver), observer);
   warm = true;
-  copy_run(run.run, result);
+  static_cast<SolverRun&>(result) = run.run;
   result.update_iterations = run.update_iterations;
 }
 
@@ -359,7 +348,8 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   // untangled output keeps it.
   const OwnedVec input = copy_of(r.x);
   if (options.untangle) result.untangling = r.untangle(method, observer);
-  copy_run(minimize(*r.functional, r.x, method, r.cell_size, observer.iteration), result);
+  static_cast<SolverRun&>(result) =
+      minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
   if (options.quality_guard)
     r.protect_worst_cells(input, method, observer, result, options.repair_worst_cells);
   r.finish(result);
@@ -406,6 +396,13 @@ Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const Ad
   result.volume_ratio = r.volume_ratio();
   result.seconds = MPI_Wtime() - r.started;
   return result;
+}
+
+Result Optimizer::adapt(const LevelSet& phi, const AdaptOptions& options,
+                        const Observer& observer) {
+  SizeField field = SizeField::level_set(phi.expression());
+  field.set_time(phi.time());
+  return adapt(field, phi, options, observer);
 }
 
 void Optimizer::forget_warm_start() {

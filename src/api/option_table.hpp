@@ -1,5 +1,5 @@
-// Every option of smooth and adapt declared once: its field path ("solver.eta"), the command
-// line's flag ("--eta"), help text and group, where it lives in the option struct, and its
+// Every option of smooth and adapt declared once: its field path ("solver.advanced.eta"), the
+// command line's flag ("--eta"), help text and group, where it lives in the option struct, and its
 // range. From these tables come the structs' validate() (src/api/options.cpp), the command
 // line (src/app/method_options.cpp), the JSON report's option objects
 // (src/report/run_report.cpp), the re-spelling of OptionError messages with the flag, and the

@@ -209,13 +209,13 @@ void use_thesis_method(EnergyOptions& energy, BoundaryOptions& boundary, SolverO
   energy.gauss_points = EnergyOptions().gauss_points;
   boundary.mode = BoundaryMode::Fixed;
   boundary.shapes.clear();
-  solver.alpha0 = SolverOptions::kThesisAlpha0;
+  solver.advanced.alpha0 = SolverOptions::Advanced::kThesisAlpha0;
   solver.practical = false;
   solver.riesz_rtol = SolverOptions::kThesisRieszRtol;
-  solver.hessian_forcing_max = 0.0;
-  solver.max_trial_move = 0.0;
-  solver.lazy_riesz = false;
-  solver.rejected_direction = RejectedDirection::Antigradient;
+  solver.advanced.hessian_forcing_max = 0.0;
+  solver.advanced.max_trial_move = 0.0;
+  solver.advanced.lazy_riesz = false;
+  solver.advanced.rejected_direction = RejectedDirection::Antigradient;
 }
 
 }  // namespace

@@ -31,9 +31,9 @@ void expect_names_round_trip(E (*parse)(std::string_view), E default_value) {
 TEST(OptionChoices, EveryNameParsesBackAndTheDefaultComesFirst) {
   expect_names_round_trip(parse_boundary_mode, BoundaryOptions().mode);
   expect_names_round_trip(parse_linear_solver, SolverOptions().linear_solver);
-  expect_names_round_trip(parse_riesz_laplacian, SolverOptions().riesz);
-  expect_names_round_trip(parse_hessian_preconditioner, SolverOptions().hessian_pc);
-  expect_names_round_trip(parse_rejected_direction, SolverOptions().rejected_direction);
+  expect_names_round_trip(parse_riesz_laplacian, SolverOptions().advanced.riesz);
+  expect_names_round_trip(parse_hessian_preconditioner, SolverOptions().advanced.hessian_pc);
+  expect_names_round_trip(parse_rejected_direction, SolverOptions().advanced.rejected_direction);
   expect_names_round_trip(parse_size_mode, SmoothOptions().sizes);
   expect_names_round_trip(parse_target_mode, SmoothOptions().targets);
 }
@@ -54,9 +54,12 @@ std::string error_of(const auto& options) {
 }
 
 TEST(OptionRanges, ValidateNamesTheFieldTheRangeAndTheValue) {
-  EXPECT_EQ(error_of(SolverOptions{.eta = 2.0}), "solver.eta must be in (0, 1) (got 2)");
-  EXPECT_EQ(error_of(SolverOptions{.alpha0 = 0.0}), "solver.alpha0 must be in (0, 1] (got 0)");
-  EXPECT_EQ(error_of(SolverOptions{.kmin = -1}), "solver.kmin must be 0 or more (got -1)");
+  EXPECT_EQ(error_of(SolverOptions{.advanced = {.eta = 2.0}}),
+            "solver.advanced.eta must be in (0, 1) (got 2)");
+  EXPECT_EQ(error_of(SolverOptions{.advanced = {.alpha0 = 0.0}}),
+            "solver.advanced.alpha0 must be in (0, 1] (got 0)");
+  EXPECT_EQ(error_of(SolverOptions{.advanced = {.kmin = -1}}),
+            "solver.advanced.kmin must be 0 or more (got -1)");
   EXPECT_EQ(error_of(EnergyOptions{.lambda = -1.0}), "energy.lambda must be positive (got -1)");
   EXPECT_EQ(error_of(EnergyOptions{.kappa = HUGE_VAL}),
             "energy.kappa must be a finite number, positive (or -1 for kappa = lambda) (got inf)");

@@ -236,7 +236,7 @@ void adapt(AdaptCommand& o) {
       q.min, q.median, q.max);
   // α₀ and the bound of the desired volumes the run used: numbers, also where they were "auto".
   AdaptOptions reported = options;
-  reported.solver.alpha0 = result.problem.alpha0;
+  reported.solver.advanced.alpha0 = result.problem.alpha0;
   reported.sizes.max_ratio = options.sizes.ratio(o.fit);
   nlohmann::json report = to_json(reported);
   report["picard"]["update_iterations"] = result.update_iterations;

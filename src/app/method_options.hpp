@@ -53,7 +53,7 @@ class TaskOptions {
 template <typename Options>
 std::string options_markdown();
 
-// A library error about an option begins with the option's field path ("solver.eta must be
+// A library error about an option begins with the option's field path ("solver.advanced.eta must be
 // ...", "boundary.shapes: ..."): the message with the command line's spelling instead
 // ("--eta must be ...", "--shape: ...").
 std::string cli_message(const std::string& message);

@@ -94,7 +94,7 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
       mesh.num_vertices(), problem.free_coordinates,
       ranks > 1 ? fmt::format(" on {} processes", ranks) : "");
   say("lambda {}, mu {}, alpha0 {}, eta {}, kmin {}, linear solver {}, boundary {}\n",
-      s.energy.lambda, s.energy.mu, problem.alpha0, s.solver.eta, s.solver.kmin,
+      s.energy.lambda, s.energy.mu, problem.alpha0, s.solver.advanced.eta, s.solver.advanced.kmin,
       name(s.solver.linear_solver), name(s.boundary.mode));
   const TargetSummary& t = problem.targets;
   if (t.ideal_because_tangled)
@@ -115,8 +115,8 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
   detail(
       "quasi-Newton system H(alpha) delta~ = -g (options -hess_*): {}, or residual <= f x "
       "defect, f = defect / first defect within [{:g}, {:g}]\n",
-      problem.hessian_solver, s.solver.hessian_defect_factor,
-      std::max(s.solver.hessian_defect_factor, s.solver.hessian_forcing_max));
+      problem.hessian_solver, s.solver.advanced.hessian_defect_factor,
+      std::max(s.solver.advanced.hessian_defect_factor, s.solver.advanced.hessian_forcing_max));
   detail("Riesz representative L s = g (options -riesz_*): {}\n", problem.riesz_solver);
   // The first iteration assembles the matrices and builds the preconditioners: on a large
   // mesh the longest wait before the first row of the table.

@@ -41,7 +41,7 @@ void smooth(SmoothCommand& o) {
       options, run.observer(settings, o.outputs.progress_lines, picture_before));
   // The α₀ the run started with: a number, as the banner prints it, also when it was "auto".
   SmoothOptions reported = options;
-  reported.solver.alpha0 = result.problem.alpha0;
+  reported.solver.advanced.alpha0 = result.problem.alpha0;
   run.finish(result, settings, o.output, o.outputs, to_json(reported));
 }
 

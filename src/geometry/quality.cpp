@@ -416,8 +416,4 @@ QualitySummary summarize(const CellQuality& quality, MPI_Comm comm) {
   return s;
 }
 
-std::string_view plural_name(CellType type) {
-  return facts(type).plural;
-}
-
 }  // namespace neomesh

@@ -32,7 +32,7 @@
 
 #include <mpi.h>
 
-#include <neomesh/mesh.hpp>
+#include <neomesh/field.hpp>
 #include <neomesh/quality.hpp>
 
 #include "mesh/cell_type.hpp"

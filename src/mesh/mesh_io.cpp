@@ -12,7 +12,7 @@ bool is_exodus(const std::filesystem::path& path) {
   return ext == ".exo" || ext == ".e" || ext == ".ex2";
 }
 
-void check_readable_format(const std::filesystem::path& path) {
+void require_readable_format(const std::filesystem::path& path) {
   const auto ext = path.extension();
   if (ext != ".msh" && ext != ".xml" && ext != ".vtk" && ext != ".vtu" && ext != ".pvtu" &&
       ext != ".mesh" && ext != ".cgns" && !is_exodus(path))
@@ -22,7 +22,7 @@ void check_readable_format(const std::filesystem::path& path) {
         path.string(), ext.string());
 }
 
-void check_writable_format(const std::filesystem::path& path) {
+void require_writable_format(const std::filesystem::path& path) {
   const auto ext = path.extension();
   if (ext != ".msh" && ext != ".vtu" && ext != ".vtk" && ext != ".mesh" && ext != ".cgns" &&
       !is_exodus(path))
@@ -33,7 +33,7 @@ void check_writable_format(const std::filesystem::path& path) {
 }
 
 void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path, const MeshFields& fields) {
-  check_writable_format(path);
+  require_writable_format(path);
   GatheredMesh gathered = gather_mesh(mesh, fields);
   make_room_for_data(gathered);
   on_root(mesh.comm(), [&] {

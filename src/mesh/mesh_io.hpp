@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include <neomesh/mesh.hpp>
+#include <neomesh/field.hpp>
 
 #include "mesh/plex_mesh.hpp"
 
@@ -26,6 +26,11 @@ struct MeshFields {
 
 // Exodus II's extensions: .exo, .e, .ex2.
 bool is_exodus(const std::filesystem::path& path);
+
+// Throw Error unless neomesh reads / writes `path`'s format (check_readable_format() and
+// check_writable_format() of the public API).
+void require_readable_format(const std::filesystem::path& path);
+void require_writable_format(const std::filesystem::path& path);
 
 void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path,
                 const MeshFields& fields = {});

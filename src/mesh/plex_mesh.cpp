@@ -224,8 +224,8 @@ void build_dofs(Impl& m) {
 
 // The common end of load and from_data: validate on rank 0, build, distribute, view.
 PlexMesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
-                InvertedCells inverted = InvertedCells::Refuse) {
-  validate(input, source, comm, inverted == InvertedCells::Keep);
+                bool keep_inverted = false) {
+  validate(input, source, comm, keep_inverted);
   auto m = std::make_unique<Impl>();
   m->comm = comm;
   m->source = source;
@@ -267,11 +267,11 @@ PlexMesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
 
 }  // namespace
 
-PlexMesh PlexMesh::load(const std::filesystem::path& path, MPI_Comm comm, InvertedCells inverted) {
+PlexMesh PlexMesh::load(const std::filesystem::path& path, MPI_Comm comm, bool keep_inverted) {
   InputMesh input;
   on_root(comm, [&] {
     check_input_file(path);
-    check_readable_format(path);
+    require_readable_format(path);
     const auto ext = path.extension();
     input = ext == ".msh"     ? read_gmsh(path)
             : ext == ".vtk"   ? read_vtk(path)
@@ -282,12 +282,12 @@ PlexMesh PlexMesh::load(const std::filesystem::path& path, MPI_Comm comm, Invert
             : ext == ".cgns"  ? read_cgns(path)
                               : input_from_data(read_feat(path));
   });
-  return create(comm, input, path.string(), inverted);
+  return create(comm, input, path.string(), keep_inverted);
 }
 
 PlexMesh PlexMesh::load(const std::vector<std::filesystem::path>& paths, MPI_Comm comm,
-                        InvertedCells inverted) {
-  if (paths.size() == 1) return load(paths[0], comm, inverted);
+                        bool keep_inverted) {
+  if (paths.size() == 1) return load(paths[0], comm, keep_inverted);
   InputMesh input;
   std::string source;
   for (const auto& path : paths) source += (source.empty() ? "" : " + ") + path.string();
@@ -300,18 +300,18 @@ PlexMesh PlexMesh::load(const std::vector<std::filesystem::path>& paths, MPI_Com
     }
     input = input_from_data(read_feat(paths));
   });
-  return create(comm, input, source, inverted);
+  return create(comm, input, source, keep_inverted);
 }
 
 PlexMesh PlexMesh::from_data(const MeshData& data, const std::string& source, MPI_Comm comm,
-                             InvertedCells inverted) {
+                             bool keep_inverted) {
   InputMesh input = mpi_rank(comm) == 0 ? input_from_data(data) : InputMesh{};
-  return create(comm, input, source, inverted);
+  return create(comm, input, source, keep_inverted);
 }
 
 PlexMesh PlexMesh::from_input(InputMesh& input, const std::string& source, MPI_Comm comm,
-                              InvertedCells inverted) {
-  return create(comm, input, source, inverted);
+                              bool keep_inverted) {
+  return create(comm, input, source, keep_inverted);
 }
 
 PlexMesh::PlexMesh(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

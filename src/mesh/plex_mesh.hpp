@@ -12,8 +12,6 @@
 #include <string>
 #include <vector>
 
-#include <neomesh/mesh.hpp>
-
 #include "core/petsc.hpp"
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_data.hpp"
@@ -26,22 +24,20 @@ struct InputMesh;  // input_mesh.hpp
 class PlexMesh {
  public:
   // Reads .msh (Gmsh 2.2/4.1, ASCII or binary) or .xml (FEAT3). Validates the mesh (see
-  // validate.hpp): throws Error naming the file (and cell) for anything neomesh cannot use.
+  // validate.hpp): throws Error naming the file (and cell) for anything neomesh cannot use;
+  // with `keep_inverted`, inverted and degenerate cells are kept (InvertedCells::Keep).
   static PlexMesh load(const std::filesystem::path& path, MPI_Comm comm = PETSC_COMM_WORLD,
-                       InvertedCells inverted = InvertedCells::Refuse);
+                       bool keep_inverted = false);
   // A FEAT3 mesh file with its chart files, in any order (one path: as above).
   static PlexMesh load(const std::vector<std::filesystem::path>& paths,
-                       MPI_Comm comm = PETSC_COMM_WORLD,
-                       InvertedCells inverted = InvertedCells::Refuse);
+                       MPI_Comm comm = PETSC_COMM_WORLD, bool keep_inverted = false);
   // Builds a mesh from arrays given on rank 0 (other ranks pass an empty MeshData).
   static PlexMesh from_data(const MeshData& data, const std::string& source,
-                            MPI_Comm comm = PETSC_COMM_WORLD,
-                            InvertedCells inverted = InvertedCells::Refuse);
+                            MPI_Comm comm = PETSC_COMM_WORLD, bool keep_inverted = false);
 
   // Builds a mesh from an InputMesh on rank 0 (other ranks pass an empty one).
   static PlexMesh from_input(InputMesh& input, const std::string& source,
-                             MPI_Comm comm = PETSC_COMM_WORLD,
-                             InvertedCells inverted = InvertedCells::Refuse);
+                             MPI_Comm comm = PETSC_COMM_WORLD, bool keep_inverted = false);
 
   PlexMesh(PlexMesh&&) noexcept;
   PlexMesh& operator=(PlexMesh&&) noexcept;

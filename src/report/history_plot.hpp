@@ -15,7 +15,7 @@ namespace neomesh {
 struct HistoryPlotOptions {
   int width = 1000, height = 700;
   std::string title;
-  // ‖g‖ at the last iterate (QuasiNewtonResult::final_defect); the records only hold the
+  // ‖g‖ at the last iterate (Result::final_defect); the records only hold the
   // defect at the start of each iteration, so without it the defect curve ends one short.
   std::optional<double> final_defect;
 };

@@ -20,7 +20,7 @@ std::string iteration_table_header() {
 std::string iteration_table_row(const IterationRecord& rec) {
   const std::string ksp_delta = rec.delta_solved ? fmt::format("{}", rec.krylov_delta) : "-";
   const std::string res_delta = rec.delta_solved ? fmt::format("{:.2E}", rec.residual_delta) : "-";
-  // s not solved: η estimated with one V-cycle (SolverOptions::lazy_riesz).
+  // s not solved: η estimated with one V-cycle (SolverOptions::Advanced::lazy_riesz).
   const std::string ksp_s = rec.s_solved ? fmt::format("{}", rec.krylov_s) : "-";
   // s! : δ̃ failed and α was cut; delta~ : CG stopped at negative curvature (truncated δ̃);
   // +s: δ̃ turned towards −s to pass the angle test.

@@ -106,7 +106,7 @@ struct QuasiNewton::Impl {
         cell_size(size),
         hessian_solver(f.dofs().comm(), o.linear_solver, "hess_", f.dofs().dim(), o.hessian_rtol),
         riesz_solver(f.dofs().comm(), o.linear_solver, "riesz_", f.dofs().dim(), o.riesz_rtol),
-        previous_defect(o.initial_previous_defect),
+        previous_defect(o.advanced.initial_previous_defect),
         alpha(o.initial_alpha(f.slides())) {
     Stopwatch watch(times.setup);
     if (riesz_per_component(functional, options)) riesz_solver.precondition_per_component();
@@ -137,7 +137,7 @@ struct QuasiNewton::Impl {
   void assemble_laplacian(Vec x) {
     create_matrices();
     Stopwatch watch(times.riesz_setup);
-    functional.assemble_laplacian(options.riesz, x, laplacian);
+    functional.assemble_laplacian(options.advanced.riesz, x, laplacian);
     riesz_solver.set_operator(laplacian, false);
     riesz_solver.setup();
     laplacian_fresh = true;
@@ -150,20 +150,20 @@ struct QuasiNewton::Impl {
   // and so the preconditioner, barely changes: it is kept, except for a direct solver.
   void update_laplacian_tangents(Vec x) {
     Stopwatch watch(times.riesz_setup);
-    functional.assemble_laplacian(options.riesz, x, laplacian);
+    functional.assemble_laplacian(options.advanced.riesz, x, laplacian);
     riesz_solver.set_operator(laplacian, options.linear_solver != LinearSolverKind::Direct);
   }
 
   bool laplacian_preconditions_hessian() const {
     return options.linear_solver == LinearSolverKind::Amg &&
-           options.hessian_pc == HessianPreconditioner::Laplacian;
+           options.advanced.hessian_pc == HessianPreconditioner::Laplacian;
   }
 
-  // The δ̃ solve's residual bound over ‖g‖ (SolverOptions::hessian_forcing_max).
+  // The δ̃ solve's residual bound over ‖g‖ (SolverOptions::Advanced::hessian_forcing_max).
   double forcing() const {
-    const double low = options.hessian_defect_factor;
+    const double low = options.advanced.hessian_defect_factor;
     const double progress = initial_defect > 0.0 ? defect / initial_defect : 0.0;
-    return std::clamp(progress, low, std::max(low, options.hessian_forcing_max));
+    return std::clamp(progress, low, std::max(low, options.advanced.hessian_forcing_max));
   }
 
   // (u, v)_L = uᵀ L v
@@ -181,9 +181,9 @@ struct QuasiNewton::Impl {
     }
     // With L's hierarchy (a shell PC) there is nothing of H(α) to build or keep.
     const bool own_pc = !laplacian_preconditions_hessian();
-    const bool reuse = own_pc && options.linear_solver == LinearSolverKind::Amg &&
-                       hessian_pc_iterations > 0 &&
-                       last_delta_iterations <= options.hessian_pc_reuse * hessian_pc_iterations;
+    const bool reuse =
+        own_pc && options.linear_solver == LinearSolverKind::Amg && hessian_pc_iterations > 0 &&
+        last_delta_iterations <= options.advanced.hessian_pc_reuse * hessian_pc_iterations;
     rec.hessian_pc_built = own_pc && !reuse;
     {
       Stopwatch watch(times.hessian_setup);
@@ -222,18 +222,18 @@ struct QuasiNewton::Impl {
     const double s_delta = inner_L(s, delta_tilde);
     const double s_s = inner_L(s, s);
     rec.eta = -s_delta / std::sqrt(s_s * delta_delta);
-    if (rec.eta >= options.eta) {
+    if (rec.eta >= options.advanced.eta) {
       NM_PETSC(VecCopy(delta_tilde, delta));
       return true;
     }
-    if (options.rejected_direction != RejectedDirection::Blend || rec.delta_truncated ||
+    if (options.advanced.rejected_direction != RejectedDirection::Blend || rec.delta_truncated ||
         !(rec.eta > 0))
       return false;
     blend_towards_antigradient(rec, std::sqrt(delta_delta / s_s));
     return true;
   }
 
-  // The angle test without s (SolverOptions::lazy_riesz): (s, δ̃)_L = gᵀδ̃ because L s = g,
+  // The angle test without s (SolverOptions::Advanced::lazy_riesz): (s, δ̃)_L = gᵀδ̃ because L s = g,
   // and ‖s‖²_L = gᵀL⁻¹g ≈ gᵀM⁻¹g with M⁻¹ one V-cycle of L's hierarchy. If the V-cycle
   // reduces the error's L-norm by ρ ≤ 1/2, gᵀM⁻¹g is within a factor 1 ± ρ of gᵀL⁻¹g, so the
   // estimate η̂ is at most 1/√(1 − ρ) ≤ √2 times η_k: η̂ ≥ √2 η passes the test for certain.
@@ -243,7 +243,7 @@ struct QuasiNewton::Impl {
   // of gᵀL⁻¹g; with a hierarchy built for L it was within 10% on every mesh measured.
   // estimates_angle(): whether quasi-Newton steps try the estimate before solving for s.
   bool estimates_angle() const {
-    return options.lazy_riesz && options.linear_solver == LinearSolverKind::Amg &&
+    return options.advanced.lazy_riesz && options.linear_solver == LinearSolverKind::Amg &&
            !functional.slides();
   }
   bool estimated_angle_passes(IterationRecord& rec, double delta_delta) {
@@ -255,7 +255,7 @@ struct QuasiNewton::Impl {
     }
     if (!(g_m_g > 0.0) || !(delta_delta > 0.0)) return false;
     const double estimate = -dot(gradient, delta_tilde) / std::sqrt(g_m_g * delta_delta);
-    if (estimate < std::sqrt(2.0) * options.eta) return false;
+    if (estimate < std::sqrt(2.0) * options.advanced.eta) return false;
     rec.eta = std::min(estimate, 1.0);  // a cosine; above 1 the V-cycle underestimated ‖s‖_L
     return true;
   }
@@ -287,7 +287,7 @@ struct QuasiNewton::Impl {
     double below = 0.0, above = 1.0;  // the cosine grows with θ from c to 1: bisect
     for (int i = 0; i < kBlendBisections; ++i) {
       const double mid = 0.5 * (below + above);
-      (cosine(mid) >= options.eta ? above : below) = mid;
+      (cosine(mid) >= options.advanced.eta ? above : below) = mid;
     }
     NM_PETSC(VecAXPBYPCZ(delta, 1.0 - above, -above * delta_over_s, 0.0, delta_tilde, s));
     rec.eta = cosine(above);
@@ -309,14 +309,14 @@ struct QuasiNewton::Impl {
     const double predicted = -dot(gradient, delta);
     int halvings = 0;
     // Only −s has no natural length (L's scale); a (quasi-)Newton step's σ = 1 is its own.
-    if (rec.used_s && options.max_trial_move > 0.0) {
+    if (rec.used_s && options.advanced.max_trial_move > 0.0) {
       const double move = max_relative_move(1.0);
-      while (halvings < options.max_halvings &&
-             std::ldexp(move, -halvings) > options.max_trial_move)
+      while (halvings < options.advanced.max_halvings &&
+             std::ldexp(move, -halvings) > options.advanced.max_trial_move)
         ++halvings;
     }
     sigma = std::ldexp(1.0, -halvings);
-    for (; halvings <= options.max_halvings; ++halvings, sigma *= 0.5) {
+    for (; halvings <= options.advanced.max_halvings; ++halvings, sigma *= 0.5) {
       NM_PETSC(VecWAXPY(trial, sigma, delta, x));
       functional.project_onto_boundary(trial);  // sliding vertices back onto the boundary
       new_energy = functional.value(trial);
@@ -328,7 +328,7 @@ struct QuasiNewton::Impl {
         rec.roundoff_step = true;
         return true;
       }
-      if (energy - new_energy >= options.armijo_beta * sigma * predicted) return true;
+      if (energy - new_energy >= options.advanced.armijo_beta * sigma * predicted) return true;
     }
     return false;
   }
@@ -354,7 +354,7 @@ struct QuasiNewton::Impl {
     rec.defect = defect;
     rec.alpha = alpha;
 
-    if (options.riesz == RieszLaplacian::CurrentMesh || laplacian_pending)
+    if (options.advanced.riesz == RieszLaplacian::CurrentMesh || laplacian_pending)
       assemble_laplacian(x);
     else if (functional.slides() && !laplacian_fresh)
       update_laplacian_tangents(x);
@@ -419,7 +419,7 @@ void QuasiNewton::restart(Vec x) {
   impl_->evaluate_gradient(x);
   if (impl_->initial_defect < 0) impl_->initial_defect = impl_->defect;
   impl_->laplacian_pending = true;
-  impl_->antigradient_left = impl_->options.kmin;
+  impl_->antigradient_left = impl_->options.advanced.kmin;
   impl_->stop.reset();
 }
 
@@ -441,12 +441,11 @@ const PhaseTimes& QuasiNewton::times() const {
   return impl_->times;
 }
 
-QuasiNewtonResult minimize(const Functional& functional, Vec x, const QuasiNewtonOptions& options,
-                           Vec cell_size,
-                           const std::function<void(const IterationRecord&)>& observe) {
+SolverRun minimize(const Functional& functional, Vec x, const QuasiNewtonOptions& options,
+                   Vec cell_size, const std::function<void(const IterationRecord&)>& observe) {
   QuasiNewton method(functional, options, cell_size);
   method.restart(x);
-  QuasiNewtonResult result;
+  SolverRun result;
   result.initial_energy = method.energy();
   result.initial_defect = method.defect();
   while (!method.stop_reason()) {

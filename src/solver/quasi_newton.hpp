@@ -43,16 +43,6 @@ double energy_roundoff(const EnergyOptions& energy, int dim, double mesh_volume)
 // and one BoomerAMG hierarchy of L₁ preconditions all d components (docs/method.md §4).
 bool riesz_per_component(const Functional& functional, const SolverOptions& options);
 
-struct QuasiNewtonResult {
-  std::vector<IterationRecord> history;
-  StopReason reason = StopReason::MaxIterations;
-  double initial_energy = 0.0;
-  double final_energy = 0.0;
-  double initial_defect = 0.0;
-  double final_defect = 0.0;
-  PhaseTimes times;
-};
-
 class QuasiNewton {
  public:
   // `cell_size`: local cell size per dof (global Vec laid out like x), for the practical
@@ -79,9 +69,8 @@ class QuasiNewton {
 };
 
 // Runs QuasiNewton from x until a stop reason; `observe` sees every iteration.
-QuasiNewtonResult minimize(const Functional& functional, Vec x, const QuasiNewtonOptions& options,
-                           Vec cell_size,
-                           const std::function<void(const IterationRecord&)>& observe = {});
+SolverRun minimize(const Functional& functional, Vec x, const QuasiNewtonOptions& options,
+                   Vec cell_size, const std::function<void(const IterationRecord&)>& observe = {});
 
 // Mean size v^(1/d) of the cells around each vertex, as a global Vec laid out by `dofs`
 // (the same value for the vertex's d dofs).

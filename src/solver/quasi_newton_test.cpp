@@ -35,7 +35,7 @@ double distance_to_uniform_grid(const ThesisProblem& p, int n, double degrees = 
 }
 
 // Thesis Table 5.1, the rows printed while the defect is above 1e-8.
-void expect_table_5_1(const QuasiNewtonResult& r) {
+void expect_table_5_1(const SolverRun& r) {
   const std::vector<std::string> defect = {"1.16E+01", "3.12E+00", "7.85E-01", "3.17E-01",
                                            "8.36E-02", "1.15E-02", "3.76E-06"};
   const std::vector<std::string> delta = {"2.11E+00", "4.50E-01", "1.40E-01",
@@ -68,7 +68,7 @@ void expect_table_5_1(const QuasiNewtonResult& r) {
 
 TEST(SquareMidpoint, ReproducesThesisTable51WithDirectSolver) {
   ThesisProblem p(square_midpoint(16));
-  const QuasiNewtonResult r = p.minimize(p.thesis_options());
+  const SolverRun r = p.minimize(p.thesis_options());
   expect_table_5_1(r);
   EXPECT_EQ(r.history.size(), 7u) << "defect < 1e-10 after 7 iterations";
   EXPECT_LT(r.final_defect, 1e-10);
@@ -79,7 +79,7 @@ TEST(SquareMidpoint, RotatedBy27DegreesGivesTheSameTable) {
   MeshData mesh = square_midpoint(16);
   rotate(mesh, 27.0);
   ThesisProblem p(std::move(mesh));
-  const QuasiNewtonResult r = p.minimize(p.thesis_options());
+  const SolverRun r = p.minimize(p.thesis_options());
   expect_table_5_1(r);
   EXPECT_LT(r.final_defect, 1e-10);
   EXPECT_LT(distance_to_uniform_grid(p, 16, 27.0), 1e-8);
@@ -93,7 +93,7 @@ TEST(SquareMidpoint, JacobiPcgWithLooseRuleKeepsTheNewtonIterations) {
   ThesisProblem p(square_midpoint(16));
   QuasiNewtonOptions o = p.thesis_options();
   o.linear_solver = LinearSolverKind::Jacobi;
-  const QuasiNewtonResult r = p.minimize(o);
+  const SolverRun r = p.minimize(o);
   EXPECT_LT(r.final_defect, 1e-10);
   EXPECT_NEAR(static_cast<double>(r.history.size()), 7.0, 1.0);
   for (const auto& rec : r.history) {
@@ -111,9 +111,9 @@ TEST(SquareMidpoint, ConvergesForEveryKminAt128x128) {
     SCOPED_TRACE(fmt::format("kmin {}", kmin));
     ThesisProblem p(square_midpoint(128));
     QuasiNewtonOptions o = p.thesis_options();
-    o.kmin = kmin;
+    o.advanced.kmin = kmin;
     o.linear_solver = LinearSolverKind::Amg;
-    const QuasiNewtonResult r = p.minimize(o);
+    const SolverRun r = p.minimize(o);
     EXPECT_LT(r.final_defect, 1e-10);
     EXPECT_LE(r.history.size(), 12u);
     for (int k = 0; k < kmin; ++k) EXPECT_TRUE(r.history[k].used_s);
@@ -125,7 +125,7 @@ TEST(SquareMidpoint, DoesNotStallOnRoundOffAt64x64) {
   ThesisProblem p(square_midpoint(64));
   QuasiNewtonOptions o = p.thesis_options();
   o.linear_solver = LinearSolverKind::Amg;
-  const QuasiNewtonResult r = p.minimize(o);
+  const SolverRun r = p.minimize(o);
   EXPECT_EQ(r.reason, StopReason::DefectAbsolute);
   EXPECT_LT(r.final_defect, 1e-10);
   EXPECT_LT(r.history.size(), 20u);
@@ -139,8 +139,8 @@ TEST(SquareMidpoint, LaplacianPreconditionerReachesTheGrid) {
     ThesisProblem p(square_midpoint(64));
     QuasiNewtonOptions o = p.thesis_options();
     o.linear_solver = LinearSolverKind::Amg;
-    o.hessian_pc = pc;
-    const QuasiNewtonResult r = p.minimize(o);
+    o.advanced.hessian_pc = pc;
+    const SolverRun r = p.minimize(o);
     EXPECT_LT(r.final_defect, 1e-10);
     EXPECT_LT(distance_to_uniform_grid(p, 64), 1e-8);
     for (const IterationRecord& rec : r.history) {
@@ -159,7 +159,7 @@ TEST(SquareMidpoint, LaplacianPreconditionerReachesTheGrid) {
 
 TEST(CubeMidpoint, ReproducesThesisTable518) {
   ThesisProblem p(cube_midpoint(16));
-  const QuasiNewtonResult r = p.minimize(p.thesis_options());
+  const SolverRun r = p.minimize(p.thesis_options());
   const std::vector<std::string> defect = {"1.77E+00", "6.31E-01", "2.19E-01",
                                            "5.02E-02", "4.12E-03", "5.98E-07"};
   const std::vector<std::string> alpha = {"0.30", "0.44", "0.61", "0.84", "1.00"};
@@ -178,8 +178,8 @@ TEST(CubeMidpoint, ReproducesThesisTable518) {
 TEST(SquareRandom, ConvergesToTheUniformGrid) {
   ThesisProblem p(square_random(16, 0.2, 1));
   QuasiNewtonOptions o = p.thesis_options();
-  o.kmin = 2;  // thesis Table 5.13
-  const QuasiNewtonResult r = p.minimize(o);
+  o.advanced.kmin = 2;  // thesis Table 5.13
+  const SolverRun r = p.minimize(o);
   EXPECT_LT(r.final_defect, 1e-10);
   EXPECT_LE(r.history.size(), 12u);
   EXPECT_LT(distance_to_uniform_grid(p, 16), 1e-8);
@@ -195,13 +195,13 @@ TEST(SquareRandom, PracticalCriterionStopsWhereTheMeshStoppedChanging) {
   QuasiNewtonOptions base;
   base.linear_solver = LinearSolverKind::Amg;
 
-  std::vector<QuasiNewtonResult> runs;
+  std::vector<SolverRun> runs;
   for (const double newton_move : {1e-3, 0.0}) {
     ThesisProblem p(square_random(n, 0.2, 1));
     QuasiNewtonOptions o = base;
     o.newton_move_rtol = newton_move;
     runs.push_back(p.minimize(o));
-    const QuasiNewtonResult& r = runs.back();
+    const SolverRun& r = runs.back();
     SCOPED_TRACE(fmt::format("newton_move_rtol {}", newton_move));
     EXPECT_LT(distance_to_uniform_grid(p, n), 1e-6 / n);
     if (newton_move == 0) continue;  // it may reach the defect tolerance first
@@ -222,29 +222,29 @@ TEST(SquareRandom, PracticalCriterionStopsWhereTheMeshStoppedChanging) {
 
 // Minimizes on the jittered 32² grid with AMG and `configure`'s options: the practical
 // criterion stops the run within 1e-6 cell widths of the grid.
-QuasiNewtonResult reach_the_grid(const std::function<void(QuasiNewtonOptions&)>& configure) {
+SolverRun reach_the_grid(const std::function<void(QuasiNewtonOptions&)>& configure) {
   const int n = 32;
   ThesisProblem p(square_random(n, 0.2, 1));
   QuasiNewtonOptions o;
   o.linear_solver = LinearSolverKind::Amg;
   configure(o);
-  QuasiNewtonResult r = p.minimize(o);
+  SolverRun r = p.minimize(o);
   EXPECT_EQ(r.reason, StopReason::Practical);
   EXPECT_LT(distance_to_uniform_grid(p, n), 1e-6 / n);
   return r;
 }
 
-// The δ̃ solve loosened far from the minimum (SolverOptions::hessian_forcing_max): the same
-// quasi-Newton iterations to the same mesh (within 1e-6 cell widths, as the practical
+// The δ̃ solve loosened far from the minimum (SolverOptions::Advanced::hessian_forcing_max): the
+// same quasi-Newton iterations to the same mesh (within 1e-6 cell widths, as the practical
 // criterion promises), with fewer Krylov iterations than the thesis' fixed tolerance.
 TEST(SquareRandom, LooserQuasiNewtonSolvesFarFromTheMinimumSaveKrylovIterations) {
-  std::vector<QuasiNewtonResult> runs;
+  std::vector<SolverRun> runs;
   for (const double forcing_max : {0.0, 1e-2}) {
     SCOPED_TRACE(fmt::format("hessian_forcing_max {}", forcing_max));
-    runs.push_back(
-        reach_the_grid([&](QuasiNewtonOptions& o) { o.hessian_forcing_max = forcing_max; }));
+    runs.push_back(reach_the_grid(
+        [&](QuasiNewtonOptions& o) { o.advanced.hessian_forcing_max = forcing_max; }));
   }
-  const auto krylov = [](const QuasiNewtonResult& r) {
+  const auto krylov = [](const SolverRun& r) {
     int sum = 0;
     for (const IterationRecord& rec : r.history) sum += rec.krylov_delta;
     return sum;
@@ -256,12 +256,12 @@ TEST(SquareRandom, LooserQuasiNewtonSolvesFarFromTheMinimumSaveKrylovIterations)
 // Along −s the line search skips the trial steps that would move a vertex by more than
 // max_trial_move cell sizes: the same σ in every iteration, fewer energies evaluated.
 TEST(SquareMidpoint, AntigradientTrialStepsBeyondTheMoveBoundAreSkipped) {
-  std::vector<QuasiNewtonResult> runs;
+  std::vector<SolverRun> runs;
   for (const double bound : {0.0, 64.0}) {
     ThesisProblem p(square_midpoint(64));
     QuasiNewtonOptions o;
     o.linear_solver = LinearSolverKind::Amg;
-    o.max_trial_move = bound;
+    o.advanced.max_trial_move = bound;
     runs.push_back(p.minimize(o));
   }
   ASSERT_EQ(runs[1].history.size(), runs[0].history.size());
@@ -275,16 +275,15 @@ TEST(SquareMidpoint, AntigradientTrialStepsBeyondTheMoveBoundAreSkipped) {
   EXPECT_LT(trials[1], trials[0]);  // 15 and 10 when written
 }
 
-// SolverOptions::lazy_riesz: the quasi-Newton steps take the angle test from one V-cycle of
-// L's hierarchy instead of the Riesz solve. The same directions are taken in the same
-// iterations to the same grid; the estimated cosine is within 0.03 of the one with s; no
-// quasi-Newton step solved s (every η here is far above the √2 η margin); the antigradient
-// steps still do.
+// SolverOptions::Advanced::lazy_riesz: the quasi-Newton steps take the angle test from one V-cycle
+// of L's hierarchy instead of the Riesz solve. The same directions are taken in the same iterations
+// to the same grid; the estimated cosine is within 0.03 of the one with s; no quasi-Newton step
+// solved s (every η here is far above the √2 η margin); the antigradient steps still do.
 TEST(SquareRandom, AngleTestWithoutTheRieszSolveTakesTheSameSteps) {
-  std::vector<QuasiNewtonResult> runs;
+  std::vector<SolverRun> runs;
   for (const bool lazy : {false, true}) {
     SCOPED_TRACE(fmt::format("lazy_riesz {}", lazy));
-    runs.push_back(reach_the_grid([&](QuasiNewtonOptions& o) { o.lazy_riesz = lazy; }));
+    runs.push_back(reach_the_grid([&](QuasiNewtonOptions& o) { o.advanced.lazy_riesz = lazy; }));
   }
   const std::vector<IterationRecord>& every = runs[0].history;
   const std::vector<IterationRecord>& lazy = runs[1].history;
@@ -323,9 +322,9 @@ class ThesisQualitativeCase : public ::testing::TestWithParam<QualitativeCase> {
 TEST_P(ThesisQualitativeCase, ConvergesWithoutStalling) {
   ThesisProblem p(GetParam().mesh());
   QuasiNewtonOptions o = p.thesis_options();
-  o.kmin = 2;
+  o.advanced.kmin = 2;
   o.linear_solver = LinearSolverKind::Amg;
-  const QuasiNewtonResult r = p.minimize(o);
+  const SolverRun r = p.minimize(o);
   EXPECT_EQ(r.reason, StopReason::DefectAbsolute) << describe(r.reason);
   EXPECT_LT(r.final_defect, 1e-10);
   EXPECT_LE(r.history.size(), GetParam().max_iterations);

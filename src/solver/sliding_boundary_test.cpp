@@ -41,7 +41,7 @@ Outcome graded_box(CellType type, int n, BoundaryMode boundary) {
 
   QuasiNewtonOptions options;
   options.energy_roundoff = energy_roundoff(p.energy, d, p.volume);
-  const QuasiNewtonResult result = p.minimize(options);
+  const SolverRun result = p.minimize(options);
   EXPECT_NE(result.reason, StopReason::LineSearchFailed);
   EXPECT_NE(result.reason, StopReason::MaxIterations);
 
@@ -96,7 +96,7 @@ RingOutcome smooth_ring(CellType type, int n, int m,
   BoundaryOptions options(BoundaryMode::Slide);
   options.shapes = shapes;
   ThesisProblem p(ring(type, n, m, 3.0), {}, options);
-  const QuasiNewtonResult result =
+  const SolverRun result =
       p.minimize(QuasiNewtonOptions{{}, energy_roundoff(p.energy, p.view.dim, p.volume)});
   EXPECT_NE(result.reason, StopReason::LineSearchFailed);
   EXPECT_NE(result.reason, StopReason::MaxIterations);
@@ -185,14 +185,14 @@ TEST(SlidingBoundary, RejectedDirectionsAreTurnedJustEnoughTowardsTheAntigradien
   for (RejectedDirection choice : {RejectedDirection::Blend, RejectedDirection::Antigradient}) {
     ThesisProblem p(ring(CellType::Triangle, 48, 4, 3.0), {}, BoundaryMode::Slide);
     QuasiNewtonOptions options{{}, energy_roundoff(p.energy, p.view.dim, p.volume)};
-    options.rejected_direction = choice;
-    const QuasiNewtonResult result = p.minimize(options);
+    options.advanced.rejected_direction = choice;
+    const SolverRun result = p.minimize(options);
     EXPECT_NE(result.reason, StopReason::LineSearchFailed);
     int blended = 0;
     for (const IterationRecord& r : result.history) {
       if (!r.blended) continue;
       ++blended;
-      EXPECT_NEAR(r.eta, options.eta, 1e-12) << "iteration " << r.k;
+      EXPECT_NEAR(r.eta, options.advanced.eta, 1e-12) << "iteration " << r.k;
       EXPECT_FALSE(r.used_s);
       EXPECT_FALSE(r.delta_truncated) << "iteration " << r.k << ": negative curvature";
     }

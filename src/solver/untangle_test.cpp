@@ -12,7 +12,7 @@ namespace {
 
 struct Outcome {
   UntangleResult untangling;
-  QuasiNewtonResult smoothing;
+  SolverRun smoothing;
   PetscInt inverted_at_end = 0;
 };
 

@@ -67,7 +67,7 @@ std::optional<CornerPhaseSummary> lift_flat_corners(
                               .gave_up = true};
   }
   functional.set_corner_weight(kWorstCellCornerWeight);
-  const QuasiNewtonResult polish = minimize(functional, x, options, cell_size, observe);
+  const SolverRun polish = minimize(functional, x, options, cell_size, observe);
   functional.set_corner_weight(0.0);
   run.history.insert(run.history.end(), polish.history.begin(), polish.history.end());
   run.reason = polish.reason;

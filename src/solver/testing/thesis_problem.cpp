@@ -30,21 +30,21 @@ ThesisProblem::ThesisProblem(MeshData mesh_data, EnergyOptions energy_options,
 QuasiNewtonOptions ThesisProblem::thesis_options() const {
   QuasiNewtonOptions o;
   o.linear_solver = LinearSolverKind::Direct;
-  o.kmin = 0;
-  o.alpha0 = QuasiNewtonOptions::kThesisAlpha0;
+  o.advanced.kmin = 0;
+  o.advanced.alpha0 = QuasiNewtonOptions::Advanced::kThesisAlpha0;
   o.riesz_rtol = QuasiNewtonOptions::kThesisRieszRtol;
-  o.hessian_forcing_max = 0.0;
-  o.max_trial_move = 0.0;
-  o.lazy_riesz = false;
+  o.advanced.hessian_forcing_max = 0.0;
+  o.advanced.max_trial_move = 0.0;
+  o.advanced.lazy_riesz = false;
   o.practical = false;
-  o.rejected_direction = RejectedDirection::Antigradient;
+  o.advanced.rejected_direction = RejectedDirection::Antigradient;
   o.defect_atol = 1e-10;
   o.defect_rtol = 0.0;
   o.energy_roundoff = energy_roundoff(energy, view.dim, volume);
   return o;
 }
 
-QuasiNewtonResult ThesisProblem::minimize(const QuasiNewtonOptions& options) {
+SolverRun ThesisProblem::minimize(const QuasiNewtonOptions& options) {
   return neomesh::minimize(*functional, x, options, cell_size);
 }
 

@@ -31,7 +31,7 @@ struct ThesisProblem {
 
   // The thesis' method options: direct solver, k_min = 0, no practical criterion.
   QuasiNewtonOptions thesis_options() const;
-  QuasiNewtonResult minimize(const QuasiNewtonOptions& options);
+  SolverRun minimize(const QuasiNewtonOptions& options);
 };
 
 }  // namespace neomesh
