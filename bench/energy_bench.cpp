@@ -14,8 +14,8 @@
 #include <random>
 
 #include "energy/functional.hpp"
-#include "mesh/generate.hpp"
-#include "mesh/serial_view.hpp"
+#include "generate/generate.hpp"
+#include "generate/serial_view.hpp"
 
 namespace neomesh {
 namespace {

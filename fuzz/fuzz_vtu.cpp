@@ -1,6 +1,6 @@
 // libFuzzer harness: read_vtu on arbitrary bytes (see README.md).
+#include "formats/vtu_reader.hpp"
 #include "fuzz_reader.hpp"
-#include "mesh/vtu_reader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return neomesh::fuzz::read_input(data, size, ".vtu",

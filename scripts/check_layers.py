@@ -15,7 +15,7 @@ import os
 import re
 import sys
 
-LAYERS = ["core", "mesh", "geometry", "energy", "boundary", "solver", "adapt", "api", "report", "app"]
+LAYERS = ["core", "mesh", "generate", "formats", "geometry", "energy", "boundary", "solver", "adapt", "api", "report", "app"]
 PUBLIC_LAYERS = {
     "error.hpp": "core",         # the one exception type every layer throws
     "cell_type.hpp": "mesh",     # the cell types; plural_name() in src/mesh/cell_type.cpp

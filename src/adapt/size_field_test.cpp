@@ -9,8 +9,8 @@
 
 #include "core/error.hpp"
 #include "core/testing/test_data.hpp"
-#include "mesh/generate.hpp"
-#include "mesh/serial_view.hpp"
+#include "generate/generate.hpp"
+#include "generate/serial_view.hpp"
 
 namespace neomesh {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "boundary/shape.hpp"
 #include "core/testing/test_data.hpp"
-#include "mesh/feat_reader.hpp"
+#include "formats/feat_reader.hpp"
 
 namespace neomesh {
 namespace {

@@ -8,7 +8,7 @@
 #include <neomesh/mesh.hpp>
 
 #include "core/petsc.hpp"
-#include "mesh/generate.hpp"
+#include "generate/generate.hpp"
 #include "mesh/plex_mesh.hpp"
 
 namespace neomesh {

@@ -11,11 +11,11 @@
 #include "boundary/interface.hpp"
 #include "core/collective_error.hpp"
 #include "core/error.hpp"
+#include "formats/mesh_io.hpp"
 #include "geometry/quality.hpp"
 #include "mesh/dm_input.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/input_mesh.hpp"
-#include "mesh/mesh_io.hpp"
 #include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
@@ -70,15 +70,13 @@ void check_writable_format(const std::filesystem::path& path) {
 }
 
 Mesh Mesh::read(const std::filesystem::path& path, MPI_Comm comm, InvertedCells inverted) {
-  return Mesh(
-      std::make_unique<PlexMesh>(PlexMesh::load(path, comm, inverted == InvertedCells::Keep)));
+  return Mesh(std::make_unique<PlexMesh>(load_mesh(path, comm, inverted == InvertedCells::Keep)));
 }
 
 Mesh Mesh::read(const std::vector<std::filesystem::path>& paths, MPI_Comm comm,
                 InvertedCells inverted) {
   if (paths.empty()) fail("no mesh file given");
-  return Mesh(
-      std::make_unique<PlexMesh>(PlexMesh::load(paths, comm, inverted == InvertedCells::Keep)));
+  return Mesh(std::make_unique<PlexMesh>(load_mesh(paths, comm, inverted == InvertedCells::Keep)));
 }
 
 Mesh Mesh::from_arrays(MPI_Comm comm, int dim, std::span<const double> coordinates,

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "boundary/boundary.hpp"
-#include "mesh/generate.hpp"
+#include "generate/generate.hpp"
 #include "mesh/plex_mesh.hpp"
 
 namespace neomesh {

@@ -9,9 +9,9 @@
 #include "boundary/features.hpp"
 #include "boundary/shape.hpp"
 #include "core/error.hpp"
+#include "generate/generate.hpp"
+#include "generate/serial_view.hpp"
 #include "mesh/boundary_surface.hpp"
-#include "mesh/generate.hpp"
-#include "mesh/serial_view.hpp"
 
 namespace neomesh {
 namespace {

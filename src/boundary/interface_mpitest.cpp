@@ -11,9 +11,9 @@
 #include <set>
 #include <vector>
 
-#include "mesh/generate.hpp"
+#include "generate/generate.hpp"
+#include "generate/serial_view.hpp"
 #include "mesh/plex_mesh.hpp"
-#include "mesh/serial_view.hpp"
 
 namespace neomesh {
 namespace {

@@ -7,8 +7,8 @@
 #include <set>
 
 #include "core/error.hpp"
-#include "mesh/generate.hpp"
-#include "mesh/serial_view.hpp"
+#include "generate/generate.hpp"
+#include "generate/serial_view.hpp"
 
 namespace neomesh {
 namespace {

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <set>
 
-#include "mesh/generate.hpp"
-#include "mesh/serial_view.hpp"
+#include "generate/generate.hpp"
+#include "generate/serial_view.hpp"
 
 namespace neomesh {
 namespace {

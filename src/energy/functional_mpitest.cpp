@@ -11,7 +11,7 @@
 
 #include "core/collective_error.hpp"
 #include "energy/functional.hpp"
-#include "mesh/generate.hpp"
+#include "generate/generate.hpp"
 #include "mesh/plex_mesh.hpp"
 
 namespace neomesh {

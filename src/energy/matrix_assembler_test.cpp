@@ -5,8 +5,8 @@
 #include <random>
 #include <string>
 
-#include "mesh/generate.hpp"
-#include "mesh/serial_view.hpp"
+#include "generate/generate.hpp"
+#include "generate/serial_view.hpp"
 
 namespace neomesh {
 namespace {

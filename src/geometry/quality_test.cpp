@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "mesh/generate.hpp"
-#include "mesh/serial_view.hpp"
+#include "generate/generate.hpp"
+#include "generate/serial_view.hpp"
 
 namespace neomesh {
 

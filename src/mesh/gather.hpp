@@ -5,11 +5,22 @@
 #include <numeric>
 #include <vector>
 
+#include <neomesh/field.hpp>
+
 #include "core/petsc.hpp"
 #include "mesh/input_mesh.hpp"
-#include "mesh/mesh_io.hpp"
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
+
+// What is written with a mesh: fields per local cell (MeshView order) and per local vertex
+// (MeshView order; the owned vertices' values are written), facet groups (input vertex
+// numbers).
+struct MeshFields {
+  std::vector<Field> cell;
+  std::vector<Field> vertex;
+  std::vector<FacetGroup> facet_groups;
+};
 
 // Concatenation of every rank's `local` on rank 0, with each rank's length.
 template <typename T>

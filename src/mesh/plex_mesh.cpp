@@ -1,38 +1,21 @@
 #include "mesh/plex_mesh.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <sstream>
 
 #include "core/collective_error.hpp"
 #include "mesh/boundary_surface.hpp"
 #include "mesh/cell_order.hpp"
-#include "mesh/cgns_reader.hpp"
-#include "mesh/exodus_reader.hpp"
-#include "mesh/feat_reader.hpp"
-#include "mesh/gmsh_reader.hpp"
-#include "mesh/input_file.hpp"
 #include "mesh/input_topology.hpp"
-#include "mesh/medit_reader.hpp"
 #include "mesh/mesh_impl.hpp"
-#include "mesh/mesh_io.hpp"
 #include "mesh/plex_builder.hpp"
 #include "mesh/validate.hpp"
-#include "mesh/vtk_reader.hpp"
-#include "mesh/vtu_reader.hpp"
 
 namespace neomesh {
 
 namespace {
 
 using Impl = MeshAccess::Impl;
-
-void check_input_file(const std::filesystem::path& path) {
-  check_regular_file(path);  // before opening it: a FIFO with no writer would block forever
-  std::error_code ec;
-  if (!std::ifstream(path)) fail("{}: cannot be opened for reading", path.string());
-  if (std::filesystem::file_size(path, ec) == 0) fail("{}: the file is empty", path.string());
-}
 
 void broadcast_groups(MPI_Comm comm, std::vector<PhysicalGroup>& groups) {
   std::ostringstream out;
@@ -222,7 +205,8 @@ void build_dofs(Impl& m) {
       std::make_unique<DofMap>(m.comm, m.dim, vEnd - vStart, owned_dofs, sf, std::move(global_dof));
 }
 
-// The common end of load and from_data: validate on rank 0, build, distribute, view.
+// The common end of from_data and from_input (and so of load_mesh()): validate on rank 0, build,
+// distribute, view.
 PlexMesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
                 bool keep_inverted = false) {
   validate(input, source, comm, keep_inverted);
@@ -266,42 +250,6 @@ PlexMesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
 }
 
 }  // namespace
-
-PlexMesh PlexMesh::load(const std::filesystem::path& path, MPI_Comm comm, bool keep_inverted) {
-  InputMesh input;
-  on_root(comm, [&] {
-    check_input_file(path);
-    require_readable_format(path);
-    const auto ext = path.extension();
-    input = ext == ".msh"     ? read_gmsh(path)
-            : ext == ".vtk"   ? read_vtk(path)
-            : ext == ".vtu"   ? read_vtu(path)
-            : ext == ".pvtu"  ? read_pvtu(path)
-            : ext == ".mesh"  ? read_medit(path)
-            : is_exodus(path) ? read_exodus(path)
-            : ext == ".cgns"  ? read_cgns(path)
-                              : input_from_data(read_feat(path));
-  });
-  return create(comm, input, path.string(), keep_inverted);
-}
-
-PlexMesh PlexMesh::load(const std::vector<std::filesystem::path>& paths, MPI_Comm comm,
-                        bool keep_inverted) {
-  if (paths.size() == 1) return load(paths[0], comm, keep_inverted);
-  InputMesh input;
-  std::string source;
-  for (const auto& path : paths) source += (source.empty() ? "" : " + ") + path.string();
-  on_root(comm, [&] {
-    for (const auto& path : paths) {
-      check_input_file(path);
-      if (path.extension() != ".xml")
-        fail("{}: only FEAT3 .xml meshes are read together with other files (chart files)",
-             path.string());
-    }
-    input = input_from_data(read_feat(paths));
-  });
-  return create(comm, input, source, keep_inverted);
-}
 
 PlexMesh PlexMesh::from_data(const MeshData& data, const std::string& source, MPI_Comm comm,
                              bool keep_inverted) {

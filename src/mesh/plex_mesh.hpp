@@ -1,8 +1,9 @@
 // PlexMesh: a DMPlex plus what neomesh needs around it — where it came from (for error
 // messages), its physical groups, and the flat views the numerics run on.
 //
-// Serial by default; under `mpiexec -n P` load/from_data read on rank 0 and distribute the
-// cells over the ranks (DMPlexDistribute, no overlap).
+// Serial by default; under `mpiexec -n P` from_data/from_input take the mesh on rank 0 and
+// distribute the cells over the ranks (DMPlexDistribute, no overlap). Reading a mesh file:
+// load_mesh() (formats/mesh_io.hpp).
 #pragma once
 
 #include <cstdint>
@@ -23,14 +24,6 @@ struct InputMesh;  // input_mesh.hpp
 
 class PlexMesh {
  public:
-  // Reads .msh (Gmsh 2.2/4.1, ASCII or binary) or .xml (FEAT3). Validates the mesh (see
-  // validate.hpp): throws Error naming the file (and cell) for anything neomesh cannot use;
-  // with `keep_inverted`, inverted and degenerate cells are kept (InvertedCells::Keep).
-  static PlexMesh load(const std::filesystem::path& path, MPI_Comm comm = PETSC_COMM_WORLD,
-                       bool keep_inverted = false);
-  // A FEAT3 mesh file with its chart files, in any order (one path: as above).
-  static PlexMesh load(const std::vector<std::filesystem::path>& paths,
-                       MPI_Comm comm = PETSC_COMM_WORLD, bool keep_inverted = false);
   // Builds a mesh from arrays given on rank 0 (other ranks pass an empty MeshData).
   static PlexMesh from_data(const MeshData& data, const std::string& source,
                             MPI_Comm comm = PETSC_COMM_WORLD, bool keep_inverted = false);

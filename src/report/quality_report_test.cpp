@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include "generate/generate.hpp"
+#include "generate/serial_view.hpp"
 #include "geometry/quality.hpp"
-#include "mesh/generate.hpp"
-#include "mesh/serial_view.hpp"
 
 namespace neomesh {
 namespace {

@@ -11,7 +11,7 @@
 #include <iterator>
 #include <string>
 
-#include "mesh/serial_view.hpp"
+#include "generate/serial_view.hpp"
 #include "solver/testing/riesz_solves.hpp"
 
 namespace neomesh {

@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "mesh/generate.hpp"
+#include "generate/generate.hpp"
 #include "solver/testing/thesis_problem.hpp"
 
 namespace neomesh {

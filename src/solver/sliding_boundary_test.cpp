@@ -11,7 +11,7 @@
 #include <map>
 #include <numbers>
 
-#include "mesh/generate.hpp"
+#include "generate/generate.hpp"
 #include "solver/testing/thesis_problem.hpp"
 
 namespace neomesh {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/generate.hpp"
+#include "generate/generate.hpp"
 #include "solver/testing/thesis_problem.hpp"
 
 namespace neomesh {

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <span>
 
+#include "generate/generate.hpp"
+#include "generate/serial_view.hpp"
 #include "geometry/quality.hpp"
-#include "mesh/generate.hpp"
-#include "mesh/serial_view.hpp"
 #include "solver/testing/coordinates.hpp"
 
 namespace neomesh {

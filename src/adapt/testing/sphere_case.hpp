@@ -12,8 +12,8 @@
 
 #include "adapt/picard.hpp"
 #include "adapt/volume_ratio.hpp"
+#include "generate/generate.hpp"
 #include "geometry/quality.hpp"
-#include "mesh/generate.hpp"
 #include "solver/testing/thesis_problem.hpp"
 
 namespace neomesh::testing {

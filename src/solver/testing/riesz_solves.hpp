@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "energy/functional.hpp"
-#include "mesh/generate.hpp"
+#include "generate/generate.hpp"
 #include "solver/linear_solver.hpp"
 
 namespace neomesh {

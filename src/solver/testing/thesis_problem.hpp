@@ -7,9 +7,9 @@
 
 #include "boundary/boundary.hpp"
 #include "energy/functional.hpp"
+#include "generate/serial_view.hpp"
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_data.hpp"
-#include "mesh/serial_view.hpp"
 #include "solver/quasi_newton.hpp"
 
 namespace neomesh {

@@ -1,0 +1,187 @@
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <string>
+
+#include <fmt/ostream.h>
+
+#include "formats/mesh_writers.hpp"
+#include "mesh/cell_order.hpp"
+
+namespace neomesh {
+
+namespace {
+
+int gmsh_facet_type(int dim, PetscInt num_vertices) {
+  if (num_vertices == 1) return 15;  // point
+  if (dim == 2) return 1;            // line
+  return num_vertices == 3 ? 2 : 3;  // triangle or quadrilateral face
+}
+
+// One entity per (dim, physical tag); cells without a tag get the entity of tag 0.
+struct Entities {
+  std::map<std::pair<int, int>, int> tag;  // (dim, physical tag) → entity tag
+  int count(int dim) const {
+    return static_cast<int>(
+        std::count_if(tag.begin(), tag.end(), [&](const auto& e) { return e.first.first == dim; }));
+  }
+  void add(int dim, int physical) {
+    if (!tag.contains({dim, physical})) tag[{dim, physical}] = count(dim) + 1;
+  }
+};
+
+// An element block: elements of one type on one entity, as vertex lists (input numbers), and
+// for cells their input numbers.
+struct Block {
+  int dim, entity, type;
+  std::vector<std::vector<PetscInt>> elements;
+  std::vector<PetscInt> cells;
+};
+
+void write_entities(std::ostream& f, const std::vector<double>& xyz, const Entities& entities) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+  }
+  fmt::print(f, "$Entities\n{} {} {} {}\n", entities.count(0), entities.count(1), entities.count(2),
+             entities.count(3));
+  for (const auto& [key, entity] : entities.tag) {  // sorted by dim, as Gmsh wants
+    const auto [dim, physical] = key;
+    const std::string physicals = physical > 0 ? fmt::format("1 {}", physical) : "0";
+    if (dim == 0)
+      fmt::print(f, "{} {} {} {} {}\n", entity, lo[0], lo[1], lo[2], physicals);
+    else
+      fmt::print(f, "{} {} {} {} {} {} {} {} 0\n", entity, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2],
+                 physicals);
+  }
+  fmt::print(f, "$EndEntities\n");
+}
+
+std::vector<Block> element_blocks(const GatheredMesh& g, const WrittenGroups& groups,
+                                  Entities& entities) {
+  const InputMesh& mesh = g.mesh;
+  std::map<std::tuple<int, int, int>, Block> blocks;  // by (dim, physical tag, type)
+  for (const PhysicalGroup& group : groups.all) entities.add(group.dim, group.tag);
+  for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
+    const CellType t = mesh.cell_types[c];
+    const int tag = mesh.cell_tags[c] != 0 ? mesh.cell_tags[c] : groups.untagged_cells;
+    entities.add(mesh.dim, tag);
+    auto& block = blocks[{mesh.dim, tag, facts(t).gmsh}];
+    std::vector<PetscInt> vertices(num_vertices(t));
+    const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
+    for (int i = 0; i < num_vertices(t); ++i) vertices[i] = cell[gmsh_from_canonical(t)[i]];
+    block.elements.push_back(std::move(vertices));
+    block.cells.push_back(c);
+  }
+  for (const TaggedEntities* tagged : {&mesh.facets, &mesh.points})
+    for (PetscInt k = 0; k < tagged->size(); ++k) {
+      const PetscInt n = tagged->offsets[k + 1] - tagged->offsets[k];
+      const int dim = n == 1 ? 0 : mesh.dim - 1;
+      entities.add(dim, tagged->tags[k]);
+      blocks[{dim, tagged->tags[k], gmsh_facet_type(mesh.dim, n)}].elements.emplace_back(
+          tagged->vertices.begin() + tagged->offsets[k],
+          tagged->vertices.begin() + tagged->offsets[k + 1]);
+    }
+  std::vector<Block> out;
+  for (auto& [key, block] : blocks) {
+    const auto [dim, physical, type] = key;
+    out.push_back({dim, entities.tag.at({dim, physical}), type, std::move(block.elements),
+                   std::move(block.cells)});
+  }
+  // Cells first, then facets and points: element numbers then follow the input's cells.
+  std::stable_sort(out.begin(), out.end(),
+                   [](const Block& a, const Block& b) { return a.dim > b.dim; });
+  return out;
+}
+
+// $NodeData or $ElementData of an array: name, time 0, step 0, the values of every node or
+// element, by tag 1, 2, ... (`index[t - 1]`: the entry of the array for tag t, or -1 for an
+// element that is not a cell, a facet or point of a group: NaN, since meshio reads an
+// $ElementData only if it covers every element).
+void write_data(std::ostream& f, const char* section, const DataArray& a,
+                const std::vector<std::ptrdiff_t>& index) {
+  std::string name = a.name;  // a string tag is one line between quotes
+  std::replace_if(
+      name.begin(), name.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::replace(name.begin(), name.end(), '"', '\'');
+  fmt::print(f, "${}\n1\n\"{}\"\n1\n0\n3\n0\n{}\n{}\n", section, name, a.components, index.size());
+  for (std::size_t t = 0; t < index.size(); ++t) {
+    fmt::print(f, "{}", t + 1);
+    for (int k = 0; k < a.components; ++k)
+      if (index[t] < 0)
+        fmt::print(f, " nan");
+      else
+        fmt::print(f, " {:.17g}", a.values[index[t] * a.components + k]);
+    fmt::print(f, "\n");
+  }
+  fmt::print(f, "$End{}\n", section);
+}
+
+}  // namespace
+
+WrittenGroups physical_groups(const InputMesh& mesh) {
+  WrittenGroups g{mesh.groups, 0};
+  const bool any_untagged =
+      std::find(mesh.cell_tags.begin(), mesh.cell_tags.end(), 0) != mesh.cell_tags.end();
+  if (mesh.groups.empty() || !any_untagged) return g;
+  int largest = 0;
+  for (const PhysicalGroup& group : mesh.groups)
+    if (group.dim == mesh.dim) largest = std::max(largest, group.tag);
+  g.untagged_cells = largest + 1;
+  g.all.push_back({mesh.dim, g.untagged_cells, "domain"});
+  std::sort(g.all.begin(), g.all.end(), [](const auto& a, const auto& b) {
+    return std::pair(a.dim, a.tag) < std::pair(b.dim, b.tag);
+  });
+  return g;
+}
+
+void write_msh(const GatheredMesh& g, std::ostream& f) {
+  const InputMesh& mesh = g.mesh;
+  fmt::print(f, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
+  const WrittenGroups groups = physical_groups(mesh);
+  const auto named = std::count_if(groups.all.begin(), groups.all.end(),
+                                   [](const auto& group) { return !group.name.empty(); });
+  if (named > 0) {
+    fmt::print(f, "$PhysicalNames\n{}\n", named);
+    for (const PhysicalGroup& group : groups.all)
+      if (!group.name.empty()) fmt::print(f, "{} {} \"{}\"\n", group.dim, group.tag, group.name);
+    fmt::print(f, "$EndPhysicalNames\n");
+  }
+
+  Entities entities;
+  const std::vector<Block> blocks = element_blocks(g, groups, entities);
+  const std::vector<double> xyz = coordinates_in_space(mesh);
+  write_entities(f, xyz, entities);
+
+  // All nodes on the first cell entity; Gmsh and PETSc accept nodes classified there.
+  const PetscInt nv = mesh.num_vertices();
+  fmt::print(f, "$Nodes\n1 {} 1 {}\n{} {} 0 {}\n", nv, nv, mesh.dim, blocks.front().entity, nv);
+  for (PetscInt v = 0; v < nv; ++v) fmt::print(f, "{}\n", v + 1);
+  for (PetscInt v = 0; v < nv; ++v)
+    fmt::print(f, "{:.17g} {:.17g} {:.17g}\n", xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+  fmt::print(f, "$EndNodes\n");
+
+  std::size_t total = 0;
+  for (const Block& b : blocks) total += b.elements.size();
+  fmt::print(f, "$Elements\n{} {} 1 {}\n", blocks.size(), total, total);
+  std::vector<std::ptrdiff_t> cell_of;  // per element (tag - 1): its cell, or -1
+  cell_of.reserve(total);
+  for (const Block& b : blocks) {
+    fmt::print(f, "{} {} {} {}\n", b.dim, b.entity, b.type, b.elements.size());
+    for (std::size_t k = 0; k < b.elements.size(); ++k) {
+      fmt::print(f, "{}", cell_of.size() + 1);
+      for (PetscInt v : b.elements[k]) fmt::print(f, " {}", v + 1);
+      fmt::print(f, "\n");
+      cell_of.push_back(k < b.cells.size() ? static_cast<std::ptrdiff_t>(b.cells[k]) : -1);
+    }
+  }
+  fmt::print(f, "$EndElements\n");
+
+  std::vector<std::ptrdiff_t> node(nv);
+  std::iota(node.begin(), node.end(), 0);
+  for (const DataArray& a : mesh.point_data) write_data(f, "NodeData", a, node);
+  for (const DataArray& a : mesh.cell_data) write_data(f, "ElementData", a, cell_of);
+}
+
+}  // namespace neomesh

@@ -1,0 +1,200 @@
+#include "formats/vtk_cells.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/error.hpp"
+#include "mesh/cell_order.hpp"
+
+namespace neomesh {
+
+namespace {
+
+constexpr VtkType kVtkTypes[] = {{0, -1, 1, 0, std::nullopt, "empty cell"},
+                                 {1, 0, 1, 1, std::nullopt, "vertex"},
+                                 {kPolyVertex, 0, 1, -1, std::nullopt, "poly-vertex"},
+                                 {3, 1, 1, 2, std::nullopt, "line"},
+                                 {kPolyLine, 1, 1, -1, std::nullopt, "poly-line"},
+                                 {5, 2, 1, 3, CellType::Triangle, "triangle"},
+                                 {kStrip, 2, 1, -1, std::nullopt, "triangle strip"},
+                                 {kPolygon, 2, 1, -1, std::nullopt, "polygon"},
+                                 {kPixel, 2, 1, 4, CellType::Quadrilateral, "pixel"},
+                                 {9, 2, 1, 4, CellType::Quadrilateral, "quadrilateral"},
+                                 {10, 3, 1, 4, CellType::Tetrahedron, "tetrahedron"},
+                                 {kVoxel, 3, 1, 8, CellType::Hexahedron, "voxel"},
+                                 {12, 3, 1, 8, CellType::Hexahedron, "hexahedron"},
+                                 {13, 3, 1, 6, CellType::Wedge, "wedge"},
+                                 {14, 3, 1, 5, CellType::Pyramid, "pyramid"},
+                                 {15, 3, 1, 10, std::nullopt, "pentagonal prism"},
+                                 {16, 3, 1, 12, std::nullopt, "hexagonal prism"},
+                                 {21, 1, 2, 3, std::nullopt, "quadratic edge"},
+                                 {22, 2, 2, 6, std::nullopt, "quadratic triangle"},
+                                 {23, 2, 2, 8, std::nullopt, "quadratic quadrilateral"},
+                                 {24, 3, 2, 10, std::nullopt, "quadratic tetrahedron"},
+                                 {25, 3, 2, 20, std::nullopt, "quadratic hexahedron"},
+                                 {26, 3, 2, 15, std::nullopt, "quadratic wedge"},
+                                 {27, 3, 2, 13, std::nullopt, "quadratic pyramid"},
+                                 {28, 2, 2, 9, std::nullopt, "biquadratic quadrilateral"},
+                                 {29, 3, 2, 27, std::nullopt, "triquadratic hexahedron"},
+                                 {30, 2, 2, 6, std::nullopt, "quadratic-linear quadrilateral"},
+                                 {31, 3, 2, 12, std::nullopt, "quadratic-linear wedge"},
+                                 {32, 3, 2, 18, std::nullopt, "biquadratic-quadratic wedge"},
+                                 {33, 3, 2, 24, std::nullopt, "biquadratic-quadratic hexahedron"},
+                                 {34, 2, 2, 7, std::nullopt, "biquadratic triangle"},
+                                 {35, 1, 3, 4, std::nullopt, "cubic line"},
+                                 {36, 2, 2, -1, std::nullopt, "quadratic polygon"},
+                                 {42, 3, 1, -1, std::nullopt, "polyhedron"},
+                                 {68, 1, 2, -1, std::nullopt, "Lagrange curve"},
+                                 {69, 2, 2, -1, std::nullopt, "Lagrange triangle"},
+                                 {70, 2, 2, -1, std::nullopt, "Lagrange quadrilateral"},
+                                 {71, 3, 2, -1, std::nullopt, "Lagrange tetrahedron"},
+                                 {72, 3, 2, -1, std::nullopt, "Lagrange hexahedron"},
+                                 {73, 3, 2, -1, std::nullopt, "Lagrange wedge"},
+                                 {74, 3, 2, -1, std::nullopt, "Lagrange pyramid"},
+                                 {75, 1, 2, -1, std::nullopt, "Bezier curve"},
+                                 {76, 2, 2, -1, std::nullopt, "Bezier triangle"},
+                                 {77, 2, 2, -1, std::nullopt, "Bezier quadrilateral"},
+                                 {78, 3, 2, -1, std::nullopt, "Bezier tetrahedron"},
+                                 {79, 3, 2, -1, std::nullopt, "Bezier hexahedron"},
+                                 {80, 3, 2, -1, std::nullopt, "Bezier wedge"},
+                                 {81, 3, 2, -1, std::nullopt, "Bezier pyramid"}};
+
+}  // namespace
+
+const VtkType* vtk_type(long long vtk) {
+  for (const VtkType& t : kVtkTypes)
+    if (t.vtk == vtk) return &t;
+  return nullptr;
+}
+
+namespace {
+
+// A cell of the file as neomesh's cell type, or nothing for a lower-dimensional element.
+std::optional<CellType> cell_type(const VtkType& t, std::int64_t vertices) {
+  if (t.vtk != kPolygon) return t.cell;
+  return vertices == 3 ? CellType::Triangle : CellType::Quadrilateral;
+}
+
+// The dimension of the cells of the highest dimension, which are the cells; throws Error unless
+// they are 2D or 3D cells neomesh reads.
+int cell_dimension(const VtkCells& c, const std::string& file) {
+  if (c.types.empty()) fail("{}: has no cells", file);
+  int dim = -1;
+  for (int type : c.types) dim = std::max(dim, vtk_type(type)->dim);
+  if (dim < 2)
+    fail(
+        "{}: has no 2D or 3D cells (only {}D elements); neomesh needs triangles, "
+        "quadrilaterals, tetrahedra, hexahedra, wedges or pyramids",
+        file, std::max(dim, 0));
+  for (std::size_t i = 0; i < c.types.size(); ++i) {
+    const VtkType& t = *vtk_type(c.types[i]);
+    if (t.dim != dim) continue;
+    const std::int64_t vertices = c.offsets[i + 1] - c.offsets[i];
+    if (t.order > 1)
+      fail(
+          "{}: has second-order (curved) elements; neomesh needs first-order elements (cell {} "
+          "(0-based) is a {})",
+          file, i, t.name);
+    if (t.vtk == kPolygon && (vertices < 3 || vertices > 4))
+      fail("{}: cell {} (0-based) is a polygon of {} vertices; neomesh reads polygons of 3 or 4",
+           file, i, vertices);
+    if (!cell_type(t, vertices))
+      fail(
+          "{}: cell {} (0-based) is a {}; neomesh supports triangles, quadrilaterals, "
+          "tetrahedra, hexahedra, wedges and pyramids",
+          file, i, t.name);
+  }
+  return dim;
+}
+
+void add_cells(const VtkCells& c, const std::string& file, const std::vector<PetscInt>& vertex,
+               InputMesh& mesh) {
+  const bool skipped = std::any_of(c.types.begin(), c.types.end(),
+                                   [&](int type) { return vtk_type(type)->dim != mesh.dim; });
+  for (std::size_t i = 0; i < c.types.size(); ++i) {
+    const VtkType& t = *vtk_type(c.types[i]);
+    if (t.dim != mesh.dim) continue;
+    const std::int64_t* points = c.points.data() + c.offsets[i];
+    const int n = static_cast<int>(c.offsets[i + 1] - c.offsets[i]);
+    const CellType type = *cell_type(t, n);
+    const bool tensor = t.vtk == kPixel || t.vtk == kVoxel;
+    PetscInt canonical[8];
+    for (int k = 0; k < n; ++k) {
+      canonical[tensor ? k : vtk_from_canonical(type)[k]] = vertex[points[k]];
+      if (std::find(points, points + k, points[k]) != points + k)
+        fail("{}: cell {} (0-based) has a repeated vertex", file, i);
+    }
+    const int tag = c.tags.empty() ? 0 : std::max(c.tags[i], 0);
+    mesh.add_cell(type, canonical, tag);
+    // Cells are numbered without the file's lower-dimensional ones: messages give both.
+    if (skipped) mesh.element_tag.push_back(static_cast<std::int64_t>(i));
+  }
+}
+
+// The facets (elements of dimension mesh.dim - 1) with a positive tag.
+void add_tagged_elements(const VtkCells& c, const std::string& file,
+                         const std::vector<PetscInt>& vertex, InputMesh& mesh) {
+  if (c.tags.empty()) return;
+  for (std::size_t i = 0; i < c.types.size(); ++i) {
+    const VtkType& t = *vtk_type(c.types[i]);
+    const int n = static_cast<int>(c.offsets[i + 1] - c.offsets[i]);
+    const bool facet = t.dim == mesh.dim - 1 && t.order == 1 &&
+                       (t.vertices > 0 || (t.vtk == kPolygon && (n == 3 || n == 4)));
+    if (c.tags[i] <= 0 || !facet) continue;
+    PetscInt v[4];
+    for (int k = 0; k < n; ++k) {
+      const std::int64_t p = c.points[c.offsets[i] + (t.vtk == kPixel && k >= 2 ? 5 - k : k)];
+      if (vertex[p] < 0)
+        fail("{}: element {} (0-based) of group {} is not on the mesh (point {} is on no cell)",
+             file, i, c.tags[i], p);
+      v[k] = vertex[p];
+    }
+    mesh.facets.add(v, n, c.tags[i]);
+  }
+}
+
+}  // namespace
+
+bool group_name_array(const std::vector<double>& values, PhysicalGroup& group) {
+  if (values.size() != 2) return false;
+  const double tag = values[0], dim = values[1];
+  if (!(tag >= 1 && tag < 2147483647.0 && tag == std::floor(tag))) return false;
+  if (!(dim >= 0 && dim <= 3 && dim == std::floor(dim))) return false;
+  group.tag = static_cast<int>(tag);
+  group.dim = static_cast<int>(dim);
+  return true;
+}
+
+InputMesh input_from_vtk_cells(const VtkCells& c, const std::string& file) {
+  InputMesh mesh;
+  mesh.dim = cell_dimension(c, file);
+  std::vector<PetscInt> vertex(c.xyz.size() / 3, -1);
+  std::vector<std::int64_t> kept_cells, kept_points;
+  for (std::size_t i = 0; i < c.types.size(); ++i)
+    if (vtk_type(c.types[i])->dim == mesh.dim) {
+      kept_cells.push_back(static_cast<std::int64_t>(i));
+      for (std::int64_t k = c.offsets[i]; k < c.offsets[i + 1]; ++k) vertex[c.points[k]] = 0;
+    }
+  for (std::size_t p = 0; p < vertex.size(); ++p)
+    if (vertex[p] >= 0) kept_points.push_back(static_cast<std::int64_t>(p));
+  number_used_vertices(vertex, c.xyz, file, mesh);
+  add_cells(c, file, vertex, mesh);
+  add_tagged_elements(c, file, vertex, mesh);
+  mesh.point_data = select_data(c.point_data, vertex.size(), kept_points);
+  mesh.cell_data = select_data(c.cell_data, c.types.size(), kept_cells);
+  std::set<std::pair<int, int>> groups;  // (dim, tag)
+  for (int tag : mesh.cell_tags)
+    if (tag > 0) groups.emplace(mesh.dim, tag);
+  for (int tag : mesh.facets.tags) groups.emplace(mesh.dim - 1, tag);
+  std::map<std::pair<int, int>, std::string> names;  // the last name of each group
+  for (const PhysicalGroup& g : c.names) names[{g.dim, g.tag}] = g.name;
+  for (const auto& [dim, tag] : groups) {
+    const auto it = names.find({dim, tag});
+    mesh.groups.push_back({dim, tag, it == names.end() ? "" : it->second});
+  }
+  return mesh;
+}
+
+}  // namespace neomesh
