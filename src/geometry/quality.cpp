@@ -302,6 +302,18 @@ MetricStats reduce(const std::vector<double>& values, std::int64_t global_count,
   return {low, global_count > 0 ? sum / global_count : 0.0, high};
 }
 
+// metric.template operator()<Type>(x) of one cell of `type` at `coords` (dim values per vertex).
+template <class Metric>
+double of_one_cell(CellType type, const double* coords, Metric metric) {
+  double value = 0.0;
+  visit_cell_type(type, [&]<CellType Type>(CellTag<Type>) {
+    using Traits = CellTraits<Type>;
+    value = metric.template operator()<Type>(
+        Eigen::Map<const typename Traits::Coordinates>(coords, Traits::dim, Traits::vertices));
+  });
+  return value;
+}
+
 }  // namespace
 
 CellQuality cell_quality(const MeshView& view, std::span<const double> coords) {
@@ -342,23 +354,13 @@ std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const 
 }
 
 double cell_scaled_jacobian(CellType type, const double* coords) {
-  double sj = 0.0;
-  visit_cell_type(type, [&]<CellType Type>(CellTag<Type>) {
-    using Traits = CellTraits<Type>;
-    sj = scaled_jacobian<Type>(
-        Eigen::Map<const typename Traits::Coordinates>(coords, Traits::dim, Traits::vertices));
-  });
-  return sj;
+  return of_one_cell(type, coords,
+                     []<CellType Type>(const auto& x) { return scaled_jacobian<Type>(x); });
 }
 
 double cell_edge_ratio(CellType type, const double* coords) {
-  double ratio = 0.0;
-  visit_cell_type(type, [&]<CellType Type>(CellTag<Type>) {
-    using Traits = CellTraits<Type>;
-    ratio = edge_ratio<Type>(
-        Eigen::Map<const typename Traits::Coordinates>(coords, Traits::dim, Traits::vertices));
-  });
-  return ratio;
+  return of_one_cell(type, coords,
+                     []<CellType Type>(const auto& x) { return edge_ratio<Type>(x); });
 }
 
 std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const double> coords) {

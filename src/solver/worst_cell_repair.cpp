@@ -140,8 +140,9 @@ class Repair {
     for (std::size_t c = 0; c < m.types.size(); ++c) {
       for (std::int64_t k = m.offsets[c]; k < m.offsets[c + 1]; ++k)
         star_[next[m.vertices[k]]++] = static_cast<std::int64_t>(c);
-      sj_[c] = scaled_jacobian(c);
-      max_edge_ratio_ = std::max(max_edge_ratio_, edge_ratio(c));
+      const auto x = cell_coords(c);
+      sj_[c] = cell_scaled_jacobian(m.types[c], x.data());
+      max_edge_ratio_ = std::max(max_edge_ratio_, cell_edge_ratio(m.types[c], x.data()));
     }
   }
 
@@ -212,9 +213,6 @@ class Repair {
   double scaled_jacobian(std::int64_t c) const {
     return cell_scaled_jacobian(m_.types[c], cell_coords(c).data());
   }
-  double edge_ratio(std::int64_t c) const {
-    return cell_edge_ratio(m_.types[c], cell_coords(c).data());
-  }
   double distance(std::span<const double> x, std::int64_t u, std::int64_t v) const {
     double s = 0.0;
     for (int a = 0; a < m_.dim; ++a) s += std::pow(x[m_.dim * u + a] - x[m_.dim * v + a], 2);
@@ -229,8 +227,9 @@ class Repair {
       for (std::int64_t u : cell_vertices(c))
         if (u != v && !(distance(m_.coords, u, v) >= kMinDistanceFraction * distance(start_, u, v)))
           return -kInfinity;
-      if (!(edge_ratio(c) <= max_edge_ratio_)) return -kInfinity;
-      q = std::min(q, scaled_jacobian(c));
+      const auto x = cell_coords(c);  // once for both measures: this is the search's inner loop
+      if (!(cell_edge_ratio(m_.types[c], x.data()) <= max_edge_ratio_)) return -kInfinity;
+      q = std::min(q, cell_scaled_jacobian(m_.types[c], x.data()));
     }
     return q;
   }
