@@ -288,9 +288,15 @@ struct AdaptOptions {
   // Inverted cells are untangled first, towards the size field's volumes (a geometry that
   // moved through the mesh); false: they are an error.
   bool untangle = true;
-  // As SmoothOptions::quality_guard: flat corners lifted, no cell worse than the input's worst
-  // (not with a fit to a level set, whose interface vertices must stay on it).
+  // As SmoothOptions::quality_guard: flat corners lifted, and no cell below the input's worst
+  // scaled Jacobian or kGuardCeiling, whichever is lower: grading a mesh changes the shapes of
+  // its cells, and against a uniform input (every cell 1) the guard would undo the whole
+  // adaptation; 0.2 is below what isotropic adaptation with the default sizes leaves
+  // (docs/adaptivity.md: 0.31 quads, 0.26 triangles) and above nearly flat cells. Not with a fit
+  // to a level set, whose interface vertices must stay on it, nor with a metric field, whose
+  // cells are stretched on purpose (the guard measures cells against ideal ones).
   bool quality_guard = true;
+  static constexpr double kGuardCeiling = 0.2;
 
   // `base` with the thesis' scheme (§6.1): the raw field, λ = 1, μ = 10, 3×3(×3) Gauss points,
   // fixed boundary vertices, the thesis' Picard updates and stopping rule, the Riesz solve to

@@ -75,7 +75,9 @@ struct BoundarySummary {
 // The target cells of smoothing (TargetMode): how many cells keep all of their input cell, part
 // of it, or none (the ideal cell).
 struct TargetSummary {
-  std::string mode;  // "ideal", "input" or "smoothed"; empty for adaptation (ideal cells)
+  // "ideal", "input" or "smoothed"; for adaptation "metric" (a metric field's cells) or empty
+  // (ideal cells)
+  std::string mode;
   std::int64_t input = 0, blended = 0, ideal = 0;
   // The input has inverted cells: the targets are ideal whatever was asked (its cells around
   // the inverted ones are no design to keep).
@@ -109,9 +111,9 @@ struct UntanglingSummary {
 // The quality guard of smoothing: vertices pulled back toward the input so that no cell is
 // worse than the input's worst.
 struct QualityGuardResult {
-  double input_min = 0.0;           // minimum scaled Jacobian of the input: the threshold
-  double min_before = 0.0;          // ... of the optimized mesh before the guard
-  double min_after = 0.0;           // ... after it (≥ input_min)
+  double input_min = 0.0;   // the threshold: the input's minimum scaled Jacobian (adapt: ≤ 0.2)
+  double min_before = 0.0;  // ... of the optimized mesh before the guard
+  double min_after = 0.0;   // ... after it (≥ input_min)
   std::int64_t vertices_moved = 0;  // vertices the guard pulled back (global count)
   int rounds = 0;
   // Always false: the guard falls back to the input, which meets its threshold (the report

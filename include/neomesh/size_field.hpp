@@ -3,6 +3,12 @@
 // a target surface (circle/sphere, plane, the surface of an axis-aligned box, or |φ| of a
 // level-set expression φ(x, y, z, t)), or per-cell values given directly. A level set may move
 // in time (set_time).
+//
+// An anisotropic field is a metric M(x), a symmetric positive definite dim × dim matrix: a cell
+// is as the field wants it where it is the unit cell in M, of size 1/√λ along each eigenvector of
+// M with eigenvalue λ (Mmg's and Gmsh's convention). Adaptation then aims each cell at the ideal
+// cell stretched by M^(-1/2) at its centroid, of relative volume det(M)^(-1/2) (docs/method.md,
+// "Metric fields"); only the ratios of sizes matter, since the number of cells is fixed.
 #pragma once
 
 #include <filesystem>
@@ -14,6 +20,16 @@
 #include <neomesh/options.hpp>
 
 namespace neomesh {
+
+// The metric of SizeField::stretched: cells of size `normal` across the target surface and
+// `tangent` along it, within `width` of it; farther away the size across grows by `grading` per
+// unit distance (0.3: neighbouring cells differ by at most 30 %, Mmg's default) until the cells
+// are isotropic of size `tangent`.
+struct Stretch {
+  double normal = 0.0, tangent = 0.0;  // 0 < normal ≤ tangent
+  double width = 0.0;                  // ≥ 0
+  double grading = 0.3;                // > 0
+};
 
 class SizeField {
  public:
@@ -31,6 +47,16 @@ class SizeField {
   static SizeField cell_values(std::vector<double> values);
   // One value per line, in the input mesh's cell order.
   static SizeField read_cell_values(const std::filesystem::path& file);
+  // The metric whose entries are the expressions m11, m12, m22 (2D) or m11, m12, m13, m22, m23,
+  // m33 (3D) in x, y, z, t (muparser syntax; the upper triangle of the symmetric M). Adapting to
+  // it throws Error naming the cell where M is not positive definite.
+  static SizeField metric(const std::vector<std::string>& entries);
+
+  // This distance field (not per-cell values) made anisotropic: the metric of `stretch` about
+  // its target surface, the surface's normal taken from the gradient of its signed distance.
+  SizeField stretched(const Stretch& stretch) const;
+  // A metric field (metric() or stretched()): adaptation aims at target shapes, not only volumes.
+  bool anisotropic() const { return static_cast<bool>(metric_); }
 
   // The time t of a level-set expression (a geometry that moves); other fields ignore it.
   void set_time(double t);
@@ -41,11 +67,14 @@ class SizeField {
  private:
   friend struct SizeFieldAccess;  // src/adapt/size_field.cpp evaluates the field on a mesh
   using Distance = std::function<double(std::span<const double> point)>;
-  SizeField(std::string description, int dim, Distance distance);
+  // M at a point, dim × dim (column-major) into the second argument.
+  using Metric = std::function<void(std::span<const double> point, std::span<double> m)>;
+  SizeField(std::string description, int dim, Distance signed_distance);
 
   std::string description_;
-  int dim_ = 0;  // dimension the field needs, 0 for any
-  Distance distance_;
+  int dim_ = 0;               // dimension the field needs, 0 for any
+  Distance signed_distance_;  // negative on one side of the target surface; d = its magnitude
+  Metric metric_;             // for an anisotropic field; empty otherwise
   std::vector<double> cell_values_;       // for cell_values(); empty otherwise
   std::function<void(double)> set_time_;  // for level_set(); empty otherwise
 };

@@ -130,8 +130,8 @@ FitResult fit_interface(const MeshView& view, const DofMap& dofs, Vec x,
         stage.min_updates = 0;  // the volumes of the stage's start will do
         if (options.stage_iterations > 0) stage_method.max_iterations = options.stage_iterations;
       }
-      const PicardResult r = picard(functional, view, x, hooks.target_volumes, hooks.set_volumes,
-                                    stage, stage_method, observe);
+      const PicardResult r = picard(functional, view, x, hooks.targets, hooks.set_targets, stage,
+                                    stage_method, observe);
       append(result.picard, r);
       ok = valid(functional, view, dofs, x);
       detail("  fit: stage {:.3g}: {} iterations{}\n", to, r.run.history.size(),

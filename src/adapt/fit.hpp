@@ -35,8 +35,8 @@ struct FitHooks {
   // Rebuilds the functional with these vertices sliding too (none: the boundary's alone),
   // keeping its desired volumes, and returns it.
   std::function<const Functional&(SlidingVertices)> constrain;
-  std::function<std::vector<double>(Vec x)> target_volumes;
-  std::function<void(const std::vector<double>&)> set_volumes;
+  TargetsAt targets;
+  SetTargets set_targets;
 };
 
 // Fits x (global coordinate Vec laid out by `dofs`) to the zero set of `phi` at its current

@@ -1,6 +1,7 @@
 #include "adapt/picard.hpp"
 
 #include <cmath>
+#include <memory>
 
 namespace neomesh {
 
@@ -14,14 +15,13 @@ bool converged(StopReason reason) {
 }  // namespace
 
 PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
-                    const std::function<std::vector<double>(Vec x)>& target_volumes,
-                    const std::function<void(const std::vector<double>&)>& set_volumes,
+                    const TargetsAt& targets, const SetTargets& set_targets,
                     const PicardOptions& options, const QuasiNewtonOptions& method_options,
                     const Observer& observe) {
-  std::vector<double> volumes = target_volumes(x);
-  set_volumes(volumes);
+  CellTargets current = targets(x);
+  set_targets(current);
   // QuasiNewton keeps this Vec; updates overwrite its values.
-  OwnedVec cell_size = local_cell_size(view, functional.dofs(), volumes);
+  OwnedVec cell_size = local_cell_size(view, functional.dofs(), current.volumes);
   QuasiNewton method(functional, method_options, cell_size);
   method.restart(x);
 
@@ -30,12 +30,13 @@ PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
   result.run.initial_defect = method.defect();
   int since_update = 0;
   auto update = [&] {
-    const std::vector<double> target = target_volumes(x);
+    CellTargets next = targets(x);
     const double w = options.relaxation;
-    for (std::size_t i = 0; i < volumes.size(); ++i)
-      volumes[i] = (1.0 - w) * volumes[i] + w * target[i];
-    set_volumes(volumes);
-    OwnedVec size = local_cell_size(view, functional.dofs(), volumes);
+    for (std::size_t i = 0; i < next.volumes.size(); ++i)
+      next.volumes[i] = (1.0 - w) * current.volumes[i] + w * next.volumes[i];
+    current = std::move(next);
+    set_targets(current);
+    OwnedVec size = local_cell_size(view, functional.dofs(), current.volumes);
     NM_PETSC(VecCopy(size, cell_size));
     method.restart(x);  // a new problem: new F, g, Riesz Laplacian, k_min antigradient steps
     const int k = result.run.history.empty() ? 0 : result.run.history.back().k;
@@ -74,14 +75,18 @@ PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
   return result;
 }
 
-std::function<std::vector<double>(Vec x)> size_field_volumes(const SizeField& field,
-                                                             const SizeFieldOptions& options,
-                                                             const MeshView& view,
-                                                             const DofMap& dofs, double total) {
-  return [&field, &options, &view, &dofs, total](Vec x) {
+TargetsAt size_field_targets(const SizeField& field, const SizeFieldOptions& options,
+                             const Functional& functional, const MeshView& view, double total) {
+  // The cells' orientations are those where the adaptation starts (the first call): taken
+  // from the moving cells, the targets would turn with them, and cells that shear away from
+  // the surface (a star of flat cells around a circle) would be their own fixed point.
+  auto start = std::make_shared<std::vector<double>>();
+  return [&field, &options, &functional, &view, total, start](Vec x) {
+    const DofMap& dofs = functional.dofs();
     std::vector<double> coords(dofs.num_local_dofs());
     dofs.global_to_local(x, coords);
-    return desired_volumes(field, options, view, dofs, coords, total);
+    if (field.anisotropic() && start->empty()) *start = functional.cell_jacobians(x);
+    return adapt_targets(field, options, view, dofs, coords, *start, total);
   };
 }
 

@@ -31,21 +31,24 @@ struct PicardResult {
   std::vector<int> update_iterations;
 };
 
-// Adapts x (a global coordinate Vec laid out by functional.dofs()) to the volumes that
-// `target_volumes(x)` computes (absolute, summing to the mesh volume). `set_volumes` hands
-// new desired volumes to `functional` (the owner of the functional may keep more in step).
-// QuasiNewtonOptions::max_iterations caps the total number of iterations.
+// What the Picard iteration asks at x for: the target cells (volumes absolute, summing to the
+// mesh volume; shapes of an anisotropic field), and how to hand them to the functional (its
+// owner may keep more in step).
+using TargetsAt = std::function<CellTargets(Vec x)>;
+using SetTargets = std::function<void(const CellTargets&)>;
+
+// Adapts x (a global coordinate Vec laid out by functional.dofs()) to the targets that
+// `targets(x)` computes. An update under-relaxes the volumes (PicardOptions::relaxation) and
+// takes the new shapes. QuasiNewtonOptions::max_iterations caps the total number of iterations.
 PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
-                    const std::function<std::vector<double>(Vec x)>& target_volumes,
-                    const std::function<void(const std::vector<double>&)>& set_volumes,
+                    const TargetsAt& targets, const SetTargets& set_targets,
                     const PicardOptions& options, const QuasiNewtonOptions& method,
                     const Observer& observe = {});
 
-// target_volumes for picard(): the size field's desired volumes at the centroids of x,
-// summing to `total`. Keeps references to its arguments.
-std::function<std::vector<double>(Vec x)> size_field_volumes(const SizeField& field,
-                                                             const SizeFieldOptions& options,
-                                                             const MeshView& view,
-                                                             const DofMap& dofs, double total);
+// `targets` for picard(): the size field's targets at the centroids of x (adapt_targets, the
+// cells' orientations from `functional` at the first call's x), volumes summing to `total`.
+// Keeps references to its arguments.
+TargetsAt size_field_targets(const SizeField& field, const SizeFieldOptions& options,
+                             const Functional& functional, const MeshView& view, double total);
 
 }  // namespace neomesh

@@ -1,12 +1,15 @@
 #include "adapt/size_field.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <memory>
 
 #include <muParser.h>
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 
 #include "core/error.hpp"
 #include "solver/desired_volumes.hpp"
@@ -37,8 +40,10 @@ std::string coordinates(std::span<const double> v) {
 struct Expression {
   mu::Parser parser;
   double x = 0.0, y = 0.0, z = 0.0, t = 0.0;
+  std::string what;  // "level-set expression", "metric entry m12", ...
 
-  explicit Expression(const std::string& text) {
+  explicit Expression(const std::string& text, std::string what_ = "level-set expression")
+      : what(std::move(what_)) {
     try {
       parser.DefineVar("x", &x);
       parser.DefineVar("y", &y);
@@ -47,7 +52,7 @@ struct Expression {
       parser.SetExpr(text);
       parser.Eval();  // muparser parses on the first evaluation
     } catch (const mu::Parser::exception_type& e) {
-      fail("cannot parse the level-set expression '{}': {}", text, e.GetMsg());
+      fail("cannot parse the {} '{}': {}", what, text, e.GetMsg());
     }
   }
 
@@ -58,8 +63,8 @@ struct Expression {
     try {
       return parser.Eval();
     } catch (const mu::Parser::exception_type& e) {
-      fail("cannot evaluate the level-set expression '{}' at ({}): {}", parser.GetExpr(),
-           coordinates(p), e.GetMsg());
+      fail("cannot evaluate the {} '{}' at ({}): {}", what, parser.GetExpr(), coordinates(p),
+           e.GetMsg());
     }
   }
 };
@@ -85,8 +90,10 @@ void check_plane(const std::vector<double>& point, const std::vector<double>& no
   if (!(norm(normal) > 0)) fail("the normal of the plane must not be zero");
 }
 
-SizeField::SizeField(std::string description, int dim, Distance distance)
-    : description_(std::move(description)), dim_(dim), distance_(std::move(distance)) {}
+SizeField::SizeField(std::string description, int dim, Distance signed_distance)
+    : description_(std::move(description)),
+      dim_(dim),
+      signed_distance_(std::move(signed_distance)) {}
 
 SizeField SizeField::sphere(std::vector<double> centre, double radius) {
   check_sphere(centre, radius);
@@ -96,7 +103,7 @@ SizeField SizeField::sphere(std::vector<double> centre, double radius) {
           dim, [centre, radius](std::span<const double> p) {
             double r2 = 0.0;
             for (std::size_t j = 0; j < centre.size(); ++j) r2 += std::pow(p[j] - centre[j], 2);
-            return std::abs(std::sqrt(r2) - radius);
+            return std::sqrt(r2) - radius;
           }};
 }
 
@@ -110,7 +117,7 @@ SizeField SizeField::plane(std::vector<double> point, std::vector<double> normal
       static_cast<int>(point.size()), [point, normal](std::span<const double> p) {
         double s = 0.0;
         for (std::size_t j = 0; j < point.size(); ++j) s += (p[j] - point[j]) * normal[j];
-        return std::abs(s);
+        return s;
       }};
 }
 
@@ -124,7 +131,8 @@ SizeField SizeField::box(std::vector<double> lower, std::vector<double> upper) {
   return {fmt::format("distance to the surface of the box ({}) – ({})", coordinates(lower),
                       coordinates(upper)),
           static_cast<int>(lower.size()), [lower, upper](std::span<const double> p) {
-            // Outside: Euclidean distance to the box; inside: distance to the nearest face.
+            // Outside: Euclidean distance to the box; inside: minus the distance to the nearest
+            // face.
             double outside = 0.0, inside = std::numeric_limits<double>::infinity();
             for (std::size_t j = 0; j < lower.size(); ++j) {
               const double below = lower[j] - p[j], above = p[j] - upper[j];
@@ -132,15 +140,85 @@ SizeField SizeField::box(std::vector<double> lower, std::vector<double> upper) {
               outside += out * out;
               inside = std::min(inside, std::max(std::min(-below, -above), 0.0));
             }
-            return outside > 0.0 ? std::sqrt(outside) : inside;
+            return outside > 0.0 ? std::sqrt(outside) : -inside;
           }};
 }
 
 SizeField SizeField::level_set(const std::string& expression) {
   auto phi = std::make_shared<Expression>(expression);
   SizeField field(fmt::format("|{}|", expression), 0,
-                  [phi](std::span<const double> p) { return std::abs((*phi)(p)); });
+                  [phi](std::span<const double> p) { return (*phi)(p); });
   field.set_time_ = [phi](double t) { phi->t = t; };
+  return field;
+}
+
+SizeField SizeField::metric(const std::vector<std::string>& entries) {
+  if (entries.size() != 3 && entries.size() != 6)
+    fail(
+        "a metric needs 3 entries (2D: m11, m12, m22) or 6 (3D: m11, m12, m13, m22, m23, m33), "
+        "got {}",
+        entries.size());
+  const int dim = entries.size() == 3 ? 2 : 3;
+  std::vector<std::shared_ptr<Expression>> m;
+  for (int i = 0, k = 0; i < dim; ++i)
+    for (int j = i; j < dim; ++j, ++k)
+      m.push_back(std::make_shared<Expression>(entries[k],
+                                               fmt::format("metric entry m{}{}", i + 1, j + 1)));
+  SizeField field(fmt::format("the metric ({})", fmt::join(entries, "; ")), dim, {});
+  field.metric_ = [m, dim](std::span<const double> p, std::span<double> out) {
+    for (int i = 0, k = 0; i < dim; ++i)
+      for (int j = i; j < dim; ++j, ++k) out[i + j * dim] = out[j + i * dim] = (*m[k])(p);
+  };
+  field.set_time_ = [m](double t) {
+    for (const auto& entry : m) entry->t = t;
+  };
+  return field;
+}
+
+SizeField SizeField::stretched(const Stretch& stretch) const {
+  if (!signed_distance_)
+    fail("only a field of the distance to a surface can be stretched, not {}", description_);
+  const Stretch s = stretch;
+  if (!(s.normal > 0 && s.normal <= s.tangent && std::isfinite(s.tangent)))
+    fail("a stretch needs sizes 0 < normal ≤ tangent (got normal {}, tangent {})", s.normal,
+         s.tangent);
+  if (!(s.width >= 0 && std::isfinite(s.width)))
+    fail("a stretch needs a width ≥ 0 (got {})", s.width);
+  if (!(s.grading > 0 && std::isfinite(s.grading)))
+    fail("a stretch needs a grading > 0 (got {})", s.grading);
+  SizeField field = *this;
+  field.description_ = fmt::format("{}, stretched: size {:g} across and {:g} along it within {:g}",
+                                   description_, s.normal, s.tangent, s.width);
+  field.metric_ = [phi = signed_distance_, s](std::span<const double> p, std::span<double> m) {
+    const std::size_t d = p.size();
+    // The normal: the gradient of the signed distance by central differences, at a step far
+    // below the smallest size asked for.
+    const double h = 1e-3 * s.normal;
+    std::array<double, 3> at{}, n{};
+    std::copy(p.begin(), p.end(), at.begin());
+    double length = 0.0;
+    for (std::size_t j = 0; j < d; ++j) {
+      at[j] = p[j] + h;
+      const double forward = phi(std::span(at).first(d));
+      at[j] = p[j] - h;
+      n[j] = (forward - phi(std::span(at).first(d))) / (2 * h);
+      at[j] = p[j];
+      length += n[j] * n[j];
+    }
+    length = std::sqrt(length);
+    const double distance = std::abs(phi(p));
+    const double across =
+        std::min(s.tangent, s.normal + s.grading * std::max(0.0, distance - s.width));
+    // M = I / tangent² + (1 / across² − 1 / tangent²) n nᵀ; isotropic where the normal is
+    // undefined (the centre of a sphere, a box's medial surface).
+    const bool has_normal = length > 0 && std::isfinite(length);
+    const double base = has_normal ? 1 / (s.tangent * s.tangent) : 1 / (across * across);
+    const double extra = has_normal ? 1 / (across * across) - base : 0.0;
+    for (std::size_t i = 0; i < d; ++i)
+      for (std::size_t j = 0; j < d; ++j)
+        m[i + j * d] =
+            (i == j ? base : 0.0) + extra * n[i] * n[j] / (has_normal ? length * length : 1);
+  };
   return field;
 }
 
@@ -191,23 +269,70 @@ std::vector<double> cell_centroids(const MeshView& view, std::span<const double>
 struct SizeFieldAccess {
   static const std::string& description(const SizeField& f) { return f.description_; }
   static int dim(const SizeField& f) { return f.dim_; }
-  static const SizeField::Distance& distance(const SizeField& f) { return f.distance_; }
+  static const SizeField::Distance& signed_distance(const SizeField& f) {
+    return f.signed_distance_;
+  }
+  static const SizeField::Metric& metric(const SizeField& f) { return f.metric_; }
   static const std::vector<double>& cell_values(const SizeField& f) { return f.cell_values_; }
 };
+
+namespace {
+
+double determinant(std::span<const double> m, int d) {
+  if (d == 2) return m[0] * m[3] - m[1] * m[2];
+  return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[3] * (m[1] * m[8] - m[2] * m[7]) +
+         m[6] * (m[1] * m[5] - m[2] * m[4]);
+}
+
+// M^(-1/2) of an anisotropic field at each centroid (dim² per cell, column-major); throws
+// Error naming the first cell where M is not symmetric positive definite.
+std::vector<double> metric_inverse_roots(const SizeField& field, const MeshView& view,
+                                         std::span<const double> centroids) {
+  const int d = view.dim;
+  const auto& metric = SizeFieldAccess::metric(field);
+  std::vector<double> roots(static_cast<std::size_t>(view.num_cells) * d * d);
+  Eigen::MatrixXd m(d, d);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(d);
+  for (PetscInt c = 0; c < view.num_cells; ++c) {
+    const std::span<const double> at = centroids.subspan(c * d, d);
+    metric(at, std::span(m.data(), d * d));
+    const bool finite = m.allFinite();
+    if (finite) eigen.compute(m);
+    if (!finite || (m - m.transpose()).norm() > 1e-12 * m.norm() ||
+        !(eigen.eigenvalues().minCoeff() > 0))
+      fail("the metric is not symmetric positive definite at cell {} (centroid {}): {}; {}",
+           view.global_cell[c], coordinates(at),
+           finite ? fmt::format("eigenvalues {:.4g}", fmt::join(eigen.eigenvalues(), ", "))
+                  : std::string("not finite"),
+           SizeFieldAccess::description(field));
+    const Eigen::MatrixXd root = eigen.eigenvectors() *
+                                 eigen.eigenvalues().cwiseSqrt().cwiseInverse().asDiagonal() *
+                                 eigen.eigenvectors().transpose();
+    std::copy_n(root.data(), d * d, roots.begin() + c * d * d);
+  }
+  return roots;
+}
+
+}  // namespace
 
 std::vector<double> relative_volumes(const SizeField& field, const MeshView& view,
                                      std::span<const double> coords,
                                      const SizeFieldOptions& options, MPI_Comm comm) {
   const std::string& description = SizeFieldAccess::description(field);
   const int field_dim = SizeFieldAccess::dim(field);
-  const auto& distance = SizeFieldAccess::distance(field);
+  const auto& signed_distance = SizeFieldAccess::signed_distance(field);
   const std::vector<double>& values = SizeFieldAccess::cell_values(field);
   if (field_dim != 0 && field_dim != view.dim)
     fail("the size field ({}) is {}D but the mesh is {}D", description, field_dim, view.dim);
   const int d = view.dim;
   const std::vector<double> centroids = cell_centroids(view, coords);
   std::vector<double> v(view.num_cells);
-  if (!values.empty()) {
+  if (field.anisotropic()) {
+    // The unit cell of M has the volume det(M^(-1/2)) relative to the ideal cell of size 1.
+    const std::vector<double> roots = metric_inverse_roots(field, view, centroids);
+    for (PetscInt c = 0; c < view.num_cells; ++c)
+      v[c] = determinant(std::span(roots).subspan(c * d * d, d * d), d);
+  } else if (!values.empty()) {
     long long cells = view.num_cells, total = 0;
     MPI_Allreduce(&cells, &total, 1, MPI_LONG_LONG, MPI_SUM, comm);
     if (static_cast<long long>(values.size()) != total)
@@ -215,8 +340,9 @@ std::vector<double> relative_volumes(const SizeField& field, const MeshView& vie
     for (PetscInt c = 0; c < view.num_cells; ++c) v[c] = values[view.global_cell[c]];
   } else {
     for (PetscInt c = 0; c < view.num_cells; ++c)
-      v[c] =
-          options.floor + std::pow(distance(std::span(centroids).subspan(c * d, d)), options.power);
+      v[c] = options.floor +
+             std::pow(std::abs(signed_distance(std::span(centroids).subspan(c * d, d))),
+                      options.power);
   }
   for (PetscInt c = 0; c < view.num_cells; ++c) {
     const char* problem = std::isnan(v[c])   ? "NaN"
@@ -250,6 +376,32 @@ std::vector<double> desired_volumes(const SizeField& field, const SizeFieldOptio
   }
   normalize_volumes(v, total, dofs.comm());
   return v;
+}
+
+std::vector<double> target_shapes(const SizeField& field, const MeshView& view,
+                                  std::span<const double> coords,
+                                  std::span<const double> jacobians) {
+  if (!field.anisotropic()) return {};
+  std::vector<double> shapes = metric_inverse_roots(field, view, cell_centroids(view, coords));
+  const int d = view.dim;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(d, d, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  for (PetscInt c = 0; c < view.num_cells; ++c) {
+    const Eigen::Map<const Eigen::MatrixXd> J(jacobians.data() + c * d * d, d, d);
+    if (!(J.determinant() > 0)) continue;  // an inverted cell has no orientation: S = M^(-1/2)
+    svd.compute(J);
+    const Eigen::MatrixXd rotation = svd.matrixU() * svd.matrixV().transpose();
+    Eigen::Map<Eigen::MatrixXd> S(shapes.data() + c * d * d, d, d);
+    S = S * rotation;
+  }
+  return shapes;
+}
+
+CellTargets adapt_targets(const SizeField& field, const SizeFieldOptions& options,
+                          const MeshView& view, const DofMap& dofs, std::span<const double> coords,
+                          std::span<const double> jacobians, double total) {
+  CellTargets targets = ideal_targets(desired_volumes(field, options, view, dofs, coords, total));
+  targets.shapes = target_shapes(field, view, coords, jacobians);
+  return targets;
 }
 
 }  // namespace neomesh

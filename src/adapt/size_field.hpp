@@ -20,6 +20,7 @@
 
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
+#include "solver/targets.hpp"
 
 namespace neomesh {
 
@@ -33,7 +34,8 @@ void check_plane(const std::vector<double>& point, const std::vector<double>& no
 std::vector<double> cell_centroids(const MeshView& view, std::span<const double> coords);
 
 // Relative desired volume v_K of every local cell of `view` (MeshView order) at the
-// coordinates `coords` (num_vertices × dim, the view's local vertex order). Throws Error if
+// coordinates `coords` (num_vertices × dim, the view's local vertex order); of an anisotropic
+// field det(M)^(-1/2) at the centroid, whatever `options` say. Throws Error if
 // the field does not fit the mesh or is not a positive finite number somewhere. Collective
 // (the per-cell values are checked against the global number of cells).
 std::vector<double> relative_volumes(const SizeField& field, const MeshView& view,
@@ -45,5 +47,23 @@ std::vector<double> relative_volumes(const SizeField& field, const MeshView& vie
 std::vector<double> desired_volumes(const SizeField& field, const SizeFieldOptions& options,
                                     const MeshView& view, const DofMap& dofs,
                                     std::span<const double> coords, double total);
+
+// The target shape of every local cell at `coords` for an anisotropic field, M^(-1/2) at its
+// centroid turned by the cell's rotation: S = M^(-1/2) R with R from the polar decomposition
+// J = R U of a Jacobian of the cell (`jacobians`: Functional::cell_jacobians, dim² per cell). The
+// energy sees only SᵀS, the target in the cell's reference frame (docs/method.md §9), so
+// M^(-1/2) alone would ask for the stretch along the reference cell's axes, whatever way the
+// cell lies (a triangle's are arbitrary): with R it asks for the cell's physical stretch
+// V = J Rᵀ to be M^(-1/2), the unit ball of M. (Column-major, the Functional scales it to det 1.)
+// Empty for an isotropic field. Throws Error naming a cell where M is not symmetric positive
+// definite.
+std::vector<double> target_shapes(const SizeField& field, const MeshView& view,
+                                  std::span<const double> coords,
+                                  std::span<const double> jacobians);
+
+// Adaptation's targets at `coords`: desired_volumes() and target_shapes(). Collective.
+CellTargets adapt_targets(const SizeField& field, const SizeFieldOptions& options,
+                          const MeshView& view, const DofMap& dofs, std::span<const double> coords,
+                          std::span<const double> jacobians, double total);
 
 }  // namespace neomesh

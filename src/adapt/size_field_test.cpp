@@ -6,6 +6,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "core/error.hpp"
 #include "core/testing/test_data.hpp"
@@ -174,6 +175,98 @@ TEST(SizeField, BadInputIsReportedInOneLine) {
                          PETSC_COMM_SELF);
       },
       "is 3D but the mesh is 2D");
+}
+
+// The target shape (M^(-1/2) turned by `rotation`, the cells' Jacobian) and the relative volume a
+// metric field gives a point, through a mesh collapsed onto it as in distance_at.
+struct MetricAt {
+  Eigen::Matrix2d shape;
+  double volume;
+};
+MetricAt metric_at(const SizeField& field, std::vector<double> point,
+                   const Eigen::Matrix2d& rotation = Eigen::Matrix2d::Identity()) {
+  const MeshData mesh = box(CellType::Triangle, 1);
+  MeshView view = serial_view(mesh);
+  std::vector<double> coords(view.coords.size());
+  for (std::size_t i = 0; i < coords.size(); ++i) coords[i] = point[i % 2];
+  std::vector<double> jacobians;
+  for (PetscInt c = 0; c < view.num_cells; ++c)
+    jacobians.insert(jacobians.end(), rotation.data(), rotation.data() + 4);
+  const std::vector<double> shapes = target_shapes(field, view, coords, jacobians);
+  return {Eigen::Map<const Eigen::Matrix2d>(shapes.data()),
+          relative_volumes(field, view, coords, {}, PETSC_COMM_SELF)[0]};
+}
+
+TEST(SizeField, AStretchedCircleHasItsSizesAcrossAndAlongIt) {
+  const SizeField field =
+      SizeField::sphere({0.0, 0.0}, 1.0).stretched({.normal = 0.01, .tangent = 0.1, .width = 0.05});
+  EXPECT_TRUE(field.anisotropic());
+  EXPECT_FALSE(SizeField::sphere({0.0, 0.0}, 1.0).anisotropic());
+  // Within the width, on the x axis: size 0.01 across (x), 0.1 along (y); on the y axis turned.
+  MetricAt m = metric_at(field, {1.02, 0.0});
+  EXPECT_TRUE(m.shape.isApprox(Eigen::Vector2d(0.01, 0.1).asDiagonal().toDenseMatrix(), 1e-6))
+      << m.shape;
+  EXPECT_NEAR(m.volume, 0.01 * 0.1, 1e-9);
+  m = metric_at(field, {0.0, -0.99});
+  EXPECT_TRUE(m.shape.isApprox(Eigen::Vector2d(0.1, 0.01).asDiagonal().toDenseMatrix(), 1e-6));
+  // At 45°: the eigenvectors are the diagonals.
+  const double r = 1.0 / std::sqrt(2.0);
+  m = metric_at(field, {r, r});
+  EXPECT_NEAR((m.shape * Eigen::Vector2d(r, r)).norm(), 0.01, 1e-8);
+  EXPECT_NEAR((m.shape * Eigen::Vector2d(-r, r)).norm(), 0.1, 1e-8);
+  // 0.15 from the circle, 0.1 beyond the width: 0.01 + 0.3 · 0.1 across.
+  m = metric_at(field, {1.15, 0.0});
+  EXPECT_NEAR(m.shape(0, 0), 0.04, 1e-8);
+  EXPECT_NEAR(m.shape(1, 1), 0.1, 1e-8);
+  // Far away: isotropic, the tangential size.
+  m = metric_at(field, {3.0, 0.0});
+  EXPECT_TRUE(m.shape.isApprox(0.1 * Eigen::Matrix2d::Identity(), 1e-8));
+}
+
+TEST(SizeField, TargetShapesTurnWithTheCell) {
+  // The energy sees SᵀS: S = M^(-1/2) R makes the cell's physical stretch J Rᵀ the target.
+  const SizeField field = SizeField::metric({"100", "0", "1"});  // sizes 0.1 along x, 1 along y
+  const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(0.4).toRotationMatrix();
+  const MetricAt m = metric_at(field, {0.3, 0.2}, rotation);
+  const Eigen::Matrix2d root = Eigen::Vector2d(0.1, 1.0).asDiagonal();
+  EXPECT_TRUE(m.shape.isApprox(root * rotation, 1e-12)) << m.shape;
+  EXPECT_NEAR(m.volume, 0.1, 1e-12);
+}
+
+TEST(SizeField, AMetricFromExpressions) {
+  // M = [[4, 1], [1, 4]] · (1 + x): eigenvalues 5 (1 + x) and 3 (1 + x).
+  const SizeField field = SizeField::metric({"4*(1+x)", "1+x", "4*(1+x)"});
+  const MetricAt m = metric_at(field, {1.0, 0.5});
+  const Eigen::Matrix2d metric = (m.shape * m.shape.transpose()).inverse();
+  EXPECT_TRUE(metric.isApprox(Eigen::Matrix2d{{8, 2}, {2, 8}}, 1e-12)) << metric;
+  EXPECT_NEAR(m.volume, 1 / std::sqrt(60.0), 1e-12);
+}
+
+TEST(SizeField, ABadMetricIsReportedWithItsCell) {
+  expect_error(
+      [] {
+        metric_at(SizeField::metric({"1", "2", "1"}), {0.5, 0.5});
+      },
+      "the metric is not symmetric positive definite at cell 0 (centroid 0.5, 0.5): "
+      "eigenvalues -1, 3");
+  expect_error([] { metric_at(SizeField::metric({"1", "0", "x/0"}), {0.5, 0.5}); }, "not finite");
+  expect_error([] { SizeField::metric({"1", "0"}); }, "a metric needs 3 entries");
+  expect_error([] { SizeField::metric({"1", "0", "z*"}); }, "cannot parse the metric entry m22");
+  expect_error(
+      [] {
+        SizeField::cell_values({1.0}).stretched({0.1, 0.2, 0.1});
+      },
+      "only a field of the distance to a surface can be stretched");
+  expect_error(
+      [] {
+        SizeField::plane({0, 0}, {1, 0}).stretched({0.2, 0.1, 0.1});
+      },
+      "a stretch needs sizes 0 < normal ≤ tangent");
+  expect_error(
+      [] {
+        SizeField::plane({0, 0}, {1, 0}).stretched({0.1, 0.2, 0.1, 0.0});
+      },
+      "a stretch needs a grading > 0");
 }
 
 }  // namespace

@@ -215,7 +215,8 @@ void Optimizer::Impl::finish(Result& result) {
 }
 
 void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& method,
-                                          const Observer& observer, Result& result, bool repair) {
+                                          const Observer& observer, Result& result, bool repair,
+                                          double ceiling) {
   if (result.reason != StopReason::TimeLimit) {
     result.corner_phase = lift_flat_corners(*functional, view(), dofs(), x, method, cell_size,
                                             result, observer.iteration);
@@ -227,12 +228,13 @@ void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& m
                                   .sweeps = r.sweeps};
     }
   }
-  // The threshold is the file's worst cell, or where placing vertices on their charts left it.
+  // The threshold is the file's worst cell, or where placing vertices on their charts left it
+  // (at most the ceiling).
   result.quality_guard = guard_worst_quality(
       view(), dofs(), input, x, [this](Vec y) { functional->project_onto_boundary(y); },
       result.quality_before.inverted > 0
-          ? std::nullopt
-          : std::optional(result.quality_before.scaled_jacobian.min));
+          ? std::optional(ceiling)
+          : std::optional(std::min(result.quality_before.scaled_jacobian.min, ceiling)));
   if (result.quality_guard->vertices_moved > 0) result.final_energy = functional->value(x);
 }
 
@@ -267,20 +269,19 @@ VolumeRatioStats Optimizer::Impl::volume_ratio() const {
 
 void Optimizer::Impl::adapt(const SizeField& field, const AdaptOptions& options,
                             const Observer& observer, Result& result) {
-  const auto target_volumes = size_field_volumes(field, options.sizes, view(), dofs(), mesh_volume);
-  // The size field's volumes at the start: what the observer sees, and what untangling aims at.
-  // Adaptation's targets are ideal cells (a smoothing before may have left others).
-  set_desired_volumes(target_volumes(x));
-  functional->set_target_shapes({});
-  input_share.clear();
+  const TargetsAt targets =
+      size_field_targets(field, options.sizes, *functional, view(), mesh_volume);
+  // The size field's targets at the start: what the observer sees, and what untangling aims at.
+  // They replace any a smoothing before may have left.
+  set_targets(targets(x));
   result.problem = problem(options.solver);
+  if (field.anisotropic()) result.problem.targets.mode = "metric";
   if (observer.started) observer.started(result.problem);
   if (options.untangle) result.untangling = untangle(method(options.solver), observer);
   PicardOptions picard = options.picard;
   if (warm) picard.min_updates = options.warm_updates;
   const PicardResult run = neomesh::picard(
-      *functional, view(), x, target_volumes,
-      [this](const std::vector<double>& v) { set_desired_volumes(v); }, picard,
+      *functional, view(), x, targets, [this](const CellTargets& t) { set_targets(t); }, picard,
       method(options.solver), observer);
   warm = true;
   static_cast<SolverRun&>(result) = run.run;
@@ -295,8 +296,12 @@ void Optimizer::Impl::fit(const LevelSet& level_set, const SizeField& field,
       .constrain = [this](SlidingVertices extra) -> const Functional& {
         return constrain(std::move(extra));
       },
-      .target_volumes = size_field_volumes(field, options.sizes, view(), dofs(), mesh_volume),
-      .set_volumes = [this](const std::vector<double>& v) { set_desired_volumes(v); }};
+      // The fit rebuilds the functional (constrain): the targets take the one of the moment.
+      .targets =
+          [this, &field, &options](Vec y) {
+            return size_field_targets(field, options.sizes, *functional, view(), mesh_volume)(y);
+          },
+      .set_targets = [this](const CellTargets& t) { set_targets(t); }};
   fitted = fit_interface(view(), dofs(), x, *phi, hooks, last_stage, method(options.solver), {},
                          observer);
   const FitResult& f = *fitted;
@@ -364,8 +369,10 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
   const OwnedVec input =
       copy_of(r.x);  // where the adaptation starts (vertices placed on their charts)
   r.adapt(field, options, observer, result);
-  if (options.quality_guard)
-    r.protect_worst_cells(input, r.method(options.solver), observer, result);
+  // The guard judges cells against the ideal cell, which a metric field stretches on purpose.
+  if (options.quality_guard && !field.anisotropic())
+    r.protect_worst_cells(input, r.method(options.solver), observer, result, false,
+                          AdaptOptions::kGuardCeiling);
   r.finish(result);
   result.volume_ratio = r.volume_ratio();
   result.seconds = MPI_Wtime() - r.started;

@@ -67,10 +67,10 @@ struct Optimizer::Impl {
            const PicardOptions& last_stage, const Observer& observer, Result& result);
   // The worst cells once the method has stopped (smooth, adapt): corners it left nearly flat
   // are lifted (worst_cells.hpp), with `repair` the worst cells are repaired locally
-  // (worst_cell_repair.hpp), then no cell stays below the input's worst (quality_guard.hpp;
-  // `input`: x where the call started).
+  // (worst_cell_repair.hpp), then no cell stays below the input's worst or `ceiling`, whichever
+  // is lower (quality_guard.hpp; `input`: x where the call started).
   void protect_worst_cells(Vec input, const QuasiNewtonOptions& method, const Observer& observer,
-                           Result& result, bool repair = false);
+                           Result& result, bool repair = false, double ceiling = 1.0);
   // Q = actual / desired volume at x.
   VolumeRatioStats volume_ratio() const;
   // If cells are inverted at x, untangles them (docs/untangling.md) towards the current desired

@@ -442,9 +442,10 @@ const OptionTable<AdaptOptions>& adapt_own_option_table() {
   static const OptionTable<O> table = {
       {.path = "quality_guard",
        .flag = "--no-guard",
-       .help = "keep the adaptation's optimum even where a cell ends up worse than the input's "
-               "worst cell or with a corner nearly flat (default: off, i.e. flat corners are "
-               "lifted and such cells' vertices are pulled back; not with --fit)",
+       .help = "keep the adaptation's optimum even where a cell ends up with a scaled Jacobian "
+               "below 0.2 and the input's worst, or with a corner nearly flat (default: off, i.e. "
+               "flat corners are lifted and such cells' vertices are pulled back; not with --fit "
+               "or a metric)",
        .field = member(&O::quality_guard),
        .negated = true,
        .report_object = "adapt_options"},

@@ -23,8 +23,8 @@ namespace {
 
 struct AdaptCommand {
   std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
-  std::string output, levelset, sizes_file, time;
-  std::vector<double> circle, sphere, plane, box;
+  std::string output, levelset, sizes_file, time, metric;
+  std::vector<double> circle, sphere, plane, box, stretch;
   bool force = false;
   bool fit = false;
   TaskOptions<AdaptOptions> options;
@@ -41,19 +41,50 @@ std::pair<std::vector<double>, std::vector<double>> halves(const std::vector<dou
   return {{v.begin(), middle}, {middle, v.end()}};
 }
 
-// The size field of the command line; an error in its arguments names the option.
+// An error in an option's arguments, named by the option.
+template <typename Make>
+SizeField option(const char* flag, Make make) {
+  try {
+    return make();
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", flag, e.what()));
+  }
+}
+
+// --metric "m11;m12;m22": the entries.
+std::vector<std::string> metric_entries(const std::string& text) {
+  std::vector<std::string> entries;
+  for (std::size_t start = 0;;) {
+    const std::size_t end = text.find(';', start);
+    entries.push_back(text.substr(start, end - start));
+    if (end == std::string::npos) return entries;
+    start = end + 1;
+  }
+}
+
+SizeField distance_field(const AdaptCommand& o);
+
+// The size field of the command line, stretched with --stretch.
 SizeField make_size_field(const AdaptCommand& o) {
   const int given = !o.circle.empty() + !o.sphere.empty() + !o.plane.empty() + !o.box.empty() +
-                    !o.levelset.empty() + !o.sizes_file.empty();
+                    !o.levelset.empty() + !o.sizes_file.empty() + !o.metric.empty();
   if (given != 1)
-    fail("give exactly one size field: --circle, --sphere, --plane, --box, --levelset or --sizes");
-  auto option = [](const char* flag, auto make) {
-    try {
-      return make();
-    } catch (const Error& e) {
-      throw Error(fmt::format("{}: {}", flag, e.what()));
-    }
-  };
+    fail(
+        "give exactly one size field: --circle, --sphere, --plane, --box, --levelset, --sizes or "
+        "--metric");
+  if (!o.metric.empty())
+    return option("--metric", [&] { return SizeField::metric(metric_entries(o.metric)); });
+  SizeField field = distance_field(o);
+  if (o.stretch.empty()) return field;
+  return option("--stretch", [&] {
+    Stretch s{.normal = o.stretch[0], .tangent = o.stretch[1], .width = o.stretch[2]};
+    if (o.stretch.size() > 3) s.grading = o.stretch[3];
+    return field.stretched(s);
+  });
+}
+
+// The distance field of --circle, --sphere, --plane, --box, --levelset, or --sizes' values.
+SizeField distance_field(const AdaptCommand& o) {
   if (!o.circle.empty())
     return option("--circle", [&] { return SizeField::sphere(centre(o.circle), o.circle.back()); });
   if (!o.sphere.empty())
@@ -171,6 +202,7 @@ void adapt(AdaptCommand& o) {
   check_finite("--sphere", o.sphere);
   check_finite("--plane", o.plane);
   check_finite("--box", o.box);
+  check_finite("--stretch", o.stretch);
   SizeField field = make_size_field(o);
   const std::vector<double> times =
       o.time.empty() ? std::vector<double>{} : parse_time_steps(o.time);
@@ -282,6 +314,18 @@ Subcommand add_adapt(CLI::App& app) {
       ->group(field);
   cmd->add_option("--sizes", o->sizes_file,
                   "file with one relative volume per cell, in the mesh's cell order")
+      ->group(field);
+  cmd->add_option("--metric", o->metric,
+                  "\"m11;m12;m22\" (2D) or \"m11;m12;m13;m22;m23;m33\" (3D): an anisotropic "
+                  "metric M(x, y, z) as expressions (muparser); cells aim at size 1/sqrt(λ) along "
+                  "each eigenvector of M")
+      ->group(field);
+  cmd->add_option("--stretch", o->stretch,
+                  "HN,HT,W[,G]: make the distance field anisotropic: cells of size HN across the "
+                  "surface and HT along it within W of it, the size across growing by G (0.3) per "
+                  "unit distance beyond")
+      ->delimiter(',')
+      ->expected(3, 4)
       ->group(field);
   o->options.add(*cmd, kSizeFieldGroup);
   o->options.add(*cmd, kPicardGroup);

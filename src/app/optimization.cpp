@@ -99,6 +99,8 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
   const TargetSummary& t = problem.targets;
   if (t.ideal_because_tangled)
     say("targets ideal: the input has inverted cells, its cells are no design to keep\n");
+  else if (t.mode == "metric")
+    say("targets metric: every cell aims at the unit cell of the metric at its centroid\n");
   else if (!t.mode.empty() && t.mode != "ideal")
     say("targets {}: {} cells keep their input cell, {} in part, {} are ideal\n", t.mode, t.input,
         t.blended, t.ideal);
@@ -126,9 +128,9 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
 // What the quality guard did, if anything (the report has its record).
 void print_quality_guard(const QualityGuardResult& guard) {
   if (guard.vertices_moved > 0)
-    say("quality guard: {} vertices pulled back toward the input so that no cell is worse than "
-        "the input's worst (min scaled Jacobian {:.4f} -> {:.4f}; input {:.4f})\n",
-        guard.vertices_moved, guard.min_before, guard.min_after, guard.input_min);
+    say("quality guard: {} vertices pulled back toward the input so that no cell has a scaled "
+        "Jacobian below {:.4f} (min {:.4f} -> {:.4f})\n",
+        guard.vertices_moved, guard.input_min, guard.min_before, guard.min_after);
 }
 
 // What the worst-cell phase did, if it ran (docs/method.md, "Corners").
@@ -376,7 +378,9 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
         {"peak_rss_mib", memory.max_rank_mib},
         {"peak_rss_mib_all_ranks", memory.sum_mib},
         {"seconds", MPI_Wtime() - r.start}};
-    if (!result.problem.targets.mode.empty())
+    if (result.problem.targets.mode == "metric")
+      json["targets"] = {{"mode", "metric"}};  // the metric's cells, none of the input's
+    else if (!result.problem.targets.mode.empty())
       json["targets"] = {{"mode", result.problem.targets.mode},
                          {"cells_input", result.problem.targets.input},
                          {"cells_blended", result.problem.targets.blended},

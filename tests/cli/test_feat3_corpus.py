@@ -113,6 +113,9 @@ def test_adapt_around_every_flowbench_obstacle(prefix, tmp):
     assert r["quality_after"]["inverted"] == 0
     before = r["quality_before"]["metrics"]["scaled_jacobian"]["min"]
     after = r["quality_after"]["metrics"]["scaled_jacobian"]["min"]
-    # flowbench_c2d_07: its 6-digit coordinates placed on the circle cost 1e-5.
-    assert after >= before - (1e-4 if prefix == "flowbench_c2d_07" else 1e-12), \
+    # The guard holds the input's worst cell or 0.2, whichever is lower (AdaptOptions::
+    # kGuardCeiling: grading changes the cells' shapes); flowbench_c2d_07: its 6-digit
+    # coordinates placed on the circle cost 1e-5.
+    assert after >= min(before, 0.2) - (1e-4 if prefix == "flowbench_c2d_07" else 1e-12), \
         f"min scaled Jacobian {before} -> {after}"
+    print(f"{prefix}: min scaled Jacobian {before:.3f} -> {after:.3f}")
