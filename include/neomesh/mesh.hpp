@@ -154,6 +154,7 @@ class Mesh {
 
  private:
   friend class Optimizer;  // works on the implementation
+  friend class SizeField;  // a metric per vertex is interpolated over the mesh
   // The implementation; the non-const one may move the vertices, so it drops the quality cache.
   PlexMesh& plex();
   const PlexMesh& plex() const;

@@ -21,6 +21,8 @@
 
 namespace neomesh {
 
+class Mesh;
+
 // The metric of SizeField::stretched: cells of size `normal` across the target surface and
 // `tangent` along it, within `width` of it; farther away the size across grows by `grading` per
 // unit distance (0.3: neighbouring cells differ by at most 30 %, Mmg's default) until the cells
@@ -51,6 +53,18 @@ class SizeField {
   // m33 (3D) in x, y, z, t (muparser syntax; the upper triangle of the symmetric M). Adapting to
   // it throws Error naming the cell where M is not positive definite.
   static SizeField metric(const std::vector<std::string>& entries);
+
+  // The metric `mesh`'s input file gives per vertex in its point-data array `array` (VTK point
+  // data, Gmsh $NodeData, Exodus nodal variables): 3 components in 2D (m11 m12 m22) or 6 in 3D
+  // (m11 m12 m13 m22 m23 m33), or the dim² of the whole matrix. Between the vertices it is
+  // interpolated linearly in log M over the mesh as it is now (adaptation moves the vertices
+  // over it; src/adapt/background_metric.hpp). Throws Error for a missing array, another number
+  // of components or a vertex whose metric is not symmetric positive definite (naming it).
+  // Collective; every process holds the whole mesh and its metrics.
+  static SizeField vertex_metric(const Mesh& mesh, const std::string& array);
+  // The same from a text file of one metric per line, in the mesh's vertex order (the input
+  // file's), 3 or 6 numbers (or dim²) per line; Error for a file of another length.
+  static SizeField read_vertex_metric(const Mesh& mesh, const std::filesystem::path& file);
 
   // This distance field (not per-cell values) made anisotropic: the metric of `stretch` about
   // its target surface, the surface's normal taken from the gradient of its signed distance.

@@ -23,7 +23,7 @@ namespace {
 
 struct AdaptCommand {
   std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
-  std::string output, levelset, sizes_file, time, metric;
+  std::string output, levelset, sizes_file, time, metric, metric_data, metric_file;
   std::vector<double> circle, sphere, plane, box, stretch;
   bool force = false;
   bool fit = false;
@@ -64,14 +64,24 @@ std::vector<std::string> metric_entries(const std::string& text) {
 
 SizeField distance_field(const AdaptCommand& o);
 
-// The size field of the command line, stretched with --stretch.
-SizeField make_size_field(const AdaptCommand& o) {
+// The size field of the command line, stretched with --stretch. A metric per vertex
+// (--metric-data, --metric-file) needs the mesh: none while `mesh` is null.
+std::optional<SizeField> make_size_field(const AdaptCommand& o, const Mesh* mesh) {
   const int given = !o.circle.empty() + !o.sphere.empty() + !o.plane.empty() + !o.box.empty() +
-                    !o.levelset.empty() + !o.sizes_file.empty() + !o.metric.empty();
+                    !o.levelset.empty() + !o.sizes_file.empty() + !o.metric.empty() +
+                    !o.metric_data.empty() + !o.metric_file.empty();
   if (given != 1)
     fail(
-        "give exactly one size field: --circle, --sphere, --plane, --box, --levelset, --sizes or "
-        "--metric");
+        "give exactly one size field: --circle, --sphere, --plane, --box, --levelset, --sizes, "
+        "--metric, --metric-data or --metric-file");
+  if (!o.metric_data.empty() || !o.metric_file.empty()) {
+    if (!o.stretch.empty()) fail("--stretch stretches a distance field, not a given metric");
+    if (!mesh) return std::nullopt;
+    if (!o.metric_file.empty())
+      return option("--metric-file",
+                    [&] { return SizeField::read_vertex_metric(*mesh, o.metric_file); });
+    return option("--metric-data", [&] { return SizeField::vertex_metric(*mesh, o.metric_data); });
+  }
   if (!o.metric.empty())
     return option("--metric", [&] { return SizeField::metric(metric_entries(o.metric)); });
   SizeField field = distance_field(o);
@@ -203,7 +213,7 @@ void adapt(AdaptCommand& o) {
   check_finite("--plane", o.plane);
   check_finite("--box", o.box);
   check_finite("--stretch", o.stretch);
-  SizeField field = make_size_field(o);
+  std::optional<SizeField> field = make_size_field(o, nullptr);
   const std::vector<double> times =
       o.time.empty() ? std::vector<double>{} : parse_time_steps(o.time);
   const std::filesystem::path output = o.output;
@@ -232,9 +242,10 @@ void adapt(AdaptCommand& o) {
       mesh.interface(*phi);
     }
   check_run_outputs(o.outputs, mesh.dim());  // pictures of a 3D mesh: before the run
-  say("size field: {}\n", field.description());
+  if (!field) field = make_size_field(o, &mesh);
+  say("size field: {}\n", field->description());
   if (!times.empty()) {
-    adapt_in_time(o, options, field, run, times, phi ? &*phi : nullptr);
+    adapt_in_time(o, options, *field, run, times, phi ? &*phi : nullptr);
     return;
   }
   const RunSettings settings{options.energy, options.solver, options.boundary};
@@ -244,8 +255,8 @@ void adapt(AdaptCommand& o) {
                "input: " + input_label(o.inputs));
   };
   const Observer observe = run.observer(settings, o.outputs.progress_lines, picture_before);
-  const Result result = phi ? run.optimizer().adapt(field, *phi, options, observe)
-                            : run.optimizer().adapt(field, options, observe);
+  const Result result = phi ? run.optimizer().adapt(*field, *phi, options, observe)
+                            : run.optimizer().adapt(*field, options, observe);
   nlohmann::json fit_report;
   if (result.fit) {
     const FitSummary& f = *result.fit;
@@ -273,7 +284,7 @@ void adapt(AdaptCommand& o) {
   nlohmann::json report = to_json(reported);
   report["picard"]["update_iterations"] = result.update_iterations;
   report.update(
-      {{"size_field", field.description()}, {"volume_ratio", to_json(q)}, {"fit", fit_report}});
+      {{"size_field", field->description()}, {"volume_ratio", to_json(q)}, {"fit", fit_report}});
   run.finish(result, settings, o.output, o.outputs, report);
 }
 
@@ -326,6 +337,15 @@ Subcommand add_adapt(CLI::App& app) {
                   "unit distance beyond")
       ->delimiter(',')
       ->expected(3, 4)
+      ->group(field);
+  cmd->add_option("--metric-data", o->metric_data,
+                  "NAME: the metric per vertex in the input's point data NAME (3 components in 2D: "
+                  "m11, m12, m22; 6 in 3D: m11, m12, m13, m22, m23, m33), interpolated over the "
+                  "input mesh")
+      ->group(field);
+  cmd->add_option("--metric-file", o->metric_file,
+                  "FILE: the same from a text file of one metric per line, in the input's vertex "
+                  "order")
       ->group(field);
   o->options.add(*cmd, kSizeFieldGroup);
   o->options.add(*cmd, kPicardGroup);

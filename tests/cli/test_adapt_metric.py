@@ -2,12 +2,15 @@
 bench/anisotropic_adapt.py (the full sizes): the front tanh((r - 0.3)/0.005) around the circle
 r = 0.3 in the unit square is interpolated better on the anisotropic mesh than on the isotropic
 one and the uniform one; the cells along the circle are stretched along it; a bad metric is one
-line and no output; 2 processes give the serial mesh. And isotropic adaptation of a uniform
-mesh, whose cells are all perfect, is not undone by the quality guard."""
+line and no output; 2 processes give the serial mesh. A metric per vertex (--metric-data from
+the input's point data, --metric-file) gives what the same metric as a formula gives. And
+isotropic adaptation of a uniform mesh, whose cells are all perfect, is not undone by the
+quality guard."""
 import json
 import os
 import sys
 
+import meshio
 import numpy as np
 import pytest
 
@@ -126,4 +129,75 @@ def test_two_processes_give_the_serial_mesh(tmp):
     assert report["picard"]["update_iterations"] == serial_report["picard"]["update_iterations"]
     # Round-off of the sums over ranks, through six updates of the targets: measured 5.4e-7
     # (isotropic adaptation: 5.6e-9), against cells of size 2e-3 near the circle.
+    assert np.abs(bench.read(serial).points - bench.read(parallel).points).max() < 2e-6
+
+
+def stretched_metric(points, normal=0.005, tangent=0.05, width=0.02, grading=0.3):
+    """--stretch's metric about the circle, at each point: m11, m12, m22."""
+    radial = points[:, :2] - 0.5
+    r = np.linalg.norm(radial, axis=1)
+    n = radial / np.maximum(r, 1e-300)[:, None]  # the centre: n = 0, M isotropic
+    across = np.minimum(tangent, normal + grading * np.maximum(0.0, np.abs(r - 0.3) - width))
+    extra = 1 / across ** 2 - 1 / tangent ** 2
+    m = np.eye(2)[None] / tangent ** 2 + extra[:, None, None] * n[:, :, None] * n[:, None, :]
+    return np.stack([m[:, 0, 0], m[:, 0, 1], m[:, 1, 1]], axis=1)
+
+
+def square_with_metric(tmp, cells=40):
+    mesh = bench.read(unit_square(tmp, "quad", cells))
+    path = os.path.join(tmp, "square-metric.vtu")
+    metric = stretched_metric(mesh.points)
+    meshio.write(path, meshio.Mesh(mesh.points, [("quad", mesh.cells_dict["quad"])],
+                                   point_data={"metric": metric}))
+    text = os.path.join(tmp, "metric.txt")
+    np.savetxt(text, metric)
+    return path, text
+
+
+def test_a_metric_per_vertex_gives_what_the_formula_gives(tmp):
+    mesh, text = square_with_metric(tmp)
+    formula, _ = adapt(tmp, mesh, "formula", *CIRCLE, *STRETCH)
+    data, report = adapt(tmp, mesh, "data", "--metric-data", "metric")
+    from_file, _ = adapt(tmp, mesh, "file", "--metric-file", text)
+    assert report["targets"] == {"mode": "metric"}
+    assert "the metric 'metric' per vertex" in report["size_field"]
+    formula_error = errors(formula, "quad")[0]
+    data_error = errors(data, "quad")[0]
+    print(f"max error: formula {formula_error:.4f}, per vertex {data_error:.4f}")
+    # The vertex values interpolated over the input grid (h = 1/40) blur the band of width
+    # 0.04 a little.
+    assert data_error <= 1.1 * formula_error
+    assert np.abs(bench.read(data).points - bench.read(from_file).points).max() < 1e-12
+
+
+@pytest.mark.parametrize("options, message", [
+    (["--metric-data", "sizes"], "has no point data 'sizes' (it has: metric)"),
+    (["--metric-file", "short.txt"], "the metric file short.txt has 2 metrics but the mesh has "
+     "1681 vertices"),
+    (["--metric-file", "bad.txt"], "vertex 1 (0.025, 0): the metric is not positive definite"),
+    (["--metric-data", "metric", "--stretch", "0.1,0.2,0.1"], "--stretch stretches a distance "
+     "field, not a given metric"),
+])
+def test_a_bad_metric_per_vertex_is_one_line_and_no_output(tmp, options, message):
+    mesh, text = square_with_metric(tmp)
+    with open(os.path.join(tmp, "short.txt"), "w") as f:
+        f.write("1 0 1\n1 0 1\n")
+    lines = open(text).read().splitlines()
+    lines[1] = "1 2 1"
+    with open(os.path.join(tmp, "bad.txt"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    out = os.path.join(tmp, "out.vtu")
+    proc = run([NEOMESH, "adapt", mesh, "-o", out, "--quiet", *options], cwd=tmp, expect=None)
+    assert proc.returncode != 0
+    assert len(proc.stderr.strip().splitlines()) == 1 and message in proc.stderr, proc.stderr
+    assert not os.path.exists(out)
+
+
+@needs_mpi
+def test_a_metric_per_vertex_on_two_processes(tmp):
+    mesh, _ = square_with_metric(tmp, 24)
+    options = ["--metric-data", "metric", "--no-practical", "--tol", "1e-11"]
+    serial, serial_report = adapt(tmp, mesh, "serial", *options)
+    parallel, report = adapt(tmp, mesh, "parallel", *options, launcher=mpiexec(2))
+    assert report["picard"]["update_iterations"] == serial_report["picard"]["update_iterations"]
     assert np.abs(bench.read(serial).points - bench.read(parallel).points).max() < 2e-6
