@@ -293,8 +293,9 @@ struct AdaptOptions {
   // its cells, and against a uniform input (every cell 1) the guard would undo the whole
   // adaptation; 0.2 is below what isotropic adaptation with the default sizes leaves
   // (docs/adaptivity.md: 0.31 quads, 0.26 triangles) and above nearly flat cells. Not with a fit
-  // to a level set, whose interface vertices must stay on it, nor with a metric field, whose
-  // cells are stretched on purpose (the guard measures cells against ideal ones).
+  // to a level set, whose interface vertices must stay on it; with a metric field, whose cells
+  // are stretched on purpose, only flat corners are lifted (the guard measures cells against
+  // ideal ones).
   bool quality_guard = true;
   static constexpr double kGuardCeiling = 0.2;
 

@@ -25,12 +25,14 @@ class Mesh;
 
 // The metric of SizeField::stretched: cells of size `normal` across the target surface and
 // `tangent` along it, within `width` of it; farther away the size across grows by `grading` per
-// unit distance (0.3: neighbouring cells differ by at most 30 %, Mmg's default) until the cells
-// are isotropic of size `tangent`.
+// unit distance until the cells are isotropic of size `tangent`. r-adaptivity moves a fixed
+// number of cells, and a gentle grading spends most of them on the transition: Mmg's 0.3 left
+// the band's cells as large as isotropic adaptation does; 4 halves the interpolation error of a
+// front there (docs/method.md §9, "Metric fields").
 struct Stretch {
   double normal = 0.0, tangent = 0.0;  // 0 < normal ≤ tangent
   double width = 0.0;                  // ≥ 0
-  double grading = 0.3;                // > 0
+  double grading = 4.0;                // > 0
 };
 
 class SizeField {

@@ -214,9 +214,9 @@ TEST(SizeField, AStretchedCircleHasItsSizesAcrossAndAlongIt) {
   m = metric_at(field, {r, r});
   EXPECT_NEAR((m.shape * Eigen::Vector2d(r, r)).norm(), 0.01, 1e-8);
   EXPECT_NEAR((m.shape * Eigen::Vector2d(-r, r)).norm(), 0.1, 1e-8);
-  // 0.15 from the circle, 0.1 beyond the width: 0.01 + 0.3 · 0.1 across.
-  m = metric_at(field, {1.15, 0.0});
-  EXPECT_NEAR(m.shape(0, 0), 0.04, 1e-8);
+  // 0.06 from the circle, 0.01 beyond the width: 0.01 + 4 · 0.01 across (the default grading).
+  m = metric_at(field, {1.06, 0.0});
+  EXPECT_NEAR(m.shape(0, 0), 0.05, 1e-8);
   EXPECT_NEAR(m.shape(1, 1), 0.1, 1e-8);
   // Far away: isotropic, the tangential size.
   m = metric_at(field, {3.0, 0.0});

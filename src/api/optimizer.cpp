@@ -214,12 +214,18 @@ void Optimizer::Impl::finish(Result& result) {
   result.volume_change = (volume - mesh_volume) / mesh_volume;
 }
 
+void Optimizer::Impl::lift_corners(const QuasiNewtonOptions& method, const Observer& observer,
+                                   Result& result) {
+  if (result.reason != StopReason::TimeLimit)
+    result.corner_phase = lift_flat_corners(*functional, view(), dofs(), x, method, cell_size,
+                                            result, observer.iteration);
+}
+
 void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& method,
                                           const Observer& observer, Result& result, bool repair,
                                           double ceiling) {
+  lift_corners(method, observer, result);
   if (result.reason != StopReason::TimeLimit) {
-    result.corner_phase = lift_flat_corners(*functional, view(), dofs(), x, method, cell_size,
-                                            result, observer.iteration);
     if (repair) {
       const WorstCellRepair r = repair_worst_cells(view(), dofs(), repair_freedom(), x);
       result.worst_cell_repair = {.min_scaled_jacobian_before = r.min_before,
@@ -369,8 +375,11 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
   const OwnedVec input =
       copy_of(r.x);  // where the adaptation starts (vertices placed on their charts)
   r.adapt(field, options, observer, result);
-  // The guard judges cells against the ideal cell, which a metric field stretches on purpose.
-  if (options.quality_guard && !field.anisotropic())
+  // The guard judges cells against the ideal cell, which a metric field stretches on purpose;
+  // a corner left nearly flat is no metric's aim.
+  if (options.quality_guard && field.anisotropic())
+    r.lift_corners(r.method(options.solver), observer, result);
+  else if (options.quality_guard)
     r.protect_worst_cells(input, r.method(options.solver), observer, result, false,
                           AdaptOptions::kGuardCeiling);
   r.finish(result);

@@ -65,10 +65,11 @@ struct Optimizer::Impl {
   // adapting with `last_stage`; appends the fit's iterations to `result`.
   void fit(const LevelSet& level_set, const SizeField& field, const AdaptOptions& options,
            const PicardOptions& last_stage, const Observer& observer, Result& result);
-  // The worst cells once the method has stopped (smooth, adapt): corners it left nearly flat
-  // are lifted (worst_cells.hpp), with `repair` the worst cells are repaired locally
-  // (worst_cell_repair.hpp), then no cell stays below the input's worst or `ceiling`, whichever
-  // is lower (quality_guard.hpp; `input`: x where the call started).
+  // Once the method has stopped: corners it left nearly flat are lifted (worst_cells.hpp).
+  void lift_corners(const QuasiNewtonOptions& method, const Observer& observer, Result& result);
+  // The worst cells once the method has stopped (smooth, adapt): lift_corners(), with `repair` the
+  // worst cells are repaired locally (worst_cell_repair.hpp), then no cell stays below the input's
+  // worst or `ceiling`, whichever is lower (quality_guard.hpp; `input`: x where the call started).
   void protect_worst_cells(Vec input, const QuasiNewtonOptions& method, const Observer& observer,
                            Result& result, bool repair = false, double ceiling = 1.0);
   // Q = actual / desired volume at x.

@@ -333,7 +333,7 @@ Subcommand add_adapt(CLI::App& app) {
       ->group(field);
   cmd->add_option("--stretch", o->stretch,
                   "HN,HT,W[,G]: make the distance field anisotropic: cells of size HN across the "
-                  "surface and HT along it within W of it, the size across growing by G (0.3) per "
+                  "surface and HT along it within W of it, the size across growing by G (4) per "
                   "unit distance beyond")
       ->delimiter(',')
       ->expected(3, 4)

@@ -53,15 +53,16 @@ def test_a_stretched_circle_interpolates_the_front_better(tmp, kind):
     aniso_error, points, cells = errors(aniso, kind)
     print(f"{kind}: max error uniform {uniform_error:.4f}, isotropic {iso_error:.4f}, "
           f"anisotropic {aniso_error:.4f}")
-    # bench/anisotropic_adapt.py at 40 cells per direction: quads 0.818 / 0.189 / 0.167.
-    assert aniso_error < iso_error
+    # bench/anisotropic_adapt.py at 40 cells per direction: quads 0.818 / 0.189 / 0.137,
+    # triangles 1.010 / 0.273 / 0.130 (at 100: ≤ ½ the isotropic error, docs/method.md §9).
+    assert aniso_error < 0.8 * iso_error
     assert aniso_error <= uniform_error / 4
     kind_name = bench.CELL_TYPES[kind][1]
     stretched = np.median(bench.aspect_ratios(points, cells, kind_name, 2, 0.01))
     iso_points, iso_cells = bench.read_mesh(iso, 2, kind_name)
     isotropic = np.median(bench.aspect_ratios(iso_points, iso_cells, kind_name, 2, 0.01))
     print(f"median aspect along the circle: isotropic {isotropic:.2f}, anisotropic {stretched:.2f}")
-    assert stretched > isotropic
+    assert stretched > 1.2 * isotropic
 
 
 def test_isotropic_adaptation_of_a_uniform_mesh_is_kept(tmp):
@@ -77,8 +78,10 @@ def test_isotropic_adaptation_of_a_uniform_mesh_is_kept(tmp):
 def test_a_sphere_in_3d(tmp):
     path = os.path.join(tmp, "cube.msh")
     bench.generate_unit_box(NEOMESH, "box-hex", 8, 3, path)
+    # Cells of 1/8 against a band of 0.1: the default grading (4) leaves the band too few cells
+    # to stretch (median aspect 1.37, as isotropic); grading 1 gives it more.
     out, report = adapt(tmp, path, "aniso", "--sphere", "0.5,0.5,0.5,0.3", "--stretch",
-                        "0.02,0.1,0.05")
+                        "0.02,0.1,0.05,1")
     assert report["targets"] == {"mode": "metric"}
     assert report["quality_after"]["inverted"] == 0
     _, iso_report = adapt(tmp, path, "iso", "--sphere", "0.5,0.5,0.5,0.3")
@@ -87,7 +90,8 @@ def test_a_sphere_in_3d(tmp):
     stretched = np.median(bench.aspect_ratios(points, cells, "hexahedron", 3, 0.05))
     isotropic = np.median(bench.aspect_ratios(iso_points, iso_cells, "hexahedron", 3, 0.05))
     print(f"median aspect at the sphere: isotropic {isotropic:.2f}, anisotropic {stretched:.2f}")
-    assert stretched > isotropic
+    assert stretched > 1.1 * isotropic
+    assert report["quality_after"]["metrics"]["scaled_jacobian"]["min"] > 0.01  # corners lifted
 
 
 @pytest.mark.parametrize("options, message", [
@@ -132,7 +136,7 @@ def test_two_processes_give_the_serial_mesh(tmp):
     assert np.abs(bench.read(serial).points - bench.read(parallel).points).max() < 2e-6
 
 
-def stretched_metric(points, normal=0.005, tangent=0.05, width=0.02, grading=0.3):
+def stretched_metric(points, normal=0.005, tangent=0.05, width=0.02, grading=4.0):
     """--stretch's metric about the circle, at each point: m11, m12, m22."""
     radial = points[:, :2] - 0.5
     r = np.linalg.norm(radial, axis=1)
