@@ -161,9 +161,9 @@ def generate_unit_box(neomesh, case, cells, dim, path, jitter=0.0):
 def aspect_ratios(points, cells, kind, dim, band):
     """Aspect of the cells whose centroid lies within band of the circle/sphere, in the frame of
     the centroid: n = radial unit vector, tangents perpendicular to it.
-      quads: mean length of the pair of opposite edges more tangential (smaller mean |cos| of
-             the angle to n) over the mean length of the other pair;
-      triangles: extent of the vertices along the tangent over their extent along n;
+      2D (quads, triangles): extent of the vertices along the tangent over their extent along n
+             (a quad's edges would not do: where the grid crosses the circle diagonally a cell
+             stretched along it is a rhombus, whose four edges are equally long);
       3D (hexahedra, tetrahedra): largest over smallest extent of the vertices along n, t1, t2,
              t1 = n x (the axis least aligned with n) normalized, t2 = n x t1 (so >= 1, and
              blind to which direction is long: a plain shape measure).
@@ -174,13 +174,6 @@ def aspect_ratios(points, cells, kind, dim, band):
     distance = np.linalg.norm(radial, axis=1)
     near = np.abs(distance - RADIUS) <= band
     x, n = x[near], radial[near] / distance[near, None]
-    if kind == "quad":
-        edges = np.roll(x, -1, axis=1) - x                   # e_i = v_{i+1} - v_i
-        length = np.linalg.norm(edges, axis=2)
-        cosine = np.abs(np.einsum("ced,cd->ce", edges, n)) / length
-        pair_a = cosine[:, [0, 2]].mean(axis=1) < cosine[:, [1, 3]].mean(axis=1)
-        len02, len13 = length[:, [0, 2]].mean(axis=1), length[:, [1, 3]].mean(axis=1)
-        return np.where(pair_a, len02 / len13, len13 / len02)
     if dim == 2:
         frame = [np.stack([-n[:, 1], n[:, 0]], axis=1), n]  # tangent, normal
     else:
@@ -361,8 +354,7 @@ def main():
                 notes.append(f"{label}: the quality guard pulled back {moved} vertices "
                              f"(`-- --no-guard` measures the adaptation alone)")
 
-        what = ("tangential / normal edges (quads)" if kind == "quad" else
-                "tangential / normal extent (triangles)" if dim == 2 else
+        what = ("tangential / normal extent" if dim == 2 else
                 "largest / smallest extent along normal and tangents")
         print(f"\naspect along the {'circle' if dim == 2 else 'sphere'}, cells with centroid "
               f"within {band:g} ({what}): " + "; ".join(aspects))
