@@ -23,7 +23,7 @@ PUBLIC_LAYERS = {
     "quality.hpp": "geometry",   # computed by src/geometry/quality.cpp
     "options.hpp": "energy",     # plain option structs; ranges checked in api (option table)
     "result.hpp": "boundary",    # filled by boundary, solver and adapt; describe() in solver
-    "size_field.hpp": "adapt",   # implemented by src/adapt/size_field.cpp
+    "size_field.hpp": "adapt",   # src/adapt/size_field.cpp; from a Mesh: src/api/vertex_metric.cpp
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
 
