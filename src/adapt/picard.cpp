@@ -1,7 +1,6 @@
 #include "adapt/picard.hpp"
 
 #include <cmath>
-#include <memory>
 
 namespace neomesh {
 
@@ -76,17 +75,12 @@ PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
 }
 
 TargetsAt size_field_targets(const SizeField& field, const SizeFieldOptions& options,
-                             const Functional& functional, const MeshView& view, double total) {
-  // The cells' orientations are those where the adaptation starts (the first call): taken
-  // from the moving cells, the targets would turn with them, and cells that shear away from
-  // the surface (a star of flat cells around a circle) would be their own fixed point.
-  auto start = std::make_shared<std::vector<double>>();
-  return [&field, &options, &functional, &view, total, start](Vec x) {
-    const DofMap& dofs = functional.dofs();
+                             const MeshView& view, const DofMap& dofs, double total,
+                             std::vector<double> orientations) {
+  return [&field, &options, &view, &dofs, total, orientations = std::move(orientations)](Vec x) {
     std::vector<double> coords(dofs.num_local_dofs());
     dofs.global_to_local(x, coords);
-    if (field.anisotropic() && start->empty()) *start = functional.cell_jacobians(x);
-    return adapt_targets(field, options, view, dofs, coords, *start, total);
+    return adapt_targets(field, options, view, dofs, coords, orientations, total);
   };
 }
 

@@ -45,10 +45,14 @@ PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
                     const PicardOptions& options, const QuasiNewtonOptions& method,
                     const Observer& observe = {});
 
-// `targets` for picard(): the size field's targets at the centroids of x (adapt_targets, the
-// cells' orientations from `functional` at the first call's x), volumes summing to `total`.
-// Keeps references to its arguments.
+// `targets` for picard(): the size field's targets at the centroids of x (adapt_targets),
+// volumes summing to `total`. `orientations`: for an anisotropic field, the cells' Jacobians
+// where the adaptation starts (Functional::cell_jacobians; empty otherwise). They stay fixed:
+// taken from the moving cells, the targets would turn with them, and cells that shear away
+// from the surface (a star of flat cells around a circle) would be their own fixed point.
+// Keeps references to its other arguments.
 TargetsAt size_field_targets(const SizeField& field, const SizeFieldOptions& options,
-                             const Functional& functional, const MeshView& view, double total);
+                             const MeshView& view, const DofMap& dofs, double total,
+                             std::vector<double> orientations);
 
 }  // namespace neomesh

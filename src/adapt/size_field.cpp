@@ -284,10 +284,18 @@ double determinant(std::span<const double> m, int d) {
          m[6] * (m[1] * m[5] - m[2] * m[4]);
 }
 
+void require_dimension_of(const SizeField& field, const MeshView& view) {
+  const int field_dim = SizeFieldAccess::dim(field);
+  if (field_dim != 0 && field_dim != view.dim)
+    fail("the size field ({}) is {}D but the mesh is {}D", SizeFieldAccess::description(field),
+         field_dim, view.dim);
+}
+
 // M^(-1/2) of an anisotropic field at each centroid (dim² per cell, column-major); throws
 // Error naming the first cell where M is not symmetric positive definite.
 std::vector<double> metric_inverse_roots(const SizeField& field, const MeshView& view,
                                          std::span<const double> centroids) {
+  require_dimension_of(field, view);
   const int d = view.dim;
   const auto& metric = SizeFieldAccess::metric(field);
   std::vector<double> roots(static_cast<std::size_t>(view.num_cells) * d * d);
@@ -313,25 +321,27 @@ std::vector<double> metric_inverse_roots(const SizeField& field, const MeshView&
   return roots;
 }
 
+// The volume of each cell's unit cell of M relative to the ideal cell of size 1: det(M^(-1/2)).
+std::vector<double> unit_cell_volumes(std::span<const double> roots, int d) {
+  std::vector<double> v(roots.size() / (d * d));
+  for (std::size_t c = 0; c < v.size(); ++c) v[c] = determinant(roots.subspan(c * d * d, d * d), d);
+  return v;
+}
+
 }  // namespace
 
 std::vector<double> relative_volumes(const SizeField& field, const MeshView& view,
                                      std::span<const double> coords,
                                      const SizeFieldOptions& options, MPI_Comm comm) {
   const std::string& description = SizeFieldAccess::description(field);
-  const int field_dim = SizeFieldAccess::dim(field);
   const auto& signed_distance = SizeFieldAccess::signed_distance(field);
   const std::vector<double>& values = SizeFieldAccess::cell_values(field);
-  if (field_dim != 0 && field_dim != view.dim)
-    fail("the size field ({}) is {}D but the mesh is {}D", description, field_dim, view.dim);
+  require_dimension_of(field, view);
   const int d = view.dim;
   const std::vector<double> centroids = cell_centroids(view, coords);
   std::vector<double> v(view.num_cells);
   if (field.anisotropic()) {
-    // The unit cell of M has the volume det(M^(-1/2)) relative to the ideal cell of size 1.
-    const std::vector<double> roots = metric_inverse_roots(field, view, centroids);
-    for (PetscInt c = 0; c < view.num_cells; ++c)
-      v[c] = determinant(std::span(roots).subspan(c * d * d, d * d), d);
+    v = unit_cell_volumes(metric_inverse_roots(field, view, centroids), d);
   } else if (!values.empty()) {
     long long cells = view.num_cells, total = 0;
     MPI_Allreduce(&cells, &total, 1, MPI_LONG_LONG, MPI_SUM, comm);
@@ -357,10 +367,11 @@ std::vector<double> relative_volumes(const SizeField& field, const MeshView& vie
   return v;
 }
 
-std::vector<double> desired_volumes(const SizeField& field, const SizeFieldOptions& options,
-                                    const MeshView& view, const DofMap& dofs,
-                                    std::span<const double> coords, double total) {
-  std::vector<double> v = relative_volumes(field, view, coords, options, dofs.comm());
+namespace {
+
+// Relative volumes made consistent as `options` asks and scaled to sum to `total`. Collective.
+std::vector<double> consistent_volumes(std::vector<double> v, const SizeFieldOptions& options,
+                                       const MeshView& view, const DofMap& dofs, double total) {
   if (const double ratio = options.ratio(); ratio > 0) {
     const double largest = v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
     const double smallest = global_max(largest, dofs.comm()) / ratio;
@@ -378,29 +389,48 @@ std::vector<double> desired_volumes(const SizeField& field, const SizeFieldOptio
   return v;
 }
 
+// Each cell's M^(-1/2) (in `shapes`) turned by the rotation R of its Jacobian J = R U.
+void orient(std::vector<double>& shapes, std::span<const double> jacobians, int d) {
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(d, d, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  for (std::size_t c = 0; c * d * d < shapes.size(); ++c) {
+    const Eigen::Map<const Eigen::MatrixXd> J(jacobians.data() + c * d * d, d, d);
+    if (!(J.determinant() > 0)) continue;  // an inverted cell has no orientation: S = M^(-1/2)
+    svd.compute(J);
+    Eigen::Map<Eigen::MatrixXd> S(shapes.data() + c * d * d, d, d);
+    const Eigen::MatrixXd rotation = svd.matrixU() * svd.matrixV().transpose();
+    S = S * rotation;
+  }
+}
+
+}  // namespace
+
+std::vector<double> desired_volumes(const SizeField& field, const SizeFieldOptions& options,
+                                    const MeshView& view, const DofMap& dofs,
+                                    std::span<const double> coords, double total) {
+  return consistent_volumes(relative_volumes(field, view, coords, options, dofs.comm()), options,
+                            view, dofs, total);
+}
+
 std::vector<double> target_shapes(const SizeField& field, const MeshView& view,
                                   std::span<const double> coords,
                                   std::span<const double> jacobians) {
   if (!field.anisotropic()) return {};
   std::vector<double> shapes = metric_inverse_roots(field, view, cell_centroids(view, coords));
-  const int d = view.dim;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(d, d, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  for (PetscInt c = 0; c < view.num_cells; ++c) {
-    const Eigen::Map<const Eigen::MatrixXd> J(jacobians.data() + c * d * d, d, d);
-    if (!(J.determinant() > 0)) continue;  // an inverted cell has no orientation: S = M^(-1/2)
-    svd.compute(J);
-    const Eigen::MatrixXd rotation = svd.matrixU() * svd.matrixV().transpose();
-    Eigen::Map<Eigen::MatrixXd> S(shapes.data() + c * d * d, d, d);
-    S = S * rotation;
-  }
+  orient(shapes, jacobians, view.dim);
   return shapes;
 }
 
 CellTargets adapt_targets(const SizeField& field, const SizeFieldOptions& options,
                           const MeshView& view, const DofMap& dofs, std::span<const double> coords,
                           std::span<const double> jacobians, double total) {
-  CellTargets targets = ideal_targets(desired_volumes(field, options, view, dofs, coords, total));
-  targets.shapes = target_shapes(field, view, coords, jacobians);
+  if (!field.anisotropic())
+    return ideal_targets(desired_volumes(field, options, view, dofs, coords, total));
+  // M is evaluated once per cell for both the volume and the shape.
+  std::vector<double> shapes = metric_inverse_roots(field, view, cell_centroids(view, coords));
+  CellTargets targets = ideal_targets(
+      consistent_volumes(unit_cell_volumes(shapes, view.dim), options, view, dofs, total));
+  orient(shapes, jacobians, view.dim);
+  targets.shapes = std::move(shapes);
   return targets;
 }
 

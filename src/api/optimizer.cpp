@@ -269,6 +269,10 @@ RepairFreedom Optimizer::Impl::repair_freedom() const {
   return f;
 }
 
+std::vector<double> Optimizer::Impl::orientations(const SizeField& field) const {
+  return field.anisotropic() ? functional->cell_jacobians(x) : std::vector<double>{};
+}
+
 VolumeRatioStats Optimizer::Impl::volume_ratio() const {
   return volume_ratio_stats(functional->cell_fields(x).volume_ratio, mesh.comm());
 }
@@ -276,7 +280,7 @@ VolumeRatioStats Optimizer::Impl::volume_ratio() const {
 void Optimizer::Impl::adapt(const SizeField& field, const AdaptOptions& options,
                             const Observer& observer, Result& result) {
   const TargetsAt targets =
-      size_field_targets(field, options.sizes, *functional, view(), mesh_volume);
+      size_field_targets(field, options.sizes, view(), dofs(), mesh_volume, orientations(field));
   // The size field's targets at the start: what the observer sees, and what untangling aims at.
   // They replace any a smoothing before may have left.
   set_targets(targets(x));
@@ -298,16 +302,12 @@ void Optimizer::Impl::fit(const LevelSet& level_set, const SizeField& field,
                           const AdaptOptions& options, const PicardOptions& last_stage,
                           const Observer& observer, Result& result) {
   phi = std::make_unique<LevelSetFunction>(level_set_function(level_set, view().dim));
-  const FitHooks hooks{
-      .constrain = [this](SlidingVertices extra) -> const Functional& {
-        return constrain(std::move(extra));
-      },
-      // The fit rebuilds the functional (constrain): the targets take the one of the moment.
-      .targets =
-          [this, &field, &options](Vec y) {
-            return size_field_targets(field, options.sizes, *functional, view(), mesh_volume)(y);
-          },
-      .set_targets = [this](const CellTargets& t) { set_targets(t); }};
+  const FitHooks hooks{.constrain = [this](SlidingVertices extra) -> const Functional& {
+                         return constrain(std::move(extra));
+                       },
+                       .targets = size_field_targets(field, options.sizes, view(), dofs(),
+                                                     mesh_volume, orientations(field)),
+                       .set_targets = [this](const CellTargets& t) { set_targets(t); }};
   fitted = fit_interface(view(), dofs(), x, *phi, hooks, last_stage, method(options.solver), {},
                          observer);
   const FitResult& f = *fitted;

@@ -74,6 +74,9 @@ struct Optimizer::Impl {
                            Result& result, bool repair = false, double ceiling = 1.0);
   // Q = actual / desired volume at x.
   VolumeRatioStats volume_ratio() const;
+  // What size_field_targets() orients an anisotropic field's targets by: the cells' Jacobians
+  // at x (empty for an isotropic field).
+  std::vector<double> orientations(const SizeField& field) const;
   // If cells are inverted at x, untangles them (docs/untangling.md) towards the current desired
   // volumes, telling `observer`; throws Error naming the cells that stay inverted.
   std::optional<UntanglingSummary> untangle(const QuasiNewtonOptions& method,

@@ -62,7 +62,24 @@ std::vector<std::string> metric_entries(const std::string& text) {
   }
 }
 
-SizeField distance_field(const AdaptCommand& o);
+// The distance field of --circle, --sphere, --plane, --box, --levelset, or --sizes' values.
+SizeField distance_field(const AdaptCommand& o) {
+  if (!o.circle.empty())
+    return option("--circle", [&] { return SizeField::sphere(centre(o.circle), o.circle.back()); });
+  if (!o.sphere.empty())
+    return option("--sphere", [&] { return SizeField::sphere(centre(o.sphere), o.sphere.back()); });
+  if (!o.plane.empty()) {
+    auto [point, normal] = halves(o.plane);
+    return option("--plane", [&] { return SizeField::plane(point, normal); });
+  }
+  if (!o.box.empty()) {
+    auto [lower, upper] = halves(o.box);
+    return option("--box", [&] { return SizeField::box(lower, upper); });
+  }
+  if (!o.levelset.empty())
+    return option("--levelset", [&] { return SizeField::level_set(o.levelset); });
+  return SizeField::read_cell_values(o.sizes_file);
+}
 
 // The size field of the command line, stretched with --stretch. A metric per vertex
 // (--metric-data, --metric-file) needs the mesh: none while `mesh` is null.
@@ -91,25 +108,6 @@ std::optional<SizeField> make_size_field(const AdaptCommand& o, const Mesh* mesh
     if (o.stretch.size() > 3) s.grading = o.stretch[3];
     return field.stretched(s);
   });
-}
-
-// The distance field of --circle, --sphere, --plane, --box, --levelset, or --sizes' values.
-SizeField distance_field(const AdaptCommand& o) {
-  if (!o.circle.empty())
-    return option("--circle", [&] { return SizeField::sphere(centre(o.circle), o.circle.back()); });
-  if (!o.sphere.empty())
-    return option("--sphere", [&] { return SizeField::sphere(centre(o.sphere), o.sphere.back()); });
-  if (!o.plane.empty()) {
-    auto [point, normal] = halves(o.plane);
-    return option("--plane", [&] { return SizeField::plane(point, normal); });
-  }
-  if (!o.box.empty()) {
-    auto [lower, upper] = halves(o.box);
-    return option("--box", [&] { return SizeField::box(lower, upper); });
-  }
-  if (!o.levelset.empty())
-    return option("--levelset", [&] { return SizeField::level_set(o.levelset); });
-  return SizeField::read_cell_values(o.sizes_file);
 }
 
 // The surface --fit fits the mesh to: the zero set of --levelset, or of the signed distance to
