@@ -4,7 +4,8 @@
 // setup on the boxes of the whole-program runs (300² quadrilaterals, 40³ cubes of tetrahedra,
 // 30³ hexahedra).
 // Every problem uses the energy `neomesh smooth` runs (SmoothOptions' λ, μ and 2 Gauss points
-// per direction). The counter `s_per_Mcell` is the time of one evaluation scaled to a million cells.
+// per direction). The counter `s_per_Mcell` is the time of one evaluation scaled to a million
+// cells.
 //
 //   OMP_NUM_THREADS=1 ./energy_bench     (serial; the default uses every core)
 #include <benchmark/benchmark.h>
