@@ -16,7 +16,8 @@ namespace {
 
 constexpr double kKiB = 1024.0, kMiB = 1024.0 * kKiB, kGiB = 1024.0 * kMiB;
 constexpr double kLibraries = 60 * kMiB;
-constexpr double kPerVertex2D = 2.0 * kKiB, kPerVertex3D = 6.5 * kKiB;
+constexpr double kPerVertex2D = 1.28 * kKiB, kPerVertex3D = 6.4 * kKiB;
+constexpr double kPerCell2D = 0.54 * kKiB, kPerCell3D = 0.2 * kKiB;
 
 // The first number in `path` (bytes), or +∞ if there is none ("max", no such file).
 double number_in(const char* path) {
@@ -38,8 +39,9 @@ double mem_available() {
 
 }  // namespace
 
-double estimated_peak_bytes(int dim, std::int64_t vertices) {
-  return kLibraries + static_cast<double>(vertices) * (dim == 2 ? kPerVertex2D : kPerVertex3D);
+double estimated_peak_bytes(int dim, std::int64_t vertices, std::int64_t cells) {
+  return kLibraries + static_cast<double>(vertices) * (dim == 2 ? kPerVertex2D : kPerVertex3D) +
+         static_cast<double>(cells) * (dim == 2 ? kPerCell2D : kPerCell3D);
 }
 
 double available_bytes() {
@@ -51,10 +53,10 @@ double available_bytes() {
 }
 
 void check_memory_fits(MPI_Comm comm, int dim, std::int64_t local_vertices,
-                       const std::string& name) {
+                       std::int64_t local_cells, const std::string& name) {
   MPI_Comm node = MPI_COMM_NULL;
   MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  double need = estimated_peak_bytes(dim, local_vertices);
+  double need = estimated_peak_bytes(dim, local_vertices, local_cells);
   MPI_Allreduce(MPI_IN_PLACE, &need, 1, MPI_DOUBLE, MPI_SUM, node);
   MPI_Comm_free(&node);
   const double have = available_bytes();
