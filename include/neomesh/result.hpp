@@ -82,6 +82,12 @@ struct TargetSummary {
   // The input has inverted cells: the targets are ideal whatever was asked (its cells around
   // the inverted ones are no design to keep).
   bool ideal_because_tangled = false;
+  // How many times the input's cells cover its domain (1: nothing folded; see
+  // `uniform_because_folded`).
+  double coverage = 1.0;
+  // The input is folded over itself throughout (coverage above 2): the desired volumes are
+  // uniform whatever --sizes asked (its cell volumes are no sizes).
+  bool uniform_because_folded = false;
 };
 
 struct ProblemSummary {

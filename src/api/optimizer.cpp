@@ -347,13 +347,24 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   // ones are distorted by whatever tangled it: that is no design to keep.
   const bool tangled = result.quality_before.inverted > 0 || result.quality_before.degenerate > 0;
   const TargetMode mode = tangled ? TargetMode::Ideal : options.targets;
-  const CellTargets targets = r.smoothing_targets(mode, options.sizes);
+  // Nor are its sizes where it is folded over itself throughout: the fill-in of the inverted
+  // cells' volumes from their neighbours then starts from cells that were squeezed and stretched
+  // with them (copy-morph-for-ricoh: desired volumes from 7e-4 to 26 in a ring of equal cells,
+  // an optimum with corners nearly flat, 5 + 123 iterations and 76 s; uniform: 4 + 7, 3.8 s).
+  const double coverage = tangled ? domain_coverage(r.cell_volumes(), r.mesh.comm()) : 1.0;
+  const bool folded = coverage > kFoldedCoverage;
+  const CellTargets targets = r.smoothing_targets(mode, folded ? SizeMode::Uniform : options.sizes);
   r.set_targets(targets);
   const QuasiNewtonOptions method = r.method(options.solver);
   result.problem = r.problem(options.solver);
   const KeptCells kept = count_kept(targets.kept, r.mesh.comm());
-  result.problem.targets = {std::string(name(mode)), kept.all, kept.part, kept.none,
-                            tangled && options.targets != TargetMode::Ideal};
+  result.problem.targets = {std::string(name(mode)),
+                            kept.all,
+                            kept.part,
+                            kept.none,
+                            tangled && options.targets != TargetMode::Ideal,
+                            coverage,
+                            folded && options.sizes != SizeMode::Uniform};
   if (observer.started) observer.started(result.problem);
 
   // The guard's promise is about the input: a tangled input's worst cell is inverted, so any

@@ -104,6 +104,10 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
   else if (!t.mode.empty() && t.mode != "ideal")
     say("targets {}: {} cells keep their input cell, {} in part, {} are ideal\n", t.mode, t.input,
         t.blended, t.ideal);
+  if (t.uniform_because_folded)
+    say("sizes uniform: the input's cells cover its domain {:.3g} times, folded over itself "
+        "throughout: its cell volumes are no sizes\n",
+        t.coverage);
   const BoundarySummary& b = problem.boundary;
   if (s.boundary.mode == BoundaryMode::Slide) {
     say("sliding boundary: {} patches, {} ridges; {} corners fixed, {} ridge and {} surface "
@@ -385,7 +389,9 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
                          {"cells_input", result.problem.targets.input},
                          {"cells_blended", result.problem.targets.blended},
                          {"cells_ideal", result.problem.targets.ideal},
-                         {"ideal_because_tangled", result.problem.targets.ideal_because_tangled}};
+                         {"ideal_because_tangled", result.problem.targets.ideal_because_tangled},
+                         {"coverage", result.problem.targets.coverage},
+                         {"uniform_because_folded", result.problem.targets.uniform_because_folded}};
     if (result.untangling) json["untangling"] = to_json(*result.untangling);
     if (result.corner_phase) json["corner_phase"] = to_json(*result.corner_phase);
     if (result.worst_cell_repair) json["worst_cell_repair"] = to_json(*result.worst_cell_repair);

@@ -1,6 +1,8 @@
 #include "solver/desired_volumes.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "core/error.hpp"
@@ -18,6 +20,15 @@ double global_sum(std::span<const double> values, MPI_Comm comm) {
   return total;
 }
 }  // namespace
+
+double domain_coverage(std::span<const double> cell_volumes, MPI_Comm comm) {
+  double local = 0.0;
+  for (double v : cell_volumes) local += std::abs(v);
+  double covered = 0.0;
+  MPI_Allreduce(&local, &covered, 1, MPI_DOUBLE, MPI_SUM, comm);
+  const double domain = global_sum(cell_volumes, comm);
+  return domain > 0.0 ? covered / domain : std::numeric_limits<double>::infinity();
+}
 
 void normalize_volumes(std::vector<double>& volumes, double total, MPI_Comm comm) {
   const double sum = global_sum(volumes, comm);

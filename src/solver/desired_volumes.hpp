@@ -23,6 +23,17 @@ namespace neomesh {
 std::vector<double> desired_volumes(SizeMode mode, const MeshView& view, const DofMap& dofs,
                                     std::span<const double> cell_volumes);
 
+// How many times the cells cover their domain: Σ|v_K| / Σ v_K over all ranks, for the actual
+// (signed) cell volumes v_K. 1 for a mesh without inverted cells; a cell folded over its
+// neighbours adds twice its volume (it covers the domain again and its negative volume is
+// subtracted from the sum). +∞ if the volumes do not sum to a positive volume. Collective.
+double domain_coverage(std::span<const double> cell_volumes, MPI_Comm comm);
+
+// Above this coverage a tangled input is folded over itself throughout rather than in a few
+// places: the cells of negative volume add up to more than half the domain, and the valid
+// cells among them were stretched and squeezed along with them, so no input volume is a size.
+constexpr double kFoldedCoverage = 2.0;
+
 // Scales `volumes` (relative, one per local cell) so that they sum to `total` over all ranks.
 void normalize_volumes(std::vector<double>& volumes, double total, MPI_Comm comm);
 
