@@ -39,6 +39,9 @@ struct IterationRecord {
   int untangling_round = 0;    // ≥ 1: the round (value of ε) this iteration belongs to
   double epsilon = 0.0;        // ε of the untangling energy
   std::int64_t inverted = -1;  // cells inverted after the step
+  // The untangling energy lifting nearly flat corners after the optimum (the worst-cell phase):
+  // `inverted` then counts cells with det G below kLiftedDet at a corner, none of them inverted.
+  bool lifting_flat_corners = false;
 };
 
 enum class StopReason {

@@ -5,9 +5,16 @@
 namespace neomesh {
 
 namespace {
-// Untangling rows (F is the untangling energy there) end with the cells still inverted.
+// Untangling rows (F is the untangling energy there) end with the cells still inverted, or
+// still nearly flat where the worst-cell phase lifts corners.
 std::string untangling_note(const IterationRecord& rec) {
-  return rec.untangling_round > 0 ? fmt::format("  {} inverted", rec.inverted) : "";
+  if (rec.untangling_round == 0) return "";
+  return fmt::format("  {} {}", rec.inverted,
+                     rec.lifting_flat_corners ? "nearly flat" : "inverted");
+}
+
+const char* untangling_name(const IterationRecord& rec) {
+  return rec.lifting_flat_corners ? "lifting nearly flat corners" : "untangling";
 }
 }  // namespace
 
@@ -38,13 +45,14 @@ std::string iteration_table_row(const IterationRecord& rec) {
 
 std::string untangling_phase_line(const IterationRecord& rec) {
   if (rec.untangling_round == 0) return "optimizing the Neo-Hookean energy:";
-  return fmt::format("untangling, round {} (epsilon {:.2e}):", rec.untangling_round, rec.epsilon);
+  return fmt::format("{}, round {} (epsilon {:.2e}):", untangling_name(rec), rec.untangling_round,
+                     rec.epsilon);
 }
 
 std::string progress_line(const IterationRecord& rec) {
   return fmt::format("{}iteration {}: defect {:.2e}, F {:.4e}, {:.2f} s{}",
-                     rec.untangling_round > 0 ? "untangling " : "", rec.k, rec.defect, rec.energy,
-                     rec.seconds, untangling_note(rec));
+                     rec.untangling_round > 0 ? fmt::format("{} ", untangling_name(rec)) : "",
+                     rec.k, rec.defect, rec.energy, rec.seconds, untangling_note(rec));
 }
 
 }  // namespace neomesh

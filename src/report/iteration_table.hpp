@@ -14,8 +14,8 @@ std::string iteration_table_header();
 std::string iteration_table_row(const IterationRecord& rec);
 // "iteration 7: defect 3.8e-06, F 9.6e-17, 0.42 s"
 std::string progress_line(const IterationRecord& rec);
-// The line above the rows of a phase: an untangling round (solver/untangle.hpp), or the
-// Neo-Hookean optimization after it.
+// The line above the rows of a phase: an untangling round (solver/untangle.hpp), a round of
+// lifting nearly flat corners (solver/worst_cells.hpp), or the Neo-Hookean optimization.
 std::string untangling_phase_line(const IterationRecord& rec);
 
 }  // namespace neomesh

@@ -42,7 +42,7 @@ nlohmann::json to_json(const IterationRecord& r) {
   if (r.untangling_round > 0)
     row.update({{"untangling_round", r.untangling_round},
                 {"epsilon", r.epsilon},
-                {"inverted", r.inverted}});
+                {r.lifting_flat_corners ? "nearly_flat" : "inverted", r.inverted}});
   return row;
 }
 

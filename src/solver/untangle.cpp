@@ -57,6 +57,7 @@ UntangleResult untangle(Functional& functional, Vec x, const QuasiNewtonOptions&
       rec.untangling_round = round;
       rec.epsilon = epsilon;
       rec.inverted = result.after.count;
+      rec.lifting_flat_corners = below > 0.0;
       result.history.push_back(rec);
       if (observe) observe(rec);
       if (result.after.count == 0 || solver.stop_reason()) break;
