@@ -22,12 +22,13 @@ double global_sum(std::span<const double> values, MPI_Comm comm) {
 }  // namespace
 
 double domain_coverage(std::span<const double> cell_volumes, MPI_Comm comm) {
-  double local = 0.0;
-  for (double v : cell_volumes) local += std::abs(v);
-  double covered = 0.0;
-  MPI_Allreduce(&local, &covered, 1, MPI_DOUBLE, MPI_SUM, comm);
-  const double domain = global_sum(cell_volumes, comm);
-  return domain > 0.0 ? covered / domain : std::numeric_limits<double>::infinity();
+  double sums[2] = {0.0, 0.0};  // Σ|v_K| and Σ v_K, reduced together
+  for (double v : cell_volumes) {
+    sums[0] += std::abs(v);
+    sums[1] += v;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, comm);
+  return sums[1] > 0.0 ? sums[0] / sums[1] : std::numeric_limits<double>::infinity();
 }
 
 void normalize_volumes(std::vector<double>& volumes, double total, MPI_Comm comm) {
