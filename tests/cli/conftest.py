@@ -12,6 +12,7 @@ python3 (a venv's, pyenv's) does not see. The test files import the helpers belo
 show with pytest's -s, e.g. from the build directory:
     NEOMESH=$PWD/neomesh python3 -m pytest -s -p no:cacheprovider ../tests/cli/test_untangle.py
 """
+import atexit
 import contextlib
 import io
 import os
@@ -29,12 +30,20 @@ DATA = os.path.join(SOURCE, "tests", "data")
 EXAMPLES = os.path.join(SOURCE, "examples")
 
 
+# Open MPI's session directory for this process's launches. Under the default, /tmp/ompi.HOST.UID,
+# two mpiexec that ctest -j starts at the same moment can both try to create it, and the loser
+# aborts with "mkdir ... File exists" (Open MPI 4.1).
+MPI_SESSIONS = tempfile.mkdtemp(prefix="neomesh-test-mpiexec-")
+atexit.register(shutil.rmtree, MPI_SESSIONS, ignore_errors=True)
+
+
 def mpiexec(ranks=2, *options):
     """The launcher of a run on `ranks` processes (as root and on 2 cores, as CI runs it);
     [] for one rank."""
     if ranks == 1:
         return []
-    return [MPIEXEC, "--allow-run-as-root", "--oversubscribe", *options, "-n", str(ranks)]
+    return [MPIEXEC, "--allow-run-as-root", "--oversubscribe", "--mca", "orte_tmpdir_base",
+            MPI_SESSIONS, *options, "-n", str(ranks)]
 
 
 # Marks a test that needs mpiexec (NEOMESH_MPIEXEC); skipped, and said so, without it.

@@ -31,5 +31,8 @@ check_run() {
 cd "$work"
 check_run "$("$work/example/moving_bubble")"
 if [ -n "$mpiexec" ]; then
-  check_run "$($mpiexec --allow-run-as-root --oversubscribe -n 2 "$work/example/moving_bubble")"
+  # Its own Open MPI session directory: another mpiexec that ctest -j starts at the same moment
+  # could race it to create the default one.
+  check_run "$($mpiexec --allow-run-as-root --oversubscribe --mca orte_tmpdir_base "$work/mpi" \
+    -n 2 "$work/example/moving_bubble")"
 fi
