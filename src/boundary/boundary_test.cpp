@@ -127,7 +127,22 @@ TEST(Shape, IntersectionOfTwoSurfacesIsTheirRidge) {
   EXPECT_NEAR(std::abs(ridge->tangent(q).dot(Point(-q[1], q[0], 0))), 1.0, 1e-12);
 }
 
-// The grid search finds what a search through every triangle finds.
+// The simplex nearest to p (the lowest index among equally near ones), searched one by one.
+SimplexSet::Hit brute_force_closest(const std::vector<Point>& points,
+                                    const std::vector<std::array<int, 3>>& simplices, int corners,
+                                    const Point& p) {
+  SimplexSet::Hit best;
+  best.distance = 1e300;
+  for (std::size_t t = 0; t < simplices.size(); ++t) {
+    SimplexSet::Hit h = SimplexSet(points, {simplices[t]}, corners).closest(p);
+    h.simplex = static_cast<int>(t);
+    if (h.distance < best.distance) best = h;
+  }
+  return best;
+}
+
+// The grid search finds what a search through every triangle finds, for points far from the
+// surface and (where the search ends after the first ring) near it.
 TEST(DiscreteGeometry, GridSearchAgreesWithBruteForce) {
   std::vector<Point> points;
   std::vector<std::array<int, 3>> triangles;
@@ -143,15 +158,41 @@ TEST(DiscreteGeometry, GridSearchAgreesWithBruteForce) {
     }
   const SimplexSet set(points, triangles, 3);
   std::mt19937 random(7);
-  std::uniform_real_distribution<double> u(-0.3, 1.3);
-  for (int k = 0; k < 200; ++k) {
-    const Point p(u(random), u(random), 0.4 * u(random));
-    double best = 1e300;
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-      const SimplexSet one(points, {triangles[t]}, 3);
-      best = std::min(best, one.closest(p).distance);
+  std::uniform_real_distribution<double> u(-0.3, 1.3), near(-1e-3, 1e-3);
+  for (int k = 0; k < 400; ++k) {
+    Point p(u(random), u(random), 0.4 * u(random));
+    if (k % 2) {  // a point of the sheet, moved a little
+      const auto& t = triangles[random() % triangles.size()];
+      p = (points[t[0]] + points[t[1]] + points[t[2]]) / 3 + (points[t[1]] - points[t[0]]) / 3 +
+          Point(near(random), near(random), near(random));
     }
-    EXPECT_NEAR(set.closest(p).distance, best, 1e-14) << k;
+    const SimplexSet::Hit expected = brute_force_closest(points, triangles, 3, p);
+    const SimplexSet::Hit found = set.closest(p);
+    EXPECT_EQ(found.distance, expected.distance) << k;
+    EXPECT_EQ(found.simplex, expected.simplex) << k;
+  }
+}
+
+// The same in 2D, where every point and simplex lies in one layer of grid cells.
+TEST(DiscreteGeometry, GridSearchAgreesWithBruteForceOnAPolyline) {
+  std::vector<Point> points;
+  std::vector<std::array<int, 3>> segments;
+  const int n = 40;  // a wavy closed curve
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * M_PI * i / n, r = 1 + 0.2 * std::sin(5 * t);
+    points.emplace_back(r * std::cos(t), r * std::sin(t), 0.0);
+    segments.push_back({i, (i + 1) % n, 0});
+  }
+  const SimplexSet set(points, segments, 2);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> u(-1.5, 1.5), near(-1e-3, 1e-3);
+  for (int k = 0; k < 400; ++k) {
+    Point p(u(random), u(random), 0.0);
+    if (k % 2) p = points[random() % n] + Point(near(random), near(random), 0.0);
+    const SimplexSet::Hit expected = brute_force_closest(points, segments, 2, p);
+    const SimplexSet::Hit found = set.closest(p);
+    EXPECT_EQ(found.distance, expected.distance) << k;
+    EXPECT_EQ(found.simplex, expected.simplex) << k;
   }
 }
 

@@ -190,8 +190,10 @@ void SimplexSet::visit(const Cell& c, const Point& p, Hit& best) const {
   }
 }
 
-// Rings of cells around p's cell, nearest first: after ring r every simplex closer than
-// (r − 1) · spacing has been seen (a point within that distance lies in a cell of ring ≤ r).
+// Rings of cells around p's cell, nearest first. After ring r every simplex with a point inside
+// the box of cells c ± r has been seen, so the search ends once the best distance is below p's
+// distance to the box's faces that have grid cells beyond them: a closer (or equally close)
+// simplex would have a point inside. A point on or near the surface usually ends after ring 0.
 SimplexSet::Hit SimplexSet::closest(const Point& p) const {
   Hit best;
   best.distance = std::numeric_limits<double>::infinity();
@@ -200,13 +202,20 @@ SimplexSet::Hit SimplexSet::closest(const Point& p) const {
     if (h.distance < best.distance) best = h;
   }
   const Cell c = cell_of(p);
+  Point offset;  // p's position in its cell
+  for (int a = 0; a < 3; ++a)
+    offset[a] = p[a] - (origin_[a] + static_cast<double>(c[a]) * spacing_);
   long long reach = 0;  // rings beyond this hold no grid cell
   for (int a = 0; a < 3; ++a) reach = std::max({reach, c[a], cells_[a] - 1 - c[a]});
   for (long long r = 0; r <= reach; ++r) {
     Cell lo, hi;
+    double unseen = std::numeric_limits<double>::infinity();  // distance to the unseen cells
     for (int a = 0; a < 3; ++a) {
       lo[a] = std::max(c[a] - r, 0LL);
       hi[a] = std::min(c[a] + r, cells_[a] - 1);
+      const double ring_width = static_cast<double>(r) * spacing_;
+      if (c[a] - r > 0) unseen = std::min(unseen, offset[a] + ring_width);
+      if (c[a] + r < cells_[a] - 1) unseen = std::min(unseen, spacing_ - offset[a] + ring_width);
     }
     for (long long i = lo[0]; i <= hi[0]; ++i)
       for (long long j = lo[1]; j <= hi[1]; ++j)
@@ -215,7 +224,7 @@ SimplexSet::Hit SimplexSet::closest(const Point& p) const {
               std::max({std::abs(i - c[0]), std::abs(j - c[1]), std::abs(k - c[2])});
           if (ring == r) visit({i, j, k}, p, best);
         }
-    if (best.distance <= static_cast<double>(r - 1) * spacing_) break;
+    if (best.distance < unseen) break;
   }
   return best;
 }
