@@ -5,11 +5,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
-#include <fstream>
-#include <limits>
-#include <thread>
 
 #include "app/checks.hpp"
 #include "core/atomic_file.hpp"
@@ -62,27 +58,11 @@ PeakMemory peak_memory(MPI_Comm comm) {
 // machine".
 constexpr double kThreadedWork = 6e4;
 
-// How many processes other than neomesh's `own_ranks` run on this node now: the runnable
-// count of /proc/loadavg, the least of three samples 5 ms apart (a process passing by is not
-// counted). 0 where it cannot be read.
-int busy_processes(int own_ranks) {
-  int least = std::numeric_limits<int>::max();
-  for (int sample = 0; sample < 3; ++sample) {
-    if (sample > 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    std::ifstream loadavg("/proc/loadavg");
-    double averages[3];
-    int runnable = 0;
-    if (!(loadavg >> averages[0] >> averages[1] >> averages[2] >> runnable)) return 0;
-    least = std::min(least, runnable);
-  }
-  return std::max(0, least - own_ranks);
-}
-
 // Unless OMP_NUM_THREADS says otherwise, the ranks on a node share its cores: P ranks times
 // T threads must not oversubscribe them (each rank would start one thread per core). A mesh
-// too small for threads to pay runs on one per rank, and cores that other processes keep busy
-// are left to them: a thread that shares a core holds up every parallel region (hexes 40³
-// beside one busy process on 2 cores: 1.27× the quiet time with 2 threads).
+// too small for threads to pay runs on one per rank. The count depends on the mesh and the
+// machine only, never on its load: sums over cells are added in thread order, so another
+// thread count gives other last bits, and the same command must give the same mesh.
 void share_cores(const Mesh& mesh) {
   if (std::getenv("OMP_NUM_THREADS")) return;
   MPI_Comm node = MPI_COMM_NULL;
@@ -92,12 +72,7 @@ void share_cores(const Mesh& mesh) {
   MPI_Comm_free(&node);
   const double work =
       static_cast<double>(mesh.num_vertices()) * mesh.dim() * mesh.dim() / mpi_size(mesh.comm());
-  if (work < kThreadedWork) {
-    omp_set_num_threads(1);
-    return;
-  }
-  const int free_cores = std::max(1, omp_get_num_procs() - busy_processes(ranks));
-  omp_set_num_threads(std::max(1, free_cores / ranks));
+  omp_set_num_threads(work < kThreadedWork ? 1 : std::max(1, omp_get_num_procs() / ranks));
 }
 
 // --verbose: the linear solves of one iteration.
