@@ -108,7 +108,7 @@ struct SolverOptions {
   // Practical criterion, Newton's half: also stop after a full Newton step (α = 1, δ̃ taken
   // unchanged, σ = 1) that moved no vertex more than newton_move_rtol times its local cell
   // size; the next step would move them by about the square of that (0: off).
-  double newton_move_rtol = 1e-3;
+  double newton_move_rtol = 1e-2;
   LinearSolverKind linear_solver = LinearSolverKind::Amg;
   double hessian_rtol = 1e-4;  // loose δ̃ solve: 4 digits (or Advanced::hessian_defect_factor)
   // s only steers: it is the antigradient direction of the first k_min steps and enters the

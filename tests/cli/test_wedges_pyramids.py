@@ -117,4 +117,8 @@ def test_two_ranks_give_the_serial_result(module_tmp, smoothed, name):
     worst = max(abs(a - b) for p, q in zip(serial_points, parallel_points) for a, b in zip(p, q))
     its = (report["result"]["iterations"], parallel["result"]["iterations"])
     print(f"{name}: 2 ranks: {its[1]} iterations, largest distance to serial {worst:.1e}")
-    assert worst <= 1e-6 and abs(its[0] - its[1]) <= 1, f"{name}: 2 ranks give the serial result"
+    # Both runs stop once a full Newton step moved no vertex more than 1e-2 of its cell size
+    # (--newton-move-rtol): about its square, 1e-4 · MESH_SIZE, is left to the minimum, and the
+    # two runs' linear solves differ at that level.
+    assert worst <= 1e-4 * MESH_SIZE and abs(its[0] - its[1]) <= 1, \
+        f"{name}: 2 ranks give the serial result"
