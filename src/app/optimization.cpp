@@ -61,8 +61,9 @@ constexpr double kThreadedWork = 6e4;
 // Unless OMP_NUM_THREADS says otherwise, the ranks on a node share its cores: P ranks times
 // T threads must not oversubscribe them (each rank would start one thread per core). A mesh
 // too small for threads to pay runs on one per rank. The count depends on the mesh and the
-// machine only, never on its load: sums over cells are added in thread order, so another
-// thread count gives other last bits, and the same command must give the same mesh.
+// machine only, never on its load: another thread count gives other last bits (sums over cells
+// run per thread, and PETSc's norms and dot products go through OpenBLAS's OpenMP threads),
+// and the same command must give the same mesh.
 void share_cores(const Mesh& mesh) {
   if (std::getenv("OMP_NUM_THREADS")) return;
   MPI_Comm node = MPI_COMM_NULL;

@@ -1,7 +1,8 @@
 """How many OpenMP threads `smooth` runs on (the report's "threads"; src/app/optimization.cpp,
 share_cores): OMP_NUM_THREADS when the user sets it; otherwise one for a mesh too small for a
 second thread to pay, one per core above that, whatever else the machine runs: the thread count
-changes the last bits of the result, and the same command must give the same mesh."""
+changes the last bits of the result (neomesh's sums over cells and OpenBLAS's vector reductions
+run per thread), and the same command must give the same mesh."""
 import json
 import os
 import subprocess
