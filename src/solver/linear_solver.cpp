@@ -76,6 +76,64 @@ class AmgDefaults {
 
 }  // namespace
 
+OwnedMat without_stored_zeros(Mat A) {
+  PetscInt first = 0, end = 0, first_column = 0, end_column = 0;
+  NM_PETSC(MatGetOwnershipRange(A, &first, &end));
+  NM_PETSC(MatGetOwnershipRangeColumn(A, &first_column, &end_column));
+  std::vector<PetscInt> diagonal(end - first), off_diagonal(end - first);
+  PetscInt counts[2] = {0, 0};  // stored entries, zeros among them
+  for (PetscInt row = first; row < end; ++row) {
+    PetscInt n = 0;
+    const PetscInt* columns = nullptr;
+    const PetscScalar* values = nullptr;
+    NM_PETSC(MatGetRow(A, row, &n, &columns, &values));
+    for (PetscInt i = 0; i < n; ++i) {
+      if (values[i] == 0.0) {
+        ++counts[1];
+        continue;
+      }
+      const bool local = columns[i] >= first_column && columns[i] < end_column;
+      ++(local ? diagonal : off_diagonal)[row - first];
+    }
+    counts[0] += n;
+    NM_PETSC(MatRestoreRow(A, row, &n, &columns, &values));
+  }
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(A));
+  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, comm);
+  if (10 * counts[1] < counts[0]) return {};
+  OwnedMat P;
+  PetscInt rows = 0, columns = 0, global_rows = 0, global_columns = 0;
+  NM_PETSC(MatGetLocalSize(A, &rows, &columns));
+  NM_PETSC(MatGetSize(A, &global_rows, &global_columns));
+  NM_PETSC(MatCreate(comm, P.out()));
+  NM_PETSC(MatSetSizes(P, rows, columns, global_rows, global_columns));
+  NM_PETSC(MatSetBlockSizesFromMats(P, A, A));
+  NM_PETSC(MatSetType(P, MATAIJ));
+  NM_PETSC(MatSeqAIJSetPreallocation(P, 0, diagonal.data()));
+  NM_PETSC(MatMPIAIJSetPreallocation(P, 0, diagonal.data(), 0, off_diagonal.data()));
+  std::vector<PetscInt> kept_columns;
+  std::vector<PetscScalar> kept_values;
+  for (PetscInt row = first; row < end; ++row) {
+    PetscInt n = 0;
+    const PetscInt* row_columns = nullptr;
+    const PetscScalar* values = nullptr;
+    NM_PETSC(MatGetRow(A, row, &n, &row_columns, &values));
+    kept_columns.clear();
+    kept_values.clear();
+    for (PetscInt i = 0; i < n; ++i)
+      if (values[i] != 0.0) {
+        kept_columns.push_back(row_columns[i]);
+        kept_values.push_back(values[i]);
+      }
+    NM_PETSC(MatRestoreRow(A, row, &n, &row_columns, &values));
+    NM_PETSC(MatSetValues(P, 1, &row, static_cast<PetscInt>(kept_columns.size()),
+                          kept_columns.data(), kept_values.data(), INSERT_VALUES));
+  }
+  NM_PETSC(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
+  NM_PETSC(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
+  return P;
+}
+
 LinearSolver::LinearSolver(MPI_Comm comm, LinearSolverKind kind, const std::string& prefix, int dim,
                            double rtol)
     : rtol_(rtol), kind_(kind), prefix_(prefix), dim_(dim) {
@@ -109,7 +167,11 @@ LinearSolver::LinearSolver(MPI_Comm comm, LinearSolverKind kind, const std::stri
 }
 
 void LinearSolver::set_operator(Mat A, bool same_values) {
-  NM_PETSC(KSPSetOperators(ksp_, A, A));
+  // hypre keeps every stored entry, zeros too, in its copy of A, its Galerkin products and its
+  // smoothers: the hierarchy is built for A without them, the same operator.
+  if (builds_amg_hierarchy() && (!same_values || !amg_matrix_))
+    amg_matrix_ = without_stored_zeros(A);
+  NM_PETSC(KSPSetOperators(ksp_, A, amg_matrix_ ? amg_matrix_.get() : A));
   NM_PETSC(KSPSetReusePreconditioner(ksp_, same_values ? PETSC_TRUE : PETSC_FALSE));
   if (!components_) return;
   const Mat scalar = maij_scalar(A);
@@ -160,6 +222,16 @@ void LinearSolver::precondition_with(const LinearSolver& other) {
   NM_PETSC(PCShellSetContext(pc, other_pc));
   NM_PETSC(PCShellSetApply(pc, apply_other));
   NM_PETSC(PCShellSetName(pc, "the Riesz solve's preconditioner"));
+}
+
+// Not with a shell PC: per component, or another solver's preconditioner.
+bool LinearSolver::builds_amg_hierarchy() const {
+  if (kind_ != LinearSolverKind::Amg) return false;
+  PC pc = nullptr;
+  NM_PETSC(KSPGetPC(ksp_, &pc));
+  PetscBool shell = PETSC_FALSE;
+  NM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCSHELL, &shell));
+  return !shell;
 }
 
 LinearSolver::Outcome LinearSolver::solve(Vec b, Vec x, double atol) {

@@ -6,6 +6,7 @@
 #include "mesh/plex_mesh.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/testing/riesz_solves.hpp"
+#include "solver/testing/stored_zeros.hpp"
 
 namespace neomesh {
 namespace {
@@ -21,6 +22,16 @@ TEST(DistributedLinearSolver, PerComponentRieszSolveMatchesTheBlockSolve) {
     ASSERT_LT(mesh.view().num_cells, data.num_cells());
     expect_same_riesz_representative(mesh.view(), mesh.dofs());
   }
+}
+
+// Each rank copies its rows; columns owned by the other rank stay where they were.
+TEST(DistributedLinearSolver, WithoutStoredZerosKeepsTheOperator) {
+  ASSERT_EQ(mpi_size(), 2);
+  const OwnedMat A = laplacian_with_stored_zeros(PETSC_COMM_WORLD, 12);
+  const OwnedMat P = without_stored_zeros(A);
+  ASSERT_TRUE(P);
+  EXPECT_EQ(stored_entries(P), stored_entries(A) / 2);
+  EXPECT_EQ(product_difference(A, P), 0.0);
 }
 
 }  // namespace

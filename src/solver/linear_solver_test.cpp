@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -13,6 +14,7 @@
 
 #include "generate/serial_view.hpp"
 #include "solver/testing/riesz_solves.hpp"
+#include "solver/testing/stored_zeros.hpp"
 
 namespace neomesh {
 namespace {
@@ -110,6 +112,40 @@ TEST(LinearSolver, PerComponentRieszSolveMatchesTheBlockSolve) {
     const MeshView view = serial_view(mesh);
     expect_same_riesz_representative(view, DofMap::serial(view.dim, view.num_vertices));
   }
+}
+
+TEST(LinearSolver, WithoutStoredZerosKeepsTheOperatorAndDropsTheZeros) {
+  const OwnedMat A = laplacian_with_stored_zeros(PETSC_COMM_SELF, 12);
+  const OwnedMat P = without_stored_zeros(A);
+  ASSERT_TRUE(P);
+  EXPECT_EQ(stored_entries(A), 2 * 2 * (10 * 10 * 5 + 44));  // both components, zeros too
+  EXPECT_EQ(stored_entries(P), 2 * (10 * 10 * 5 + 44));
+  PetscInt bs = 0;
+  NM_PETSC(MatGetBlockSize(P, &bs));
+  EXPECT_EQ(bs, 2);
+  EXPECT_EQ(product_difference(A, P), 0.0);
+  // A matrix without (many) zeros is used as it is.
+  EXPECT_FALSE(without_stored_zeros(P));
+}
+
+// The AMG hierarchy is built for the operator without its zeros; CG still multiplies by A.
+TEST(LinearSolver, AmgBuildsItsHierarchyForTheOperatorWithoutItsZeros) {
+  const OwnedMat A = laplacian_with_stored_zeros(PETSC_COMM_SELF, 30);
+  LinearSolver solver(PETSC_COMM_SELF, LinearSolverKind::Amg, "zerofree_", 2, 1e-8);
+  solver.set_operator(A, false);
+  OwnedVec b, x;
+  NM_PETSC(MatCreateVecs(A, x.out(), b.out()));
+  NM_PETSC(VecSet(b, 1.0));
+  const LinearSolver::Outcome out = solver.solve(b, x);
+  EXPECT_TRUE(out.converged);
+  Mat amat = nullptr, pmat = nullptr;
+  NM_PETSC(KSPGetOperators(solver.ksp(), &amat, &pmat));
+  EXPECT_EQ(amat, A.get());
+  EXPECT_EQ(stored_entries(pmat), stored_entries(A) / 2);
+  OwnedVec r;
+  NM_PETSC(VecDuplicate(b, r.out()));
+  NM_PETSC(MatMult(A, x, r));
+  EXPECT_LT(distance(r, b), 1e-7 * std::sqrt(2.0 * 30 * 30));
 }
 
 }  // namespace
