@@ -353,11 +353,15 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   // an optimum with corners nearly flat, 5 + 123 iterations and 76 s; uniform: 4 + 7, 3.8 s).
   const double coverage = tangled ? domain_coverage(r.cell_volumes(), r.mesh.comm()) : 1.0;
   const bool folded = coverage > kFoldedCoverage;
-  const CellTargets targets = r.smoothing_targets(mode, folded ? SizeMode::Uniform : options.sizes);
-  r.set_targets(targets);
+  KeptCells kept;
+  {  // the Functional keeps its own copy of the targets: this one goes before the solve
+    const CellTargets targets =
+        r.smoothing_targets(mode, folded ? SizeMode::Uniform : options.sizes);
+    r.set_targets(targets);
+    kept = count_kept(targets.kept, r.mesh.comm());
+  }
   const QuasiNewtonOptions method = r.method(options.solver);
   result.problem = r.problem(options.solver);
-  const KeptCells kept = count_kept(targets.kept, r.mesh.comm());
   result.problem.targets = {std::string(name(mode)),
                             kept.all,
                             kept.part,
