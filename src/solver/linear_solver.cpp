@@ -1,5 +1,6 @@
 #include "solver/linear_solver.hpp"
 
+#include <cstdint>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -81,7 +82,7 @@ OwnedMat without_stored_zeros(Mat A) {
   NM_PETSC(MatGetOwnershipRange(A, &first, &end));
   NM_PETSC(MatGetOwnershipRangeColumn(A, &first_column, &end_column));
   std::vector<PetscInt> diagonal(end - first), off_diagonal(end - first);
-  PetscInt counts[2] = {0, 0};  // stored entries, zeros among them
+  std::int64_t counts[2] = {0, 0};  // stored entries, zeros among them (over all ranks)
   for (PetscInt row = first; row < end; ++row) {
     PetscInt n = 0;
     const PetscInt* columns = nullptr;
@@ -99,7 +100,7 @@ OwnedMat without_stored_zeros(Mat A) {
     NM_PETSC(MatRestoreRow(A, row, &n, &columns, &values));
   }
   const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(A));
-  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INT64_T, MPI_SUM, comm);
   if (10 * counts[1] < counts[0]) return {};
   OwnedMat P;
   PetscInt rows = 0, columns = 0, global_rows = 0, global_columns = 0;
