@@ -169,8 +169,11 @@ LinearSolver::LinearSolver(MPI_Comm comm, LinearSolverKind kind, const std::stri
 
 void LinearSolver::set_operator(Mat A, bool same_values) {
   // hypre keeps every stored entry, zeros too, in its copy of A, its Galerkin products and its
-  // smoothers: the hierarchy is built for A without them, the same operator.
-  if (builds_amg_hierarchy() && (!same_values || !amg_matrix_))
+  // smoothers: the hierarchy is built for A without them, the same operator. A kept hierarchy
+  // (same_values) needs no new copy, nor a scan of A for zeros.
+  PetscBool had_operator = PETSC_FALSE;
+  NM_PETSC(KSPGetOperatorsSet(ksp_, &had_operator, nullptr));
+  if (builds_amg_hierarchy() && (!same_values || !had_operator))
     amg_matrix_ = without_stored_zeros(A);
   NM_PETSC(KSPSetOperators(ksp_, A, amg_matrix_ ? amg_matrix_.get() : A));
   NM_PETSC(KSPSetReusePreconditioner(ksp_, same_values ? PETSC_TRUE : PETSC_FALSE));
