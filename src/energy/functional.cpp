@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 #include <optional>
 #include <string>
@@ -197,17 +198,26 @@ struct Functional::Impl {
   PetscInt add_cell_blocks(Fill& fill, std::size_t b, MatrixAssembler::Values& values) const;
 };
 
+// Once one cell's energy is not finite, neither is the sum, and the other cells are skipped:
+// most of the line search's rejected trials invert a cell (the first steps along −s try
+// lengths of up to 64 cells), and each cost a whole evaluation. A finite sum visits every cell.
 double Functional::Impl::local_energy() const {
   double sum = 0.0;
+  std::atomic<bool> not_finite{false};
   for (const CellBlock& block : view.blocks) {
+    if (not_finite.load(std::memory_order_relaxed)) break;
     visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
       constexpr int dim = NeoHookeKernel<Type>::dim;
       with_energy_kernel<Type>([&](const auto& k) {
         double block_sum = 0.0;
 #pragma omp parallel for reduction(+ : block_sum) schedule(static)
-        for (PetscInt c = 0; c < block.size(); ++c)
-          block_sum += k.energy(cell_coordinates<Type>(block, c, local_x.data()),
-                                target<dim>(block.first_cell + c));
+        for (PetscInt c = 0; c < block.size(); ++c) {
+          if (not_finite.load(std::memory_order_relaxed)) continue;
+          const double e = k.energy(cell_coordinates<Type>(block, c, local_x.data()),
+                                    target<dim>(block.first_cell + c));
+          if (!std::isfinite(e)) not_finite.store(true, std::memory_order_relaxed);
+          block_sum += e;
+        }
         sum += block_sum;
       });
     });

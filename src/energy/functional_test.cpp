@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <cmath>
 #include <random>
 
@@ -251,6 +253,30 @@ TEST(Functional, InvertedCellGivesInfiniteValueAndRejectsHessian) {
   EXPECT_TRUE(std::isinf(p.functional.value_and_gradient(p.x, gradient)));
   OwnedMat H = p.functional.create_matrix();
   EXPECT_THROW(p.functional.assemble_hessian(p.x, 1.0, H), Error);
+}
+
+// value() stops at the first cell whose energy is not finite; wherever that cell is in
+// each thread's share of the cells, the sum is not finite, and without it nothing changes.
+TEST(Functional, ValueIsInfiniteWhereverTheInvertedCellIs) {
+  const int n = 8;
+  for (int threads : {1, 2}) {
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    for (int vertex : {n + 2, (n + 1) * (n / 2) + n / 2, (n + 1) * (n - 1) + n - 1}) {
+      MeshData mesh = box(CellType::Quadrilateral, n);
+      const double finite = [&] {
+        Problem p{MeshData(mesh)};
+        p.functional.set_desired_volumes(std::vector<double>(n * n, 1.0));
+        return p.functional.value(p.x);
+      }();
+      EXPECT_TRUE(std::isfinite(finite));
+      mesh.coords[2 * vertex] += 1.5;  // an interior vertex crosses its right-hand neighbour
+      Problem p(std::move(mesh));
+      p.functional.set_desired_volumes(std::vector<double>(n * n, 1.0));
+      EXPECT_TRUE(std::isinf(p.functional.value(p.x))) << threads << " threads, vertex " << vertex;
+    }
+    omp_set_num_threads(saved);
+  }
 }
 
 TEST(Functional, MeshVolumeAndFreeMask) {
