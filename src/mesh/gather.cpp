@@ -139,9 +139,9 @@ GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
   throw_if_any(mesh.comm(), error);
 
   const auto& m = MeshAccess::impl(mesh);
-  const Packet local = pack(mesh, fields);
-  const auto ints = gatherv(mesh.comm(), local.ints, MPIU_INT);
-  const auto reals = gatherv(mesh.comm(), local.reals, MPI_DOUBLE);
+  Packet local = pack(mesh, fields);
+  const auto ints = gatherv(mesh.comm(), std::move(local.ints), MPIU_INT);
+  const auto reals = gatherv(mesh.comm(), std::move(local.reals), MPI_DOUBLE);
 
   // The fields' names and shapes; their values come from the gathered packets.
   GatheredMesh out{{}, {}, false};

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <numeric>
+#include <utility>
 #include <vector>
 
 #include <neomesh/field.hpp>
@@ -32,6 +33,15 @@ std::vector<T> gatherv(MPI_Comm comm, const std::vector<T>& local, MPI_Datatype 
   std::partial_sum(counts.begin(), counts.end(), offsets.begin() + 1);
   std::vector<T> all(rank == 0 ? offsets[size] : 0);
   MPI_Gatherv(local.data(), count, type, all.data(), counts.data(), offsets.data(), type, 0, comm);
+  return all;
+}
+// The same, taking `local`: on one rank it is the result (no copy), and elsewhere it is freed
+// before returning, so that rank 0 does not hold its share twice while it builds on the result.
+template <typename T>
+std::vector<T> gatherv(MPI_Comm comm, std::vector<T>&& local, MPI_Datatype type) {
+  if (mpi_size(comm) == 1) return std::move(local);
+  std::vector<T> all = gatherv(comm, std::as_const(local), type);
+  std::vector<T>().swap(local);
   return all;
 }
 
