@@ -61,7 +61,7 @@ std::vector<double> target_shapes(const SizeField& field, const MeshView& view,
                                   std::span<const double> coords,
                                   std::span<const double> jacobians);
 
-// Adaptation's targets at `coords`: desired_volumes() and target_shapes(). Collective.
+// Adaptation's targets at `coords`: desired volumes and target shapes. Collective.
 CellTargets adapt_targets(const SizeField& field, const SizeFieldOptions& options,
                           const MeshView& view, const DofMap& dofs, std::span<const double> coords,
                           std::span<const double> jacobians, double total);

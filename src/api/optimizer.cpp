@@ -100,16 +100,10 @@ void Optimizer::Impl::set_targets(const CellTargets& targets) {
 }
 
 const Functional& Optimizer::Impl::constrain(SlidingVertices extra) {
-  const std::vector<double> volumes =
-      functional ? functional->desired_volumes() : std::vector<double>{};
-  const std::vector<double> shapes =
-      functional ? functional->target_shapes() : std::vector<double>{};
-  const std::vector<double> weights =
-      functional ? functional->target_weights() : std::vector<double>{};
+  const std::unique_ptr<Functional> previous = std::move(functional);
   functional = std::make_unique<Functional>(view(), dofs(), *energy, boundary->fixed_dofs(),
                                             join(boundary->sliding_vertices(), std::move(extra)));
-  if (!volumes.empty()) functional->set_desired_volumes(volumes);
-  functional->set_target_shapes(shapes, weights);
+  if (previous) functional->set_targets_of(*previous);
   return *functional;
 }
 
@@ -129,8 +123,8 @@ std::optional<UntanglingSummary> Optimizer::Impl::untangle(const QuasiNewtonOpti
   const auto retry = [&](const std::vector<double>& volumes) {
     NM_PETSC(VecCopy(start, x));
     Functional pinned(view(), dofs(), *energy, view().on_boundary);  // every boundary vertex
+    pinned.set_targets_of(*functional);
     pinned.set_desired_volumes(volumes);
-    pinned.set_target_shapes(functional->target_shapes(), functional->target_weights());
     const UntangleResult again =
         neomesh::untangle(pinned, x, method, cell_size, {}, observer.iteration);
     u.history.insert(u.history.end(), again.history.begin(), again.history.end());

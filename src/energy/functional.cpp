@@ -104,8 +104,7 @@ struct Functional::Impl {
   std::vector<std::uint8_t> fixed;    // per local dof
   std::vector<double> volumes;        // desired volume per local cell
   std::vector<double> inverse_edges;  // per local cell v^(−1/d) (CellTarget)
-  std::vector<double> shapes;         // per local cell S (dim² each) as given; empty: ideal
-  std::vector<double> shapes_inv_t;   // per local cell S⁻ᵀ with det S = 1, for the kernels
+  std::vector<double> shapes_inv_t;   // per local cell S⁻ᵀ with det S = 1; empty: ideal
   std::vector<double> weights;        // per local cell with shapes: its energy's weight
   OwnedVec free_mask;
   SlidingVertices sliding;
@@ -454,7 +453,6 @@ void Functional::set_target_shapes(std::span<const double> shapes,
          d);
   if (!weights.empty() && (shapes.empty() || weights.size() != cells))
     fail("Functional: {} target weights for {} cells", weights.size(), cells);
-  impl_->shapes.assign(shapes.begin(), shapes.end());
   impl_->weights.assign(weights.begin(), weights.end());
   if (impl_->weights.empty() && !shapes.empty()) impl_->weights.assign(cells, 1.0);
   impl_->shapes_inv_t.resize(shapes.size());
@@ -464,12 +462,13 @@ void Functional::set_target_shapes(std::span<const double> shapes,
     invert_target_shapes<3>(shapes, impl_->weights, impl_->shapes_inv_t);
 }
 
-const std::vector<double>& Functional::target_shapes() const {
-  return impl_->shapes;
-}
-
-const std::vector<double>& Functional::target_weights() const {
-  return impl_->weights;
+void Functional::set_targets_of(const Functional& other) {
+  if (other.impl_->view.num_cells != impl_->view.num_cells)
+    fail("Functional: the targets of {} cells for {} cells", other.impl_->view.num_cells,
+         impl_->view.num_cells);
+  if (!other.desired_volumes().empty()) set_desired_volumes(other.desired_volumes());
+  impl_->shapes_inv_t = other.impl_->shapes_inv_t;
+  impl_->weights = other.impl_->weights;
 }
 
 std::vector<double> Functional::cell_jacobians(Vec x) const {

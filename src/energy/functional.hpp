@@ -67,8 +67,9 @@ class Functional {
   // volume); and the weight of each cell's energy (empty: 1). Empty shapes: the thesis' ideal
   // cells. Throws Error for det S ≤ 0, a weight ≤ 0 or a wrong length.
   void set_target_shapes(std::span<const double> shapes, std::span<const double> weights = {});
-  const std::vector<double>& target_shapes() const;   // as given (empty: ideal)
-  const std::vector<double>& target_weights() const;  // empty with ideal targets
+  // The desired volumes, target shapes and weights of `other` (of the same mesh), as they are
+  // there: a Functional that replaces another with new constraints keeps its targets.
+  void set_targets_of(const Functional& other);
   // Each local cell's Jacobian at x, at its centre, relative to its unit ideal cell (dim² per
   // cell, column-major, MeshView order): the shape an `input` target takes.
   std::vector<double> cell_jacobians(Vec x) const;
