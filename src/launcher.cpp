@@ -1,8 +1,10 @@
 // The `neomesh` command: starts the command line proper (neomesh-main, beside it in a build
 // tree, in libexec/neomesh once installed) with glibc's transparent huge pages for large
 // allocations. Its matrices' arrays are tens to hundreds of MB, first touched page by page;
-// with 4 KiB pages the page faults cost 15-25% of a run (docs/benchmarks.md, "Huge pages"). glibc
-// reads the tunable only when a process starts, hence this separate, dependency-free program:
+// with 4 KiB pages the page faults cost 15-25% of a run (docs/benchmarks.md, "Huge pages").
+// Not on a virtual machine that reports free memory to its host: there a huge page costs more
+// than the 4 KiB pages it replaces (core/huge_pages.hpp), and the tunable is set to 0. glibc
+// reads it only when a process starts, hence this separate, dependency-free program:
 // re-executing neomesh-main itself would load its libraries twice (80 ms). A GLIBC_TUNABLES that
 // already names glibc.malloc.hugetlb is left as it is.
 //
@@ -19,12 +21,18 @@
 #include <cstring>
 #include <string>
 
+#include "core/huge_pages.hpp"
+
 int main(int, char** argv) {
   constexpr const char* kTunable = "glibc.malloc.hugetlb";
   const char* tunables = std::getenv("GLIBC_TUNABLES");
   const std::string before = tunables ? tunables : "";
   if (before.find(kTunable) == std::string::npos)
-    setenv("GLIBC_TUNABLES", ((before.empty() ? "" : before + ":") + kTunable + "=1").c_str(), 1);
+    setenv("GLIBC_TUNABLES",
+           ((before.empty() ? "" : before + ":") +
+            neomesh::huge_pages_tunable(neomesh::reports_free_memory_to_host()))
+               .c_str(),
+           1);
 
   setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0);
 

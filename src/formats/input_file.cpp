@@ -8,6 +8,7 @@
 #include <new>
 
 #include "core/error.hpp"
+#include "core/huge_pages.hpp"
 
 namespace neomesh {
 
@@ -17,7 +18,8 @@ void* allocate_large(std::size_t bytes) {
   if (bytes >= 2 * kHugePage) {
     const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
     p = std::aligned_alloc(kHugePage, rounded);
-    if (p) madvise(p, rounded, MADV_HUGEPAGE);  // a hint: without it, ordinary pages
+    // A hint, where the process asked glibc for huge pages too: without it, ordinary pages.
+    if (p && huge_pages_asked()) madvise(p, rounded, MADV_HUGEPAGE);
   } else {
     p = std::malloc(bytes ? bytes : 1);
   }
