@@ -16,8 +16,8 @@ namespace {
 
 constexpr double kKiB = 1024.0, kMiB = 1024.0 * kKiB, kGiB = 1024.0 * kMiB;
 constexpr double kLibraries = 60 * kMiB;
-constexpr double kPerVertex2D = 1.28 * kKiB, kPerVertex3D = 6.4 * kKiB;
-constexpr double kPerCell2D = 0.54 * kKiB, kPerCell3D = 0.2 * kKiB;
+constexpr double kPerVertex2D = 1.67 * kKiB, kPerVertex3D = 6.4 * kKiB;
+constexpr double kPerCell2D = 0.18 * kKiB, kPerCell3D = 0.04 * kKiB;
 
 // The first number in `path` (bytes), or +∞ if there is none ("max", no such file).
 double number_in(const char* path) {
