@@ -10,6 +10,11 @@ VTK legacy; issue 30) and MFEM 4.5's TMOP (metric 2/303, Newton and MINRES-Jacob
     bench/peers.py --runs 1 --only quads-300
     bench/peers.py -- --targets ideal   # more options for every neomesh run
 
+Each run starts --pause seconds (default 3) after the one before, as a user's runs do: this VM
+hands memory freed by a process back to its host within a second or two, and a run started at
+once would reuse the last one's pages instead of the fresh memory a user's run gets
+(docs/benchmarks.md, "Huge pages"). --pause 0 times runs back to back.
+
 Environment: NEOMESH (the binary; default build/neomesh next to this script). Stdlib only.
 """
 import argparse
@@ -57,6 +62,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--only", action="append", help="row name (repeatable)")
+    parser.add_argument("--pause", type=float, default=3.0,
+                        help="seconds before each run (default 3; see above)")
     parser.add_argument("extra", nargs="*", help="more options for neomesh (after --)")
     args = parser.parse_args()
     neomesh = os.environ.get("NEOMESH", os.path.join(HERE, "..", "build", "neomesh"))
@@ -74,6 +81,7 @@ def main():
             walls, report = [], None
             for _ in range(args.runs):
                 out, report_file = os.path.join(work, "out.vtu"), os.path.join(work, "r.json")
+                time.sleep(args.pause)
                 start = time.monotonic()
                 subprocess.run([neomesh, "smooth", mesh, "-o", out, "--force", "--quiet",
                                 "--boundary", "fixed", "--report", report_file,
