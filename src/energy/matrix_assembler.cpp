@@ -58,43 +58,9 @@ std::pair<OwnedMat, const std::vector<PetscInt>*> matrix_on_arrays(MPI_Comm comm
   return {std::move(m), columns};
 }
 
-// MatMult of the coupled matrices (H(α), and L where vertices slide) on one rank, shared among
-// the OpenMP threads: PETSc's SeqAIJ product runs on one core, and it is most of a δ̃ solve's CG
-// iteration besides the V-cycles.
-PetscErrorCode threaded_product(Mat A, Vec x, Vec y) {
-  PetscFunctionBeginUser;
-  PetscObject arrays = nullptr;
-  PetscCall(PetscObjectQuery(reinterpret_cast<PetscObject>(A), kArraysName, &arrays));
-  PetscCheck(arrays, PETSC_COMM_SELF, PETSC_ERR_PLIB, "a threaded product without its arrays");
-  void* pointer = nullptr;
-  PetscCall(PetscContainerGetPointer(reinterpret_cast<PetscContainer>(arrays), &pointer));
-  const CsrArrays& csr = *static_cast<const CsrArrays*>(pointer);
-  const PetscInt rows = static_cast<PetscInt>(csr.row_start.size()) - 1;
-  const PetscInt* start = csr.row_start.data();
-  const PetscInt* column = csr.column.data();
-  const PetscScalar *a = nullptr, *in = nullptr;
-  PetscScalar* out = nullptr;
-  PetscCall(MatSeqAIJGetArrayRead(A, &a));
-  PetscCall(VecGetArrayRead(x, &in));
-  PetscCall(VecGetArrayWrite(y, &out));
-  // Each row summed in column order by one thread: the same bits for any number of threads.
-  // (Reading a vertex's shared columns once for its D rows measured slower: hexes-40's δ̃
-  // solves 0.17-0.18 s row by row, 0.20-0.23 s by vertex.)
-#pragma omp parallel for schedule(static)
-  for (PetscInt r = 0; r < rows; ++r) {
-    PetscScalar sum = 0.0;
-    for (PetscInt k = start[r]; k < start[r + 1]; ++k) sum += a[k] * in[column[k]];
-    out[r] = sum;
-  }
-  PetscCall(VecRestoreArrayWrite(y, &out));
-  PetscCall(VecRestoreArrayRead(x, &in));
-  PetscCall(MatSeqAIJRestoreArrayRead(A, &a));
-  PetscCall(PetscLogFlops(2.0 * static_cast<PetscLogDouble>(start[rows]) - rows));
-  PetscFunctionReturn(0);
-}
-
-// Coupled matrices on one rank multiply with threaded_product. Set again after each assembly:
-// PETSc may choose its own product when a matrix is assembled.
+// Coupled matrices on one rank multiply with threaded_product. Set when create() makes them:
+// on one rank PETSc never assembles them again (Values writes the values in place), which
+// would put its own product back.
 void use_threaded_product(Mat m, MatrixLayout layout) {
   PetscBool sequential = PETSC_FALSE;
   NM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(m), MATSEQAIJ, &sequential));
@@ -137,6 +103,38 @@ void attach_tag(Mat m, std::uint64_t assembler, MatrixLayout layout) {
 }
 
 }  // namespace
+
+PetscErrorCode threaded_product(Mat A, Vec x, Vec y) {
+  PetscFunctionBeginUser;
+  PetscObject arrays = nullptr;
+  PetscCall(PetscObjectQuery(reinterpret_cast<PetscObject>(A), kArraysName, &arrays));
+  PetscCheck(arrays, PETSC_COMM_SELF, PETSC_ERR_PLIB, "a threaded product without its arrays");
+  void* pointer = nullptr;
+  PetscCall(PetscContainerGetPointer(reinterpret_cast<PetscContainer>(arrays), &pointer));
+  const CsrArrays& csr = *static_cast<const CsrArrays*>(pointer);
+  const PetscInt rows = static_cast<PetscInt>(csr.row_start.size()) - 1;
+  const PetscInt* start = csr.row_start.data();
+  const PetscInt* column = csr.column.data();
+  const PetscScalar *a = nullptr, *in = nullptr;
+  PetscScalar* out = nullptr;
+  PetscCall(MatSeqAIJGetArrayRead(A, &a));
+  PetscCall(VecGetArrayRead(x, &in));
+  PetscCall(VecGetArrayWrite(y, &out));
+  // Each row summed in column order by one thread: the same bits for any number of threads.
+  // (Reading a vertex's shared columns once for its D rows measured slower: hexes-40's δ̃
+  // solves 0.17-0.18 s row by row, 0.20-0.23 s by vertex.)
+#pragma omp parallel for schedule(static)
+  for (PetscInt r = 0; r < rows; ++r) {
+    PetscScalar sum = 0.0;
+    for (PetscInt k = start[r]; k < start[r + 1]; ++k) sum += a[k] * in[column[k]];
+    out[r] = sum;
+  }
+  PetscCall(VecRestoreArrayWrite(y, &out));
+  PetscCall(VecRestoreArrayRead(x, &in));
+  PetscCall(MatSeqAIJRestoreArrayRead(A, &a));
+  PetscCall(PetscLogFlops(2.0 * static_cast<PetscLogDouble>(start[rows]) - rows));
+  PetscFunctionReturn(0);
+}
 
 MatrixAssembler::MatrixAssembler(const MeshView& view, const DofMap& dofs,
                                  std::span<const std::uint8_t> fixed)
@@ -335,7 +333,6 @@ void MatrixAssembler::Values::add_to_diagonal_block(PetscInt v, const double* bl
 
 void MatrixAssembler::Values::finish() {
   restore();
-  use_threaded_product(m_, layout_);
   // Restoring the arrays marks A and B as changed, but solvers look at the state of the
   // MPIAIJ matrix itself.
   if (off_diagonal_part_) {

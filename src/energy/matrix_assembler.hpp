@@ -19,6 +19,12 @@
 
 namespace neomesh {
 
+// MatMult of the coupled matrices (H(α), and L where vertices slide) that MatrixAssembler::create
+// makes on one rank: PETSc's SeqAIJ product runs on one core, and it is most of a δ̃ solve's CG
+// iteration besides the V-cycles. The rows are shared among the OpenMP threads, each summed in
+// column order by one of them: the same result for any number of threads.
+PetscErrorCode threaded_product(Mat A, Vec x, Vec y);
+
 class MatrixAssembler {
  public:
   // Collective: builds the pattern. `fixed`: per local dof (MeshView order), 1 if fixed.

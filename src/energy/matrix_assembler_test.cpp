@@ -99,8 +99,12 @@ void check_assembly(const MeshData& mesh, MatrixLayout layout) {
   PetscBool assembled = PETSC_FALSE;
   NM_PETSC(MatAssembled(m, &assembled));
   EXPECT_TRUE(assembled);
-  // The product (on one rank the coupled layout's is neomesh's own, threaded by vertex rows):
-  // the reference's, and the same bits on 1 and 2 threads.
+  // The product (on one rank the coupled layout's is neomesh's own, its rows shared among the
+  // threads): the reference's, and the same bits on 1 and 2 threads.
+  void (*product)(void) = nullptr;
+  NM_PETSC(MatGetOperation(m, MATOP_MULT, &product));
+  EXPECT_EQ(product == reinterpret_cast<void (*)(void)>(threaded_product),
+            layout == MatrixLayout::Coupled);
   OwnedVec x, y;
   NM_PETSC(MatCreateVecs(m, x.out(), y.out()));
   std::vector<double> in(n), expected(n, 0.0);
