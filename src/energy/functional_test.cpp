@@ -279,6 +279,31 @@ TEST(Functional, ValueIsInfiniteWhereverTheInvertedCellIs) {
   }
 }
 
+// A Functional that replaces another (new constraints, a retry with the boundary pinned) takes
+// over its desired volumes, target shapes and weights: the same energy on the same mesh.
+TEST(Functional, SetTargetsOfTakesOverVolumesShapesAndWeights) {
+  MeshData mesh = perturbed_box(CellType::Quadrilateral, 4, 5);
+  Problem with_targets{MeshData(mesh)};
+  const PetscInt cells = with_targets.view.num_cells;
+  std::vector<double> volumes(cells), shapes(4 * cells), weights(cells);
+  for (PetscInt c = 0; c < cells; ++c) {
+    volumes[c] = 1.0 + 0.1 * (c % 3);
+    weights[c] = 1.0 + 0.5 * (c % 2);
+    const double stretch = 1.0 + 0.2 * (c % 4);
+    shapes[4 * c] = stretch, shapes[4 * c + 1] = 0.1, shapes[4 * c + 2] = 0.0;
+    shapes[4 * c + 3] = 1.0;
+  }
+  with_targets.functional.set_desired_volumes(volumes);
+  with_targets.functional.set_target_shapes(shapes, weights);
+  Problem replacement{std::move(mesh)};
+  replacement.functional.set_targets_of(with_targets.functional);
+  EXPECT_EQ(replacement.functional.desired_volumes(), volumes);
+  EXPECT_EQ(replacement.functional.value(replacement.x),
+            with_targets.functional.value(with_targets.x));
+  Problem other(box(CellType::Quadrilateral, 3));
+  EXPECT_THROW(other.functional.set_targets_of(with_targets.functional), Error);
+}
+
 TEST(Functional, MeshVolumeAndFreeMask) {
   Problem p(box(CellType::Hexahedron, 3));
   EXPECT_NEAR(mesh_volume(p.view, p.dofs, p.x), 8.0, 1e-13);
