@@ -1,14 +1,10 @@
 #include "api/memory_check.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdlib>
-#include <fstream>
-#include <limits>
 #include <string>
 
 #include "core/collective_error.hpp"
 #include "core/error.hpp"
+#include "core/memory.hpp"
 
 namespace neomesh {
 
@@ -19,37 +15,11 @@ constexpr double kLibraries = 60 * kMiB;
 constexpr double kPerVertex2D = 1.67 * kKiB, kPerVertex3D = 6.4 * kKiB;
 constexpr double kPerCell2D = 0.18 * kKiB, kPerCell3D = 0.04 * kKiB;
 
-// The first number in `path` (bytes), or +∞ if there is none ("max", no such file).
-double number_in(const char* path) {
-  std::ifstream in(path);
-  double value = 0;
-  return in >> value ? value : std::numeric_limits<double>::infinity();
-}
-
-double mem_available() {
-  std::ifstream in("/proc/meminfo");
-  std::string key;
-  double kib = 0;
-  while (in >> key >> kib) {
-    if (key == "MemAvailable:") return kib * kKiB;
-    in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
-  }
-  return std::numeric_limits<double>::infinity();
-}
-
 }  // namespace
 
 double estimated_peak_bytes(int dim, std::int64_t vertices, std::int64_t cells) {
   return kLibraries + static_cast<double>(vertices) * (dim == 2 ? kPerVertex2D : kPerVertex3D) +
          static_cast<double>(cells) * (dim == 2 ? kPerCell2D : kPerCell3D);
-}
-
-double available_bytes() {
-  if (const char* given = std::getenv("NEOMESH_MEMORY_AVAILABLE_MIB"))
-    return std::atof(given) * kMiB;
-  const double limit = number_in("/sys/fs/cgroup/memory.max");  // +∞ for "max"
-  const double used = number_in("/sys/fs/cgroup/memory.current");
-  return std::min(mem_available(), std::isfinite(used) ? limit - used : limit);
 }
 
 void check_memory_fits(MPI_Comm comm, int dim, std::int64_t local_vertices,

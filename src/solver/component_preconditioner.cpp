@@ -1,46 +1,20 @@
 #include "solver/component_preconditioner.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <utility>
+
+#include <omp.h>
+
+#include "core/memory.hpp"
 
 namespace neomesh {
 
-namespace {
-
-// part[i] = whole[d · i + j] over this rank's entries (each rank owns whole vertices). By
-// hand rather than VecStrideGather, which needs the block size on the Vec.
-PetscErrorCode gather(Vec whole, int d, int j, Vec part) {
-  PetscFunctionBeginUser;
-  const PetscScalar* in = nullptr;
-  PetscScalar* out = nullptr;
-  PetscInt n = 0;
-  PetscCall(VecGetLocalSize(part, &n));
-  PetscCall(VecGetArrayRead(whole, &in));
-  PetscCall(VecGetArrayWrite(part, &out));
-  for (PetscInt i = 0; i < n; ++i) out[i] = in[d * i + j];
-  PetscCall(VecRestoreArrayWrite(part, &out));
-  PetscCall(VecRestoreArrayRead(whole, &in));
-  PetscFunctionReturn(0);
-}
-
-// whole[d · i + j] = part[i]; the other components are left as they are.
-PetscErrorCode scatter(Vec part, int d, int j, Vec whole) {
-  PetscFunctionBeginUser;
-  const PetscScalar* in = nullptr;
-  PetscScalar* out = nullptr;
-  PetscInt n = 0;
-  PetscCall(VecGetLocalSize(part, &n));
-  PetscCall(VecGetArrayRead(part, &in));
-  PetscCall(VecGetArray(whole, &out));
-  for (PetscInt i = 0; i < n; ++i) out[d * i + j] = in[i];
-  PetscCall(VecRestoreArray(whole, &out));
-  PetscCall(VecRestoreArrayRead(part, &in));
-  PetscFunctionReturn(0);
-}
-
-}  // namespace
-
-ComponentPreconditioner::ComponentPreconditioner(OwnedPC scalar, int components)
-    : scalar_(std::move(scalar)), components_(components) {}
+ComponentPreconditioner::ComponentPreconditioner(std::vector<OwnedPC> scalars, int components)
+    : scalars_(std::move(scalars)),
+      components_(components),
+      x_(scalars_.size()),
+      y_(scalars_.size()) {}
 
 void ComponentPreconditioner::install(PC shell) {
   NM_PETSC(PCSetType(shell, PCSHELL));
@@ -51,24 +25,97 @@ void ComponentPreconditioner::install(PC shell) {
 }
 
 void ComponentPreconditioner::set_operator(Mat scalar, bool same_values) {
-  NM_PETSC(PCSetOperators(scalar_, scalar, scalar));
-  NM_PETSC(PCSetReusePreconditioner(scalar_, same_values ? PETSC_TRUE : PETSC_FALSE));
-  NM_PETSC(MatCreateVecs(scalar, x_.out(), y_.out()));
+  for (std::size_t k = 0; k < scalars_.size(); ++k) {
+    NM_PETSC(PCSetOperators(scalars_[k], scalar, scalar));
+    NM_PETSC(PCSetReusePreconditioner(scalars_[k], same_values ? PETSC_TRUE : PETSC_FALSE));
+    NM_PETSC(MatCreateVecs(scalar, x_[k].out(), y_[k].out()));
+  }
+  if (!same_values) {
+    first_ready_ = false;
+    ready_ = 1;
+    declined_ = false;
+  }
 }
 
 void ComponentPreconditioner::setup() {
-  NM_PETSC(PCSetUp(scalar_));
+  NM_PETSC(setup_first());
+}
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+PetscErrorCode ComponentPreconditioner::setup_first() {
+  PetscFunctionBeginUser;
+  if (first_ready_) PetscFunctionReturn(0);
+  const double resident = resident_bytes();
+  const auto start = std::chrono::steady_clock::now();
+  PetscCall(PCSetUp(scalars_[0]));
+  // A set-up that found A₁ unchanged takes no time nor memory: what a further one costs is
+  // the most seen.
+  setup_seconds_ = std::max(setup_seconds_, seconds_since(start));
+  setup_bytes_ = std::max(setup_bytes_, resident_bytes() - resident);
+  would_have_saved_ = 0.0;
+  first_ready_ = true;
+  PetscFunctionReturn(0);
+}
+
+// part[i] = x[d · i + j] over this rank's entries (each rank owns whole vertices), P₁⁻¹, and
+// y[d · i + j] = result[i]; the other components of y are left as they are.
+PetscErrorCode ComponentPreconditioner::apply_to_component(int slot, int j, const PetscScalar* x,
+                                                           PetscScalar* y) const {
+  PetscFunctionBeginUser;
+  const int d = components_;
+  Vec part_in = x_[slot], part_out = y_[slot];
+  PetscInt n = 0;
+  PetscCall(VecGetLocalSize(part_in, &n));
+  PetscScalar* in = nullptr;
+  PetscCall(VecGetArrayWrite(part_in, &in));
+  for (PetscInt i = 0; i < n; ++i) in[i] = x[d * i + j];
+  PetscCall(VecRestoreArrayWrite(part_in, &in));
+  PetscCall(PCApply(scalars_[slot], part_in, part_out));
+  const PetscScalar* out = nullptr;
+  PetscCall(VecGetArrayRead(part_out, &out));
+  for (PetscInt i = 0; i < n; ++i) y[d * i + j] = out[i];
+  PetscCall(VecRestoreArrayRead(part_out, &out));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode ComponentPreconditioner::apply(PC shell, Vec x, Vec y) {
   PetscFunctionBeginUser;
   void* context = nullptr;
   PetscCall(PCShellGetContext(shell, &context));
-  const ComponentPreconditioner& p = *static_cast<const ComponentPreconditioner*>(context);
-  for (int j = 0; j < p.components_; ++j) {
-    PetscCall(gather(x, p.components_, j, p.x_));
-    PetscCall(PCApply(p.scalar_, p.x_, p.y_));  // sets P₁ up first if A₁ changed
-    PetscCall(scatter(p.y_, p.components_, j, y));
+  ComponentPreconditioner& p = *static_cast<ComponentPreconditioner*>(context);
+  PetscCall(p.setup_first());
+  const auto start = std::chrono::steady_clock::now();
+  const PetscScalar* in = nullptr;
+  PetscScalar* out = nullptr;
+  PetscCall(VecGetArrayRead(x, &in));
+  PetscCall(VecGetArray(y, &out));
+  const int threads = std::min(p.ready_, omp_get_max_threads());
+  std::vector<PetscErrorCode> failed(p.components_, 0);
+#pragma omp parallel for num_threads(threads) if (threads > 1)
+  for (int j = 0; j < p.components_; ++j)
+    failed[j] = p.apply_to_component(omp_get_thread_num(), j, in, out);
+  PetscCall(VecRestoreArray(y, &out));
+  PetscCall(VecRestoreArrayRead(x, &in));
+  for (const PetscErrorCode e : failed) PetscCall(e);
+  const int all = static_cast<int>(p.scalars_.size());
+  if (p.ready_ < all && !p.declined_) {
+    // With all of them, d components take ⌈d / all⌉ applications' time instead of d.
+    const int rounds = (p.components_ + all - 1) / all;
+    p.would_have_saved_ += seconds_since(start) * (p.components_ - rounds) / p.components_;
+    if (p.would_have_saved_ >= p.setup_seconds_) {
+      p.declined_ = available_bytes() < 2.0 * (all - 1) * p.setup_bytes_;
+      // One after the other: hypre's coarsening draws from one global random sequence,
+      // reseeded at each set-up.
+      for (int k = 1; k < all && !p.declined_; ++k) PetscCall(PCSetUp(p.scalars_[k]));
+      if (!p.declined_) p.ready_ = all;
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -84,7 +131,7 @@ PetscErrorCode ComponentPreconditioner::view(PC shell, PetscViewer viewer) {
   if (!ascii) PetscFunctionReturn(0);
   PetscCall(PetscViewerASCIIPrintf(viewer, "applied to each of %d components:\n", p.components_));
   PetscCall(PetscViewerASCIIPushTab(viewer));
-  PetscCall(PCView(p.scalar_, viewer));
+  PetscCall(PCView(p.scalar(), viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(0);
 }

@@ -1,9 +1,12 @@
 #include "solver/linear_solver.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <utility>
 #include <vector>
+
+#include <omp.h>
 
 #include "core/error.hpp"
 
@@ -191,16 +194,23 @@ void LinearSolver::setup() {
 void LinearSolver::precondition_per_component() {
   if (kind_ != LinearSolverKind::Amg)
     fail("internal error: a per-component preconditioner for a solver other than AMG");
-  OwnedPC scalar;
-  NM_PETSC(PCCreate(PetscObjectComm(reinterpret_cast<PetscObject>(ksp_.get())), scalar.out()));
-  NM_PETSC(PCSetOptionsPrefix(scalar, prefix_.c_str()));
-  NM_PETSC(PCSetType(scalar, PCHYPRE));
-  NM_PETSC(PCHYPRESetType(scalar, "boomeramg"));
-  {
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(ksp_.get()));
+  // On one rank, one preconditioner per thread, so that components are preconditioned at once
+  // (component_preconditioner.hpp): not on several ranks, where hypre would call MPI from
+  // threads, nor while PETSc logs events, which it counts in shared tables.
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  const int slots = ranks == 1 && !PetscLogPLB ? std::min(dim_, omp_get_max_threads()) : 1;
+  std::vector<OwnedPC> scalars(std::max(1, slots));
+  for (OwnedPC& scalar : scalars) {
+    NM_PETSC(PCCreate(comm, scalar.out()));
+    NM_PETSC(PCSetOptionsPrefix(scalar, prefix_.c_str()));
+    NM_PETSC(PCSetType(scalar, PCHYPRE));
+    NM_PETSC(PCHYPRESetType(scalar, "boomeramg"));
     const AmgDefaults defaults(prefix_, dim_);  // while it reads them
     NM_PETSC(PCSetFromOptions(scalar));
   }
-  components_ = std::make_unique<ComponentPreconditioner>(std::move(scalar), dim_);
+  components_ = std::make_unique<ComponentPreconditioner>(std::move(scalars), dim_);
   PC pc = nullptr;
   NM_PETSC(KSPGetPC(ksp_, &pc));
   components_->install(pc);

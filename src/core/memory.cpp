@@ -1,0 +1,53 @@
+#include "core/memory.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <string>
+
+namespace neomesh {
+
+namespace {
+
+constexpr double kKiB = 1024.0, kMiB = 1024.0 * kKiB;
+
+// The first number in `path` (bytes), or +∞ if there is none ("max", no such file).
+double number_in(const char* path) {
+  std::ifstream in(path);
+  double value = 0;
+  return in >> value ? value : std::numeric_limits<double>::infinity();
+}
+
+double mem_available() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kib = 0;
+  while (in >> key >> kib) {
+    if (key == "MemAvailable:") return kib * kKiB;
+    in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+double available_bytes() {
+  if (const char* given = std::getenv("NEOMESH_MEMORY_AVAILABLE_MIB"))
+    return std::atof(given) * kMiB;
+  const double limit = number_in("/sys/fs/cgroup/memory.max");  // +∞ for "max"
+  const double used = number_in("/sys/fs/cgroup/memory.current");
+  return std::min(mem_available(), std::isfinite(used) ? limit - used : limit);
+}
+
+double resident_bytes() {
+  std::ifstream in("/proc/self/statm");  // sizes in pages: total, resident, ...
+  double total = 0, resident = 0;
+  if (!(in >> total >> resident)) return 0.0;
+  return resident * static_cast<double>(sysconf(_SC_PAGESIZE));
+}
+
+}  // namespace neomesh
