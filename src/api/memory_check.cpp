@@ -22,13 +22,19 @@ double estimated_peak_bytes(int dim, std::int64_t vertices, std::int64_t cells) 
          static_cast<double>(cells) * (dim == 2 ? kPerCell2D : kPerCell3D);
 }
 
-void check_memory_fits(MPI_Comm comm, int dim, std::int64_t local_vertices,
-                       std::int64_t local_cells, const std::string& name) {
+double node_peak_bytes(MPI_Comm comm, int dim, std::int64_t local_vertices,
+                       std::int64_t local_cells) {
   MPI_Comm node = MPI_COMM_NULL;
   MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
   double need = estimated_peak_bytes(dim, local_vertices, local_cells);
   MPI_Allreduce(MPI_IN_PLACE, &need, 1, MPI_DOUBLE, MPI_SUM, node);
   MPI_Comm_free(&node);
+  return need;
+}
+
+void check_memory_fits(MPI_Comm comm, int dim, std::int64_t local_vertices,
+                       std::int64_t local_cells, const std::string& name) {
+  const double need = node_peak_bytes(comm, dim, local_vertices, local_cells);
   const double have = available_bytes();
   std::string message;
   if (need > have)

@@ -18,6 +18,10 @@ namespace neomesh {
 // `dim`-D mesh.
 double estimated_peak_bytes(int dim, std::int64_t vertices, std::int64_t cells);
 
+// Collective: estimated_peak_bytes summed over the processes on this one's node.
+double node_peak_bytes(MPI_Comm comm, int dim, std::int64_t local_vertices,
+                       std::int64_t local_cells);
+
 // Collective: throws Error (one line, naming `name`, the estimate and what is available) if the
 // processes on one node together need more than it has.
 void check_memory_fits(MPI_Comm comm, int dim, std::int64_t local_vertices,

@@ -1,9 +1,11 @@
 #include "core/memory.hpp"
 
+#include <malloc.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <fstream>
 #include <limits>
@@ -48,6 +50,21 @@ double resident_bytes() {
   double total = 0, resident = 0;
   if (!(in >> total >> resident)) return 0.0;
   return resident * static_cast<double>(sysconf(_SC_PAGESIZE));
+}
+
+void keep_and_fault_in(double bytes) {
+  mallopt(M_MMAP_MAX, 0);         // large blocks from the heap too, not from mmap
+  mallopt(M_TRIM_THRESHOLD, -1);  // and the heap never shrinks
+  if (!(bytes >= 1.0)) return;
+  const auto size = static_cast<std::size_t>(bytes);
+  char* block = static_cast<char*>(std::malloc(size));
+  if (!block) return;
+  const std::ptrdiff_t page = sysconf(_SC_PAGESIZE);
+  const std::ptrdiff_t pages = static_cast<std::ptrdiff_t>(size) / page;
+  volatile char* touch = block;  // stores into a block about to be freed are otherwise dropped
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < pages; ++i) touch[i * page] = 0;
+  std::free(block);  // back to the top of the heap, faulted in
 }
 
 }  // namespace neomesh

@@ -1,6 +1,6 @@
 // What memory this machine can still give, and what this process holds: for refusing a run
 // that will not fit (api/memory_check.hpp) and for spending memory on speed only where it is
-// free (solver/component_preconditioner.hpp).
+// free (solver/component_preconditioner.hpp); and faulting a run's memory in at once.
 #pragma once
 
 namespace neomesh {
@@ -12,5 +12,15 @@ double available_bytes();
 // Bytes this process holds in memory now (its resident set), or 0 where the system does not
 // say.
 double resident_bytes();
+
+// For a whole program, never a library (it changes malloc's settings for the process): from
+// now on malloc keeps the memory it was given, large blocks too, instead of handing it back to
+// the kernel at free() (Debian's SuperLU_DIST, through CombBLAS, sets the same when it is
+// loaded; this does not rely on it); and `bytes` more of it are faulted in now, by every
+// OpenMP thread. A page's first touch is the kernel's work (on a VM the host's as well) on the
+// thread that touches it: on this 2-core VM 0.5-1.3 s per GB on one thread and 2.6 times less
+// on two (docs/benchmarks.md, "First touch"). Without this, a run's arrays are faulted in by
+// whichever thread writes them first, most often one.
+void keep_and_fault_in(double bytes);
 
 }  // namespace neomesh
