@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <optional>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -195,21 +196,33 @@ void LinearSolver::precondition_per_component() {
   if (kind_ != LinearSolverKind::Amg)
     fail("internal error: a per-component preconditioner for a solver other than AMG");
   const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(ksp_.get()));
-  // On one rank, one preconditioner per thread, so that components are preconditioned at once
-  // (component_preconditioner.hpp): not on several ranks, where hypre would call MPI from
-  // threads, nor while PETSc logs events, which it counts in shared tables.
-  int ranks = 1;
-  MPI_Comm_size(comm, &ranks);
-  const int slots = ranks == 1 && !PetscLogPLB ? std::min(dim_, omp_get_max_threads()) : 1;
-  std::vector<OwnedPC> scalars(std::max(1, slots));
-  for (OwnedPC& scalar : scalars) {
+  const auto scalar_preconditioner = [&] {
+    OwnedPC scalar;
     NM_PETSC(PCCreate(comm, scalar.out()));
     NM_PETSC(PCSetOptionsPrefix(scalar, prefix_.c_str()));
     NM_PETSC(PCSetType(scalar, PCHYPRE));
     NM_PETSC(PCHYPRESetType(scalar, "boomeramg"));
     const AmgDefaults defaults(prefix_, dim_);  // while it reads them
     NM_PETSC(PCSetFromOptions(scalar));
-  }
+    return scalar;
+  };
+  std::vector<OwnedPC> scalars;
+  scalars.push_back(scalar_preconditioner());
+  // On one rank, one hypre preconditioner per thread, so that components are preconditioned at
+  // once (component_preconditioner.hpp): not on several ranks, where hypre would call MPI from
+  // threads, nor while PETSc logs events, which it counts in shared tables, nor for another
+  // preconditioner that -<prefix>pc_ options chose, not checked for it.
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  PetscBool hypre = PETSC_FALSE;
+  NM_PETSC(
+      PetscObjectTypeCompare(reinterpret_cast<PetscObject>(scalars[0].get()), PCHYPRE, &hypre));
+  const char* hypre_type = nullptr;
+  if (hypre) NM_PETSC(PCHYPREGetType(scalars[0], &hypre_type));
+  const bool boomeramg = hypre_type && std::string_view(hypre_type) == "boomeramg";
+  if (ranks == 1 && !PetscLogPLB && boomeramg)
+    while (static_cast<int>(scalars.size()) < std::min(dim_, omp_get_max_threads()))
+      scalars.push_back(scalar_preconditioner());
   components_ = std::make_unique<ComponentPreconditioner>(std::move(scalars), dim_);
   PC pc = nullptr;
   NM_PETSC(KSPGetPC(ksp_, &pc));
