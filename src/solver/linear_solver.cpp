@@ -209,9 +209,10 @@ void LinearSolver::precondition_per_component() {
   std::vector<OwnedPC> scalars;
   scalars.push_back(scalar_preconditioner());
   // On one rank, one hypre preconditioner per thread, so that components are preconditioned at
-  // once (component_preconditioner.hpp): not on several ranks, where hypre would call MPI from
-  // threads, nor while PETSc logs events, which it counts in shared tables, nor for another
-  // preconditioner that -<prefix>pc_ options chose, not checked for it.
+  // once (component_preconditioner.hpp): not on several ranks, where hypre would exchange
+  // messages from threads (on one rank it sends none), nor while PETSc logs events, which it counts
+  // in shared tables, nor for another preconditioner that -<prefix>pc_ options chose, not checked
+  // for it.
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
   PetscBool hypre = PETSC_FALSE;
