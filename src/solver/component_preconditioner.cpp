@@ -1,7 +1,6 @@
 #include "solver/component_preconditioner.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <utility>
 
 #include <omp.h>
@@ -41,23 +40,15 @@ void ComponentPreconditioner::setup() {
   NM_PETSC(setup_first());
 }
 
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
-
 PetscErrorCode ComponentPreconditioner::setup_first() {
   PetscFunctionBeginUser;
   if (first_ready_) PetscFunctionReturn(0);
   const double resident = resident_bytes();
-  const auto start = std::chrono::steady_clock::now();
+  const double start = MPI_Wtime();
   PetscCall(PCSetUp(scalars_[0]));
   // A set-up that found A₁ unchanged takes no time nor memory: what a further one costs is
   // the most seen.
-  setup_seconds_ = std::max(setup_seconds_, seconds_since(start));
+  setup_seconds_ = std::max(setup_seconds_, MPI_Wtime() - start);
   setup_bytes_ = std::max(setup_bytes_, resident_bytes() - resident);
   would_have_saved_ = 0.0;
   first_ready_ = true;
@@ -91,7 +82,7 @@ PetscErrorCode ComponentPreconditioner::apply(PC shell, Vec x, Vec y) {
   PetscCall(PCShellGetContext(shell, &context));
   ComponentPreconditioner& p = *static_cast<ComponentPreconditioner*>(context);
   PetscCall(p.setup_first());
-  const auto start = std::chrono::steady_clock::now();
+  const double start = MPI_Wtime();
   const PetscScalar* in = nullptr;
   PetscScalar* out = nullptr;
   PetscCall(VecGetArrayRead(x, &in));
@@ -108,7 +99,7 @@ PetscErrorCode ComponentPreconditioner::apply(PC shell, Vec x, Vec y) {
   if (p.ready_ < all && !p.declined_) {
     // With all of them, d components take ⌈d / all⌉ applications' time instead of d.
     const int rounds = (p.components_ + all - 1) / all;
-    p.would_have_saved_ += seconds_since(start) * (p.components_ - rounds) / p.components_;
+    p.would_have_saved_ += (MPI_Wtime() - start) * (p.components_ - rounds) / p.components_;
     if (p.would_have_saved_ >= p.setup_seconds_) {
       p.declined_ = available_bytes() < 2.0 * (all - 1) * p.setup_bytes_;
       // One after the other: hypre's coarsening draws from one global random sequence,
