@@ -79,9 +79,10 @@ void share_cores(const Mesh& mesh) {
 }
 
 // The memory the run will use (its estimate, api/memory_check.hpp), faulted in at once by all
-// threads and kept from then on (core/memory.hpp): square-midpoint 1024² 13.0–13.3 →
-// 10.7–10.9 s, 2048² 68.9 → 59.8 s. Not where the run will not fit (the optimizer refuses it
-// next), nor where there is little to fault (quads 300², hexes 40³: no faster).
+// threads and kept from then on (core/memory.hpp): square-midpoint 1024² 11.6 → 10.4 s,
+// 2048² 68.9 → 58.3–62.2 s (docs/benchmarks.md, "Where the time goes"). Not where the run will
+// not fit (the optimizer refuses it next), nor where there is little to fault (quads 300²,
+// hexes 40³: no faster).
 void fault_in_the_run(const Mesh& mesh) {
   constexpr double kWorthIt = 256.0 * 1024 * 1024;
   const int ranks = mpi_size(mesh.comm());
