@@ -5,6 +5,8 @@
 
 #include <omp.h>
 
+#include <petscmathypre.h>
+
 #include "core/memory.hpp"
 
 namespace neomesh {
@@ -24,8 +26,10 @@ void ComponentPreconditioner::install(PC shell) {
 }
 
 void ComponentPreconditioner::set_operator(Mat scalar, bool same_values) {
+  if (scalar != operator_) hypre_copy_.reset();  // another pattern, maybe: converted anew
+  operator_ = scalar;
   for (std::size_t k = 0; k < scalars_.size(); ++k) {
-    NM_PETSC(PCSetOperators(scalars_[k], scalar, scalar));
+    if (!hypre_copy_) NM_PETSC(PCSetOperators(scalars_[k], scalar, scalar));
     NM_PETSC(PCSetReusePreconditioner(scalars_[k], same_values ? PETSC_TRUE : PETSC_FALSE));
     NM_PETSC(MatCreateVecs(scalar, x_[k].out(), y_[k].out()));
   }
@@ -45,6 +49,25 @@ PetscErrorCode ComponentPreconditioner::setup_first() {
   if (first_ready_) PetscFunctionReturn(0);
   const double resident = resident_bytes();
   const double start = MPI_Wtime();
+  if (scalars_.size() > 1) {
+    // New values go into the same hypre matrix: no second copy while they are converted.
+    if (hypre_copy_) {
+      Mat same = hypre_copy_;
+      PetscCall(MatConvert(operator_, MATHYPRE, MAT_REUSE_MATRIX, &same));
+    } else {
+      PetscCall(MatConvert(operator_, MATHYPRE, MAT_INITIAL_MATRIX, hypre_copy_.out()));
+    }
+    // The others get views of its hypre matrix: each hypre matrix object holds the work
+    // vectors its preconditioner's applications use, so they cannot share one object.
+    hypre_ParCSRMatrix* shared = nullptr;
+    PetscCall(MatHYPREGetParCSR(hypre_copy_, &shared));
+    PetscCall(PCSetOperators(scalars_[0], operator_, hypre_copy_));
+    for (std::size_t k = 1; k < scalars_.size(); ++k) {
+      OwnedMat view;
+      PetscCall(MatCreateFromParCSR(shared, MATHYPRE, PETSC_USE_POINTER, view.out()));
+      PetscCall(PCSetOperators(scalars_[k], operator_, view));
+    }
+  }
   PetscCall(PCSetUp(scalars_[0]));
   // A set-up that found A₁ unchanged takes no time nor memory: what a further one costs is
   // the most seen.

@@ -15,8 +15,10 @@
 // them back (quads 300², hexes 40³: as much time set up as saved), so they are built the way
 // one decides to buy skis instead of renting them: once the time they would have saved since
 // the first set-up reaches that set-up's time. At most twice the best choice's cost, whatever
-// the number of applications to come. Each holds a copy of A₁ and a hierarchy (about 15 % of
-// a large 2D run's memory), so they are built only where the machine has twice that to spare.
+// the number of applications to come. Each holds a hierarchy (about 8 % of a large 2D run's
+// memory), so they are built only where the machine has twice that to spare; the copy of A₁ in
+// hypre's format that each would make is made once and shared, as hypre's V-cycles only read
+// it.
 #pragma once
 
 #include <vector>
@@ -62,6 +64,10 @@ class ComponentPreconditioner {
 
   std::vector<OwnedPC> scalars_;
   int components_;
+  Mat operator_ = nullptr;  // A₁, as set_operator gave it
+  // A₁ in hypre's format for all of scalars_ where they are several (all BoomerAMG); null
+  // where there is one, which converts A₁ itself if it needs to.
+  OwnedMat hypre_copy_;
   // Per preconditioner: one component of the input and of the output.
   std::vector<OwnedVec> x_, y_;
   bool first_ready_ = false;  // scalars_[0] is set up for the current A₁
