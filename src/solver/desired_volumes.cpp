@@ -53,6 +53,7 @@ std::vector<double> average_over_neighbours(const MeshView& view, const DofMap& 
 
   std::vector<double> averaged(values.size());
   for (const CellBlock& block : view.blocks)
+#pragma omp parallel for schedule(static)
     for (PetscInt c = 0; c < block.size(); ++c) {
       double sum = 0.0;
       for (int i = 0; i < num_vertices(block.type); ++i) {

@@ -65,6 +65,7 @@ void coherent_shares(const MeshView& view, const DofMap& dofs,
   const std::size_t cells = input.size();
   std::vector<Mat<Dim>> log_stretch(cells, Mat<Dim>::Zero());
   std::vector<double> own(cells, 0.0);
+#pragma omp parallel for schedule(static)
   for (std::size_t c = 0; c < cells; ++c)
     if (input[c]) log_stretch[c] = input[c]->log_stretch(), own[c] = input[c]->anisotropy();
   // One pass per cell type of the mesh, on every rank (the averages are collective).
@@ -87,6 +88,7 @@ void coherent_shares(const MeshView& view, const DofMap& dofs,
         for (std::size_t c = 0; c < cells; ++c) component[c] = weight[c] * log_stretch[c](i, j);
         mean[i * Dim + j] = average_over_neighbours(view, dofs, component);
       }
+#pragma omp parallel for schedule(static)
     for (std::size_t c = 0; c < cells; ++c) {
       if (weight[c] == 0.0 || !(share[c] > 0.0)) continue;
       Mat<Dim> m;
@@ -113,6 +115,8 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
   // Each valid cell's J = s V R, det V = 1.
   std::vector<std::optional<InputCell<Dim>>> input(cells);
   double most_stretched = 0.0;
+  // Cell by cell, on every thread (an eigen-decomposition each: 0.15 s of tetrahedra 40³ on one).
+#pragma omp parallel for schedule(static) reduction(max : most_stretched)
   for (std::size_t c = 0; c < cells; ++c) {
     const Mat<Dim> J = Eigen::Map<const Mat<Dim>>(jacobians.data() + c * Dim * Dim);
     const double det = J.determinant();
@@ -140,6 +144,7 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
   for (const CellBlock& block : view.blocks)
     if (block.type == CellType::Wedge)
       std::fill_n(stiffness.begin() + block.first_cell, block.size(), kKeptWedgeStiffness);
+#pragma omp parallel for schedule(static)
   for (std::size_t c = 0; c < cells; ++c) {
     Eigen::Map<Mat<Dim>> S(t.shapes.data() + c * Dim * Dim);
     const double w = t.kept[c];
