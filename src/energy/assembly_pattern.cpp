@@ -36,23 +36,38 @@ struct VertexCells {
 // each chunk takes the smallest colour that no earlier chunk sharing a vertex with it has.
 std::vector<PetscInt> colour_block_chunks(const VertexCells& around, const CellBlock& block) {
   const PetscInt chunks = (block.size() + AssemblyPattern::kChunk - 1) / AssemblyPattern::kChunk;
+  const PetscInt first = block.first_cell, end = block.first_cell + block.size();
+  // First, on every thread, the earlier chunks that share a vertex with each chunk (visiting
+  // the cells around a chunk's vertices is most of the work); then the greedy pass in order.
+  std::vector<std::vector<PetscInt>> earlier(chunks);
+#pragma omp parallel
+  {
+    std::vector<PetscInt> seen_by(chunks, -1);  // seen_by[k] == chunk: k is in earlier[chunk]
+#pragma omp for schedule(static)
+    for (PetscInt chunk = 0; chunk < chunks; ++chunk) {
+      const PetscInt cells_end = std::min(end, first + (chunk + 1) * AssemblyPattern::kChunk);
+      for (PetscInt cell = first + chunk * AssemblyPattern::kChunk; cell < cells_end; ++cell)
+        for (int i = 0; i < around.cell_size[cell]; ++i) {
+          const PetscInt v = around.cell_vertices[cell][i];
+          for (PetscInt k = around.start[v]; k < around.start[v + 1]; ++k) {
+            const PetscInt other = around.cells[k];
+            if (other < first || other >= end) continue;  // another block
+            const PetscInt near = (other - first) / AssemblyPattern::kChunk;
+            if (near >= chunk || seen_by[near] == chunk) continue;
+            seen_by[near] = chunk;
+            earlier[chunk].push_back(near);
+          }
+        }
+    }
+  }
   std::vector<PetscInt> colour(chunks, -1);
   std::vector<PetscInt> taken_by;  // taken_by[k] == chunk: colour k is taken near `chunk`
-  const PetscInt first = block.first_cell, end = block.first_cell + block.size();
   for (PetscInt chunk = 0; chunk < chunks; ++chunk) {
-    const PetscInt cells_end = std::min(end, first + (chunk + 1) * AssemblyPattern::kChunk);
-    for (PetscInt cell = first + chunk * AssemblyPattern::kChunk; cell < cells_end; ++cell)
-      for (int i = 0; i < around.cell_size[cell]; ++i) {
-        const PetscInt v = around.cell_vertices[cell][i];
-        for (PetscInt k = around.start[v]; k < around.start[v + 1]; ++k) {
-          const PetscInt other = around.cells[k];
-          if (other < first || other >= end) continue;  // another block
-          const PetscInt taken = colour[(other - first) / AssemblyPattern::kChunk];
-          if (taken < 0) continue;
-          if (taken >= static_cast<PetscInt>(taken_by.size())) taken_by.resize(taken + 1, -1);
-          taken_by[taken] = chunk;
-        }
-      }
+    for (const PetscInt near : earlier[chunk]) {
+      const PetscInt taken = colour[near];
+      if (taken >= static_cast<PetscInt>(taken_by.size())) taken_by.resize(taken + 1, -1);
+      taken_by[taken] = chunk;
+    }
     PetscInt k = 0;
     while (k < static_cast<PetscInt>(taken_by.size()) && taken_by[k] == chunk) ++k;
     colour[chunk] = k;
