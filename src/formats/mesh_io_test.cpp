@@ -1,6 +1,7 @@
 #include "formats/mesh_io.hpp"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -154,6 +155,26 @@ TEST(WriteMsh, GmshReadsIt) {
   PlexMesh again = load_mesh(dir / "again.msh");
   EXPECT_EQ(again.global_num_cells(), 8);
   EXPECT_EQ(again.view().parts.size(), 2u);
+}
+
+// The .msh writer formats its lines in chunks on every thread: a mesh of several chunks
+// (2 × 16,384 lines and more) is written to the same bytes on one thread and on two, and reads
+// back as written.
+TEST(WriteMsh, SameBytesOnAnyNumberOfThreadsAcrossChunks) {
+  PlexMesh mesh = PlexMesh::from_data(box(CellType::Quadrilateral, 200), "box");  // 40,401 vertices
+  const auto dir = scratch_dir("WriteMshThreads");
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  write_mesh(mesh, dir / "one.msh");
+  omp_set_num_threads(2);
+  write_mesh(mesh, dir / "two.msh");
+  omp_set_num_threads(threads);
+  const std::string one = testing::read_file(dir / "one.msh");
+  EXPECT_EQ(one, testing::read_file(dir / "two.msh"));
+  // The chunks' joints are exact: the last vertex, the last cell.
+  EXPECT_NE(one.find("\n1 1 0\n$EndNodes\n"), std::string::npos);
+  EXPECT_NE(one.find("\n40000 40199 40200 40401 40400\n"), std::string::npos);
+  expect_same_mesh(mesh, load_mesh(dir / "two.msh"));
 }
 
 TEST(WriteMesh, RejectsUnknownExtension) {

@@ -3,7 +3,9 @@
 #include <numeric>
 #include <string>
 
+#include <fmt/compile.h>
 #include <fmt/ostream.h>
+#include <omp.h>
 
 #include "formats/mesh_writers.hpp"
 #include "mesh/cell_order.hpp"
@@ -95,6 +97,28 @@ std::vector<Block> element_blocks(const GatheredMesh& g, const WrittenGroups& gr
   return out;
 }
 
+// Lines 0 .. count−1, as line(out, i) formats them to `out`, formatted chunk by chunk on every
+// thread and written in order. fmt::print of each value through the ostream took 0.65 s of
+// quads 1024² (defaults), most of a large run's writing; the text of a few chunks per thread
+// is held at a time.
+template <typename Line>
+void write_lines(std::ostream& f, std::size_t count, const Line& line) {
+  constexpr std::size_t kChunk = std::size_t{1} << 14;
+  const std::size_t chunks = (count + kChunk - 1) / kChunk;
+  std::vector<fmt::memory_buffer> text(4 * static_cast<std::size_t>(omp_get_max_threads()));
+  for (std::size_t first = 0; first < chunks; first += text.size()) {
+    const std::size_t round = std::min(text.size(), chunks - first);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t k = 0; k < round; ++k) {
+      text[k].clear();
+      const std::size_t begin = (first + k) * kChunk, end = std::min(count, begin + kChunk);
+      for (std::size_t i = begin; i < end; ++i) line(std::back_inserter(text[k]), i);
+    }
+    for (std::size_t k = 0; k < round; ++k)
+      f.write(text[k].data(), static_cast<std::streamsize>(text[k].size()));
+  }
+}
+
 // $NodeData or $ElementData of an array: name, time 0, step 0, the values of every node or
 // element, by tag 1, 2, ... (`index[t - 1]`: the entry of the array for tag t, or -1 for an
 // element that is not a cell, a facet or point of a group: NaN, since meshio reads an
@@ -106,15 +130,14 @@ void write_data(std::ostream& f, const char* section, const DataArray& a,
       name.begin(), name.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   std::replace(name.begin(), name.end(), '"', '\'');
   fmt::print(f, "${}\n1\n\"{}\"\n1\n0\n3\n0\n{}\n{}\n", section, name, a.components, index.size());
-  for (std::size_t t = 0; t < index.size(); ++t) {
-    fmt::print(f, "{}", t + 1);
+  write_lines(f, index.size(), [&](auto out, std::size_t t) {
+    out = fmt::format_to(out, FMT_COMPILE("{}"), t + 1);
     for (int k = 0; k < a.components; ++k)
-      if (index[t] < 0)
-        fmt::print(f, " nan");
-      else
-        fmt::print(f, " {:.17g}", a.values[index[t] * a.components + k]);
-    fmt::print(f, "\n");
-  }
+      out = index[t] < 0 ? fmt::format_to(out, FMT_COMPILE(" nan"))
+                         : fmt::format_to(out, FMT_COMPILE(" {:.17g}"),
+                                          a.values[index[t] * a.components + k]);
+    *out++ = '\n';
+  });
   fmt::print(f, "$End{}\n", section);
 }
 
@@ -157,9 +180,13 @@ void write_msh(const GatheredMesh& g, std::ostream& f) {
   // All nodes on the first cell entity; Gmsh and PETSc accept nodes classified there.
   const PetscInt nv = mesh.num_vertices();
   fmt::print(f, "$Nodes\n1 {} 1 {}\n{} {} 0 {}\n", nv, nv, mesh.dim, blocks.front().entity, nv);
-  for (PetscInt v = 0; v < nv; ++v) fmt::print(f, "{}\n", v + 1);
-  for (PetscInt v = 0; v < nv; ++v)
-    fmt::print(f, "{:.17g} {:.17g} {:.17g}\n", xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+  const auto vertices = static_cast<std::size_t>(nv);
+  write_lines(f, vertices,
+              [](auto out, std::size_t v) { fmt::format_to(out, FMT_COMPILE("{}\n"), v + 1); });
+  write_lines(f, vertices, [&](auto out, std::size_t v) {
+    fmt::format_to(out, FMT_COMPILE("{:.17g} {:.17g} {:.17g}\n"), xyz[3 * v], xyz[3 * v + 1],
+                   xyz[3 * v + 2]);
+  });
   fmt::print(f, "$EndNodes\n");
 
   std::size_t total = 0;
@@ -169,12 +196,14 @@ void write_msh(const GatheredMesh& g, std::ostream& f) {
   cell_of.reserve(total);
   for (const Block& b : blocks) {
     fmt::print(f, "{} {} {} {}\n", b.dim, b.entity, b.type, b.elements.size());
-    for (std::size_t k = 0; k < b.elements.size(); ++k) {
-      fmt::print(f, "{}", cell_of.size() + 1);
-      for (PetscInt v : b.elements[k]) fmt::print(f, " {}", v + 1);
-      fmt::print(f, "\n");
+    const std::size_t first = cell_of.size() + 1;  // the block's first element tag
+    write_lines(f, b.elements.size(), [&](auto out, std::size_t k) {
+      out = fmt::format_to(out, FMT_COMPILE("{}"), first + k);
+      for (PetscInt v : b.elements[k]) out = fmt::format_to(out, FMT_COMPILE(" {}"), v + 1);
+      *out++ = '\n';
+    });
+    for (std::size_t k = 0; k < b.elements.size(); ++k)
       cell_of.push_back(k < b.cells.size() ? static_cast<std::ptrdiff_t>(b.cells[k]) : -1);
-    }
   }
   fmt::print(f, "$EndElements\n");
 
