@@ -172,7 +172,8 @@ ProblemSummary Optimizer::Impl::problem(const SolverOptions& solver) const {
       LinearSolver(mesh.comm(), solver.linear_solver, "hess_", dim, solver.hessian_rtol)
           .description();
   LinearSolver riesz(mesh.comm(), solver.linear_solver, "riesz_", dim, solver.riesz_rtol);
-  if (riesz_per_component(*functional, solver)) riesz.precondition_per_component();
+  if (const auto kind = riesz_components(*functional, solver))
+    riesz.precondition_per_component(*kind);
   p.riesz_solver = riesz.description();
   return p;
 }

@@ -7,15 +7,44 @@
 
 #include <petscmathypre.h>
 
+#include "core/error.hpp"
 #include "core/memory.hpp"
 
 namespace neomesh {
 
-ComponentPreconditioner::ComponentPreconditioner(std::vector<OwnedPC> scalars, int components)
+namespace {
+
+// Converts `from` into hypre's format, into `to` if it holds the previous values (the same
+// pattern): no second copy while they are converted.
+PetscErrorCode convert_to_hypre(Mat from, OwnedMat& to) {
+  PetscFunctionBeginUser;
+  if (to) {
+    Mat same = to;
+    PetscCall(MatConvert(from, MATHYPRE, MAT_REUSE_MATRIX, &same));
+  } else {
+    PetscCall(MatConvert(from, MATHYPRE, MAT_INITIAL_MATRIX, to.out()));
+  }
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+ComponentPreconditioner::ComponentPreconditioner(std::vector<OwnedPC> scalars, int components,
+                                                 ComponentOperators kind, bool boomeramg,
+                                                 bool concurrent)
     : scalars_(std::move(scalars)),
       components_(components),
+      kind_(kind),
+      boomeramg_(boomeramg),
+      concurrent_(concurrent),
+      hypre_(scalars_.size()),
+      parts_(scalars_.size()),
       x_(scalars_.size()),
-      y_(scalars_.size()) {}
+      y_(scalars_.size()) {
+  if (kind_ == ComponentOperators::Own && static_cast<int>(scalars_.size()) != components_)
+    fail("internal error: {} preconditioners for {} components of their own", scalars_.size(),
+         components_);
+}
 
 void ComponentPreconditioner::install(PC shell) {
   NM_PETSC(PCSetType(shell, PCSHELL));
@@ -25,13 +54,23 @@ void ComponentPreconditioner::install(PC shell) {
   NM_PETSC(PCShellSetName(shell, "per component"));
 }
 
-void ComponentPreconditioner::set_operator(Mat scalar, bool same_values) {
-  if (scalar != operator_) hypre_copy_.reset();  // another pattern, maybe: converted anew
-  operator_ = scalar;
+void ComponentPreconditioner::set_operator(Mat matrix, bool same_values) {
+  if (matrix != operator_)  // another pattern, maybe: converted anew
+    for (OwnedMat& m : hypre_) m.reset();
+  operator_ = matrix;
+  const bool shared = kind_ == ComponentOperators::Shared;
+  PetscInt rows = 0, global_rows = 0;
+  NM_PETSC(MatGetLocalSize(matrix, &rows, nullptr));
+  NM_PETSC(MatGetSize(matrix, &global_rows, nullptr));
+  const PetscInt per = shared ? 1 : components_;  // rows of `matrix` per row of a component
   for (std::size_t k = 0; k < scalars_.size(); ++k) {
-    if (!hypre_copy_) NM_PETSC(PCSetOperators(scalars_[k], scalar, scalar));
+    if (shared && !hypre_[0]) NM_PETSC(PCSetOperators(scalars_[k], matrix, matrix));
     NM_PETSC(PCSetReusePreconditioner(scalars_[k], same_values ? PETSC_TRUE : PETSC_FALSE));
-    NM_PETSC(MatCreateVecs(scalar, x_[k].out(), y_[k].out()));
+    for (OwnedVec* v : {&x_[k], &y_[k]}) {
+      NM_PETSC(VecCreate(PetscObjectComm(reinterpret_cast<PetscObject>(matrix)), v->out()));
+      NM_PETSC(VecSetSizes(*v, rows / per, global_rows / per));
+      NM_PETSC(VecSetType(*v, VECSTANDARD));
+    }
   }
   if (!same_values) {
     first_ready_ = false;
@@ -44,30 +83,25 @@ void ComponentPreconditioner::setup() {
   NM_PETSC(setup_first());
 }
 
+int ComponentPreconditioner::concurrent() const {
+  const int at_once = kind_ == ComponentOperators::Own ? (concurrent_ ? components_ : 1) : ready_;
+  return std::min(at_once, omp_get_max_threads());
+}
+
 PetscErrorCode ComponentPreconditioner::setup_first() {
   PetscFunctionBeginUser;
   if (first_ready_) PetscFunctionReturn(0);
+  if (kind_ == ComponentOperators::Own) {
+    PetscCall(give_own_operators());
+    // One after the other: hypre's coarsening draws from one global random sequence, reseeded
+    // at each set-up.
+    for (OwnedPC& pc : scalars_) PetscCall(PCSetUp(pc));
+    first_ready_ = true;
+    PetscFunctionReturn(0);
+  }
   const double resident = resident_bytes();
   const double start = MPI_Wtime();
-  if (scalars_.size() > 1) {
-    // New values go into the same hypre matrix: no second copy while they are converted.
-    if (hypre_copy_) {
-      Mat same = hypre_copy_;
-      PetscCall(MatConvert(operator_, MATHYPRE, MAT_REUSE_MATRIX, &same));
-    } else {
-      PetscCall(MatConvert(operator_, MATHYPRE, MAT_INITIAL_MATRIX, hypre_copy_.out()));
-    }
-    // The others get views of its hypre matrix: each hypre matrix object holds the work
-    // vectors its preconditioner's applications use, so they cannot share one object.
-    hypre_ParCSRMatrix* shared = nullptr;
-    PetscCall(MatHYPREGetParCSR(hypre_copy_, &shared));
-    PetscCall(PCSetOperators(scalars_[0], operator_, hypre_copy_));
-    for (std::size_t k = 1; k < scalars_.size(); ++k) {
-      OwnedMat view;
-      PetscCall(MatCreateFromParCSR(shared, MATHYPRE, PETSC_USE_POINTER, view.out()));
-      PetscCall(PCSetOperators(scalars_[k], operator_, view));
-    }
-  }
+  if (scalars_.size() > 1) PetscCall(give_shared_operator());
   PetscCall(PCSetUp(scalars_[0]));
   // A set-up that found A₁ unchanged takes no time nor memory: what a further one costs is
   // the most seen.
@@ -75,6 +109,45 @@ PetscErrorCode ComponentPreconditioner::setup_first() {
   setup_bytes_ = std::max(setup_bytes_, resident_bytes() - resident);
   would_have_saved_ = 0.0;
   first_ready_ = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ComponentPreconditioner::give_shared_operator() {
+  PetscFunctionBeginUser;
+  PetscCall(convert_to_hypre(operator_, hypre_[0]));
+  // The others get views of its hypre matrix: each hypre matrix object holds the work vectors
+  // its preconditioner's applications use, so they cannot share one object.
+  hypre_ParCSRMatrix* shared = nullptr;
+  PetscCall(MatHYPREGetParCSR(hypre_[0], &shared));
+  for (std::size_t k = 1; k < scalars_.size(); ++k)
+    PetscCall(MatCreateFromParCSR(shared, MATHYPRE, PETSC_USE_POINTER, hypre_[k].out()));
+  for (std::size_t k = 0; k < scalars_.size(); ++k)
+    PetscCall(PCSetOperators(scalars_[k], operator_, hypre_[k]));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ComponentPreconditioner::give_own_operators() {
+  PetscFunctionBeginUser;
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(operator_));
+  PetscInt first = 0, end = 0;
+  PetscCall(MatGetOwnershipRange(operator_, &first, &end));
+  for (int j = 0; j < components_; ++j) {
+    // A_j: rows and columns j, j + d, … (each rank owns whole vertices).
+    IS rows = nullptr;
+    PetscCall(ISCreateStride(comm, (end - first) / components_, first + j, components_, &rows));
+    OwnedMat part;
+    const PetscErrorCode e =
+        MatCreateSubMatrix(operator_, rows, rows, MAT_INITIAL_MATRIX, part.out());
+    PetscCall(ISDestroy(&rows));
+    PetscCall(e);
+    if (boomeramg_) {  // only hypre's copy is kept
+      PetscCall(convert_to_hypre(part, hypre_[j]));
+      PetscCall(PCSetOperators(scalars_[j], hypre_[j], hypre_[j]));
+    } else {
+      parts_[j] = std::move(part);
+      PetscCall(PCSetOperators(scalars_[j], parts_[j], parts_[j]));
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -110,27 +183,32 @@ PetscErrorCode ComponentPreconditioner::apply(PC shell, Vec x, Vec y) {
   PetscScalar* out = nullptr;
   PetscCall(VecGetArrayRead(x, &in));
   PetscCall(VecGetArray(y, &out));
-  const int threads = std::min(p.ready_, omp_get_max_threads());
+  const int threads = p.concurrent();
+  const bool own = p.kind_ == ComponentOperators::Own;
   std::vector<PetscErrorCode> failed(p.components_, 0);
 #pragma omp parallel for num_threads(threads) if (threads > 1)
   for (int j = 0; j < p.components_; ++j)
-    failed[j] = p.apply_to_component(omp_get_thread_num(), j, in, out);
+    failed[j] = p.apply_to_component(own ? j : omp_get_thread_num(), j, in, out);
   PetscCall(VecRestoreArray(y, &out));
   PetscCall(VecRestoreArrayRead(x, &in));
   for (const PetscErrorCode e : failed) PetscCall(e);
-  const int all = static_cast<int>(p.scalars_.size());
-  if (p.ready_ < all && !p.declined_) {
-    // With all of them, d components take ⌈d / all⌉ applications' time instead of d.
-    const int rounds = (p.components_ + all - 1) / all;
-    p.would_have_saved_ += (MPI_Wtime() - start) * (p.components_ - rounds) / p.components_;
-    if (p.would_have_saved_ >= p.setup_seconds_) {
-      p.declined_ = available_bytes() < 2.0 * (all - 1) * p.setup_bytes_;
-      // One after the other: hypre's coarsening draws from one global random sequence,
-      // reseeded at each set-up.
-      for (int k = 1; k < all && !p.declined_; ++k) PetscCall(PCSetUp(p.scalars_[k]));
-      if (!p.declined_) p.ready_ = all;
-    }
-  }
+  if (!own) PetscCall(p.buy_further(MPI_Wtime() - start));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ComponentPreconditioner::buy_further(double seconds_applied) {
+  PetscFunctionBeginUser;
+  const int all = static_cast<int>(scalars_.size());
+  if (ready_ == all || declined_) PetscFunctionReturn(0);
+  // With all of them, d components take ⌈d / all⌉ applications' time instead of d.
+  const int rounds = (components_ + all - 1) / all;
+  would_have_saved_ += seconds_applied * (components_ - rounds) / components_;
+  if (would_have_saved_ < setup_seconds_) PetscFunctionReturn(0);
+  declined_ = available_bytes() < 2.0 * (all - 1) * setup_bytes_;
+  // One after the other: hypre's coarsening draws from one global random sequence, reseeded
+  // at each set-up.
+  for (int k = 1; k < all && !declined_; ++k) PetscCall(PCSetUp(scalars_[k]));
+  if (!declined_) ready_ = all;
   PetscFunctionReturn(0);
 }
 
@@ -143,7 +221,12 @@ PetscErrorCode ComponentPreconditioner::view(PC shell, PetscViewer viewer) {
   PetscCall(
       PetscObjectTypeCompare(reinterpret_cast<PetscObject>(viewer), PETSCVIEWERASCII, &ascii));
   if (!ascii) PetscFunctionReturn(0);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "applied to each of %d components:\n", p.components_));
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   p.kind_ == ComponentOperators::Own
+                                       ? "one for each of %d components, each of its own matrix; "
+                                         "the first:\n"
+                                       : "applied to each of %d components:\n",
+                                   p.components_));
   PetscCall(PetscViewerASCIIPushTab(viewer));
   PetscCall(PCView(p.scalar(), viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));

@@ -1,24 +1,33 @@
-// One preconditioner of a scalar n × n matrix A₁, applied to each of the d components of a
-// vector with interlaced dofs (dof = d · vertex + component): a preconditioner of
-// MatCreateMAIJ(A₁, d) = A₁ ⊗ I for the set-up cost of one scalar preconditioner. The Riesz
-// Laplacian is such an operator when no vertex slides (Functional::laplacian_is_scalar): one
-// BoomerAMG hierarchy of the scalar Laplacian serves all d components, where a hierarchy of
-// the dn × dn block matrix costs d scalar set-ups and treats the components as unrelated
-// points (docs/method.md §4).
+// A preconditioner of a dn × dn matrix that couples no two of the d components of a vector with
+// interlaced dofs (dof = d · vertex + component), made of scalar n × n preconditioners applied
+// to each component. The Riesz Laplacian is such a matrix when no vertex slides (docs/method.md
+// §4), in one of two forms:
+//
+// - Shared: every component holds the same A₁ (every vertex has all or none of its coordinates
+//   fixed; Functional::laplacian_is_scalar), and the matrix is MatCreateMAIJ(A₁, d) = A₁ ⊗ I.
+//   One preconditioner of A₁ serves all d components: the set-up cost of one scalar
+//   preconditioner, where a hierarchy of the dn × dn matrix costs d scalar set-ups.
+// - Own: component j holds its own A_j, A₁ with the Dirichlet rows of the coordinates fixed in
+//   that direction (a vertex on a plane x = const keeps x and moves in y and z). Each component
+//   has a preconditioner of its A_j (rows and columns j, j + d, … of the matrix): the matrix is
+//   block diagonal, so this is a preconditioner of the whole as exact as one of the dn × dn
+//   matrix, for about the same set-up.
 //
 // hypre (Debian's build) runs on one core, and its V-cycles are most of a large 2D run's
-// solves. On one rank with several OpenMP threads, further preconditioners of A₁, built alike,
-// let the components be preconditioned at the same time, one per thread: hypre's solvers share
-// no state, and each PETSc object is used by one thread only. Each component goes through the
-// same arithmetic as on one thread, so the result does not depend on the thread count. The
-// further set-ups cost what the first did, and a hierarchy applied a few times does not pay
-// them back (quads 300², hexes 40³: as much time set up as saved), so they are built the way
-// one decides to buy skis instead of renting them: once the time they would have saved since
-// the first set-up reaches that set-up's time. At most twice the best choice's cost, whatever
-// the number of applications to come. Each holds a hierarchy (about 8 % of a large 2D run's
-// memory), so they are built only where the machine has twice that to spare; the copy of A₁ in
-// hypre's format that each would make is made once and shared, as hypre's V-cycles only read
-// it.
+// solves. On one rank with several OpenMP threads (`concurrent`), components are preconditioned
+// at the same time, one per thread: hypre's solvers share no state, and each PETSc object is
+// used by one thread only. Each component goes through the same arithmetic as on one thread,
+// so the result does not depend on the thread count.
+//
+// Own: every component has its preconditioner from the start. Shared: further preconditioners
+// of A₁, built alike, let components run at once; their set-ups cost what the first did, and a
+// hierarchy applied a few times does not pay them back (quads 300², hexes 40³: as much time set
+// up as saved), so they are built the way one decides to buy skis instead of renting them: once
+// the time they would have saved since the first set-up reaches that set-up's time. At most
+// twice the best choice's cost, whatever the number of applications to come. Each holds a
+// hierarchy (about 8 % of a large 2D run's memory), so they are built only where the machine
+// has twice that to spare; the copy of A₁ in hypre's format that each would make is made once
+// and shared, as hypre's V-cycles only read it.
 #pragma once
 
 #include <vector>
@@ -29,51 +38,69 @@ namespace neomesh {
 
 using OwnedPC = PetscOwner<PC, PCDestroy>;
 
+enum class ComponentOperators { Shared, Own };
+
 class ComponentPreconditioner {
  public:
-  // `scalars`: one or more preconditioners of A₁, configured alike (type and options set, the
-  // operator not yet). The first serves every component until the others pay for their
-  // set-up; then as many components as preconditioners are preconditioned at once.
-  ComponentPreconditioner(std::vector<OwnedPC> scalars, int components);
+  // `scalars`: the scalar preconditioners, configured alike (type and options set, the operator
+  // not yet); Own: exactly one per component. Shared: the first serves every component until
+  // the others pay for their set-up; then as many components as preconditioners are
+  // preconditioned at once. `boomeramg`: they are all hypre's BoomerAMG (their operators are
+  // then converted to hypre's format here). `concurrent`: components may be preconditioned on
+  // several threads at once (one rank; every Shared preconditioner beyond the first needs it).
+  ComponentPreconditioner(std::vector<OwnedPC> scalars, int components, ComponentOperators kind,
+                          bool boomeramg, bool concurrent);
   ComponentPreconditioner(const ComponentPreconditioner&) = delete;
   ComponentPreconditioner& operator=(const ComponentPreconditioner&) = delete;
 
-  // Makes `shell` apply this preconditioner (PCSHELL; PCView shows the scalar one). This
+  // Makes `shell` apply this preconditioner (PCSHELL; PCView shows the first scalar one). This
   // object must outlive the shell's use.
   void install(PC shell);
-  // Uses A₁ from now on; with `same_values` the preconditioner built for the previous A₁
-  // (hierarchy, factorization) is kept.
-  void set_operator(Mat scalar, bool same_values);
-  // Builds the first scalar preconditioner now (else the first application does).
+  // Uses `matrix` from now on: A₁ (Shared) or the dn × dn matrix (Own). With `same_values` the
+  // preconditioners built for the previous values (hierarchy, factorization) are kept.
+  void set_operator(Mat matrix, bool same_values);
+  // Builds the preconditioners every component needs now (else the first application does).
   void setup();
   // How many components are preconditioned at once now.
-  int concurrent() const { return ready_; }
+  int concurrent() const;
 
   PC scalar() const { return scalars_.front(); }
   int components() const { return components_; }
+  ComponentOperators kind() const { return kind_; }
 
  private:
-  // y_j = P₁⁻¹ x_j for each component j.
+  // y_j = P_j⁻¹ x_j for each component j.
   static PetscErrorCode apply(PC shell, Vec x, Vec y);
   static PetscErrorCode view(PC shell, PetscViewer viewer);
 
-  // y_j = P₁⁻¹ x_j with the preconditioner of `slot`; `x`, `y`: the whole vectors' arrays.
+  // y_j = P⁻¹ x_j with the preconditioner of `slot`, `x`, `y`: the whole vectors' arrays.
   PetscErrorCode apply_to_component(int slot, int j, const PetscScalar* x, PetscScalar* y) const;
-  // Sets the first preconditioner up if A₁ changed, timing it.
+  // Sets up what every component needs for the current operator, if not yet, timing it.
   PetscErrorCode setup_first();
+  // The operators of the preconditioners: Shared, one hypre copy of A₁ and views of it; Own,
+  // each A_j (converted to hypre's format where the preconditioners are BoomerAMG).
+  PetscErrorCode give_shared_operator();
+  PetscErrorCode give_own_operators();
+  // Shared: builds the further preconditioners once they have paid for it (see above).
+  PetscErrorCode buy_further(double seconds_applied);
 
   std::vector<OwnedPC> scalars_;
   int components_;
-  Mat operator_ = nullptr;  // A₁, as set_operator gave it
-  // A₁ in hypre's format for all of scalars_ where they are several (all BoomerAMG); null
-  // where there is one, which converts A₁ itself if it needs to.
-  OwnedMat hypre_copy_;
+  ComponentOperators kind_;
+  bool boomeramg_, concurrent_;
+  Mat operator_ = nullptr;  // as set_operator gave it
+  // Per preconditioner, its operator in hypre's format (BoomerAMG only). Shared: [0] owns the
+  // one copy of A₁, the others are views of it; null while there is one preconditioner (it
+  // converts A₁ itself if it needs to).
+  std::vector<OwnedMat> hypre_;
+  // Own, not BoomerAMG: A_j, kept for its preconditioner.
+  std::vector<OwnedMat> parts_;
   // Per preconditioner: one component of the input and of the output.
   std::vector<OwnedVec> x_, y_;
-  bool first_ready_ = false;  // scalars_[0] is set up for the current A₁
-  int ready_ = 1;             // scalars_[0, ready_) are set up for the current A₁
-  bool declined_ = false;     // the others are not built for the current A₁ (no memory)
-  // The longest set-up of scalars_[0] so far, and the most memory one took.
+  bool first_ready_ = false;  // what every component needs is set up for the current operator
+  int ready_ = 1;             // Shared: scalars_[0, ready_) are set up for the current A₁
+  bool declined_ = false;     // Shared: the others are not built for the current A₁ (no memory)
+  // Shared: the longest set-up of scalars_[0] so far, and the most memory one took.
   double setup_seconds_ = 0.0, setup_bytes_ = 0.0;
   double would_have_saved_ = 0.0;  // by the other preconditioners, since the last set-up
 };

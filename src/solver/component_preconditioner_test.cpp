@@ -1,6 +1,7 @@
 // The per-component preconditioner gives the same bits whether the components are
-// preconditioned one after the other or at once, and takes its further preconditioners into
-// use only once they have paid for their set-up.
+// preconditioned one after the other or at once, takes its further preconditioners of a shared
+// A₁ into use only once they have paid for their set-up, and with an operator of its own per
+// component applies to each component what a BoomerAMG of that component's matrix does.
 #include "solver/component_preconditioner.hpp"
 
 #include <gtest/gtest.h>
@@ -27,13 +28,17 @@ OwnedPC boomeramg() {
   return pc;
 }
 
-// A shell PC applying `count` BoomerAMG preconditioners of `scalar` to `dim` components.
+// A shell PC applying `count` BoomerAMG preconditioners to the `dim` components of `vector`:
+// of `scalar` (Shared) or of each component's rows of `vector` (Own, count = dim), at once on
+// threads if `concurrent`.
 struct Shell {
-  Shell(Mat scalar, Mat vector, int dim, int count) {
+  Shell(Mat scalar, Mat vector, int dim, int count,
+        ComponentOperators kind = ComponentOperators::Shared, bool concurrent = true) {
     std::vector<OwnedPC> scalars;
     for (int k = 0; k < count; ++k) scalars.push_back(boomeramg());
-    components = std::make_unique<ComponentPreconditioner>(std::move(scalars), dim);
-    components->set_operator(scalar, false);
+    components = std::make_unique<ComponentPreconditioner>(std::move(scalars), dim, kind,
+                                                           /*boomeramg=*/true, concurrent);
+    components->set_operator(kind == ComponentOperators::Shared ? scalar : vector, false);
     NM_PETSC(PCCreate(PETSC_COMM_SELF, pc.out()));
     components->install(pc);
     NM_PETSC(PCSetOperators(pc, vector, vector));
@@ -74,6 +79,53 @@ OwnedMat laplacian(CellType type, int cells) {
   OwnedMat vector = functional.create_scalar_laplacian_matrix();
   functional.assemble_laplacian(RieszLaplacian::OptimalCells, x, vector);
   return vector;
+}
+
+// The same box with each boundary vertex fixed only in the coordinate normal to its side (it
+// slides along an axis-aligned plane): each component has Dirichlet rows of its own, and L is
+// the uncoupled dn × dn Laplacian.
+OwnedMat uncoupled_laplacian(CellType type, int cells) {
+  MeshData mesh = box(type, cells);
+  jitter(mesh, 2.0 / cells, 0.1, 3);
+  const MeshView view = serial_view(mesh);
+  const DofMap dofs = DofMap::serial(view.dim, view.num_vertices);
+  FixedDofs fixed;
+  for (const double x : view.coords) fixed.flags.push_back(x < 1e-12 || x > 1.0 - 1e-12);
+  Functional functional(view, dofs, EnergyOptions{}, std::move(fixed));
+  EXPECT_FALSE(functional.laplacian_is_scalar());
+  EXPECT_FALSE(functional.slides());
+  functional.set_desired_volumes(std::vector<double>(view.num_cells, 1.0));
+  OwnedVec x = dofs.create_global_vector();
+  OwnedMat vector = functional.create_laplacian_matrix();
+  functional.assemble_laplacian(RieszLaplacian::OptimalCells, x, vector);
+  return vector;
+}
+
+// What a BoomerAMG preconditioner of component j's rows and columns of `vector` gives for
+// component j of b, component by component: the reference for ComponentOperators::Own.
+std::vector<double> separately(Mat vector, int dim, Vec b) {
+  PetscInt rows = 0;
+  NM_PETSC(MatGetSize(vector, &rows, nullptr));
+  std::vector<double> in = values(b), out(in.size());
+  for (int j = 0; j < dim; ++j) {
+    IS part = nullptr;
+    NM_PETSC(ISCreateStride(PETSC_COMM_SELF, rows / dim, j, dim, &part));
+    OwnedMat A;
+    NM_PETSC(MatCreateSubMatrix(vector, part, part, MAT_INITIAL_MATRIX, A.out()));
+    NM_PETSC(ISDestroy(&part));
+    OwnedPC pc = boomeramg();
+    NM_PETSC(PCSetOperators(pc, A, A));
+    OwnedVec x, y;
+    NM_PETSC(MatCreateVecs(A, x.out(), y.out()));
+    {
+      VecWriteView xs(x);
+      for (PetscInt i = 0; i < xs.size(); ++i) xs[i] = in[dim * i + j];
+    }
+    NM_PETSC(PCApply(pc, x, y));
+    const std::vector<double> ys = values(y);
+    for (std::size_t i = 0; i < ys.size(); ++i) out[dim * i + j] = ys[i];
+  }
+  return out;
 }
 
 OwnedVec right_hand_side(Mat vector, int k) {
@@ -131,6 +183,35 @@ TEST(ComponentPreconditioner, ConcurrentComponentsGiveTheSameBitsOnceTheyPaid) {
     ASSERT_TRUE(same_bits_until_paid());
     EXPECT_EQ(two_at_once.components->concurrent(), 2);
     EXPECT_TRUE(same_bits(7));
+  }
+}
+
+TEST(ComponentPreconditioner, OwnOperatorsGiveEachComponentItsHierarchyAtOnce) {
+  for (const auto& [type, cells] :
+       {std::pair{CellType::Quadrilateral, 40}, std::pair{CellType::Tetrahedron, 8}}) {
+    const OwnedMat vector = uncoupled_laplacian(type, cells);
+    const int dim = type == CellType::Quadrilateral ? 2 : 3;
+    SCOPED_TRACE(dim);
+    const ThreadCount two(2);
+    Shell at_once(nullptr, vector, dim, dim, ComponentOperators::Own, /*concurrent=*/true);
+    Shell in_turn(nullptr, vector, dim, dim, ComponentOperators::Own, /*concurrent=*/false);
+    OwnedVec y1, y2;
+    NM_PETSC(MatCreateVecs(vector, y1.out(), y2.out()));
+    for (int k = 0; k < 3; ++k) {
+      const OwnedVec b = right_hand_side(vector, k);
+      NM_PETSC(PCApply(at_once.pc, b, y1));
+      NM_PETSC(PCApply(in_turn.pc, b, y2));
+      EXPECT_EQ(values(y1), values(y2));
+      EXPECT_EQ(values(y1), separately(vector, dim, b));
+    }
+    EXPECT_EQ(at_once.components->concurrent(), 2);
+    EXPECT_EQ(in_turn.components->concurrent(), 1);
+    // New values: the hierarchies are built for them.
+    NM_PETSC(MatShift(vector, 0.5));
+    at_once.components->set_operator(vector, false);
+    const OwnedVec b = right_hand_side(vector, 9);
+    NM_PETSC(PCApply(at_once.pc, b, y1));
+    EXPECT_EQ(values(y1), separately(vector, dim, b));
   }
 }
 

@@ -182,6 +182,10 @@ void LinearSolver::set_operator(Mat A, bool same_values) {
   NM_PETSC(KSPSetOperators(ksp_, A, amg_matrix_ ? amg_matrix_.get() : A));
   NM_PETSC(KSPSetReusePreconditioner(ksp_, same_values ? PETSC_TRUE : PETSC_FALSE));
   if (!components_) return;
+  if (components_->kind() == ComponentOperators::Own) {
+    components_->set_operator(A, same_values);
+    return;
+  }
   const Mat scalar = maij_scalar(A);
   if (!scalar) fail("internal error: a per-component preconditioner for a matrix that is no MAIJ");
   components_->set_operator(scalar, same_values);
@@ -192,7 +196,7 @@ void LinearSolver::setup() {
   if (components_) components_->setup();
 }
 
-void LinearSolver::precondition_per_component() {
+void LinearSolver::precondition_per_component(ComponentOperators kind) {
   if (kind_ != LinearSolverKind::Amg)
     fail("internal error: a per-component preconditioner for a solver other than AMG");
   const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(ksp_.get()));
@@ -208,23 +212,25 @@ void LinearSolver::precondition_per_component() {
   };
   std::vector<OwnedPC> scalars;
   scalars.push_back(scalar_preconditioner());
-  // On one rank, one hypre preconditioner per thread, so that components are preconditioned at
-  // once (component_preconditioner.hpp): not on several ranks, where hypre would exchange
-  // messages from threads (on one rank it sends none), nor while PETSc logs events, which it counts
-  // in shared tables, nor for another preconditioner that -<prefix>pc_ options chose, not checked
-  // for it.
-  int ranks = 1;
-  MPI_Comm_size(comm, &ranks);
   PetscBool hypre = PETSC_FALSE;
   NM_PETSC(
       PetscObjectTypeCompare(reinterpret_cast<PetscObject>(scalars[0].get()), PCHYPRE, &hypre));
   const char* hypre_type = nullptr;
   if (hypre) NM_PETSC(PCHYPREGetType(scalars[0], &hypre_type));
   const bool boomeramg = hypre_type && std::string_view(hypre_type) == "boomeramg";
-  if (ranks == 1 && !PetscLogPLB && boomeramg)
-    while (static_cast<int>(scalars.size()) < std::min(dim_, omp_get_max_threads()))
-      scalars.push_back(scalar_preconditioner());
-  components_ = std::make_unique<ComponentPreconditioner>(std::move(scalars), dim_);
+  // Components preconditioned at once on threads (component_preconditioner.hpp): on one rank
+  // only, where hypre would exchange messages from threads (on one rank it sends none), nor
+  // while PETSc logs events, which it counts in shared tables, nor for another preconditioner
+  // that -<prefix>pc_ options chose, not checked for it.
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  const bool concurrent = ranks == 1 && !PetscLogPLB && boomeramg;
+  const int count = kind == ComponentOperators::Own ? dim_
+                    : concurrent                    ? std::min(dim_, omp_get_max_threads())
+                                                    : 1;
+  while (static_cast<int>(scalars.size()) < count) scalars.push_back(scalar_preconditioner());
+  components_ = std::make_unique<ComponentPreconditioner>(std::move(scalars), dim_, kind, boomeramg,
+                                                          concurrent);
   PC pc = nullptr;
   NM_PETSC(KSPGetPC(ksp_, &pc));
   components_->install(pc);
@@ -324,8 +330,11 @@ std::string LinearSolver::description() const {
   NM_PETSC(KSPGetPC(ksp_, &pc));
   std::string pc_name = describe(pc);
   if (components_)
-    pc_name = fmt::format("{} of the scalar matrix, once for each of {} components",
-                          describe(components_->scalar()), components_->components());
+    pc_name = components_->kind() == ComponentOperators::Own
+                  ? fmt::format("{} of each component's matrix, for each of {} components",
+                                describe(components_->scalar()), components_->components())
+                  : fmt::format("{} of the scalar matrix, once for each of {} components",
+                                describe(components_->scalar()), components_->components());
   double rtol = 0.0;
   PetscInt max_it = 0;
   NM_PETSC(KSPGetTolerances(ksp_, &rtol, nullptr, nullptr, &max_it));

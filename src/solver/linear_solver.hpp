@@ -35,11 +35,13 @@ class LinearSolver {
   // Uses `A` for the next solves. With `same_values` the preconditioner (AMG hierarchy,
   // factorization) of the previous operator is kept.
   void set_operator(Mat A, bool same_values);
-  // amg only, before set_operator: the operators will be MatCreateMAIJ(A₁, dim) of scalar
-  // matrices A₁ (Functional::create_scalar_laplacian_matrix), preconditioned by one BoomerAMG
-  // hierarchy of A₁ applied to each component (component_preconditioner.hpp). The -<prefix>pc_
-  // options, and the BoomerAMG defaults, apply to that scalar preconditioner.
-  void precondition_per_component();
+  // amg only, before set_operator: the operators will couple no two components, and are
+  // preconditioned by scalar BoomerAMG preconditioners applied to each component
+  // (component_preconditioner.hpp). Shared: the operators are MatCreateMAIJ(A₁, dim) of scalar
+  // matrices A₁ (Functional::create_scalar_laplacian_matrix), and one hierarchy of A₁ serves
+  // every component; Own: each component has a hierarchy of its own rows and columns. The
+  // -<prefix>pc_ options, and the BoomerAMG defaults, apply to the scalar preconditioners.
+  void precondition_per_component(ComponentOperators kind);
   // Builds the preconditioner now (else the next solve does), for timing it on its own.
   void setup();
   // From now on, precondition with `other`'s preconditioner as it is at each solve (built for

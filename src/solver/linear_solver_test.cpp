@@ -91,7 +91,7 @@ TEST(LinearSolver, AnOptionTheCallerGaveWinsAndStays) {
 TEST(LinearSolver, PerComponentPreconditionerReadsTheOptions) {
   NM_PETSC(PetscOptionsSetValue(nullptr, "-percomp_pc_hypre_boomeramg_interp_type", "FF1"));
   LinearSolver solver(PETSC_COMM_SELF, LinearSolverKind::Amg, "percomp_", 3, 1e-4);
-  solver.precondition_per_component();
+  solver.precondition_per_component(ComponentOperators::Shared);
   const std::string pc = view_pc(solver);
   EXPECT_THAT(pc, HasSubstr("applied to each of 3 components"));
   EXPECT_THAT(pc, HasSubstr("HMIS"));
@@ -99,9 +99,15 @@ TEST(LinearSolver, PerComponentPreconditionerReadsTheOptions) {
   EXPECT_THAT(pc, HasSubstr("FF1"));
   EXPECT_FALSE(in_database("-percomp_pc_hypre_boomeramg_coarsen_type"));
   EXPECT_FALSE(in_database("-percomp_pc_hypre_boomeramg_relax_type_all"));
+  LinearSolver own(PETSC_COMM_SELF, LinearSolverKind::Amg, "percomp_", 3, 1e-4);
+  own.precondition_per_component(ComponentOperators::Own);
+  const std::string own_pc = view_pc(own);
+  EXPECT_THAT(own_pc, HasSubstr("one for each of 3 components, each of its own matrix"));
+  EXPECT_THAT(own_pc, HasSubstr("FF1"));
+  EXPECT_THAT(own.description(), HasSubstr("of each component's matrix, for each of 3 components"));
   NM_PETSC(PetscOptionsClearValue(nullptr, "-percomp_pc_hypre_boomeramg_interp_type"));
   EXPECT_THROW(LinearSolver(PETSC_COMM_SELF, LinearSolverKind::Direct, "percomp_", 3, 1e-4)
-                   .precondition_per_component(),
+                   .precondition_per_component(ComponentOperators::Shared),
                Error);
 }
 

@@ -71,8 +71,10 @@ double energy_roundoff(const EnergyOptions& energy, int dim, double mesh_volume)
   return 1e-15 * (energy.lambda + energy.mu) * dim * mesh_volume;
 }
 
-bool riesz_per_component(const Functional& functional, const SolverOptions& options) {
-  return options.linear_solver == LinearSolverKind::Amg && functional.laplacian_is_scalar();
+std::optional<ComponentOperators> riesz_components(const Functional& functional,
+                                                   const SolverOptions& options) {
+  if (options.linear_solver != LinearSolverKind::Amg || functional.slides()) return {};
+  return functional.laplacian_is_scalar() ? ComponentOperators::Shared : ComponentOperators::Own;
 }
 
 struct QuasiNewton::Impl {
@@ -109,7 +111,8 @@ struct QuasiNewton::Impl {
         previous_defect(o.advanced.initial_previous_defect),
         alpha(o.initial_alpha(f.slides())) {
     Stopwatch watch(times.setup);
-    if (riesz_per_component(functional, options)) riesz_solver.precondition_per_component();
+    if (const auto kind = riesz_components(functional, options))
+      riesz_solver.precondition_per_component(*kind);
     if (laplacian_preconditions_hessian()) hessian_solver.precondition_with(riesz_solver);
     for (OwnedVec* v : {&gradient, &s, &delta_tilde, &delta, &trial, &work})
       *v = functional.dofs().create_global_vector();
@@ -121,7 +124,7 @@ struct QuasiNewton::Impl {
     if (hessian) return;
     Stopwatch watch(times.setup);
     hessian = functional.create_matrix();
-    laplacian = riesz_per_component(functional, options)
+    laplacian = riesz_components(functional, options) == ComponentOperators::Shared
                     ? functional.create_scalar_laplacian_matrix()
                     : functional.create_laplacian_matrix();
   }

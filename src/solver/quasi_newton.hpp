@@ -38,10 +38,14 @@ bool past_deadline(double deadline, MPI_Comm comm);
 // 1e-15 (λ + μ) d |Ω|: the round-off level of F for a mesh of volume |Ω| in `dim` dimensions.
 double energy_roundoff(const EnergyOptions& energy, int dim, double mesh_volume);
 
-// True if the Riesz solve runs on the scalar Laplacian: with the amg solver where L is one
-// scalar Laplacian per component (Functional::laplacian_is_scalar), L is MatCreateMAIJ(L₁, d)
-// and one BoomerAMG hierarchy of L₁ preconditions all d components (docs/method.md §4).
-bool riesz_per_component(const Functional& functional, const SolverOptions& options);
+// How the amg solver's Riesz solve preconditions the components of L, if by component
+// (docs/method.md §4): Shared where L is one scalar Laplacian per component
+// (Functional::laplacian_is_scalar; L is then MatCreateMAIJ(L₁, d) and one BoomerAMG hierarchy
+// of L₁ serves all d components), Own where no vertex slides but components have different
+// fixed coordinates (a hierarchy per component); none where vertices slide, whose projectors
+// couple the components.
+std::optional<ComponentOperators> riesz_components(const Functional& functional,
+                                                   const SolverOptions& options);
 
 class QuasiNewton {
  public:

@@ -64,7 +64,7 @@ inline RieszSolves solve_riesz_both_ways(const MeshView& view, const DofMap& dof
   NM_PETSC(VecNorm(s, NORM_2, &r.size));
 
   LinearSolver per_component(comm, LinearSolverKind::Amg, "scalartest_", view.dim, rtol);
-  per_component.precondition_per_component();
+  per_component.precondition_per_component(ComponentOperators::Shared);
   per_component.set_operator(scalar, false);
   per_component.setup();
   r.scalar = per_component.solve(g, s1);
