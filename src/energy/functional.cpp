@@ -72,16 +72,25 @@ template <int Dim>
 void invert_target_shapes(std::span<const double> shapes, const std::vector<double>& weights,
                           std::vector<double>& inverse_t) {
   constexpr std::size_t n = Dim * Dim;
-  for (std::size_t c = 0; c * n < shapes.size(); ++c) {
+  const std::size_t cells = shapes.size() / n;
+  std::size_t first_bad = cells;  // cell by cell on every thread; the first bad one is named
+#pragma omp parallel for schedule(static) reduction(min : first_bad)
+  for (std::size_t c = 0; c < cells; ++c) {
     const Eigen::Map<const Matrix<Dim>> S(shapes.data() + c * n);
     const double det = S.determinant();
-    if (!(det > 0.0) || !std::isfinite(det))
-      fail("the target shape of local cell {} has determinant {} (must be positive)", c, det);
-    if (!(weights[c] > 0.0) || !std::isfinite(weights[c]))
-      fail("the target weight of local cell {} is {} (must be positive)", c, weights[c]);
+    if (!(det > 0.0) || !std::isfinite(det) || !(weights[c] > 0.0) || !std::isfinite(weights[c])) {
+      first_bad = std::min(first_bad, c);
+      continue;
+    }
     Eigen::Map<Matrix<Dim>>(inverse_t.data() + c * n) =
         std::pow(det, 1.0 / Dim) * S.inverse().transpose();
   }
+  if (first_bad == cells) return;
+  const double det = Eigen::Map<const Matrix<Dim>>(shapes.data() + first_bad * n).determinant();
+  if (!(det > 0.0) || !std::isfinite(det))
+    fail("the target shape of local cell {} has determinant {} (must be positive)", first_bad, det);
+  fail("the target weight of local cell {} is {} (must be positive)", first_bad,
+       weights[first_bad]);
 }
 
 double sum_over_ranks(double local, MPI_Comm comm) {

@@ -304,6 +304,31 @@ TEST(Functional, SetTargetsOfTakesOverVolumesShapesAndWeights) {
   EXPECT_THROW(other.functional.set_targets_of(with_targets.functional), Error);
 }
 
+// The shapes are inverted cell by cell on every thread; a bad shape or weight is still named by
+// its cell, the first one.
+TEST(Functional, NamesTheFirstCellWithABadTargetShapeOrWeight) {
+  Problem p(box(CellType::Quadrilateral, 40));
+  const PetscInt cells = p.view.num_cells;
+  std::vector<double> shapes(4 * cells, 0.0), weights(cells, 1.0);
+  for (PetscInt c = 0; c < cells; ++c) shapes[4 * c] = shapes[4 * c + 3] = 1.0;
+  shapes[4 * 1200 + 3] = -1.0;  // det −1
+  weights[1500] = 0.0;
+  const auto error = [&] {
+    try {
+      p.functional.set_target_shapes(shapes, weights);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error(), "the target shape of local cell 1200 has determinant -1 (must be positive)");
+  weights[700] = -2.0;
+  EXPECT_EQ(error(), "the target weight of local cell 700 is -2 (must be positive)");
+  weights[700] = weights[1500] = 1.0;
+  shapes[4 * 1200 + 3] = 1.0;
+  EXPECT_EQ(error(), "");
+}
+
 TEST(Functional, MeshVolumeAndFreeMask) {
   Problem p(box(CellType::Hexahedron, 3));
   EXPECT_NEAR(mesh_volume(p.view, p.dofs, p.x), 8.0, 1e-13);

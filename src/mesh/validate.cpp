@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -110,14 +111,19 @@ double min_scaled_corner_jacobian(CellType type, const double* x) {
 }
 
 std::vector<PetscInt> orient_mirrored_cells(InputMesh& mesh) {
-  std::vector<PetscInt> mirrored;
-  double x[8 * 3];
+  // Cell by cell on every thread (a mirror changes only its own cell); then the list in order.
+  std::vector<std::uint8_t> flipped(mesh.num_cells(), 0);
+#pragma omp parallel for schedule(static)
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
+    double x[8 * 3];
     if (!cell_coordinates(mesh, c, x)) continue;  // find_defect names it
     if (scaled_corner_jacobians(mesh.cell_types[c], x).second >= -kDegenerateJacobian) continue;
     mirror(mesh.cell_types[c], mesh.cell_vertices.data() + mesh.cell_offsets[c]);
-    mirrored.push_back(c);
+    flipped[c] = 1;
   }
+  std::vector<PetscInt> mirrored;
+  for (PetscInt c = 0; c < mesh.num_cells(); ++c)
+    if (flipped[c]) mirrored.push_back(c);
   return mirrored;
 }
 
@@ -166,7 +172,15 @@ std::string find_defect(const InputMesh& mesh, bool keep_inverted) {
       if (v < 0 || v >= nv)
         return fmt::format("boundary part '{}' refers to vertex {}, but there are {} vertices",
                            set.name, v, nv);
-  double x[8 * 3];
+  // Each cell's quality on every thread first (most of the work); the checks below go in order,
+  // so that the first defect is the one named.
+  std::vector<double> quality(mesh.num_cells(), 0.0);
+#pragma omp parallel for schedule(static)
+  for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
+    double x[8 * 3];
+    if (cell_coordinates(mesh, c, x))
+      quality[c] = min_scaled_corner_jacobian(mesh.cell_types[c], x);
+  }
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
     const CellType type = mesh.cell_types[c];
     if (dimension(type) != mesh.dim)
@@ -180,9 +194,8 @@ std::string find_defect(const InputMesh& mesh, bool keep_inverted) {
       for (int j = 0; j < i; ++j)
         if (cell[i] == cell[j])
           return fmt::format("{} has a repeated vertex ({})", describe_cell(mesh, c), cell[i]);
-      std::copy_n(mesh.coords.data() + cell[i] * mesh.dim, mesh.dim, x + i * mesh.dim);
     }
-    const double q = min_scaled_corner_jacobian(type, x);
+    const double q = quality[c];
     if (q <= kDegenerateJacobian && !keep_inverted)
       return fmt::format("{}, a {}, is {} (scaled det J = {:.3g})", describe_cell(mesh, c),
                          name(type), q < -kDegenerateJacobian ? "inverted" : "degenerate", q);

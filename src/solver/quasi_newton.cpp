@@ -465,11 +465,14 @@ SolverRun minimize(const Functional& functional, Vec x, const QuasiNewtonOptions
 OwnedVec local_cell_size(const MeshView& view, const DofMap& dofs,
                          std::span<const double> desired_volumes) {
   const int d = view.dim;
+  std::vector<double> size(desired_volumes.size());  // on every thread; the sums below in order
+#pragma omp parallel for schedule(static)
+  for (std::size_t c = 0; c < size.size(); ++c) size[c] = std::pow(desired_volumes[c], 1.0 / d);
   std::vector<double> size_sum(view.coords.size(), 0.0), count(view.coords.size(), 0.0);
   for (const CellBlock& block : view.blocks) {
     const int nv = num_vertices(block.type);
     for (PetscInt c = 0; c < block.size(); ++c) {
-      const double h = std::pow(desired_volumes[block.first_cell + c], 1.0 / d);
+      const double h = size[block.first_cell + c];
       for (int i = 0; i < nv; ++i)
         for (int j = 0; j < d; ++j) {
           size_sum[block.cell(c)[i] * d + j] += h;
