@@ -218,10 +218,10 @@ void LinearSolver::precondition_per_component(ComponentOperators kind) {
   const char* hypre_type = nullptr;
   if (hypre) NM_PETSC(PCHYPREGetType(scalars[0], &hypre_type));
   const bool boomeramg = hypre_type && std::string_view(hypre_type) == "boomeramg";
-  // Components preconditioned at once on threads (component_preconditioner.hpp): on one rank
-  // only, where hypre would exchange messages from threads (on one rank it sends none), nor
-  // while PETSc logs events, which it counts in shared tables, nor for another preconditioner
-  // that -<prefix>pc_ options chose, not checked for it.
+  // Components are preconditioned at once on threads (component_preconditioner.hpp) only on
+  // one rank (on several, hypre would exchange messages from threads; on one it sends none),
+  // not while PETSc logs events (it counts them in shared tables), and not with another
+  // preconditioner that -<prefix>pc_ options chose (not checked for it).
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
   const bool concurrent = ranks == 1 && !PetscLogPLB && boomeramg;
