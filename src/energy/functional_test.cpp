@@ -2,11 +2,10 @@
 
 #include <gtest/gtest.h>
 
-#include <omp.h>
-
 #include <cmath>
 #include <random>
 
+#include "core/testing/thread_count.hpp"
 #include "generate/generate.hpp"
 #include "generate/serial_view.hpp"
 
@@ -260,8 +259,7 @@ TEST(Functional, InvertedCellGivesInfiniteValueAndRejectsHessian) {
 TEST(Functional, ValueIsInfiniteWhereverTheInvertedCellIs) {
   const int n = 8;
   for (int threads : {1, 2}) {
-    const int saved = omp_get_max_threads();
-    omp_set_num_threads(threads);
+    const testing::ThreadCount count(threads);
     for (int vertex : {n + 2, (n + 1) * (n / 2) + n / 2, (n + 1) * (n - 1) + n - 1}) {
       MeshData mesh = box(CellType::Quadrilateral, n);
       const double finite = [&] {
@@ -275,7 +273,6 @@ TEST(Functional, ValueIsInfiniteWhereverTheInvertedCellIs) {
       p.functional.set_desired_volumes(std::vector<double>(n * n, 1.0));
       EXPECT_TRUE(std::isinf(p.functional.value(p.x))) << threads << " threads, vertex " << vertex;
     }
-    omp_set_num_threads(saved);
   }
 }
 

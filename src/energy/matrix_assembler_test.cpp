@@ -1,12 +1,12 @@
 #include "energy/matrix_assembler.hpp"
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <random>
 #include <string>
 
+#include "core/testing/thread_count.hpp"
 #include "generate/generate.hpp"
 #include "generate/serial_view.hpp"
 
@@ -117,16 +117,14 @@ void check_assembly(const MeshData& mesh, MatrixLayout layout) {
   std::copy(in.begin(), in.end(), xa);
   NM_PETSC(VecRestoreArrayWrite(x, &xa));
   std::vector<double> products[2];
-  const int threads = omp_get_max_threads();
   for (int t : {1, 2}) {
-    omp_set_num_threads(t);
+    const testing::ThreadCount count(t);
     NM_PETSC(MatMult(m, x, y));
     const PetscScalar* ya = nullptr;
     NM_PETSC(VecGetArrayRead(y, &ya));
     products[t - 1].assign(ya, ya + n);
     NM_PETSC(VecRestoreArrayRead(y, &ya));
   }
-  omp_set_num_threads(threads);
   for (PetscInt row = 0; row < n; ++row)
     ASSERT_NEAR(products[0][row], expected[row], 1e-12) << "row " << row;
   EXPECT_EQ(products[0], products[1]);

@@ -1,13 +1,13 @@
 #include "formats/mesh_io.hpp"
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <cstdlib>
 #include <fstream>
 
 #include "core/error.hpp"
 #include "core/testing/test_data.hpp"
+#include "core/testing/thread_count.hpp"
 #include "formats/mesh_test_util.hpp"
 #include "generate/generate.hpp"
 
@@ -163,12 +163,10 @@ TEST(WriteMsh, GmshReadsIt) {
 TEST(WriteMsh, SameBytesOnAnyNumberOfThreadsAcrossChunks) {
   PlexMesh mesh = PlexMesh::from_data(box(CellType::Quadrilateral, 200), "box");  // 40,401 vertices
   const auto dir = scratch_dir("WriteMshThreads");
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  write_mesh(mesh, dir / "one.msh");
-  omp_set_num_threads(2);
-  write_mesh(mesh, dir / "two.msh");
-  omp_set_num_threads(threads);
+  for (const int threads : {1, 2}) {
+    const testing::ThreadCount count(threads);
+    write_mesh(mesh, dir / (threads == 1 ? "one.msh" : "two.msh"));
+  }
   const std::string one = testing::read_file(dir / "one.msh");
   EXPECT_EQ(one, testing::read_file(dir / "two.msh"));
   // The chunks' joints are exact: the last vertex, the last cell.

@@ -5,7 +5,6 @@
 #include "solver/component_preconditioner.hpp"
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -13,12 +12,15 @@
 #include <utility>
 #include <vector>
 
+#include "core/testing/thread_count.hpp"
 #include "energy/functional.hpp"
 #include "generate/generate.hpp"
 #include "generate/serial_view.hpp"
 
 namespace neomesh {
 namespace {
+
+using testing::ThreadCount;
 
 OwnedPC boomeramg() {
   OwnedPC pc;
@@ -56,15 +58,6 @@ std::vector<double> values(Vec v) {
   NM_PETSC(VecRestoreArrayRead(v, &a));
   return out;
 }
-
-class ThreadCount {
- public:
-  explicit ThreadCount(int n) : saved_(omp_get_max_threads()) { omp_set_num_threads(n); }
-  ~ThreadCount() { omp_set_num_threads(saved_); }
-
- private:
-  int saved_;
-};
 
 // The optimal cells' Laplacian of a jittered box of quadrilaterals or tetrahedra, as
 // MatCreateMAIJ(L₁, dim).
