@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -59,37 +60,34 @@ std::vector<double> values(Vec v) {
   return out;
 }
 
-// The optimal cells' Laplacian of a jittered box of quadrilaterals or tetrahedra, as
-// MatCreateMAIJ(L₁, dim).
-OwnedMat laplacian(CellType type, int cells) {
-  MeshData mesh = box(type, cells);
-  jitter(mesh, 2.0 / cells, 0.1, 3);
-  const MeshView view = serial_view(mesh);
-  const DofMap dofs = DofMap::serial(view.dim, view.num_vertices);
-  Functional functional(view, dofs, EnergyOptions{}, view.on_boundary);
-  functional.set_desired_volumes(std::vector<double>(view.num_cells, 1.0));
-  OwnedVec x = dofs.create_global_vector();
-  OwnedMat vector = functional.create_scalar_laplacian_matrix();
-  functional.assemble_laplacian(RieszLaplacian::OptimalCells, x, vector);
-  return vector;
-}
+// How the boundary vertices of the test box are held.
+enum class Held {
+  Whole,   // every coordinate fixed: L = MatCreateMAIJ(L₁, dim)
+  Normal,  // only the coordinate normal to their side (they slide along axis-aligned planes):
+           // each component has Dirichlet rows of its own, and L is the uncoupled dn × dn matrix
+};
 
-// The same box with each boundary vertex fixed only in the coordinate normal to its side (it
-// slides along an axis-aligned plane): each component has Dirichlet rows of its own, and L is
-// the uncoupled dn × dn Laplacian.
-OwnedMat uncoupled_laplacian(CellType type, int cells) {
+// The optimal cells' Laplacian of a jittered box of quadrilaterals or tetrahedra.
+OwnedMat laplacian(CellType type, int cells, Held held = Held::Whole) {
   MeshData mesh = box(type, cells);
   jitter(mesh, 2.0 / cells, 0.1, 3);
   const MeshView view = serial_view(mesh);
   const DofMap dofs = DofMap::serial(view.dim, view.num_vertices);
   FixedDofs fixed;
-  for (const double x : view.coords) fixed.flags.push_back(x < 1e-12 || x > 1.0 - 1e-12);
+  const auto on_side = [](double c) { return c < 1e-12 || c > 1.0 - 1e-12; };  // box [0, 1]^d
+  for (PetscInt v = 0; v < view.num_vertices; ++v) {
+    const double* x = view.coords.data() + v * view.dim;
+    const bool on_boundary = std::any_of(x, x + view.dim, on_side);
+    for (int j = 0; j < view.dim; ++j)
+      fixed.flags.push_back(held == Held::Whole ? on_boundary : on_side(x[j]));
+  }
   Functional functional(view, dofs, EnergyOptions{}, std::move(fixed));
-  EXPECT_FALSE(functional.laplacian_is_scalar());
+  EXPECT_EQ(functional.laplacian_is_scalar(), held == Held::Whole);
   EXPECT_FALSE(functional.slides());
   functional.set_desired_volumes(std::vector<double>(view.num_cells, 1.0));
   OwnedVec x = dofs.create_global_vector();
-  OwnedMat vector = functional.create_laplacian_matrix();
+  OwnedMat vector = held == Held::Whole ? functional.create_scalar_laplacian_matrix()
+                                        : functional.create_laplacian_matrix();
   functional.assemble_laplacian(RieszLaplacian::OptimalCells, x, vector);
   return vector;
 }
@@ -182,7 +180,7 @@ TEST(ComponentPreconditioner, ConcurrentComponentsGiveTheSameBitsOnceTheyPaid) {
 TEST(ComponentPreconditioner, OwnOperatorsGiveEachComponentItsHierarchyAtOnce) {
   for (const auto& [type, cells] :
        {std::pair{CellType::Quadrilateral, 40}, std::pair{CellType::Tetrahedron, 8}}) {
-    const OwnedMat vector = uncoupled_laplacian(type, cells);
+    const OwnedMat vector = laplacian(type, cells, Held::Normal);
     const int dim = type == CellType::Quadrilateral ? 2 : 3;
     SCOPED_TRACE(dim);
     const ThreadCount two(2);
