@@ -55,22 +55,25 @@ void ComponentPreconditioner::install(PC shell) {
 }
 
 void ComponentPreconditioner::set_operator(Mat matrix, bool same_values) {
-  if (matrix != operator_)  // another pattern, maybe: converted anew
-    for (OwnedMat& m : hypre_) m.reset();
-  operator_ = matrix;
   const bool shared = kind_ == ComponentOperators::Shared;
-  PetscInt rows = 0, global_rows = 0;
-  NM_PETSC(MatGetLocalSize(matrix, &rows, nullptr));
-  NM_PETSC(MatGetSize(matrix, &global_rows, nullptr));
-  const PetscInt per = shared ? 1 : components_;  // rows of `matrix` per row of a component
+  if (matrix != operator_) {  // another pattern, maybe: converted anew, other sizes
+    for (OwnedMat& m : hypre_) m.reset();
+    PetscInt rows = 0, global_rows = 0;
+    NM_PETSC(MatGetLocalSize(matrix, &rows, nullptr));
+    NM_PETSC(MatGetSize(matrix, &global_rows, nullptr));
+    const PetscInt per = shared ? 1 : components_;  // rows of `matrix` per row of a component
+    for (std::size_t k = 0; k < scalars_.size(); ++k)
+      for (OwnedVec* v : {&x_[k], &y_[k]}) {
+        NM_PETSC(VecCreate(PetscObjectComm(reinterpret_cast<PetscObject>(matrix)), v->out()));
+        NM_PETSC(VecSetSizes(*v, rows / per, global_rows / per));
+        NM_PETSC(VecSetType(*v, VECSTANDARD));
+      }
+  }
+  NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(matrix)));
+  operator_ = OwnedMat(matrix);
   for (std::size_t k = 0; k < scalars_.size(); ++k) {
     if (shared && !hypre_[0]) NM_PETSC(PCSetOperators(scalars_[k], matrix, matrix));
     NM_PETSC(PCSetReusePreconditioner(scalars_[k], same_values ? PETSC_TRUE : PETSC_FALSE));
-    for (OwnedVec* v : {&x_[k], &y_[k]}) {
-      NM_PETSC(VecCreate(PetscObjectComm(reinterpret_cast<PetscObject>(matrix)), v->out()));
-      NM_PETSC(VecSetSizes(*v, rows / per, global_rows / per));
-      NM_PETSC(VecSetType(*v, VECSTANDARD));
-    }
   }
   if (!same_values) {
     first_ready_ = false;
@@ -128,7 +131,7 @@ PetscErrorCode ComponentPreconditioner::give_shared_operator() {
 
 PetscErrorCode ComponentPreconditioner::give_own_operators() {
   PetscFunctionBeginUser;
-  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(operator_));
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(operator_.get()));
   PetscInt first = 0, end = 0;
   PetscCall(MatGetOwnershipRange(operator_, &first, &end));
   for (int j = 0; j < components_; ++j) {

@@ -88,7 +88,8 @@ class ComponentPreconditioner {
   int components_;
   ComponentOperators kind_;
   bool boomeramg_, concurrent_;
-  Mat operator_ = nullptr;  // as set_operator gave it
+  // As set_operator gave it; held, so that another matrix cannot take its address.
+  OwnedMat operator_;
   // Per preconditioner, its operator in hypre's format (BoomerAMG only). Shared: [0] owns the
   // one copy of A₁, the others are views of it; null while there is one preconditioner (it
   // converts A₁ itself if it needs to).
