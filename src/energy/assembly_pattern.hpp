@@ -19,9 +19,10 @@
 // rather than a cell per colour keeps the entries a thread adds to in cache: with one cell
 // per colour each colour swept the whole matrix.
 //
-// The same pattern serves three layouts of matrix (MatrixLayout): every coupling, only those
-// within a component, and one component alone (the n × n scalar matrix). The two smaller ones
-// keep the vertex-blocked order, so their entries follow from the coupled pattern's.
+// The same pattern serves four layouts of matrix (MatrixLayout): every coupling, only those
+// within a component, one component alone (the n × n scalar matrix), and every coupling
+// stored once (the blocks on and above the diagonal). The smaller ones keep the
+// vertex-blocked order, so their entries follow from the coupled pattern's.
 #pragma once
 
 #include <utility>
@@ -39,6 +40,9 @@ enum class MatrixLayout {
   Coupled,    // every coupling of two vertices' dofs: H(α), or L with projected vertices
   Scalar,     // one component: n × n, a row per vertex (1/dim² of the entries); the scalar
               // Laplacian whose dim copies the Uncoupled vector Laplacian holds
+  Symmetric,  // every coupling, on one rank, stored once: the dim × dim blocks on and above
+              // the diagonal (about half of Coupled's memory), in a matrix that only
+              // multiplies (MatrixAssembler's UpperBlocks)
 };
 
 struct AssemblyPattern {

@@ -518,8 +518,10 @@ OwnedMat Functional::Impl::create_matrix(MatrixLayout layout) const {
   return assembler->create(layout);
 }
 
-OwnedMat Functional::create_matrix() const {
-  return impl_->create_matrix(MatrixLayout::Coupled);
+OwnedMat Functional::create_matrix(HessianUse use) const {
+  return impl_->create_matrix(use == HessianUse::Products && mpi_size(impl_->dofs.comm()) == 1
+                                  ? MatrixLayout::Symmetric
+                                  : MatrixLayout::Coupled);
 }
 
 OwnedMat Functional::create_laplacian_matrix() const {

@@ -45,6 +45,10 @@ struct Inversion {
   std::vector<PetscInt> cells;  // the first few inverted cells, global (input) numbers
 };
 
+// What a matrix of H(α) is for: its entries (a preconditioner built from them, or a direct
+// solver), or only products with it (a solve that L preconditions).
+enum class HessianUse { Entries, Products };
+
 class Functional {
  public:
   // `fixed` marks local vertices whose coordinates do not move (MeshView order). `view` and
@@ -79,8 +83,10 @@ class Functional {
   // F(x) and its gradient (zero at fixed dofs). Returns +∞ (gradient unspecified) if inverted.
   double value_and_gradient(Vec x, Vec gradient) const;
 
-  // A matrix with the sparsity of H(α) and L (one-time pattern), not yet assembled.
-  OwnedMat create_matrix() const;
+  // A matrix with the sparsity of H(α) and L (one-time pattern), not yet assembled. For
+  // HessianUse::Products, on one rank, it stores each coupling once (the blocks on and above
+  // the diagonal, about half the memory) and only multiplies.
+  OwnedMat create_matrix(HessianUse use = HessianUse::Entries) const;
   // H(α) at x into a matrix made by create_matrix (values only; the pattern is reused). With
   // vertices sliding on a curved boundary its curvature term uses the forces of the last
   // value_and_gradient, which must have been at the same x.

@@ -68,6 +68,66 @@ void use_threaded_product(Mat m, MatrixLayout layout) {
     NM_PETSC(MatSetOperation(m, MATOP_MULT, reinterpret_cast<void (*)(void)>(threaded_product)));
 }
 
+// A Symmetric matrix: the shared upper blocks and its own values (hung on the matrix under
+// kArraysName, the shell's context).
+struct UpperMatrix {
+  std::shared_ptr<const UpperBlocks> blocks;
+  int dim;
+  std::vector<PetscScalar> values;
+};
+
+PetscErrorCode destroy_upper_matrix(void* matrix) {
+  delete static_cast<UpperMatrix*>(matrix);
+  return 0;
+}
+
+UpperMatrix& upper_matrix(Mat m) {
+  void* context = nullptr;
+  NM_PETSC(MatShellGetContext(m, &context));
+  return *static_cast<UpperMatrix*>(context);
+}
+
+template <int D>
+void upper_block_rows(const UpperBlocks& u, const PetscScalar* value, const PetscScalar* in,
+                      PetscScalar* out) {
+  const PetscInt rows = static_cast<PetscInt>(u.row_start.size()) - 1;
+  // Row (D w + a) sums its columns in increasing order, as a Coupled matrix's row does: the
+  // blocks (v, w) below the diagonal, transposed, then those of w's own row.
+#pragma omp parallel for schedule(static)
+  for (PetscInt w = 0; w < rows; ++w) {
+    PetscScalar sum[D] = {};
+    for (PetscInt t = u.lower_start[w]; t < u.lower_start[w + 1]; ++t) {
+      const PetscScalar* block = value + D * D * u.lower_block[t];
+      const PetscScalar* x = in + D * u.lower_row[t];
+      for (int b = 0; b < D; ++b)
+        for (int a = 0; a < D; ++a) sum[a] += block[D * b + a] * x[b];
+    }
+    for (PetscInt k = u.row_start[w]; k < u.row_start[w + 1]; ++k) {
+      const PetscScalar* block = value + D * D * k;
+      const PetscScalar* x = in + D * u.column[k];
+      for (int a = 0; a < D; ++a)
+        for (int b = 0; b < D; ++b) sum[a] += block[D * a + b] * x[b];
+    }
+    for (int a = 0; a < D; ++a) out[D * w + a] = sum[a];
+  }
+}
+
+PetscErrorCode upper_block_diagonal(Mat A, Vec diagonal) {
+  PetscFunctionBeginUser;
+  void* context = nullptr;
+  PetscCall(MatShellGetContext(A, &context));
+  const UpperMatrix& m = *static_cast<const UpperMatrix*>(context);
+  const int d = m.dim;
+  const PetscInt rows = static_cast<PetscInt>(m.blocks->row_start.size()) - 1;
+  PetscScalar* out = nullptr;
+  PetscCall(VecGetArrayWrite(diagonal, &out));
+  for (PetscInt w = 0; w < rows; ++w)  // a row's first block is its diagonal one
+    for (int a = 0; a < d; ++a)
+      out[d * w + a] = m.values[d * d * m.blocks->row_start[w] + (d + 1) * a];
+  PetscCall(VecRestoreArrayWrite(diagonal, &out));
+  PetscFunctionReturn(0);
+}
+
 std::uint64_t next_id() {
   static std::atomic<std::uint64_t> last{0};
   return ++last;
@@ -136,6 +196,29 @@ PetscErrorCode threaded_product(Mat A, Vec x, Vec y) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode upper_block_product(Mat A, Vec x, Vec y) {
+  PetscFunctionBeginUser;
+  void* context = nullptr;
+  PetscCall(MatShellGetContext(A, &context));
+  const UpperMatrix& m = *static_cast<const UpperMatrix*>(context);
+  const PetscScalar* in = nullptr;
+  PetscScalar* out = nullptr;
+  PetscCall(VecGetArrayRead(x, &in));
+  PetscCall(VecGetArrayWrite(y, &out));
+  if (m.dim == 2)
+    upper_block_rows<2>(*m.blocks, m.values.data(), in, out);
+  else if (m.dim == 3)
+    upper_block_rows<3>(*m.blocks, m.values.data(), in, out);
+  else
+    upper_block_rows<1>(*m.blocks, m.values.data(), in, out);
+  PetscCall(VecRestoreArrayWrite(y, &out));
+  PetscCall(VecRestoreArrayRead(x, &in));
+  const PetscLogDouble blocks = static_cast<PetscLogDouble>(m.blocks->column.size()) +
+                                static_cast<PetscLogDouble>(m.blocks->lower_block.size());
+  PetscCall(PetscLogFlops(2.0 * m.dim * m.dim * blocks));
+  PetscFunctionReturn(0);
+}
+
 MatrixAssembler::MatrixAssembler(const MeshView& view, const DofMap& dofs,
                                  std::span<const std::uint8_t> fixed)
     : view_(view),
@@ -158,7 +241,20 @@ MatrixAssembler::~MatrixAssembler() = default;
 const std::vector<PetscInt>& MatrixAssembler::coupled_columns() {
   if (coupled_columns_) return *coupled_columns_;
   const Mat coupled = first_[static_cast<int>(MatrixLayout::Coupled)];
-  if (!pattern_.column.empty() || !coupled) return pattern_.column;
+  if (!pattern_.column.empty() || (!coupled && !upper_)) return pattern_.column;
+  if (!coupled) {  // on one rank: each row's vertices are those below and above its diagonal
+    const int d = dofs_.dim();
+    const UpperBlocks& u = *upper_;
+    pattern_.column.reserve(pattern_.row_start.back());
+    for (PetscInt w = 0; w + 1 < static_cast<PetscInt>(u.row_start.size()); ++w)
+      for (int a = 0; a < d; ++a) {
+        for (PetscInt t = u.lower_start[w]; t < u.lower_start[w + 1]; ++t)
+          for (int b = 0; b < d; ++b) pattern_.column.push_back(d * u.lower_row[t] + b);
+        for (PetscInt k = u.row_start[w]; k < u.row_start[w + 1]; ++k)
+          for (int b = 0; b < d; ++b) pattern_.column.push_back(d * u.column[k] + b);
+      }
+    return pattern_.column;
+  }
   // Freed once the coupled matrix and a Laplacian's had them: read them back (MatGetRow
   // gives global columns in order).
   PetscInt first = 0, end = 0;
@@ -174,8 +270,74 @@ const std::vector<PetscInt>& MatrixAssembler::coupled_columns() {
   return pattern_.column;
 }
 
+void MatrixAssembler::make_upper_blocks() {
+  const int d = dofs_.dim();
+  const PetscInt nv = view_.num_vertices;
+  const std::vector<PetscInt>& columns = coupled_columns();
+  const std::vector<PetscInt>& global_dof = dofs_.global_dof();
+  auto u = std::make_shared<UpperBlocks>();
+  // On one rank every vertex is owned and its rows are those of global vertex global_dof / d.
+  std::vector<PetscInt> local(nv);
+  for (PetscInt v = 0; v < nv; ++v) local[global_dof[d * v] / d] = v;
+  u->row_start.assign(nv + 1, 0);
+  u->lower_start.assign(nv + 1, 0);
+  u->diagonal.resize(nv);
+  u->shift.resize(nv);
+  u->column.reserve((pattern_.row_start.back() / (d * d) + nv) / 2);  // the pattern is symmetric
+  for (PetscInt w = 0; w < nv; ++w) {
+    const PetscInt v = local[w];
+    const PetscInt* row = columns.data() + pattern_.row_start[d * w];
+    const PetscInt blocks = (pattern_.row_start[d * w + 1] - pattern_.row_start[d * w]) / d;
+    PetscInt k = 0;  // the diagonal block's place in the row (columns are sorted)
+    while (k < blocks && row[d * k] / d < w) ++k;
+    u->diagonal[v] = pattern_.row_first[v] + k;
+    u->shift[v] = u->row_start[w] - u->diagonal[v];
+    u->row_start[w + 1] = u->row_start[w] + blocks - k;
+    u->lower_start[w + 1] = u->lower_start[w] + k;
+    for (; k < blocks; ++k) u->column.push_back(row[d * k] / d);
+  }
+  // The blocks below the diagonal are the transposes of those above, found in row order.
+  u->lower_block.resize(u->lower_start.back());
+  u->lower_row.resize(u->lower_start.back());
+  std::vector<PetscInt> next(u->lower_start.begin(), u->lower_start.end() - 1);
+  for (PetscInt v = 0; v < nv; ++v)
+    for (PetscInt k = u->row_start[v] + 1; k < u->row_start[v + 1]; ++k) {
+      const PetscInt w = u->column[k];
+      u->lower_block[next[w]] = k;
+      u->lower_row[next[w]++] = v;
+    }
+  upper_ = std::move(u);
+}
+
+OwnedMat MatrixAssembler::create_upper_matrix() const {
+  const int d = dofs_.dim();
+  const PetscInt rows = dofs_.num_owned_dofs();
+  auto matrix = std::make_unique<UpperMatrix>(
+      UpperMatrix{upper_, d, std::vector<PetscScalar>(d * d * upper_->column.size())});
+  OwnedMat m;
+  NM_PETSC(MatCreateShell(dofs_.comm(), rows, rows, rows, rows, matrix.get(), m.out()));
+  NM_PETSC(
+      MatShellSetOperation(m, MATOP_MULT, reinterpret_cast<void (*)(void)>(upper_block_product)));
+  NM_PETSC(MatShellSetOperation(m, MATOP_MULT_TRANSPOSE,
+                                reinterpret_cast<void (*)(void)>(upper_block_product)));
+  NM_PETSC(MatShellSetOperation(m, MATOP_GET_DIAGONAL,
+                                reinterpret_cast<void (*)(void)>(upper_block_diagonal)));
+  OwnedContainer container;
+  NM_PETSC(PetscContainerCreate(dofs_.comm(), container.out()));
+  NM_PETSC(PetscContainerSetPointer(container, matrix.release()));
+  NM_PETSC(PetscContainerSetUserDestroy(container, destroy_upper_matrix));
+  compose(m, kArraysName, reinterpret_cast<PetscObject>(container.get()));
+  return m;
+}
+
 OwnedMat MatrixAssembler::create_first(MatrixLayout layout) {
   const int d = dofs_.dim();
+  if (layout == MatrixLayout::Symmetric) {
+    if (mpi_size(dofs_.comm()) != 1)
+      fail("internal error: a matrix of the upper blocks alone on several ranks");
+    make_upper_blocks();
+    return create_upper_matrix();
+  }
   if (layout == MatrixLayout::Scalar)
     throw_if_any(dofs_.comm(), components_fixed_alike_
                                    ? ""
@@ -196,6 +358,7 @@ OwnedMat MatrixAssembler::create_first(MatrixLayout layout) {
   if (mpi_size(dofs_.comm()) == 1) {
     if (coupled) {
       row_start = pattern_.row_start;
+      coupled_columns();  // read back if they were freed
       column = std::move(pattern_.column);
     }
     const std::vector<PetscInt>* columns = nullptr;
@@ -226,7 +389,9 @@ OwnedMat MatrixAssembler::create_first(MatrixLayout layout) {
 OwnedMat MatrixAssembler::create(MatrixLayout layout) {
   OwnedMat& first = first_[static_cast<int>(layout)];
   OwnedMat m;
-  if (first) {
+  if (first && layout == MatrixLayout::Symmetric) {
+    m = create_upper_matrix();
+  } else if (first) {
     NM_PETSC(MatDuplicate(first, MAT_SHARE_NONZERO_PATTERN, m.out()));
     // A duplicate shares the first matrix's columns: it keeps them too.
     PetscObject arrays = nullptr;
@@ -237,8 +402,8 @@ OwnedMat MatrixAssembler::create(MatrixLayout layout) {
     NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(m.get())));
     first = OwnedMat(m.get());
     // Once H and a Laplacian have their matrices, every later matrix is a duplicate (or
-    // rare): the matrices hold the columns from now on.
-    if (first_[static_cast<int>(MatrixLayout::Coupled)] &&
+    // rare): the matrices, or the upper blocks, hold the columns from now on.
+    if ((first_[static_cast<int>(MatrixLayout::Coupled)] || upper_) &&
         (first_[static_cast<int>(MatrixLayout::Uncoupled)] ||
          first_[static_cast<int>(MatrixLayout::Scalar)]))
       std::vector<PetscInt>().swap(pattern_.column);
@@ -274,6 +439,12 @@ MatrixAssembler::Values::Values(const MatrixAssembler& assembler, Mat m)
   const std::size_t shrink = layout_ == MatrixLayout::Coupled     ? 1
                              : layout_ == MatrixLayout::Uncoupled ? d
                                                                   : d * d;
+  if (layout_ == MatrixLayout::Symmetric) {
+    std::vector<PetscScalar>& values = upper_matrix(m).values;
+    std::fill(values.begin(), values.end(), 0.0);
+    diagonal_ = values.data();
+    return;
+  }
   std::tie(diagonal_part_, off_diagonal_part_) = aij_parts(m);
   NM_PETSC(MatSeqAIJGetArrayWrite(diagonal_part_, &diagonal_));
   if (off_diagonal_part_) NM_PETSC(MatSeqAIJGetArrayWrite(off_diagonal_part_, &off_diagonal_));
@@ -287,6 +458,7 @@ MatrixAssembler::Values::~Values() {
 }
 
 void MatrixAssembler::Values::restore() {
+  if (layout_ == MatrixLayout::Symmetric) diagonal_ = nullptr;
   if (diagonal_) MatSeqAIJRestoreArrayWrite(diagonal_part_, &diagonal_);
   if (off_diagonal_) MatSeqAIJRestoreArrayWrite(off_diagonal_part_, &off_diagonal_);
   diagonal_ = off_diagonal_ = nullptr;
@@ -295,7 +467,7 @@ void MatrixAssembler::Values::restore() {
 void MatrixAssembler::Values::gather() {
   const AssemblyPattern& p = assembler_.pattern_;
   const int l = static_cast<int>(layout_);
-  if (p.ghost_to_diagonal[l]) {
+  if (layout_ != MatrixLayout::Symmetric && p.ghost_to_diagonal[l]) {
     PetscSF to_a = p.ghost_to_diagonal[l], to_b = p.ghost_to_off_diagonal[l];
     PetscScalar* const ghost = ghost_.data();
     NM_PETSC(PetscSFReduceBegin(to_a, MPIU_SCALAR, ghost, diagonal_, MPI_SUM));
@@ -317,15 +489,28 @@ void MatrixAssembler::Values::gather() {
       case MatrixLayout::Scalar:  // the vertex's row, once
         if (k % d == 0) diagonal_[p.scalar_entry(k / d, p.diagonal[k], d)] = 1.0;
         break;
+      case MatrixLayout::Symmetric:
+        diagonal_[upper_diagonal(k / d) + (d + 1) * (k % d)] = 1.0;
+        break;
     }
   }
 }
 
+PetscInt MatrixAssembler::Values::upper_diagonal(PetscInt v) const {
+  const UpperBlocks& u = *assembler_.upper_;
+  const int d = assembler_.dofs_.dim();
+  return d * d * (u.diagonal[v] + u.shift[v]);
+}
+
 void MatrixAssembler::Values::add_to_diagonal_block(PetscInt v, const double* block) {
+  const int d = assembler_.dofs_.dim();
+  if (layout_ == MatrixLayout::Symmetric) {
+    for (int k = 0; k < d * d; ++k) diagonal_[upper_diagonal(v) + k] += block[k];
+    return;
+  }
   if (layout_ != MatrixLayout::Coupled)
     fail("internal error: a diagonal block added to a matrix without couplings");
   const AssemblyPattern& p = assembler_.pattern_;
-  const int d = assembler_.dofs_.dim();
   for (int a = 0; a < d; ++a)
     for (int b = 0; b < d; ++b)
       diagonal_[p.diagonal[d * v] + a * p.row_stride[v] + b] += block[a * d + b];
@@ -334,8 +519,8 @@ void MatrixAssembler::Values::add_to_diagonal_block(PetscInt v, const double* bl
 void MatrixAssembler::Values::finish() {
   restore();
   // Restoring the arrays marks A and B as changed, but solvers look at the state of the
-  // MPIAIJ matrix itself.
-  if (off_diagonal_part_) {
+  // MPIAIJ matrix itself; a shell's values change without PETSc's knowing.
+  if (off_diagonal_part_ || layout_ == MatrixLayout::Symmetric) {
     NM_PETSC(MatAssemblyBegin(m_, MAT_FINAL_ASSEMBLY));
     NM_PETSC(MatAssemblyEnd(m_, MAT_FINAL_ASSEMBLY));
   }

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -25,6 +26,26 @@ namespace neomesh {
 // column order by one of them: the same result for any number of threads.
 PetscErrorCode threaded_product(Mat A, Vec x, Vec y);
 
+// The coupled pattern stored once, on one rank (MatrixLayout::Symmetric): in each vertex's row
+// (the matrix's row order), the blocks of the vertices w ≥ v in that order, its own first; block
+// k holds entry (D v + a, D w + b) at D² · k + D · a + b. The product reads the blocks below the
+// diagonal as transposes of blocks above, and sums every row in the order of a Coupled
+// matrix's row: an exactly symmetric matrix gives the same bits either way.
+struct UpperBlocks {
+  std::vector<PetscInt> row_start;  // per row vertex, and the total: its first block
+  std::vector<PetscInt> column;     // per block: its column vertex
+  // Per row vertex w, the blocks (v, w) with v < w, in increasing v: CSR lower_start into
+  // lower_block (the block) and lower_row (v).
+  std::vector<PetscInt> lower_start, lower_block, lower_row;
+  // Per local vertex (MeshView order): block k of its coupled row, counted as
+  // AssemblyPattern::scalar_entry counts them, is block k + shift here if k ≥ diagonal (its
+  // diagonal block), and below the diagonal otherwise.
+  std::vector<PetscInt> diagonal, shift;
+};
+
+// MatMult of a Symmetric matrix: its rows shared among the OpenMP threads.
+PetscErrorCode upper_block_product(Mat A, Vec x, Vec y);
+
 class MatrixAssembler {
  public:
   // Collective: builds the pattern. `fixed`: per local dof (MeshView order), 1 if fixed.
@@ -36,6 +57,8 @@ class MatrixAssembler {
 
   // Collective. A matrix with the sparsity of `layout`, values not yet assembled; symmetric.
   // Scalar: throws Error unless every vertex has all or none of its dofs fixed (on every rank).
+  // Symmetric: a MATSHELL that multiplies (and gives its diagonal); throws Error on several
+  // ranks.
   OwnedMat create(MatrixLayout layout);
   // The layout of a matrix made by create() of this assembler; throws Error for any other.
   MatrixLayout layout(Mat m) const;
@@ -57,8 +80,11 @@ class MatrixAssembler {
   // The first matrix of `layout`.
   OwnedMat create_first(MatrixLayout layout);
   // The coupled pattern's columns: the pattern's, the coupled matrix's on one rank, or,
-  // after the pattern freed them, read back from the coupled matrix.
+  // after the pattern freed them, read back from the coupled matrix or the upper blocks.
   const std::vector<PetscInt>& coupled_columns();
+  // Symmetric: the upper blocks of the coupled pattern, and a matrix on new values for them.
+  void make_upper_blocks();
+  OwnedMat create_upper_matrix() const;
 
   const MeshView& view_;
   const DofMap& dofs_;
@@ -67,8 +93,10 @@ class MatrixAssembler {
   bool components_fixed_alike_ = true;      // no local vertex has only some dofs fixed
   AssemblyPattern pattern_;
   std::uint64_t id_;  // tells this assembler's matrices from those of others
-  // The first matrix of each layout; later ones share its pattern (MAT_SHARE_NONZERO_PATTERN).
-  OwnedMat first_[3];
+  // The first matrix of each layout; later ones share its pattern (MAT_SHARE_NONZERO_PATTERN,
+  // or upper_ for Symmetric).
+  OwnedMat first_[4];
+  std::shared_ptr<const UpperBlocks> upper_;  // once a Symmetric matrix was made
   // On one rank, once the coupled matrix took the pattern's columns: the columns in that
   // matrix (first_ keeps it).
   const std::vector<PetscInt>* coupled_columns_ = nullptr;
@@ -103,6 +131,9 @@ class MatrixAssembler::Values {
       case MatrixLayout::Scalar:
         add_scalar_cell<D, N>(b, c, block);
         break;
+      case MatrixLayout::Symmetric:
+        add_upper_cell<D, N>(b, c, block);
+        break;
     }
   }
   // Collective: adds the rows of ghost vertices into their owners' rows and sets the
@@ -119,13 +150,17 @@ class MatrixAssembler::Values {
   void add_cell(std::size_t b, PetscInt c, const double* block);
   template <int D, int N>
   void add_scalar_cell(std::size_t b, PetscInt c, const double* block);
+  template <int D, int N>
+  void add_upper_cell(std::size_t b, PetscInt c, const double* block);
   void restore();
+  // Symmetric: the first value of local vertex v's diagonal block.
+  PetscInt upper_diagonal(PetscInt v) const;
 
   const MatrixAssembler& assembler_;
   Mat m_;
   Mat diagonal_part_ = nullptr, off_diagonal_part_ = nullptr;  // A and B; B null on one rank
   MatrixLayout layout_ = MatrixLayout::Coupled;
-  PetscScalar* diagonal_ = nullptr;
+  PetscScalar* diagonal_ = nullptr;  // A's values, or a Symmetric matrix's blocks
   PetscScalar* off_diagonal_ = nullptr;
   std::vector<PetscScalar> ghost_;  // G of assembly_pattern.hpp
 };
@@ -184,6 +219,33 @@ void MatrixAssembler::Values::add_scalar_cell(std::size_t b, PetscInt c, const d
       if (vertex_fixed[vertex[vj]]) continue;
       const PetscInt e = p.scalar_entry(v, entry[vi * N + vj], D);
       *(e >= 0 ? row + e : off_diagonal_ + ~e) += block[D * vj * n + D * vi];  // (D vi, D vj)
+    }
+  }
+}
+
+template <int D, int N>
+void MatrixAssembler::Values::add_upper_cell(std::size_t b, PetscInt c, const double* block) {
+  constexpr int n = D * N;  // leading dimension of `block`
+  const AssemblyPattern& p = assembler_.pattern_;
+  const UpperBlocks& upper = *assembler_.upper_;
+  const std::vector<std::uint8_t>& fixed = assembler_.fixed_;
+  const std::vector<std::uint8_t>& vertex_fixed = assembler_.vertex_fixed_;
+  const PetscInt* vertex = assembler_.view_.blocks[b].cell(c);
+  const PetscInt* entry = p.block_entry[b].data() + c * N * N;
+  for (int vi = 0; vi < N; ++vi) {
+    const PetscInt v = vertex[vi];
+    for (int vj = 0; vj < N; ++vj) {
+      const PetscInt k = p.scalar_entry(v, entry[vi * N + vj], D);
+      if (k < upper.diagonal[v]) continue;  // the transpose of the block in w's row
+      const PetscInt w = vertex[vj];
+      PetscScalar* const out = diagonal_ + D * D * (k + upper.shift[v]);
+      const double* in = block + D * vj * n + D * vi;  // entry (D vi, D vj)
+      const bool plain = !vertex_fixed[v] && !vertex_fixed[w];
+      for (int a = 0; a < D; ++a) {
+        if (!plain && fixed[D * v + a]) continue;
+        for (int bb = 0; bb < D; ++bb)
+          if (plain || !fixed[D * w + bb]) out[D * a + bb] += in[bb * n + a];
+      }
     }
   }
 }

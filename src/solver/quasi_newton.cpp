@@ -123,7 +123,8 @@ struct QuasiNewton::Impl {
   void create_matrices() {
     if (hessian) return;
     Stopwatch watch(times.setup);
-    hessian = functional.create_matrix();
+    hessian = functional.create_matrix(laplacian_preconditions_hessian() ? HessianUse::Products
+                                                                         : HessianUse::Entries);
     laplacian = riesz_components(functional, options) == ComponentOperators::Shared
                     ? functional.create_scalar_laplacian_matrix()
                     : functional.create_laplacian_matrix();
