@@ -205,12 +205,11 @@ PetscErrorCode upper_block_product(Mat A, Vec x, Vec y) {
   PetscScalar* out = nullptr;
   PetscCall(VecGetArrayRead(x, &in));
   PetscCall(VecGetArrayWrite(y, &out));
+  PetscCheck(m.dim == 2 || m.dim == 3, PETSC_COMM_SELF, PETSC_ERR_SUP, "%d-D blocks", m.dim);
   if (m.dim == 2)
     upper_block_rows<2>(*m.blocks, m.values.data(), in, out);
-  else if (m.dim == 3)
-    upper_block_rows<3>(*m.blocks, m.values.data(), in, out);
   else
-    upper_block_rows<1>(*m.blocks, m.values.data(), in, out);
+    upper_block_rows<3>(*m.blocks, m.values.data(), in, out);
   PetscCall(VecRestoreArrayWrite(y, &out));
   PetscCall(VecRestoreArrayRead(x, &in));
   const PetscLogDouble blocks = static_cast<PetscLogDouble>(m.blocks->column.size()) +
@@ -436,15 +435,15 @@ MatrixAssembler::Values::Values(const MatrixAssembler& assembler, Mat m)
   layout_ = assembler.layout(m);
   const AssemblyPattern& p = assembler.pattern_;
   const std::size_t d = assembler.dofs_.dim();
-  const std::size_t shrink = layout_ == MatrixLayout::Coupled     ? 1
-                             : layout_ == MatrixLayout::Uncoupled ? d
-                                                                  : d * d;
   if (layout_ == MatrixLayout::Symmetric) {
     std::vector<PetscScalar>& values = upper_matrix(m).values;
     std::fill(values.begin(), values.end(), 0.0);
     diagonal_ = values.data();
     return;
   }
+  const std::size_t shrink = layout_ == MatrixLayout::Coupled     ? 1
+                             : layout_ == MatrixLayout::Uncoupled ? d
+                                                                  : d * d;
   std::tie(diagonal_part_, off_diagonal_part_) = aij_parts(m);
   NM_PETSC(MatSeqAIJGetArrayWrite(diagonal_part_, &diagonal_));
   if (off_diagonal_part_) NM_PETSC(MatSeqAIJGetArrayWrite(off_diagonal_part_, &off_diagonal_));
