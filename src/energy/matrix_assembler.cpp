@@ -128,6 +128,29 @@ PetscErrorCode upper_block_diagonal(Mat A, Vec diagonal) {
   PetscFunctionReturn(0);
 }
 
+// MatMult of a Symmetric matrix: its rows shared among the OpenMP threads.
+PetscErrorCode upper_block_product(Mat A, Vec x, Vec y) {
+  PetscFunctionBeginUser;
+  void* context = nullptr;
+  PetscCall(MatShellGetContext(A, &context));
+  const UpperMatrix& m = *static_cast<const UpperMatrix*>(context);
+  PetscCheck(m.dim == 2 || m.dim == 3, PETSC_COMM_SELF, PETSC_ERR_SUP, "%d-D blocks", m.dim);
+  const PetscScalar* in = nullptr;
+  PetscScalar* out = nullptr;
+  PetscCall(VecGetArrayRead(x, &in));
+  PetscCall(VecGetArrayWrite(y, &out));
+  if (m.dim == 2)
+    upper_block_rows<2>(*m.blocks, m.values.data(), in, out);
+  else
+    upper_block_rows<3>(*m.blocks, m.values.data(), in, out);
+  PetscCall(VecRestoreArrayWrite(y, &out));
+  PetscCall(VecRestoreArrayRead(x, &in));
+  const PetscLogDouble blocks = static_cast<PetscLogDouble>(m.blocks->column.size()) +
+                                static_cast<PetscLogDouble>(m.blocks->lower_block.size());
+  PetscCall(PetscLogFlops(2.0 * m.dim * m.dim * blocks));
+  PetscFunctionReturn(0);
+}
+
 std::uint64_t next_id() {
   static std::atomic<std::uint64_t> last{0};
   return ++last;
@@ -193,28 +216,6 @@ PetscErrorCode threaded_product(Mat A, Vec x, Vec y) {
   PetscCall(VecRestoreArrayRead(x, &in));
   PetscCall(MatSeqAIJRestoreArrayRead(A, &a));
   PetscCall(PetscLogFlops(2.0 * static_cast<PetscLogDouble>(start[rows]) - rows));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode upper_block_product(Mat A, Vec x, Vec y) {
-  PetscFunctionBeginUser;
-  void* context = nullptr;
-  PetscCall(MatShellGetContext(A, &context));
-  const UpperMatrix& m = *static_cast<const UpperMatrix*>(context);
-  const PetscScalar* in = nullptr;
-  PetscScalar* out = nullptr;
-  PetscCall(VecGetArrayRead(x, &in));
-  PetscCall(VecGetArrayWrite(y, &out));
-  PetscCheck(m.dim == 2 || m.dim == 3, PETSC_COMM_SELF, PETSC_ERR_SUP, "%d-D blocks", m.dim);
-  if (m.dim == 2)
-    upper_block_rows<2>(*m.blocks, m.values.data(), in, out);
-  else
-    upper_block_rows<3>(*m.blocks, m.values.data(), in, out);
-  PetscCall(VecRestoreArrayWrite(y, &out));
-  PetscCall(VecRestoreArrayRead(x, &in));
-  const PetscLogDouble blocks = static_cast<PetscLogDouble>(m.blocks->column.size()) +
-                                static_cast<PetscLogDouble>(m.blocks->lower_block.size());
-  PetscCall(PetscLogFlops(2.0 * m.dim * m.dim * blocks));
   PetscFunctionReturn(0);
 }
 

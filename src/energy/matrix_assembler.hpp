@@ -43,9 +43,6 @@ struct UpperBlocks {
   std::vector<PetscInt> diagonal, shift;
 };
 
-// MatMult of a Symmetric matrix: its rows shared among the OpenMP threads.
-PetscErrorCode upper_block_product(Mat A, Vec x, Vec y);
-
 class MatrixAssembler {
  public:
   // Collective: builds the pattern. `fixed`: per local dof (MeshView order), 1 if fixed.
