@@ -149,6 +149,11 @@ class MatrixAssembler::Values {
   void add_scalar_cell(std::size_t b, PetscInt c, const double* block);
   template <int D, int N>
   void add_upper_cell(std::size_t b, PetscInt c, const double* block);
+  // Adds the D × D block of vertices (v, w) of a cell's block (`in`: its entry (D vi, D vj),
+  // leading dimension n) to `out`, row a at out + a · stride, without the rows and columns of
+  // fixed dofs; only the entries within a component unless Coupled.
+  template <int D, int n, bool Coupled>
+  void add_pair(PetscScalar* out, PetscInt stride, const double* in, PetscInt v, PetscInt w) const;
   void restore();
   // Symmetric: the first value of local vertex v's diagonal block.
   PetscInt upper_diagonal(PetscInt v) const;
@@ -166,8 +171,6 @@ template <int D, int N, bool Coupled>
 void MatrixAssembler::Values::add_cell(std::size_t b, PetscInt c, const double* block) {
   constexpr int n = D * N;  // leading dimension of `block`
   const AssemblyPattern& p = assembler_.pattern_;
-  const std::vector<std::uint8_t>& fixed = assembler_.fixed_;
-  const std::vector<std::uint8_t>& vertex_fixed = assembler_.vertex_fixed_;
   const PetscInt* vertex = assembler_.view_.blocks[b].cell(c);
   const PetscInt* entry = p.block_entry[b].data() + c * N * N;
   // Uncoupled matrices hold entry e of the coupled pattern at e / D, rows D times shorter.
@@ -180,22 +183,27 @@ void MatrixAssembler::Values::add_cell(std::size_t b, PetscInt c, const double* 
     const PetscInt row_stride = p.row_stride[v] / shrink;
     const PetscInt off_row_stride = p.off_row_stride[v] / shrink;
     for (int vj = 0; vj < N; ++vj) {
-      const PetscInt w = vertex[vj];
       const PetscInt e = entry[vi * N + vj];
       PetscScalar* const out = e >= 0 ? row + e / shrink : off_diagonal_ + ~e / shrink;
       const PetscInt stride = e >= 0 ? row_stride : off_row_stride;
-      const double* in = block + D * vj * n + D * vi;  // entry (D vi, D vj)
-      // Most vertex pairs have no fixed dof: add without looking at each one.
-      const bool plain = !vertex_fixed[v] && !vertex_fixed[w];
-      for (int a = 0; a < D; ++a) {
-        if (!plain && fixed[D * v + a]) continue;
-        if constexpr (!Coupled) {
-          if (plain || !fixed[D * w + a]) out[a * stride] += in[a * n + a];
-        } else {
-          for (int bb = 0; bb < D; ++bb)
-            if (plain || !fixed[D * w + bb]) out[a * stride + bb] += in[bb * n + a];
-        }
-      }
+      add_pair<D, n, Coupled>(out, stride, block + D * vj * n + D * vi, v, vertex[vj]);
+    }
+  }
+}
+
+template <int D, int n, bool Coupled>
+void MatrixAssembler::Values::add_pair(PetscScalar* out, PetscInt stride, const double* in,
+                                       PetscInt v, PetscInt w) const {
+  const std::vector<std::uint8_t>& fixed = assembler_.fixed_;
+  // Most vertex pairs have no fixed dof: add without looking at each one.
+  const bool plain = !assembler_.vertex_fixed_[v] && !assembler_.vertex_fixed_[w];
+  for (int a = 0; a < D; ++a) {
+    if (!plain && fixed[D * v + a]) continue;
+    if constexpr (!Coupled) {
+      if (plain || !fixed[D * w + a]) out[a * stride] += in[a * n + a];
+    } else {
+      for (int bb = 0; bb < D; ++bb)
+        if (plain || !fixed[D * w + bb]) out[a * stride + bb] += in[bb * n + a];
     }
   }
 }
@@ -225,8 +233,6 @@ void MatrixAssembler::Values::add_upper_cell(std::size_t b, PetscInt c, const do
   constexpr int n = D * N;  // leading dimension of `block`
   const AssemblyPattern& p = assembler_.pattern_;
   const UpperBlocks& upper = *assembler_.upper_;
-  const std::vector<std::uint8_t>& fixed = assembler_.fixed_;
-  const std::vector<std::uint8_t>& vertex_fixed = assembler_.vertex_fixed_;
   const PetscInt* vertex = assembler_.view_.blocks[b].cell(c);
   const PetscInt* entry = p.block_entry[b].data() + c * N * N;
   for (int vi = 0; vi < N; ++vi) {
@@ -234,15 +240,8 @@ void MatrixAssembler::Values::add_upper_cell(std::size_t b, PetscInt c, const do
     for (int vj = 0; vj < N; ++vj) {
       const PetscInt k = p.scalar_entry(v, entry[vi * N + vj], D);
       if (k < upper.diagonal[v]) continue;  // the transpose of the block in w's row
-      const PetscInt w = vertex[vj];
-      PetscScalar* const out = diagonal_ + D * D * (k + upper.shift[v]);
-      const double* in = block + D * vj * n + D * vi;  // entry (D vi, D vj)
-      const bool plain = !vertex_fixed[v] && !vertex_fixed[w];
-      for (int a = 0; a < D; ++a) {
-        if (!plain && fixed[D * v + a]) continue;
-        for (int bb = 0; bb < D; ++bb)
-          if (plain || !fixed[D * w + bb]) out[D * a + bb] += in[bb * n + a];
-      }
+      add_pair<D, n, true>(diagonal_ + D * D * (k + upper.shift[v]), D, block + D * vj * n + D * vi,
+                           v, vertex[vj]);
     }
   }
 }
