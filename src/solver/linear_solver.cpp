@@ -330,11 +330,11 @@ std::string LinearSolver::description() const {
   NM_PETSC(KSPGetPC(ksp_, &pc));
   std::string pc_name = describe(pc);
   if (components_)
-    pc_name = components_->kind() == ComponentOperators::Own
-                  ? fmt::format("{} of each component's matrix, for each of {} components",
-                                describe(components_->scalar()), components_->components())
-                  : fmt::format("{} of the scalar matrix, once for each of {} components",
-                                describe(components_->scalar()), components_->components());
+    pc_name =
+        fmt::format("{} of {} for each of {} components", describe(components_->scalar()),
+                    components_->kind() == ComponentOperators::Own ? "each component's matrix,"
+                                                                   : "the scalar matrix, once",
+                    components_->components());
   double rtol = 0.0;
   PetscInt max_it = 0;
   NM_PETSC(KSPGetTolerances(ksp_, &rtol, nullptr, nullptr, &max_it));
