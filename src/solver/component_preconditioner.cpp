@@ -56,12 +56,14 @@ void ComponentPreconditioner::install(PC shell) {
 
 void ComponentPreconditioner::set_operator(Mat matrix, bool same_values) {
   const bool shared = kind_ == ComponentOperators::Shared;
-  if (matrix != operator_) {  // another pattern, maybe: converted anew, other sizes
+  PetscInt rows = 0, global_rows = 0, held = -1;
+  NM_PETSC(MatGetLocalSize(matrix, &rows, nullptr));
+  NM_PETSC(MatGetSize(matrix, &global_rows, nullptr));
+  const PetscInt per = shared ? 1 : components_;  // rows of `matrix` per row of a component
+  if (x_[0]) NM_PETSC(VecGetSize(x_[0], &held));
+  if (held != global_rows / per) {  // another mesh: other sizes
     for (OwnedMat& m : hypre_) m.reset();
-    PetscInt rows = 0, global_rows = 0;
-    NM_PETSC(MatGetLocalSize(matrix, &rows, nullptr));
-    NM_PETSC(MatGetSize(matrix, &global_rows, nullptr));
-    const PetscInt per = shared ? 1 : components_;  // rows of `matrix` per row of a component
+    product_.reset();
     for (std::size_t k = 0; k < scalars_.size(); ++k)
       for (OwnedVec* v : {&x_[k], &y_[k]}) {
         NM_PETSC(VecCreate(PetscObjectComm(reinterpret_cast<PetscObject>(matrix)), v->out()));
@@ -69,17 +71,31 @@ void ComponentPreconditioner::set_operator(Mat matrix, bool same_values) {
         NM_PETSC(VecSetType(*v, VECSTANDARD));
       }
   }
-  NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(matrix)));
-  operator_ = OwnedMat(matrix);
-  for (std::size_t k = 0; k < scalars_.size(); ++k) {
-    if (shared && !hypre_[0]) NM_PETSC(PCSetOperators(scalars_[k], matrix, matrix));
-    NM_PETSC(PCSetReusePreconditioner(scalars_[k], same_values ? PETSC_TRUE : PETSC_FALSE));
-  }
+  if (shared && !boomeramg_)
+    NM_PETSC(PCSetOperators(scalars_[0], matrix, matrix));
+  else
+    NM_PETSC(shared ? give_shared_operator(matrix) : give_own_operators(matrix));
+  if (boomeramg_ && !product_) make_product(matrix);
+  for (OwnedPC& pc : scalars_)
+    NM_PETSC(PCSetReusePreconditioner(pc, same_values ? PETSC_TRUE : PETSC_FALSE));
   if (!same_values) {
     first_ready_ = false;
     ready_ = 1;
     declined_ = false;
   }
+}
+
+void ComponentPreconditioner::make_product(Mat matrix) {
+  const PetscInt per = kind_ == ComponentOperators::Shared ? components_ : 1;
+  PetscInt rows = 0, global_rows = 0;
+  NM_PETSC(MatGetLocalSize(matrix, &rows, nullptr));
+  NM_PETSC(MatGetSize(matrix, &global_rows, nullptr));
+  NM_PETSC(MatCreateShell(PetscObjectComm(reinterpret_cast<PetscObject>(matrix)), per * rows,
+                          per * rows, per * global_rows, per * global_rows, this, product_.out()));
+  for (const MatOperation op : {MATOP_MULT, MATOP_MULT_TRANSPOSE})
+    NM_PETSC(MatShellSetOperation(product_, op, reinterpret_cast<void (*)(void)>(multiply)));
+  NM_PETSC(MatSetOption(product_, MAT_SYMMETRIC, PETSC_TRUE));
+  NM_PETSC(MatSetOption(product_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
 }
 
 void ComponentPreconditioner::setup() {
@@ -95,7 +111,6 @@ PetscErrorCode ComponentPreconditioner::setup_first() {
   PetscFunctionBeginUser;
   if (first_ready_) PetscFunctionReturn(0);
   if (kind_ == ComponentOperators::Own) {
-    PetscCall(give_own_operators());
     // One after the other: hypre's coarsening draws from one global random sequence, reseeded
     // at each set-up.
     for (OwnedPC& pc : scalars_) PetscCall(PCSetUp(pc));
@@ -104,7 +119,6 @@ PetscErrorCode ComponentPreconditioner::setup_first() {
   }
   const double resident = resident_bytes();
   const double start = MPI_Wtime();
-  if (scalars_.size() > 1) PetscCall(give_shared_operator());
   PetscCall(PCSetUp(scalars_[0]));
   // A set-up that found A₁ unchanged takes no time nor memory: what a further one costs is
   // the most seen.
@@ -115,9 +129,9 @@ PetscErrorCode ComponentPreconditioner::setup_first() {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ComponentPreconditioner::give_shared_operator() {
+PetscErrorCode ComponentPreconditioner::give_shared_operator(Mat scalar) {
   PetscFunctionBeginUser;
-  PetscCall(convert_to_hypre(operator_, hypre_[0]));
+  PetscCall(convert_to_hypre(scalar, hypre_[0]));
   // The others get views of its hypre matrix: each hypre matrix object holds the work vectors
   // its preconditioner's applications use, so they cannot share one object.
   hypre_ParCSRMatrix* shared = nullptr;
@@ -125,22 +139,21 @@ PetscErrorCode ComponentPreconditioner::give_shared_operator() {
   for (std::size_t k = 1; k < scalars_.size(); ++k)
     PetscCall(MatCreateFromParCSR(shared, MATHYPRE, PETSC_USE_POINTER, hypre_[k].out()));
   for (std::size_t k = 0; k < scalars_.size(); ++k)
-    PetscCall(PCSetOperators(scalars_[k], operator_, hypre_[k]));
+    PetscCall(PCSetOperators(scalars_[k], hypre_[k], hypre_[k]));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ComponentPreconditioner::give_own_operators() {
+PetscErrorCode ComponentPreconditioner::give_own_operators(Mat vector) {
   PetscFunctionBeginUser;
-  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(operator_.get()));
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(vector));
   PetscInt first = 0, end = 0;
-  PetscCall(MatGetOwnershipRange(operator_, &first, &end));
+  PetscCall(MatGetOwnershipRange(vector, &first, &end));
   for (int j = 0; j < components_; ++j) {
     // A_j: rows and columns j, j + d, … (each rank owns whole vertices).
     IS rows = nullptr;
     PetscCall(ISCreateStride(comm, (end - first) / components_, first + j, components_, &rows));
     OwnedMat part;
-    const PetscErrorCode e =
-        MatCreateSubMatrix(operator_, rows, rows, MAT_INITIAL_MATRIX, part.out());
+    const PetscErrorCode e = MatCreateSubMatrix(vector, rows, rows, MAT_INITIAL_MATRIX, part.out());
     PetscCall(ISDestroy(&rows));
     PetscCall(e);
     if (boomeramg_) {  // only hypre's copy is kept
@@ -154,24 +167,39 @@ PetscErrorCode ComponentPreconditioner::give_own_operators() {
   PetscFunctionReturn(0);
 }
 
-// part[i] = x[d · i + j] over this rank's entries (each rank owns whole vertices), P₁⁻¹, and
-// y[d · i + j] = result[i]; the other components of y are left as they are.
-PetscErrorCode ComponentPreconditioner::apply_to_component(int slot, int j, const PetscScalar* x,
-                                                           PetscScalar* y) const {
+// For component j: part[i] = x[d · i + j] over this rank's entries (each rank owns whole
+// vertices), op(slot, part, result), and y[d · i + j] = result[i].
+template <class Op>
+PetscErrorCode ComponentPreconditioner::for_each_component(Vec x, Vec y, int threads, Op op) const {
   PetscFunctionBeginUser;
   const int d = components_;
-  Vec part_in = x_[slot], part_out = y_[slot];
-  PetscInt n = 0;
-  PetscCall(VecGetLocalSize(part_in, &n));
-  PetscScalar* in = nullptr;
-  PetscCall(VecGetArrayWrite(part_in, &in));
-  for (PetscInt i = 0; i < n; ++i) in[i] = x[d * i + j];
-  PetscCall(VecRestoreArrayWrite(part_in, &in));
-  PetscCall(PCApply(scalars_[slot], part_in, part_out));
-  const PetscScalar* out = nullptr;
-  PetscCall(VecGetArrayRead(part_out, &out));
-  for (PetscInt i = 0; i < n; ++i) y[d * i + j] = out[i];
-  PetscCall(VecRestoreArrayRead(part_out, &out));
+  const bool own = kind_ == ComponentOperators::Own;
+  const PetscScalar* in = nullptr;
+  PetscScalar* out = nullptr;
+  PetscCall(VecGetArrayRead(x, &in));
+  PetscCall(VecGetArray(y, &out));
+  const auto on_component = [&](int slot, int j) {
+    PetscFunctionBeginUser;
+    Vec part_in = x_[slot], part_out = y_[slot];
+    PetscInt n = 0;
+    PetscCall(VecGetLocalSize(part_in, &n));
+    PetscScalar* a = nullptr;
+    PetscCall(VecGetArrayWrite(part_in, &a));
+    for (PetscInt i = 0; i < n; ++i) a[i] = in[d * i + j];
+    PetscCall(VecRestoreArrayWrite(part_in, &a));
+    PetscCall(op(slot, part_in, part_out));
+    const PetscScalar* b = nullptr;
+    PetscCall(VecGetArrayRead(part_out, &b));
+    for (PetscInt i = 0; i < n; ++i) out[d * i + j] = b[i];
+    PetscCall(VecRestoreArrayRead(part_out, &b));
+    PetscFunctionReturn(0);
+  };
+  std::vector<PetscErrorCode> failed(d, 0);
+#pragma omp parallel for num_threads(threads) if (threads > 1)
+  for (int j = 0; j < d; ++j) failed[j] = on_component(own ? j : omp_get_thread_num(), j);
+  PetscCall(VecRestoreArray(y, &out));
+  PetscCall(VecRestoreArrayRead(x, &in));
+  for (const PetscErrorCode e : failed) PetscCall(e);
   PetscFunctionReturn(0);
 }
 
@@ -182,20 +210,23 @@ PetscErrorCode ComponentPreconditioner::apply(PC shell, Vec x, Vec y) {
   ComponentPreconditioner& p = *static_cast<ComponentPreconditioner*>(context);
   PetscCall(p.setup_first());
   const double start = MPI_Wtime();
-  const PetscScalar* in = nullptr;
-  PetscScalar* out = nullptr;
-  PetscCall(VecGetArrayRead(x, &in));
-  PetscCall(VecGetArray(y, &out));
-  const int threads = p.concurrent();
-  const bool own = p.kind_ == ComponentOperators::Own;
-  std::vector<PetscErrorCode> failed(p.components_, 0);
-#pragma omp parallel for num_threads(threads) if (threads > 1)
-  for (int j = 0; j < p.components_; ++j)
-    failed[j] = p.apply_to_component(own ? j : omp_get_thread_num(), j, in, out);
-  PetscCall(VecRestoreArray(y, &out));
-  PetscCall(VecRestoreArrayRead(x, &in));
-  for (const PetscErrorCode e : failed) PetscCall(e);
-  if (!own) PetscCall(p.buy_further(MPI_Wtime() - start));
+  PetscCall(p.for_each_component(x, y, p.concurrent(), [&p](int slot, Vec in, Vec out) {
+    return PCApply(p.scalars_[slot], in, out);
+  }));
+  if (p.kind_ == ComponentOperators::Shared) PetscCall(p.buy_further(MPI_Wtime() - start));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ComponentPreconditioner::multiply(Mat shell, Vec x, Vec y) {
+  PetscFunctionBeginUser;
+  void* context = nullptr;
+  PetscCall(MatShellGetContext(shell, &context));
+  const ComponentPreconditioner& p = *static_cast<const ComponentPreconditioner*>(context);
+  // Every slot has a hypre matrix: as many components at once as there are slots.
+  const int slots = static_cast<int>(p.scalars_.size());
+  const int at_once = p.concurrent_ ? std::min(slots, omp_get_max_threads()) : 1;
+  PetscCall(p.for_each_component(
+      x, y, at_once, [&p](int slot, Vec in, Vec out) { return MatMult(p.hypre_[slot], in, out); }));
   PetscFunctionReturn(0);
 }
 

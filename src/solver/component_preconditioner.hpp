@@ -28,6 +28,11 @@
 // hierarchy (about 8 % of a large 2D run's memory), so they are built only where the machine
 // has twice that to spare; the copy of A₁ in hypre's format that each would make is made once
 // and shared, as hypre's V-cycles only read it.
+//
+// With BoomerAMG, the operator is copied into hypre's format when it is given, and the copies
+// also multiply (product()): the caller need not keep the operator's own matrix, which is then
+// held once instead of twice (the largest matrix of a run after H(α); docs/benchmarks.md,
+// "Memory").
 #pragma once
 
 #include <vector>
@@ -58,7 +63,13 @@ class ComponentPreconditioner {
   void install(PC shell);
   // Uses `matrix` from now on: A₁ (Shared) or the dn × dn matrix (Own). With `same_values` the
   // preconditioners built for the previous values (hierarchy, factorization) are kept.
+  // BoomerAMG: `matrix` is copied into hypre's format now and not kept (with `same_values` the
+  // copies take the new values and the hierarchies stay as they were).
   void set_operator(Mat matrix, bool same_values);
+  // BoomerAMG: the dn × dn operator as a matrix that multiplies (MATSHELL) with the copies in
+  // hypre's format, each component by its own; null otherwise. Made by the first set_operator;
+  // valid while this object lives.
+  Mat product() const { return product_; }
   // Builds the preconditioners every component needs now (else the first application does).
   void setup();
   // How many components are preconditioned at once now.
@@ -72,15 +83,21 @@ class ComponentPreconditioner {
   // y_j = P_j⁻¹ x_j for each component j.
   static PetscErrorCode apply(PC shell, Vec x, Vec y);
   static PetscErrorCode view(PC shell, PetscViewer viewer);
+  // y_j = A_j x_j for each component j (product()'s MATOP_MULT).
+  static PetscErrorCode multiply(Mat shell, Vec x, Vec y);
 
-  // y_j = P⁻¹ x_j with the preconditioner of `slot`, `x`, `y`: the whole vectors' arrays.
-  PetscErrorCode apply_to_component(int slot, int j, const PetscScalar* x, PetscScalar* y) const;
+  // y_j = op(slot, x_j) for each component j, `threads` components at once, with the slot
+  // (preconditioner, hypre matrix, work vectors) of component j or of the thread.
+  template <class Op>
+  PetscErrorCode for_each_component(Vec x, Vec y, int threads, Op op) const;
   // Sets up what every component needs for the current operator, if not yet, timing it.
   PetscErrorCode setup_first();
-  // The operators of the preconditioners: Shared, one hypre copy of A₁ and views of it; Own,
-  // each A_j (converted to hypre's format where the preconditioners are BoomerAMG).
-  PetscErrorCode give_shared_operator();
-  PetscErrorCode give_own_operators();
+  // The operators of the preconditioners: Shared, one hypre copy of A₁ and views of it
+  // (BoomerAMG only); Own, each A_j (converted to hypre's format where the preconditioners are
+  // BoomerAMG).
+  PetscErrorCode give_shared_operator(Mat scalar);
+  PetscErrorCode give_own_operators(Mat vector);
+  void make_product(Mat matrix);
   // Shared: builds the further preconditioners once they have paid for it (see above).
   PetscErrorCode buy_further(double seconds_applied);
 
@@ -88,12 +105,10 @@ class ComponentPreconditioner {
   int components_;
   ComponentOperators kind_;
   bool boomeramg_, concurrent_;
-  // As set_operator gave it; held, so that another matrix cannot take its address.
-  OwnedMat operator_;
   // Per preconditioner, its operator in hypre's format (BoomerAMG only). Shared: [0] owns the
-  // one copy of A₁, the others are views of it; null while there is one preconditioner (it
-  // converts A₁ itself if it needs to).
+  // one copy of A₁, the others are views of it.
   std::vector<OwnedMat> hypre_;
+  OwnedMat product_;  // BoomerAMG: see product()
   // Own, not BoomerAMG: A_j, kept for its preconditioner.
   std::vector<OwnedMat> parts_;
   // Per preconditioner: one component of the input and of the output.

@@ -225,5 +225,49 @@ TEST(ComponentPreconditioner, NoSecondHierarchyWithoutTheMemoryForIt) {
   EXPECT_EQ(values(y1), values(y2));
 }
 
+// With BoomerAMG the operator is copied into hypre's format when it is given and not kept: the
+// copies multiply as the operator does, each component by its own matrix, on one thread or
+// several.
+TEST(ComponentPreconditioner, ItsCopiesMultiplyAsTheOperatorItDoesNotKeep) {
+  const ThreadCount two(2);
+  for (const auto& [type, cells] :
+       {std::pair{CellType::Quadrilateral, 40}, std::pair{CellType::Tetrahedron, 8}}) {
+    for (const Held held : {Held::Whole, Held::Normal}) {
+      const OwnedMat vector = laplacian(type, cells, held);
+      const int dim = type == CellType::Quadrilateral ? 2 : 3;
+      const ComponentOperators kind =
+          held == Held::Whole ? ComponentOperators::Shared : ComponentOperators::Own;
+      SCOPED_TRACE(::testing::Message() << "dim " << dim << ", own " << (held == Held::Normal));
+      const Mat given = kind == ComponentOperators::Shared ? maij_scalar(vector) : vector.get();
+      for (const bool concurrent : {false, true}) {
+        std::vector<OwnedPC> scalars;
+        const int count = kind == ComponentOperators::Own ? dim : concurrent ? 2 : 1;
+        for (int k = 0; k < count; ++k) scalars.push_back(boomeramg());
+        ComponentPreconditioner components(std::move(scalars), dim, kind, true, concurrent);
+        PetscInt references = 0, after = 0;
+        NM_PETSC(PetscObjectGetReference(reinterpret_cast<PetscObject>(given), &references));
+        components.set_operator(given, false);
+        components.setup();
+        NM_PETSC(PetscObjectGetReference(reinterpret_cast<PetscObject>(given), &after));
+        EXPECT_EQ(after, references);
+        ASSERT_NE(components.product(), nullptr);
+        OwnedVec y1, y2;
+        NM_PETSC(MatCreateVecs(vector, y1.out(), y2.out()));
+        const OwnedVec b = right_hand_side(vector, 4);
+        NM_PETSC(MatMult(vector, b, y1));
+        NM_PETSC(MatMult(components.product(), b, y2));
+        const std::vector<double> expected = values(y1), got = values(y2);
+        ASSERT_EQ(got.size(), expected.size());
+        double largest = 0.0, error = 0.0;
+        for (std::size_t i = 0; i < got.size(); ++i) {
+          largest = std::max(largest, std::abs(expected[i]));
+          error = std::max(error, std::abs(got[i] - expected[i]));
+        }
+        EXPECT_LE(error, 1e-13 * largest);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace neomesh

@@ -179,16 +179,26 @@ void LinearSolver::set_operator(Mat A, bool same_values) {
   NM_PETSC(KSPGetOperatorsSet(ksp_, &had_operator, nullptr));
   if (builds_amg_hierarchy() && (!same_values || !had_operator))
     amg_matrix_ = without_stored_zeros(A);
+  if (components_) {
+    const Mat per_component = components_->kind() == ComponentOperators::Own ? A : maij_scalar(A);
+    if (!per_component)
+      fail("internal error: a per-component preconditioner for a matrix that is no MAIJ");
+    components_->set_operator(per_component, same_values);
+    // Its copies in hypre's format multiply: A is not kept.
+    if (components_->product()) A = components_->product();
+  }
   NM_PETSC(KSPSetOperators(ksp_, A, amg_matrix_ ? amg_matrix_.get() : A));
   NM_PETSC(KSPSetReusePreconditioner(ksp_, same_values ? PETSC_TRUE : PETSC_FALSE));
-  if (!components_) return;
-  if (components_->kind() == ComponentOperators::Own) {
-    components_->set_operator(A, same_values);
-    return;
-  }
-  const Mat scalar = maij_scalar(A);
-  if (!scalar) fail("internal error: a per-component preconditioner for a matrix that is no MAIJ");
-  components_->set_operator(scalar, same_values);
+}
+
+bool LinearSolver::copies_operator() const {
+  return components_ && components_->product();
+}
+
+void LinearSolver::multiply(Vec x, Vec y) const {
+  Mat A = nullptr;
+  NM_PETSC(KSPGetOperators(ksp_, &A, nullptr));
+  NM_PETSC(MatMult(A, x, y));
 }
 
 void LinearSolver::setup() {

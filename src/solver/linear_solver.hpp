@@ -35,6 +35,11 @@ class LinearSolver {
   // Uses `A` for the next solves. With `same_values` the preconditioner (AMG hierarchy,
   // factorization) of the previous operator is kept.
   void set_operator(Mat A, bool same_values);
+  // True if set_operator copied A into the preconditioner's format and multiplies with that
+  // copy (BoomerAMG per component): A need not be kept for the solves.
+  bool copies_operator() const;
+  // y = A x with the operator of the next solves.
+  void multiply(Vec x, Vec y) const;
   // amg only, before set_operator: the operators will couple no two components, and are
   // preconditioned by scalar BoomerAMG preconditioners applied to each component
   // (component_preconditioner.hpp). Shared: the operators are MatCreateMAIJ(A₁, dim) of scalar

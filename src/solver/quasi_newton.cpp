@@ -119,15 +119,19 @@ struct QuasiNewton::Impl {
   }
 
   // H and L, and L's preconditioner, only once a step is taken: a mesh that is already a
-  // minimizer needs none (their set-up was most of the run on a uniform 100x100 box).
-  void create_matrices() {
+  // minimizer needs none (their set-up was most of the run on a uniform 100x100 box). H only
+  // once a quasi-Newton step is: after L's set-up, whose memory it may then reuse.
+  void create_hessian() {
     if (hessian) return;
     Stopwatch watch(times.setup);
     hessian = functional.create_matrix(laplacian_preconditions_hessian() ? HessianUse::Products
                                                                          : HessianUse::Entries);
-    laplacian = riesz_components(functional, options) == ComponentOperators::Shared
-                    ? functional.create_scalar_laplacian_matrix()
-                    : functional.create_laplacian_matrix();
+  }
+
+  OwnedMat create_laplacian() const {
+    return riesz_components(functional, options) == ComponentOperators::Shared
+               ? functional.create_scalar_laplacian_matrix()
+               : functional.create_laplacian_matrix();
   }
 
   void evaluate_gradient(Vec x) {
@@ -139,10 +143,18 @@ struct QuasiNewton::Impl {
   }
 
   void assemble_laplacian(Vec x) {
-    create_matrices();
+    if (!laplacian) {
+      Stopwatch watch(times.setup);
+      laplacian = create_laplacian();
+    }
     Stopwatch watch(times.riesz_setup);
     functional.assemble_laplacian(options.advanced.riesz, x, laplacian);
     riesz_solver.set_operator(laplacian, false);
+    // The solver multiplies with its own copy of L: keeping L would hold it twice, and freed
+    // now, before the hierarchies are built, its memory serves them. It is made again when it
+    // is assembled again, except where that is every iteration.
+    if (riesz_solver.copies_operator() && options.advanced.riesz != RieszLaplacian::CurrentMesh)
+      laplacian.reset();
     riesz_solver.setup();
     laplacian_fresh = true;
     laplacian_pending = false;
@@ -154,6 +166,7 @@ struct QuasiNewton::Impl {
   // and so the preconditioner, barely changes: it is kept, except for a direct solver.
   void update_laplacian_tangents(Vec x) {
     Stopwatch watch(times.riesz_setup);
+    if (!laplacian) laplacian = create_laplacian();
     functional.assemble_laplacian(options.advanced.riesz, x, laplacian);
     riesz_solver.set_operator(laplacian, options.linear_solver != LinearSolverKind::Direct);
   }
@@ -172,7 +185,7 @@ struct QuasiNewton::Impl {
 
   // (u, v)_L = uᵀ L v
   double inner_L(Vec u, Vec v) {
-    NM_PETSC(MatMult(laplacian, v, work));
+    riesz_solver.multiply(v, work);
     return dot(u, work);
   }
 
@@ -180,6 +193,7 @@ struct QuasiNewton::Impl {
   // is the direction to take (copied into `delta`).
   bool quasi_newton_direction(Vec x, IterationRecord& rec) {
     {
+      create_hessian();
       Stopwatch watch(times.hessian_assembly);
       functional.assemble_hessian(x, alpha, hessian);
     }
