@@ -352,23 +352,6 @@ struct Layout {
   }
 };
 
-// row_start and column: each neighbour w of a row's vertex gives the columns d·w .. d·w + d − 1.
-void fill_csr(const Lists& rows, int d, AssemblyPattern& p) {
-  const PetscInt owned = static_cast<PetscInt>(rows.start.size()) - 1;
-  p.row_start.resize(d * owned + 1);
-  p.column.resize(d * d * rows.start.back());
-#pragma omp parallel for schedule(static)
-  for (PetscInt r = 0; r < owned; ++r) {
-    for (int a = 0; a < d; ++a) {
-      PetscInt e = d * d * rows.start[r] + a * d * rows.size(r);
-      p.row_start[d * r + a] = e;
-      for (PetscInt k = 0; k < rows.size(r); ++k)
-        for (int b = 0; b < d; ++b) p.column[e++] = d * rows.begin(r)[k] + b;
-    }
-  }
-  p.row_start[d * owned] = d * d * rows.start.back();
-}
-
 // row_stride, off_row_stride, diagonal, row_first and off_row_first.
 void fill_vertex_entries(const MeshView& view, const Numbering& num, const Layout& layout, int d,
                          AssemblyPattern& p) {
@@ -480,31 +463,26 @@ void make_ghost_exchange(MPI_Comm comm, const Numbering& num, const Neighbours& 
 
 }  // namespace
 
-std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(
-    const std::vector<PetscInt>& coupled_start, const std::vector<PetscInt>& coupled_column,
-    int dim) {
-  const std::size_t rows = coupled_start.size() - 1;
-  std::vector<PetscInt> row_start(rows + 1), column(coupled_column.size() / dim);
-  for (std::size_t r = 0; r <= rows; ++r) row_start[r] = coupled_start[r] / dim;
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> layout_csr(const AssemblyPattern& p,
+                                                                   MatrixLayout layout, int dim) {
+  if (layout == MatrixLayout::Symmetric)
+    fail("internal error: the CSR of a matrix of the upper blocks alone");
+  const PetscInt owned = static_cast<PetscInt>(p.neighbour_start.size()) - 1;
+  if (layout == MatrixLayout::Scalar) return {p.neighbour_start, p.neighbour};
+  // Per vertex row: dim rows of `per` columns per neighbour.
+  const int per = layout == MatrixLayout::Coupled ? dim : 1;
+  std::vector<PetscInt> row_start(dim * owned + 1), column(dim * per * p.neighbour.size());
 #pragma omp parallel for schedule(static)
-  for (std::size_t r = 0; r < rows; ++r)
-    for (PetscInt e = coupled_start[r] + static_cast<PetscInt>(r % dim); e < coupled_start[r + 1];
-         e += dim)
-      column[e / dim] = coupled_column[e];
-  return {std::move(row_start), std::move(column)};
-}
-
-std::pair<std::vector<PetscInt>, std::vector<PetscInt>> scalar_csr(
-    const std::vector<PetscInt>& coupled_start, const std::vector<PetscInt>& coupled_column,
-    int dim) {
-  // Row dim · v of the coupled pattern lists dim columns per neighbour of v.
-  const std::size_t rows = (coupled_start.size() - 1) / dim;
-  std::vector<PetscInt> row_start(rows + 1), column(coupled_column.size() / (dim * dim));
-  for (std::size_t r = 0; r <= rows; ++r) row_start[r] = coupled_start[dim * r] / (dim * dim);
-#pragma omp parallel for schedule(static)
-  for (std::size_t r = 0; r < rows; ++r)
-    for (PetscInt k = row_start[r]; k < row_start[r + 1]; ++k)
-      column[k] = coupled_column[coupled_start[dim * r] + dim * (k - row_start[r])] / dim;
+  for (PetscInt r = 0; r < owned; ++r) {
+    const PetscInt first = p.neighbour_start[r], size = p.neighbour_start[r + 1] - first;
+    for (int a = 0; a < dim; ++a) {
+      PetscInt e = dim * per * first + a * per * size;
+      row_start[dim * r + a] = e;
+      for (PetscInt k = first; k < first + size; ++k)
+        for (int b = 0; b < per; ++b) column[e++] = dim * p.neighbour[k] + (per == 1 ? a : b);
+    }
+  }
+  row_start[dim * owned] = static_cast<PetscInt>(column.size());
   return {std::move(row_start), std::move(column)};
 }
 
@@ -525,10 +503,11 @@ AssemblyPattern make_assembly_pattern(const MeshView& view, const DofMap& dofs) 
   p.ghost_entries = static_cast<std::size_t>(d * d * layout.g_first.back());
   const PetscInt entries = d * d * neighbours.rows.start.back();
   MPI_Allreduce(&entries, &p.global_entries, 1, MPIU_INT, MPI_SUM, comm);
-  fill_csr(neighbours.rows, d, p);
   fill_vertex_entries(view, num, layout, d, p);
   fill_cell_entries(view, num, around, layout, d, p);
   if (ranks > 1) make_ghost_exchange(comm, num, neighbours, layout, d, p);
+  p.neighbour_start = std::move(neighbours.rows.start);
+  p.neighbour = std::move(neighbours.rows.value);
   return p;
 }
 

@@ -46,9 +46,11 @@ enum class MatrixLayout {
 };
 
 struct AssemblyPattern {
-  // CSR of the owned rows with global columns, sorted within each row (what
-  // MatXAIJSetPreallocationCSR takes); `column` is freed once a matrix holds it.
-  std::vector<PetscInt> row_start, column;
+  // Per owned vertex (in the DofMap's order), its neighbours: the vertices it shares a cell
+  // with, itself included, as global vertex numbers (global dof / dim), sorted; CSR
+  // neighbour[neighbour_start[r] .. neighbour_start[r + 1]). Each layout's rows follow from
+  // them (layout_csr); they are dim² times smaller than the coupled matrix's columns.
+  std::vector<PetscInt> neighbour_start, neighbour;
   std::size_t diagonal_entries = 0;      // in A
   std::size_t off_diagonal_entries = 0;  // in B
   std::size_t ghost_entries = 0;         // in G
@@ -68,8 +70,8 @@ struct AssemblyPattern {
   // colour_chunks[colour_start[j] .. colour_start[j+1]).
   std::vector<std::vector<PetscInt>> colour_chunks, colour_start;
   // From G (leaves) into the owners' A and B values (roots), per MatrixLayout: the coupled
-  // SFs move every entry, the uncoupled ones only entries within a component, at entry / dim
-  // (see uncoupled_csr), the scalar ones only component 0's, at scalar_entry. Null on one
+  // SFs move every entry, the uncoupled ones only entries within a component, at entry / dim,
+  // the scalar ones only component 0's, at scalar_entry. Null on one
   // rank.
   OwnedSF ghost_to_diagonal[3], ghost_to_off_diagonal[3];
 
@@ -83,16 +85,12 @@ struct AssemblyPattern {
   }
 };
 
-// The CSR (row starts, columns) of the same rows without the couplings between different
-// components: entry e of the coupled pattern (row_start, column) with column ≡ row (mod dim)
-// is entry e / dim here (and likewise in A, B and G).
-std::pair<std::vector<PetscInt>, std::vector<PetscInt>> uncoupled_csr(
-    const std::vector<PetscInt>& row_start, const std::vector<PetscInt>& column, int dim);
-
-// The CSR of the same rows' component 0 alone, numbered by vertex: the n × n scalar matrix
-// whose entry (v, w) is entry (dim · v, dim · w) of the coupled pattern.
-std::pair<std::vector<PetscInt>, std::vector<PetscInt>> scalar_csr(
-    const std::vector<PetscInt>& row_start, const std::vector<PetscInt>& column, int dim);
+// The CSR of a layout's owned rows (Coupled, Uncoupled or Scalar; not Symmetric) with global
+// columns, sorted within each row, as MatXAIJSetPreallocationCSR takes it. Row dim · v + a of
+// the coupled matrix has the columns dim · w + b of each neighbour w of v; of the uncoupled one
+// the columns dim · w + a; the scalar matrix's row v has the columns w.
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> layout_csr(const AssemblyPattern& p,
+                                                                   MatrixLayout layout, int dim);
 
 // Collective. Throws Error if the DofMap does not number each rank's vertices consecutively
 // from its first owned dof, with a vertex's dofs next to each other (as PlexMesh does).

@@ -20,6 +20,7 @@ void check_pattern(const MeshData& data) {
   const AssemblyPattern pattern = make_assembly_pattern(view, dofs);
   EXPECT_EQ(pattern.off_diagonal_entries, 0u);  // one rank: no B, no G
   EXPECT_EQ(pattern.ghost_entries, 0u);
+  const auto [row_start, column] = layout_csr(pattern, MatrixLayout::Coupled, d);
   std::vector<std::set<PetscInt>> coupled(d * view.num_vertices);
   for (std::size_t b = 0; b < view.blocks.size(); ++b) {
     const CellBlock& block = view.blocks[b];
@@ -32,9 +33,9 @@ void check_pattern(const MeshData& data) {
               const PetscInt vi = block.cell(c)[i], vj = block.cell(c)[j];
               const PetscInt e =
                   pattern.block_entry[b][(c * n + i) * n + j] + a * pattern.row_stride[vi] + bb;
-              EXPECT_EQ(pattern.column[e], d * vj + bb);
-              EXPECT_GE(e, pattern.row_start[d * vi + a]);
-              EXPECT_LT(e, pattern.row_start[d * vi + a + 1]);
+              EXPECT_EQ(column[e], d * vj + bb);
+              EXPECT_GE(e, row_start[d * vi + a]);
+              EXPECT_LT(e, row_start[d * vi + a + 1]);
               coupled[d * vi + a].insert(d * vj + bb);
             }
     const auto& chunks = pattern.colour_chunks[b];
@@ -56,9 +57,24 @@ void check_pattern(const MeshData& data) {
     }
   }
   for (PetscInt row = 0; row < d * view.num_vertices; ++row) {
-    EXPECT_EQ(pattern.row_start[row + 1] - pattern.row_start[row],
-              static_cast<PetscInt>(coupled[row].size()));
-    EXPECT_EQ(pattern.column[pattern.diagonal[row]], row);
+    EXPECT_EQ(row_start[row + 1] - row_start[row], static_cast<PetscInt>(coupled[row].size()));
+    EXPECT_EQ(column[pattern.diagonal[row]], row);
+  }
+  // The smaller layouts hold the coupled rows' entries within a component, or component 0's.
+  const auto [uncoupled_start, uncoupled_column] = layout_csr(pattern, MatrixLayout::Uncoupled, d);
+  const auto [scalar_start, scalar_column] = layout_csr(pattern, MatrixLayout::Scalar, d);
+  for (PetscInt row = 0; row < d * view.num_vertices; ++row) {
+    std::vector<PetscInt> within, scalar;
+    for (const PetscInt c : coupled[row])
+      if (c % d == row % d) within.push_back(c);
+    EXPECT_EQ(std::vector<PetscInt>(uncoupled_column.begin() + uncoupled_start[row],
+                                    uncoupled_column.begin() + uncoupled_start[row + 1]),
+              within);
+    if (row % d) continue;
+    for (const PetscInt c : within) scalar.push_back(c / d);
+    EXPECT_EQ(std::vector<PetscInt>(scalar_column.begin() + scalar_start[row / d],
+                                    scalar_column.begin() + scalar_start[row / d + 1]),
+              scalar);
   }
 }
 

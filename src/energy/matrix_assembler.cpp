@@ -38,10 +38,9 @@ void compose(Mat m, const char* name, PetscObject object) {
   NM_PETSC(PetscObjectCompose(reinterpret_cast<PetscObject>(m), name, object));
 }
 
-// A SeqAIJ matrix on these arrays, which it keeps; and where its columns are.
-std::pair<OwnedMat, const std::vector<PetscInt>*> matrix_on_arrays(MPI_Comm comm,
-                                                                   std::vector<PetscInt> row_start,
-                                                                   std::vector<PetscInt> column) {
+// A SeqAIJ matrix on these arrays, which it keeps.
+OwnedMat matrix_on_arrays(MPI_Comm comm, std::vector<PetscInt> row_start,
+                          std::vector<PetscInt> column) {
   auto arrays = std::make_unique<CsrArrays>(
       CsrArrays{std::move(row_start), std::move(column), std::vector<PetscScalar>()});
   arrays->values.resize(arrays->column.size());
@@ -49,13 +48,12 @@ std::pair<OwnedMat, const std::vector<PetscInt>*> matrix_on_arrays(MPI_Comm comm
   OwnedMat m;
   NM_PETSC(MatCreateSeqAIJWithArrays(comm, rows, rows, arrays->row_start.data(),
                                      arrays->column.data(), arrays->values.data(), m.out()));
-  const std::vector<PetscInt>* columns = &arrays->column;
   OwnedContainer container;
   NM_PETSC(PetscContainerCreate(comm, container.out()));
   NM_PETSC(PetscContainerSetPointer(container, arrays.release()));
   NM_PETSC(PetscContainerSetUserDestroy(container, destroy_arrays));
   compose(m, kArraysName, reinterpret_cast<PetscObject>(container.get()));
-  return {std::move(m), columns};
+  return m;
 }
 
 // Coupled matrices on one rank multiply with threaded_product. Set when create() makes them:
@@ -238,42 +236,9 @@ MatrixAssembler::MatrixAssembler(const MeshView& view, const DofMap& dofs,
 
 MatrixAssembler::~MatrixAssembler() = default;
 
-const std::vector<PetscInt>& MatrixAssembler::coupled_columns() {
-  if (coupled_columns_) return *coupled_columns_;
-  const Mat coupled = first_[static_cast<int>(MatrixLayout::Coupled)];
-  if (!pattern_.column.empty() || (!coupled && !upper_)) return pattern_.column;
-  if (!coupled) {  // on one rank: each row's vertices are those below and above its diagonal
-    const int d = dofs_.dim();
-    const UpperBlocks& u = *upper_;
-    pattern_.column.reserve(pattern_.row_start.back());
-    for (PetscInt w = 0; w + 1 < static_cast<PetscInt>(u.row_start.size()); ++w)
-      for (int a = 0; a < d; ++a) {
-        for (PetscInt t = u.lower_start[w]; t < u.lower_start[w + 1]; ++t)
-          for (int b = 0; b < d; ++b) pattern_.column.push_back(d * u.lower_row[t] + b);
-        for (PetscInt k = u.row_start[w]; k < u.row_start[w + 1]; ++k)
-          for (int b = 0; b < d; ++b) pattern_.column.push_back(d * u.column[k] + b);
-      }
-    return pattern_.column;
-  }
-  // Freed once the coupled matrix and a Laplacian's had them: read them back (MatGetRow
-  // gives global columns in order).
-  PetscInt first = 0, end = 0;
-  NM_PETSC(MatGetOwnershipRange(coupled, &first, &end));
-  pattern_.column.reserve(pattern_.row_start.back());
-  for (PetscInt row = first; row < end; ++row) {
-    PetscInt n = 0;
-    const PetscInt* columns = nullptr;
-    NM_PETSC(MatGetRow(coupled, row, &n, &columns, nullptr));
-    pattern_.column.insert(pattern_.column.end(), columns, columns + n);
-    NM_PETSC(MatRestoreRow(coupled, row, &n, &columns, nullptr));
-  }
-  return pattern_.column;
-}
-
 void MatrixAssembler::make_upper_blocks() {
   const int d = dofs_.dim();
   const PetscInt nv = view_.num_vertices;
-  const std::vector<PetscInt>& columns = coupled_columns();
   const std::vector<PetscInt>& global_dof = dofs_.global_dof();
   auto u = std::make_shared<UpperBlocks>();
   // On one rank every vertex is owned and its rows are those of global vertex global_dof / d.
@@ -283,18 +248,18 @@ void MatrixAssembler::make_upper_blocks() {
   u->lower_start.assign(nv + 1, 0);
   u->diagonal.resize(nv);
   u->shift.resize(nv);
-  u->column.reserve((pattern_.row_start.back() / (d * d) + nv) / 2);  // the pattern is symmetric
+  u->column.reserve((pattern_.neighbour.size() + nv) / 2);  // the pattern is symmetric
   for (PetscInt w = 0; w < nv; ++w) {
     const PetscInt v = local[w];
-    const PetscInt* row = columns.data() + pattern_.row_start[d * w];
-    const PetscInt blocks = (pattern_.row_start[d * w + 1] - pattern_.row_start[d * w]) / d;
-    PetscInt k = 0;  // the diagonal block's place in the row (columns are sorted)
-    while (k < blocks && row[d * k] / d < w) ++k;
+    const PetscInt* row = pattern_.neighbour.data() + pattern_.neighbour_start[w];
+    const PetscInt blocks = pattern_.neighbour_start[w + 1] - pattern_.neighbour_start[w];
+    PetscInt k = 0;  // the diagonal block's place in the row (neighbours are sorted)
+    while (k < blocks && row[k] < w) ++k;
     u->diagonal[v] = pattern_.row_first[v] + k;
     u->shift[v] = u->row_start[w] - u->diagonal[v];
     u->row_start[w + 1] = u->row_start[w] + blocks - k;
     u->lower_start[w + 1] = u->lower_start[w] + k;
-    for (; k < blocks; ++k) u->column.push_back(row[d * k] / d);
+    u->column.insert(u->column.end(), row + k, row + blocks);
   }
   // The blocks below the diagonal are the transposes of those above, found in row order.
   u->lower_block.resize(u->lower_start.back());
@@ -349,21 +314,10 @@ OwnedMat MatrixAssembler::create_first(MatrixLayout layout) {
   const PetscInt block_size = layout == MatrixLayout::Scalar ? 1 : d;  // rows per vertex
   const PetscInt rows = dofs_.num_owned_dofs() / d * block_size;
   const PetscInt global_rows = dofs_.num_global_dofs() / d * block_size;
-  std::vector<PetscInt> row_start, column;
-  if (layout == MatrixLayout::Uncoupled)
-    std::tie(row_start, column) = uncoupled_csr(pattern_.row_start, coupled_columns(), d);
-  else if (layout == MatrixLayout::Scalar)
-    std::tie(row_start, column) = scalar_csr(pattern_.row_start, coupled_columns(), d);
+  auto [row_start, column] = layout_csr(pattern_, layout, d);
   OwnedMat m;
   if (mpi_size(dofs_.comm()) == 1) {
-    if (coupled) {
-      row_start = pattern_.row_start;
-      coupled_columns();  // read back if they were freed
-      column = std::move(pattern_.column);
-    }
-    const std::vector<PetscInt>* columns = nullptr;
-    std::tie(m, columns) = matrix_on_arrays(dofs_.comm(), std::move(row_start), std::move(column));
-    if (coupled) coupled_columns_ = columns;  // first_ keeps them
+    m = matrix_on_arrays(dofs_.comm(), std::move(row_start), std::move(column));
     // hypre's BoomerAMG reads the block size as its number of functions.
     NM_PETSC(MatSetBlockSize(m, block_size));
   } else {
@@ -371,9 +325,7 @@ OwnedMat MatrixAssembler::create_first(MatrixLayout layout) {
     NM_PETSC(MatSetSizes(m, rows, rows, global_rows, global_rows));
     NM_PETSC(MatSetType(m, MATMPIAIJ));
     NM_PETSC(MatSetBlockSize(m, block_size));
-    NM_PETSC(MatMPIAIJSetPreallocationCSR(m, coupled ? pattern_.row_start.data() : row_start.data(),
-                                          coupled ? pattern_.column.data() : column.data(),
-                                          nullptr));
+    NM_PETSC(MatMPIAIJSetPreallocationCSR(m, row_start.data(), column.data(), nullptr));
   }
   // Values are written where assembly_pattern.hpp says PETSc keeps each entry; a different
   // number of entries in A or B means a PETSc that stores them differently.
@@ -399,14 +351,12 @@ OwnedMat MatrixAssembler::create(MatrixLayout layout) {
     if (arrays) compose(m, kArraysName, arrays);
   } else {
     m = create_first(layout);
-    NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(m.get())));
-    first = OwnedMat(m.get());
-    // Once H and a Laplacian have their matrices, every later matrix is a duplicate (or
-    // rare): the matrices, or the upper blocks, hold the columns from now on.
-    if ((first_[static_cast<int>(MatrixLayout::Coupled)] || upper_) &&
-        (first_[static_cast<int>(MatrixLayout::Uncoupled)] ||
-         first_[static_cast<int>(MatrixLayout::Scalar)]))
-      std::vector<PetscInt>().swap(pattern_.column);
+    // A Laplacian's matrix is not kept: a solver may hold L in its own format alone
+    // (LinearSolver::copies_operator).
+    if (layout == MatrixLayout::Coupled || layout == MatrixLayout::Symmetric) {
+      NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(m.get())));
+      first = OwnedMat(m.get());
+    }
   }
   attach_tag(m, id_, layout);
   use_threaded_product(m, layout);

@@ -76,9 +76,6 @@ class MatrixAssembler {
  private:
   // The first matrix of `layout`.
   OwnedMat create_first(MatrixLayout layout);
-  // The coupled pattern's columns: the pattern's, the coupled matrix's on one rank, or,
-  // after the pattern freed them, read back from the coupled matrix or the upper blocks.
-  const std::vector<PetscInt>& coupled_columns();
   // Symmetric: the upper blocks of the coupled pattern, and a matrix on new values for them.
   void make_upper_blocks();
   OwnedMat create_upper_matrix() const;
@@ -90,13 +87,10 @@ class MatrixAssembler {
   bool components_fixed_alike_ = true;      // no local vertex has only some dofs fixed
   AssemblyPattern pattern_;
   std::uint64_t id_;  // tells this assembler's matrices from those of others
-  // The first matrix of each layout; later ones share its pattern (MAT_SHARE_NONZERO_PATTERN,
-  // or upper_ for Symmetric).
+  // The first matrix of the coupled layouts (Coupled, Symmetric); later ones share its pattern
+  // (MAT_SHARE_NONZERO_PATTERN, or upper_ for Symmetric).
   OwnedMat first_[4];
   std::shared_ptr<const UpperBlocks> upper_;  // once a Symmetric matrix was made
-  // On one rank, once the coupled matrix took the pattern's columns: the columns in that
-  // matrix (first_ keeps it).
-  const std::vector<PetscInt>* coupled_columns_ = nullptr;
 };
 
 // The values of one matrix made by MatrixAssembler::create, while it is assembled: all zero
