@@ -1,5 +1,6 @@
 #include "mesh/dof_map.hpp"
 
+#include <algorithm>
 #include <numeric>
 
 namespace neomesh {
@@ -10,23 +11,27 @@ DofMap::DofMap(MPI_Comm comm, int dim, PetscInt num_local_vertices, PetscInt num
   if (static_cast<PetscInt>(global_dof_.size()) != num_local_vertices * dim)
     fail("DofMap: {} global indices for {} local vertices of dimension {}", global_dof_.size(),
          num_local_vertices, dim);
-  NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(sf)));
-  *sf_.out() = sf;
+  if (sf) {
+    NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(sf)));
+    *sf_.out() = sf;
+  } else if (mpi_size(comm_) != 1 || !is_identity(global_dof_) ||
+             num_owned_dofs_ != num_local_dofs()) {
+    fail("internal error: a DofMap without an SF whose local dofs are not the global ones");
+  }
   MPI_Allreduce(&num_owned_dofs_, &num_global_dofs_, 1, MPIU_INT, MPI_SUM, comm_);
+}
+
+bool DofMap::is_identity(const std::vector<PetscInt>& global_dof) {
+  for (std::size_t i = 0; i < global_dof.size(); ++i)
+    if (global_dof[i] != static_cast<PetscInt>(i)) return false;
+  return true;
 }
 
 DofMap DofMap::serial(int dim, PetscInt num_vertices) {
   const PetscInt n = num_vertices * dim;
-  OwnedSF sf;
-  NM_PETSC(PetscSFCreate(PETSC_COMM_SELF, sf.out()));
-  // Identity graph: leaf i ↔ root i.
-  std::vector<PetscSFNode> roots(n);
-  for (PetscInt i = 0; i < n; ++i) roots[i] = {0, i};
-  NM_PETSC(PetscSFSetGraph(sf, n, n, nullptr, PETSC_COPY_VALUES, roots.data(), PETSC_COPY_VALUES));
-  NM_PETSC(PetscSFSetUp(sf));
   std::vector<PetscInt> global(n);
   std::iota(global.begin(), global.end(), PetscInt{0});
-  return DofMap(PETSC_COMM_SELF, dim, num_vertices, n, sf, std::move(global));
+  return DofMap(PETSC_COMM_SELF, dim, num_vertices, n, nullptr, std::move(global));
 }
 
 OwnedVec DofMap::create_global_vector() const {
@@ -38,12 +43,20 @@ OwnedVec DofMap::create_global_vector() const {
 
 void DofMap::global_to_local(Vec global, std::span<double> local) const {
   VecReadView roots(global);
+  if (!sf_) {
+    std::copy_n(roots.data(), num_local_dofs(), local.data());
+    return;
+  }
   NM_PETSC(PetscSFBcastBegin(sf_, MPIU_SCALAR, roots.data(), local.data(), MPI_REPLACE));
   NM_PETSC(PetscSFBcastEnd(sf_, MPIU_SCALAR, roots.data(), local.data(), MPI_REPLACE));
 }
 
 void DofMap::add_local_to_global(std::span<const double> local, Vec global) const {
   VecWriteView roots(global);
+  if (!sf_) {
+    for (PetscInt i = 0; i < num_local_dofs(); ++i) roots[i] += local[i];
+    return;
+  }
   NM_PETSC(PetscSFReduceBegin(sf_, MPIU_SCALAR, local.data(), roots.data(), MPI_SUM));
   NM_PETSC(PetscSFReduceEnd(sf_, MPIU_SCALAR, local.data(), roots.data(), MPI_SUM));
 }

@@ -19,7 +19,9 @@ namespace neomesh {
 class DofMap {
  public:
   // `sf` maps local dofs (leaves) to owned global dofs (roots); `global_dof` holds, per local
-  // dof, its index in the global numbering. Takes a reference on `sf`.
+  // dof, its index in the global numbering. Takes a reference on `sf`. Null where local dof i is
+  // global dof i on a single process: values are then copied, without an SF (whose graph holds
+  // 16 bytes per dof for nothing).
   DofMap(MPI_Comm comm, int dim, PetscInt num_local_vertices, PetscInt num_owned_dofs, PetscSF sf,
          std::vector<PetscInt> global_dof);
 
@@ -44,12 +46,15 @@ class DofMap {
   // several ranks). Collective; nothing to do on one process.
   void sum_over_ranks(std::span<double> local) const;
 
+  // True if local dof i is global dof i for every i (so, on one process, no SF is needed).
+  static bool is_identity(const std::vector<PetscInt>& global_dof);
+
  private:
   MPI_Comm comm_;
   int dim_;
   PetscInt num_owned_dofs_;
   PetscInt num_global_dofs_ = 0;
-  OwnedSF sf_;
+  OwnedSF sf_;  // null: local dof i is global dof i (one process)
   std::vector<PetscInt> global_dof_;
 };
 

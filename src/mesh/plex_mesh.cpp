@@ -193,14 +193,18 @@ void build_dofs(Impl& m) {
     if (offset < 0) offset = -(offset + 1);
     for (int d = 0; d < m.dim; ++d) global_dof[(v - vStart) * m.dim + d] = offset + d;
   }
-  PetscLayout layout;
-  NM_PETSC(PetscLayoutCreateFromSizes(m.comm, owned_dofs, PETSC_DECIDE, 1, &layout));
+  // On one process local dof i is global dof i (the section numbers the vertices in order):
+  // the DofMap copies values without an SF.
   OwnedSF sf;
-  NM_PETSC(PetscSFCreate(m.comm, sf.out()));
-  NM_PETSC(PetscSFSetGraphLayout(sf, layout, static_cast<PetscInt>(global_dof.size()), nullptr,
-                                 PETSC_OWN_POINTER, global_dof.data()));
-  NM_PETSC(PetscLayoutDestroy(&layout));
-  NM_PETSC(PetscSFSetUp(sf));
+  if (mpi_size(m.comm) != 1 || !DofMap::is_identity(global_dof)) {
+    PetscLayout layout;
+    NM_PETSC(PetscLayoutCreateFromSizes(m.comm, owned_dofs, PETSC_DECIDE, 1, &layout));
+    NM_PETSC(PetscSFCreate(m.comm, sf.out()));
+    NM_PETSC(PetscSFSetGraphLayout(sf, layout, static_cast<PetscInt>(global_dof.size()), nullptr,
+                                   PETSC_OWN_POINTER, global_dof.data()));
+    NM_PETSC(PetscLayoutDestroy(&layout));
+    NM_PETSC(PetscSFSetUp(sf));
+  }
   m.dofs =
       std::make_unique<DofMap>(m.comm, m.dim, vEnd - vStart, owned_dofs, sf, std::move(global_dof));
 }
