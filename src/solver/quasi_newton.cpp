@@ -84,7 +84,10 @@ struct QuasiNewton::Impl {
   LinearSolver hessian_solver;
   LinearSolver riesz_solver;
   OwnedMat hessian, laplacian;
-  OwnedVec gradient, s, delta_tilde, delta, trial, work;
+  OwnedVec gradient, s, delta_tilde, trial, work;
+  // δ, the direction taken: δ̃ itself, a blend of δ̃ and −s, or −s, in δ̃'s storage (δ̃ is not
+  // needed once the direction is chosen; s is kept for a blend that fails).
+  Vec delta = nullptr;
 
   double energy = 0.0;
   double defect = 0.0;
@@ -114,8 +117,9 @@ struct QuasiNewton::Impl {
     if (const auto kind = riesz_components(functional, options))
       riesz_solver.precondition_per_component(*kind);
     if (laplacian_preconditions_hessian()) hessian_solver.precondition_with(riesz_solver);
-    for (OwnedVec* v : {&gradient, &s, &delta_tilde, &delta, &trial, &work})
+    for (OwnedVec* v : {&gradient, &s, &delta_tilde, &trial, &work})
       *v = functional.dofs().create_global_vector();
+    delta = delta_tilde;
   }
 
   // H and L, and L's preconditioner, only once a step is taken: a mesh that is already a
@@ -189,8 +193,8 @@ struct QuasiNewton::Impl {
     return dot(u, work);
   }
 
-  // Solves H(α) δ̃ = −g loosely (thesis §5.2) and applies the angle test; returns true if δ̃
-  // is the direction to take (copied into `delta`).
+  // Solves H(α) δ̃ = −g loosely (thesis §5.2) and applies the angle test; returns true if δ̃,
+  // or its blend with −s, is the direction to take (then in `delta`).
   bool quasi_newton_direction(Vec x, IterationRecord& rec) {
     {
       create_hessian();
@@ -232,18 +236,12 @@ struct QuasiNewton::Impl {
     }
     // η_k = −(s, δ̃)_L / (‖s‖_L ‖δ̃‖_L)
     const double delta_delta = inner_L(delta_tilde, delta_tilde);
-    if (!rec.s_solved && estimated_angle_passes(rec, delta_delta)) {
-      NM_PETSC(VecCopy(delta_tilde, delta));
-      return true;
-    }
+    if (!rec.s_solved && estimated_angle_passes(rec, delta_delta)) return true;
     solve_riesz(rec);
     const double s_delta = inner_L(s, delta_tilde);
     const double s_s = inner_L(s, s);
     rec.eta = -s_delta / std::sqrt(s_s * delta_delta);
-    if (rec.eta >= options.advanced.eta) {
-      NM_PETSC(VecCopy(delta_tilde, delta));
-      return true;
-    }
+    if (rec.eta >= options.advanced.eta) return true;
     if (options.advanced.rejected_direction != RejectedDirection::Blend || rec.delta_truncated ||
         !(rec.eta > 0))
       return false;
@@ -307,7 +305,7 @@ struct QuasiNewton::Impl {
       const double mid = 0.5 * (below + above);
       (cosine(mid) >= options.advanced.eta ? above : below) = mid;
     }
-    NM_PETSC(VecAXPBYPCZ(delta, 1.0 - above, -above * delta_over_s, 0.0, delta_tilde, s));
+    NM_PETSC(VecAXPBY(delta, -above * delta_over_s, 1.0 - above, s));  // δ̃'s storage
     rec.eta = cosine(above);
     rec.blended = true;
   }
