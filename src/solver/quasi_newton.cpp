@@ -84,7 +84,8 @@ struct QuasiNewton::Impl {
   LinearSolver hessian_solver;
   LinearSolver riesz_solver;
   OwnedMat hessian, laplacian;
-  OwnedVec gradient, s, delta_tilde, trial, work;
+  // `trial`: the line search's trial point; outside the line search, scratch space.
+  OwnedVec gradient, s, delta_tilde, trial;
   // δ, the direction taken: δ̃ itself, a blend of δ̃ and −s, or −s, in δ̃'s storage (δ̃ is not
   // needed once the direction is chosen; s is kept for a blend that fails).
   Vec delta = nullptr;
@@ -117,7 +118,7 @@ struct QuasiNewton::Impl {
     if (const auto kind = riesz_components(functional, options))
       riesz_solver.precondition_per_component(*kind);
     if (laplacian_preconditions_hessian()) hessian_solver.precondition_with(riesz_solver);
-    for (OwnedVec* v : {&gradient, &s, &delta_tilde, &trial, &work})
+    for (OwnedVec* v : {&gradient, &s, &delta_tilde, &trial})
       *v = functional.dofs().create_global_vector();
     delta = delta_tilde;
   }
@@ -189,8 +190,8 @@ struct QuasiNewton::Impl {
 
   // (u, v)_L = uᵀ L v
   double inner_L(Vec u, Vec v) {
-    riesz_solver.multiply(v, work);
-    return dot(u, work);
+    riesz_solver.multiply(v, trial);
+    return dot(u, trial);
   }
 
   // Solves H(α) δ̃ = −g loosely (thesis §5.2) and applies the angle test; returns true if δ̃,
@@ -266,8 +267,8 @@ struct QuasiNewton::Impl {
     double g_m_g = 0.0;
     {
       Stopwatch watch(times.riesz_solve);
-      riesz_solver.apply_preconditioner(gradient, work);  // M⁻¹g
-      g_m_g = dot(gradient, work);
+      riesz_solver.apply_preconditioner(gradient, trial);  // M⁻¹g
+      g_m_g = dot(gradient, trial);
     }
     if (!(g_m_g > 0.0) || !(delta_delta > 0.0)) return false;
     const double estimate = -dot(gradient, delta_tilde) / std::sqrt(g_m_g * delta_delta);
@@ -349,10 +350,11 @@ struct QuasiNewton::Impl {
     return false;
   }
 
+  // The largest move σ δ of a vertex coordinate over its cell size; overwrites `trial`.
   double max_relative_move(double sigma) {
-    NM_PETSC(VecPointwiseDivide(work, delta, cell_size));
+    NM_PETSC(VecPointwiseDivide(trial, delta, cell_size));
     double m = 0.0;
-    NM_PETSC(VecNorm(work, NORM_INFINITY, &m));
+    NM_PETSC(VecNorm(trial, NORM_INFINITY, &m));
     return std::abs(sigma) * m;
   }
 
@@ -397,8 +399,8 @@ struct QuasiNewton::Impl {
       rec.seconds = MPI_Wtime() - start_time;
       return rec;
     }
-    rec.max_move = max_relative_move(sigma);
     NM_PETSC(VecCopy(trial, x));
+    rec.max_move = max_relative_move(sigma);  // over `trial`, now copied
     const double old_energy = energy;
     evaluate_gradient(x);
     rec.energy = energy;
