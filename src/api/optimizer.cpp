@@ -161,10 +161,8 @@ std::optional<UntanglingSummary> Optimizer::Impl::untangle(const QuasiNewtonOpti
 }
 
 ProblemSummary Optimizer::Impl::problem(const SolverOptions& solver) const {
-  double free = 0.0;
-  NM_PETSC(VecSum(functional->free_mask(), &free));
   ProblemSummary p;
-  p.free_coordinates = static_cast<std::int64_t>(free);
+  p.free_coordinates = functional->free_dofs();
   if (boundary_options->mode == BoundaryMode::Slide) p.boundary = boundary->summary();
   p.alpha0 = solver.initial_alpha(functional->slides());
   const int dim = view().dim;

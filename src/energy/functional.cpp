@@ -115,7 +115,7 @@ struct Functional::Impl {
   std::vector<double> inverse_edges;  // per local cell v^(−1/d) (CellTarget)
   std::vector<double> shapes_inv_t;   // per local cell S⁻ᵀ with det S = 1; empty: ideal
   std::vector<double> weights;        // per local cell with shapes: its energy's weight
-  OwnedVec free_mask;
+  std::int64_t free_dofs = 0;         // over all ranks
   SlidingVertices sliding;
   std::vector<PetscInt> projector_of;  // per local vertex: its index in sliding.vertices, or -1
   bool slides_anywhere = false;        // sliding.vertices is not empty on some rank
@@ -422,15 +422,9 @@ Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOpt
   MPI_Allreduce(MPI_IN_PLACE, &alike, 1, MPI_INT, MPI_MIN, dofs.comm());
   impl_->scalar_laplacian = !impl_->slides_anywhere && alike;
 
-  // free_mask: every local dof of an owned vertex is owned.
-  impl_->free_mask = dofs.create_global_vector();
-  PetscInt first = 0;
-  NM_PETSC(VecGetOwnershipRange(impl_->free_mask, &first, nullptr));
-  VecWriteView mask(impl_->free_mask);
-  for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l) {
-    if (!view.owned[l / view.dim]) continue;
-    mask[dofs.global_dof()[l] - first] = impl_->is_fixed_dof(l) ? 0.0 : 1.0;
-  }
+  for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l)
+    if (view.owned[l / view.dim] && !impl_->is_fixed_dof(l)) ++impl_->free_dofs;
+  MPI_Allreduce(MPI_IN_PLACE, &impl_->free_dofs, 1, MPI_INT64_T, MPI_SUM, dofs.comm());
 }
 
 Functional::~Functional() = default;
@@ -665,8 +659,8 @@ const DofMap& Functional::dofs() const {
   return impl_->dofs;
 }
 
-Vec Functional::free_mask() const {
-  return impl_->free_mask;
+std::int64_t Functional::free_dofs() const {
+  return impl_->free_dofs;
 }
 
 double mesh_volume(const MeshView& view, const DofMap& dofs, Vec x) {

@@ -131,8 +131,8 @@ class Functional {
   CellFields cell_fields(Vec x) const;
 
   const DofMap& dofs() const;
-  // 1 for free dofs, 0 for fixed ones (global Vec laid out by dofs(); owned by the Functional).
-  Vec free_mask() const;
+  // The number of free dofs, over all ranks.
+  std::int64_t free_dofs() const;
 
  private:
   struct Impl;

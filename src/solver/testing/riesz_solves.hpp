@@ -44,15 +44,17 @@ inline RieszSolves solve_riesz_both_ways(const MeshView& view, const DofMap& dof
   functional.assemble_laplacian(RieszLaplacian::OptimalCells, x, vector);
   functional.assemble_laplacian(RieszLaplacian::OptimalCells, x, scalar);
 
-  // g: smooth, zero at fixed dofs like a gradient.
+  // g: smooth, zero at fixed dofs (the boundary vertices') like a gradient.
   OwnedVec g = dofs.create_global_vector();
   {
     PetscInt first = 0;
     NM_PETSC(VecGetOwnershipRange(g, &first, nullptr));
     VecWriteView out(g);
     for (PetscInt i = 0; i < out.size(); ++i) out[i] = std::sin(0.01 * (first + i));
+    for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l)
+      if (view.owned[l / view.dim] && view.on_boundary[l / view.dim])
+        out[dofs.global_dof()[l] - first] = 0.0;
   }
-  NM_PETSC(VecPointwiseMult(g, g, functional.free_mask()));
 
   RieszSolves r;
   OwnedVec s = dofs.create_global_vector(), s1 = dofs.create_global_vector(),
