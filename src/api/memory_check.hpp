@@ -2,8 +2,8 @@
 // memory is killed by the kernel without a word (square-midpoint 4096², 16.8 M quads, after
 // 103 s). The estimate is a fit of the peak resident memory of `neomesh smooth` with the
 // defaults (peak_rss_mib of the report; docs/benchmarks.md, "Memory") to 60 MiB of libraries +
-// a per vertex (the matrices' rows) + b per cell (targets, shapes, quality): 2D a = 1.03 KiB,
-// b = 0.37 KiB; 3D a = 4.2 KiB, b = 0.12 KiB. It leaves out what a run spends only where the
+// a per vertex (the matrices' rows) + b per cell (targets, shapes, quality): 2D a = 0.97 KiB,
+// b = 0.37 KiB; 3D a = 4.1 KiB, b = 0.13 KiB. It leaves out what a run spends only where the
 // memory is free (a second AMG hierarchy, solver/component_preconditioner.hpp), and options
 // that build a hierarchy of H(α) too (--hess-pc hessian: about twice the memory).
 #pragma once
