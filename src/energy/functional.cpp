@@ -127,9 +127,9 @@ struct Functional::Impl {
   // Work arrays reused between calls.
   mutable std::vector<double> local_x;
   mutable std::vector<double> thread_gradients;  // a local gradient per OpenMP thread after 0
-  mutable std::vector<double> local_gradient;
-  mutable std::vector<double> tangent_spaces;  // per sliding.vertices entry, at local_x
-  mutable std::vector<double> bending_force;   // per sliding.vertices entry: g · w (owned)
+  mutable std::vector<double> local_gradient;    // on several processes
+  mutable std::vector<double> tangent_spaces;    // per sliding.vertices entry, at local_x
+  mutable std::vector<double> bending_force;     // per sliding.vertices entry: g · w (owned)
 
   Impl(const MeshView& v, const DofMap& d, const EnergyOptions& o, std::vector<std::uint8_t> f,
        SlidingVertices t)
@@ -193,7 +193,7 @@ struct Functional::Impl {
   void project_block(const PetscInt* vertex, Block& block) const;
 
   double local_energy() const;
-  double local_energy_and_gradient(std::vector<double>& gradient) const;
+  double local_energy_and_gradient(std::span<double> gradient) const;
   OwnedMat create_matrix(MatrixLayout layout) const;
   // Assembles the cell blocks computed by fill(CellTag<type>, x, target, block) -> bool into M
   // (values only); fails on every rank, naming the first cell for which fill returned false.
@@ -236,10 +236,10 @@ double Functional::Impl::local_energy() const {
 // Each thread adds its cells' gradients into its own local array (thread 0 into `gradient`
 // itself); the arrays are summed in thread order afterwards (deterministic for a fixed number
 // of threads).
-double Functional::Impl::local_energy_and_gradient(std::vector<double>& gradient) const {
+double Functional::Impl::local_energy_and_gradient(std::span<double> gradient) const {
   const std::size_t n = local_x.size();
   const int threads = omp_get_max_threads();
-  gradient.assign(n, 0.0);
+  std::fill(gradient.begin(), gradient.end(), 0.0);
   thread_gradients.assign(n * (threads - 1), 0.0);
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
@@ -500,9 +500,16 @@ double Functional::value(Vec x) const {
 
 double Functional::value_and_gradient(Vec x, Vec gradient) const {
   impl_->load_coordinates_and_tangents(x);
-  const double local = impl_->local_energy_and_gradient(impl_->local_gradient);
-  NM_PETSC(VecZeroEntries(gradient));
-  impl_->dofs.add_local_to_global(impl_->local_gradient, gradient);
+  double local = 0.0;
+  if (impl_->dofs.local_is_global()) {  // one process: the local gradient is the global one
+    VecWriteView g(gradient);
+    local = impl_->local_energy_and_gradient({g.data(), static_cast<std::size_t>(g.size())});
+  } else {
+    impl_->local_gradient.resize(impl_->local_x.size());
+    local = impl_->local_energy_and_gradient(impl_->local_gradient);
+    NM_PETSC(VecZeroEntries(gradient));
+    impl_->dofs.add_local_to_global(impl_->local_gradient, gradient);
+  }
   impl_->project_gradient(gradient);  // once whole: the force on the boundary is kept
   return sum_over_ranks(local, impl_->dofs.comm());
 }

@@ -35,6 +35,9 @@ class DofMap {
   PetscInt num_global_dofs() const { return num_global_dofs_; }
   const std::vector<PetscInt>& global_dof() const { return global_dof_; }
 
+  // True if local dof i is global dof i on this one process: a global vector's array is then
+  // the local array.
+  bool local_is_global() const { return !sf_; }
   // A global vector (num_owned_dofs() entries on this rank), zeroed.
   OwnedVec create_global_vector() const;
   // local[i] = global value of local dof i (owned and ghost).
