@@ -297,12 +297,6 @@ OwnedMat MatrixAssembler::create_upper_matrix() const {
 
 OwnedMat MatrixAssembler::create_first(MatrixLayout layout) {
   const int d = dofs_.dim();
-  if (layout == MatrixLayout::Symmetric) {
-    if (mpi_size(dofs_.comm()) != 1)
-      fail("internal error: a matrix of the upper blocks alone on several ranks");
-    make_upper_blocks();
-    return create_upper_matrix();
-  }
   if (layout == MatrixLayout::Scalar)
     throw_if_any(dofs_.comm(), components_fixed_alike_
                                    ? ""
@@ -339,23 +333,26 @@ OwnedMat MatrixAssembler::create_first(MatrixLayout layout) {
 }
 
 OwnedMat MatrixAssembler::create(MatrixLayout layout) {
-  OwnedMat& first = first_[static_cast<int>(layout)];
   OwnedMat m;
-  if (first && layout == MatrixLayout::Symmetric) {
+  if (layout == MatrixLayout::Symmetric) {
+    if (mpi_size(dofs_.comm()) != 1)
+      fail("internal error: a matrix of the upper blocks alone on several ranks");
+    if (!upper_) make_upper_blocks();
     m = create_upper_matrix();
-  } else if (first) {
-    NM_PETSC(MatDuplicate(first, MAT_SHARE_NONZERO_PATTERN, m.out()));
+  } else if (layout == MatrixLayout::Coupled && first_coupled_) {
+    NM_PETSC(MatDuplicate(first_coupled_, MAT_SHARE_NONZERO_PATTERN, m.out()));
     // A duplicate shares the first matrix's columns: it keeps them too.
     PetscObject arrays = nullptr;
-    NM_PETSC(PetscObjectQuery(reinterpret_cast<PetscObject>(first.get()), kArraysName, &arrays));
+    NM_PETSC(PetscObjectQuery(reinterpret_cast<PetscObject>(first_coupled_.get()), kArraysName,
+                              &arrays));
     if (arrays) compose(m, kArraysName, arrays);
   } else {
     m = create_first(layout);
     // A Laplacian's matrix is not kept: a solver may hold L in its own format alone
     // (LinearSolver::copies_operator).
-    if (layout == MatrixLayout::Coupled || layout == MatrixLayout::Symmetric) {
+    if (layout == MatrixLayout::Coupled) {
       NM_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(m.get())));
-      first = OwnedMat(m.get());
+      first_coupled_ = OwnedMat(m.get());
     }
   }
   attach_tag(m, id_, layout);

@@ -74,7 +74,7 @@ class MatrixAssembler {
   class Values;
 
  private:
-  // The first matrix of `layout`.
+  // A Coupled, Uncoupled or Scalar matrix on a CSR of its own.
   OwnedMat create_first(MatrixLayout layout);
   // Symmetric: the upper blocks of the coupled pattern, and a matrix on new values for them.
   void make_upper_blocks();
@@ -87,10 +87,10 @@ class MatrixAssembler {
   bool components_fixed_alike_ = true;      // no local vertex has only some dofs fixed
   AssemblyPattern pattern_;
   std::uint64_t id_;  // tells this assembler's matrices from those of others
-  // The first matrix of the coupled layouts (Coupled, Symmetric); later ones share its pattern
-  // (MAT_SHARE_NONZERO_PATTERN, or upper_ for Symmetric).
-  OwnedMat first_[4];
-  std::shared_ptr<const UpperBlocks> upper_;  // once a Symmetric matrix was made
+  // The first Coupled matrix; later ones share its pattern (MAT_SHARE_NONZERO_PATTERN).
+  OwnedMat first_coupled_;
+  // Once a Symmetric matrix was made; every Symmetric matrix shares them.
+  std::shared_ptr<const UpperBlocks> upper_;
 };
 
 // The values of one matrix made by MatrixAssembler::create, while it is assembled: all zero
