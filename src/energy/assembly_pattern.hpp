@@ -71,8 +71,7 @@ struct AssemblyPattern {
   std::vector<std::vector<PetscInt>> colour_chunks, colour_start;
   // From G (leaves) into the owners' A and B values (roots), per MatrixLayout: the coupled
   // SFs move every entry, the uncoupled ones only entries within a component, at entry / dim,
-  // the scalar ones only component 0's, at scalar_entry. Null on one
-  // rank.
+  // the scalar ones only component 0's, at scalar_entry. Null on one rank.
   OwnedSF ghost_to_diagonal[3], ghost_to_off_diagonal[3];
 
   // Entry e of block_entry (or diagonal), in the row of local vertex v, as an entry of the

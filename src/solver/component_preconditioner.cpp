@@ -75,7 +75,9 @@ void ComponentPreconditioner::set_operator(Mat matrix, bool same_values) {
     NM_PETSC(PCSetOperators(scalars_[0], matrix, matrix));
   else
     NM_PETSC(shared ? give_shared_operator(matrix) : give_own_operators(matrix));
-  if (boomeramg_ && !product_) make_product(matrix);
+  if (boomeramg_ && !product_)
+    make_product(PetscObjectComm(reinterpret_cast<PetscObject>(matrix)), rows / per * components_,
+                 global_rows / per * components_);
   for (OwnedPC& pc : scalars_)
     NM_PETSC(PCSetReusePreconditioner(pc, same_values ? PETSC_TRUE : PETSC_FALSE));
   if (!same_values) {
@@ -85,13 +87,8 @@ void ComponentPreconditioner::set_operator(Mat matrix, bool same_values) {
   }
 }
 
-void ComponentPreconditioner::make_product(Mat matrix) {
-  const PetscInt per = kind_ == ComponentOperators::Shared ? components_ : 1;
-  PetscInt rows = 0, global_rows = 0;
-  NM_PETSC(MatGetLocalSize(matrix, &rows, nullptr));
-  NM_PETSC(MatGetSize(matrix, &global_rows, nullptr));
-  NM_PETSC(MatCreateShell(PetscObjectComm(reinterpret_cast<PetscObject>(matrix)), per * rows,
-                          per * rows, per * global_rows, per * global_rows, this, product_.out()));
+void ComponentPreconditioner::make_product(MPI_Comm comm, PetscInt rows, PetscInt global_rows) {
+  NM_PETSC(MatCreateShell(comm, rows, rows, global_rows, global_rows, this, product_.out()));
   for (const MatOperation op : {MATOP_MULT, MATOP_MULT_TRANSPOSE})
     NM_PETSC(MatShellSetOperation(product_, op, reinterpret_cast<void (*)(void)>(multiply)));
   NM_PETSC(MatSetOption(product_, MAT_SYMMETRIC, PETSC_TRUE));

@@ -97,7 +97,8 @@ class ComponentPreconditioner {
   // BoomerAMG).
   PetscErrorCode give_shared_operator(Mat scalar);
   PetscErrorCode give_own_operators(Mat vector);
-  void make_product(Mat matrix);
+  // product_, of `rows` rows (all components) here and `global_rows` in all.
+  void make_product(MPI_Comm comm, PetscInt rows, PetscInt global_rows);
   // Shared: builds the further preconditioners once they have paid for it (see above).
   PetscErrorCode buy_further(double seconds_applied);
 
