@@ -158,13 +158,17 @@ class Mesh {
   // The implementation; the non-const one may move the vertices, so it drops the quality cache.
   PlexMesh& plex();
   const PlexMesh& plex() const;
-  explicit Mesh(std::unique_ptr<PlexMesh> plex);
+  // `resident_before`: this process' resident set before the mesh was made.
+  Mesh(std::unique_ptr<PlexMesh> plex, double resident_before);
   // The cells' quality at the current coordinates, computed once for quality(),
   // quality_by_cell() and write() (a run asks for it three times after optimizing).
   const CellQuality& cell_quality() const;
   struct QualityCache;  // mesh.cpp
   std::unique_ptr<PlexMesh> plex_;
   mutable std::unique_ptr<QualityCache> quality_cache_;
+  // What making the mesh added to this process' resident set: the mesh, and what its reader
+  // freed, which malloc keeps for the run (the memory check counts it as held).
+  double creation_bytes_ = 0.0;
 };
 
 // A whole mesh as arrays (Mesh::gather), the inverse of Mesh::from_arrays:

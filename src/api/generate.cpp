@@ -7,6 +7,7 @@
 #include <neomesh/error.hpp>
 #include <neomesh/mesh.hpp>
 
+#include "core/memory.hpp"
 #include "core/petsc.hpp"
 #include "generate/generate.hpp"
 #include "mesh/plex_mesh.hpp"
@@ -128,6 +129,7 @@ void GenerateOptions::validate() const {
 Mesh Mesh::generate(const GenerateOptions& options, MPI_Comm comm) {
   options.validate();
   const Generator& generator = *find_generator(options.name);
+  const double before = resident_bytes();
   MeshData data;
   if (mpi_rank(comm) == 0) {
     data = generator.make(options.size, options);
@@ -136,7 +138,8 @@ Mesh Mesh::generate(const GenerateOptions& options, MPI_Comm comm) {
     if (options.rotate_degrees != 0.0) rotate(data, options.rotate_degrees);
   }
   return Mesh(std::make_unique<PlexMesh>(
-      PlexMesh::from_data(data, options.name, comm, /*keep_inverted=*/true)));
+                  PlexMesh::from_data(data, options.name, comm, /*keep_inverted=*/true)),
+              before);
 }
 
 }  // namespace neomesh

@@ -1,5 +1,6 @@
 #include "api/memory_check.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "core/collective_error.hpp"
@@ -15,6 +16,12 @@ constexpr double kLibraries = 60 * kMiB;
 constexpr double kPerVertex2D = 0.97 * kKiB, kPerVertex3D = 4.1 * kKiB;
 constexpr double kPerCell2D = 0.37 * kKiB, kPerCell3D = 0.13 * kKiB;
 
+// "21.5 GiB", or "40 MiB" below a GiB.
+std::string size_text(double bytes) {
+  return bytes >= kGiB ? fmt::format("{:.1f} GiB", bytes / kGiB)
+                       : fmt::format("{:.0f} MiB", bytes / kMiB);
+}
+
 }  // namespace
 
 double estimated_peak_bytes(int dim, std::int64_t vertices, std::int64_t cells) {
@@ -22,27 +29,33 @@ double estimated_peak_bytes(int dim, std::int64_t vertices, std::int64_t cells) 
          static_cast<double>(cells) * (dim == 2 ? kPerCell2D : kPerCell3D);
 }
 
-double node_peak_bytes(MPI_Comm comm, int dim, std::int64_t local_vertices,
-                       std::int64_t local_cells) {
+double further_bytes(int dim, std::int64_t vertices, std::int64_t cells, double held) {
+  return std::max(0.0,
+                  estimated_peak_bytes(dim, vertices, cells) - kLibraries - held - kept_bytes());
+}
+
+double node_sum(MPI_Comm comm, double bytes) {
   MPI_Comm node = MPI_COMM_NULL;
   MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  double need = estimated_peak_bytes(dim, local_vertices, local_cells);
-  MPI_Allreduce(MPI_IN_PLACE, &need, 1, MPI_DOUBLE, MPI_SUM, node);
+  MPI_Allreduce(MPI_IN_PLACE, &bytes, 1, MPI_DOUBLE, MPI_SUM, node);
   MPI_Comm_free(&node);
-  return need;
+  return bytes;
 }
 
 void check_memory_fits(MPI_Comm comm, int dim, std::int64_t local_vertices,
-                       std::int64_t local_cells, const std::string& name) {
-  const double need = node_peak_bytes(comm, dim, local_vertices, local_cells);
+                       std::int64_t local_cells, double held, const std::string& name) {
+  const double further = further_bytes(dim, local_vertices, local_cells, held);
+  const double need = node_sum(comm, estimated_peak_bytes(dim, local_vertices, local_cells));
+  const double more = node_sum(comm, further);
   const double have = available_bytes();
   std::string message;
-  if (need > have)
+  if (more > have)
     message = fmt::format(
-        "{}: the run needs about {:.1f} GiB of memory on this machine and {:.1f} GiB are "
+        "{}: the run needs about {} of memory, {} more than it holds, and this machine has {} "
         "available; run it on more machines (mpiexec over several nodes) or a larger one",
-        name, need / kGiB, have / kGiB);
+        name, size_text(need), size_text(more), size_text(std::max(0.0, have)));
   throw_if_any(comm, message);
+  expect_peak(resident_bytes() + further);
 }
 
 }  // namespace neomesh

@@ -11,6 +11,7 @@
 #include "boundary/interface.hpp"
 #include "core/collective_error.hpp"
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "formats/mesh_io.hpp"
 #include "geometry/quality.hpp"
 #include "mesh/dm_input.hpp"
@@ -70,31 +71,39 @@ void check_writable_format(const std::filesystem::path& path) {
 }
 
 Mesh Mesh::read(const std::filesystem::path& path, MPI_Comm comm, InvertedCells inverted) {
-  return Mesh(std::make_unique<PlexMesh>(load_mesh(path, comm, inverted == InvertedCells::Keep)));
+  const double before = resident_bytes();
+  return Mesh(std::make_unique<PlexMesh>(load_mesh(path, comm, inverted == InvertedCells::Keep)),
+              before);
 }
 
 Mesh Mesh::read(const std::vector<std::filesystem::path>& paths, MPI_Comm comm,
                 InvertedCells inverted) {
   if (paths.empty()) fail("no mesh file given");
-  return Mesh(std::make_unique<PlexMesh>(load_mesh(paths, comm, inverted == InvertedCells::Keep)));
+  const double before = resident_bytes();
+  return Mesh(std::make_unique<PlexMesh>(load_mesh(paths, comm, inverted == InvertedCells::Keep)),
+              before);
 }
 
 Mesh Mesh::from_arrays(MPI_Comm comm, int dim, std::span<const double> coordinates,
                        std::span<const std::int64_t> cells, std::span<const CellType> types,
                        const std::string& name, InvertedCells inverted) {
+  const double before = resident_bytes();
   InputMesh input;
   collectively(comm, [&] {
     if (mpi_rank(comm) == 0) input = input_from_arrays(dim, coordinates, cells, types, name);
   });
   return Mesh(std::make_unique<PlexMesh>(
-      PlexMesh::from_input(input, name, comm, inverted == InvertedCells::Keep)));
+                  PlexMesh::from_input(input, name, comm, inverted == InvertedCells::Keep)),
+              before);
 }
 
 Mesh Mesh::from_dm(DM dm, const std::string& name, InvertedCells inverted) {
+  const double before = resident_bytes();
   InputMesh input = input_from_dm(dm, name);
   const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
   return Mesh(std::make_unique<PlexMesh>(
-      PlexMesh::from_input(input, name, comm, inverted == InvertedCells::Keep)));
+                  PlexMesh::from_input(input, name, comm, inverted == InvertedCells::Keep)),
+              before);
 }
 
 struct Mesh::QualityCache {
@@ -102,7 +111,8 @@ struct Mesh::QualityCache {
   CellQuality quality;
 };
 
-Mesh::Mesh(std::unique_ptr<PlexMesh> plex) : plex_(std::move(plex)) {}
+Mesh::Mesh(std::unique_ptr<PlexMesh> plex, double resident_before)
+    : plex_(std::move(plex)), creation_bytes_(std::max(0.0, resident_bytes() - resident_before)) {}
 Mesh::Mesh(Mesh&&) noexcept = default;
 Mesh& Mesh::operator=(Mesh&&) noexcept = default;
 Mesh::~Mesh() = default;

@@ -62,7 +62,8 @@ void Optimizer::Impl::start(const EnergyOptions& e, const BoundaryOptions& b) {
   x = mesh.plex().coordinates();
   const bool same_problem = functional && same(*energy, e) && same(*boundary_options, b);
   if (!functional)
-    check_memory_fits(mesh.comm(), view().dim, view().num_vertices, view().num_cells, mesh.name());
+    check_memory_fits(mesh.comm(), view().dim, view().num_vertices, view().num_cells,
+                      mesh.creation_bytes_, mesh.name());
   if (!same_problem) {
     double local = 0.0;
     for (double v : cell_volumes()) local += v;

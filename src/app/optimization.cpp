@@ -80,16 +80,18 @@ void share_cores(const Mesh& mesh) {
 
 // The memory the run will use (its estimate, api/memory_check.hpp), faulted in at once by all
 // threads and kept from then on (core/memory.hpp): square-midpoint 1024² 11.6 → 10.4 s,
-// 2048² 68.9 → 58.3–62.2 s (docs/benchmarks.md, "Where the time goes"). Not where the run will
-// not fit (the optimizer refuses it next), nor where there is little to fault (quads 300²,
-// hexes 40³: no faster).
+// 2048² 68.9 → 58.3–62.2 s (docs/benchmarks.md, "Where the time goes"). Not where there is
+// little to fault (quads 300², hexes 40³: no faster), nor where it would take more than three
+// quarters of the memory available: it is for speed, and an estimate above the run's own peak
+// must not be what takes a machine to its limit (square-midpoint 4096² on 24 GiB).
 void fault_in_the_run(const Mesh& mesh) {
   constexpr double kWorthIt = 256.0 * 1024 * 1024;
   const int ranks = mpi_size(mesh.comm());
   const std::int64_t vertices = mesh.num_vertices() / ranks, cells = mesh.num_cells() / ranks;
-  const double need = estimated_peak_bytes(mesh.dim(), vertices, cells);
-  if (node_peak_bytes(mesh.comm(), mesh.dim(), vertices, cells) > available_bytes()) return;
-  const double more = need - resident_bytes();
+  // The whole program is this run: what it holds now is its own.
+  const double more =
+      std::max(0.0, estimated_peak_bytes(mesh.dim(), vertices, cells) - resident_bytes());
+  if (node_sum(mesh.comm(), more) > 0.75 * available_bytes()) return;
   if (more >= kWorthIt) keep_and_fault_in(more);
 }
 

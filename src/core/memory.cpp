@@ -17,6 +17,10 @@ namespace {
 
 constexpr double kKiB = 1024.0, kMiB = 1024.0 * kKiB;
 
+// One process, one run's memory: the peak it expects, and what it faulted in for it.
+double expected_peak = 0.0;
+double kept = 0.0;
+
 // The first number in `path` (bytes), or +∞ if there is none ("max", no such file).
 double number_in(const char* path) {
   std::ifstream in(path);
@@ -52,6 +56,14 @@ double resident_bytes() {
   return resident * static_cast<double>(sysconf(_SC_PAGESIZE));
 }
 
+void expect_peak(double bytes) {
+  expected_peak = bytes;
+}
+
+double spare_bytes() {
+  return available_bytes() - std::max(0.0, expected_peak - resident_bytes());
+}
+
 void keep_and_fault_in(double bytes) {
   mallopt(M_MMAP_MAX, 0);         // large blocks from the heap too, not from mmap
   mallopt(M_TRIM_THRESHOLD, -1);  // and the heap never shrinks
@@ -65,6 +77,11 @@ void keep_and_fault_in(double bytes) {
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t i = 0; i < pages; ++i) touch[i * page] = 0;
   std::free(block);  // back to the top of the heap, faulted in
+  kept += static_cast<double>(size);
+}
+
+double kept_bytes() {
+  return kept;
 }
 
 }  // namespace neomesh

@@ -13,6 +13,14 @@ double available_bytes();
 // say.
 double resident_bytes();
 
+// The resident set this process expects at its peak: the memory check's estimate, set when it
+// admits a run (api/memory_check.hpp); 0, the default, expects nothing.
+void expect_peak(double bytes);
+// Bytes the machine can give beyond what the expected peak still needs from it: what a run
+// may spend on speed (solver/component_preconditioner.hpp) without taking memory its own later
+// steps need. available_bytes() where no peak is expected.
+double spare_bytes();
+
 // For a whole program, never a library (it changes malloc's settings for the process): from
 // now on malloc keeps the memory it was given, large blocks too, instead of handing it back to
 // the kernel at free() (Debian's SuperLU_DIST, through CombBLAS, sets the same when it is
@@ -22,5 +30,8 @@ double resident_bytes();
 // on two (docs/benchmarks.md, "First touch"). Without this, a run's arrays are faulted in by
 // whichever thread writes them first, most often one.
 void keep_and_fault_in(double bytes);
+// The bytes keep_and_fault_in has faulted in so far: memory this process holds for the run's
+// arrays.
+double kept_bytes();
 
 }  // namespace neomesh

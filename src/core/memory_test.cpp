@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <memory>
 
 namespace neomesh {
@@ -13,7 +14,9 @@ constexpr double kMiB = 1024.0 * 1024.0;
 TEST(Memory, FaultedInMemoryStaysAndServesTheNextAllocations) {
   const double before = resident_bytes();
   ASSERT_GT(before, 0.0);
+  const double kept = kept_bytes();
   keep_and_fault_in(64 * kMiB);
+  EXPECT_EQ(kept_bytes() - kept, 64 * kMiB);
   const double after = resident_bytes();
   // Freed, and still held: malloc kept it instead of unmapping it.
   EXPECT_GE(after - before, 60 * kMiB);
@@ -25,6 +28,19 @@ TEST(Memory, FaultedInMemoryStaysAndServesTheNextAllocations) {
     EXPECT_EQ(block[size - 1], 0);
   }
   EXPECT_LT(resident_bytes() - after, 8 * kMiB);
+}
+
+// What the expected peak still needs beyond the resident set is not spare; what it already
+// holds is not counted twice.
+TEST(Memory, TheExpectedPeakIsNotSpare) {
+  setenv("NEOMESH_MEMORY_AVAILABLE_MIB", "1000", 1);
+  EXPECT_EQ(spare_bytes(), 1000 * kMiB);
+  expect_peak(resident_bytes() + 300 * kMiB);
+  EXPECT_NEAR(spare_bytes(), 700 * kMiB, 4 * kMiB);
+  expect_peak(resident_bytes() / 2);
+  EXPECT_EQ(spare_bytes(), 1000 * kMiB);
+  expect_peak(0.0);
+  unsetenv("NEOMESH_MEMORY_AVAILABLE_MIB");
 }
 
 }  // namespace

@@ -235,7 +235,7 @@ PetscErrorCode ComponentPreconditioner::buy_further(double seconds_applied) {
   const int rounds = (components_ + all - 1) / all;
   would_have_saved_ += seconds_applied * (components_ - rounds) / components_;
   if (would_have_saved_ < setup_seconds_) PetscFunctionReturn(0);
-  declined_ = available_bytes() < 2.0 * (all - 1) * setup_bytes_;
+  declined_ = spare_bytes() < 2.0 * (all - 1) * setup_bytes_;
   // One after the other: hypre's coarsening draws from one global random sequence, reseeded
   // at each set-up.
   for (int k = 1; k < all && !declined_; ++k) PetscCall(PCSetUp(scalars_[k]));

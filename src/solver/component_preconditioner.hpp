@@ -26,7 +26,9 @@
 // the time they would have saved since the first set-up reaches that set-up's time. At most
 // twice the best choice's cost, whatever the number of applications to come. Each holds a
 // hierarchy (about 8 % of a large 2D run's memory), so they are built only where the machine
-// has twice that to spare; the copy of A₁ in hypre's format that each would make is made once
+// has twice that to spare beyond what the run's expected peak still needs (spare_bytes,
+// core/memory.hpp): the memory check admits a run for its estimate, which leaves them out. The
+// copy of A₁ in hypre's format that each would make is made once
 // and shared, as hypre's V-cycles only read it.
 //
 // With BoomerAMG, the operator is copied into hypre's format when it is given, and the copies
