@@ -20,6 +20,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/memory.hpp"
 #include "core/petsc.hpp"
 
 namespace neomesh::app {
@@ -323,6 +324,7 @@ int end_failed_command(const std::string& message, int code, Agreed agreed) {
 }  // namespace
 
 int run(int argc, char** argv) {
+  keep_freed_memory();  // the whole program: before any thread allocates
   SplitArguments args = split_arguments(argc, argv);
 
   CLI::App cli{

@@ -64,9 +64,14 @@ double spare_bytes() {
   return available_bytes() - std::max(0.0, expected_peak - resident_bytes());
 }
 
-void keep_and_fault_in(double bytes) {
+void keep_freed_memory() {
   mallopt(M_MMAP_MAX, 0);         // large blocks from the heap too, not from mmap
   mallopt(M_TRIM_THRESHOLD, -1);  // and the heap never shrinks
+  mallopt(M_ARENA_MAX, 1);        // one heap for every thread
+}
+
+void keep_and_fault_in(double bytes) {
+  keep_freed_memory();
   if (!(bytes >= 1.0)) return;
   const auto size = static_cast<std::size_t>(bytes);
   char* block = static_cast<char*>(std::malloc(size));

@@ -21,14 +21,19 @@ void expect_peak(double bytes);
 // steps need. available_bytes() where no peak is expected.
 double spare_bytes();
 
-// For a whole program, never a library (it changes malloc's settings for the process): from
-// now on malloc keeps the memory it was given, large blocks too, instead of handing it back to
-// the kernel at free() (Debian's SuperLU_DIST, through CombBLAS, sets the same when it is
-// loaded; this does not rely on it); and `bytes` more of it are faulted in now, by every
-// OpenMP thread. A page's first touch is the kernel's work (on a VM the host's as well) on the
-// thread that touches it: on this 2-core VM 0.5-1.3 s per GB on one thread and 2.6 times less
-// on two (docs/benchmarks.md, "First touch"). Without this, a run's arrays are faulted in by
-// whichever thread writes them first, most often one.
+// For a whole program, never a library (it changes malloc's settings for the process), before
+// its threads allocate: from now on malloc keeps the memory it was given, large blocks too,
+// instead of handing it back to the kernel at free() (Debian's SuperLU_DIST, through CombBLAS,
+// sets the same when it is loaded; this does not rely on it), and every thread allocates from
+// the one heap. Threads with heaps (arenas) of their own do not reuse what the main thread
+// faulted in: square-midpoint 2048² peaked 160 MiB above the memory faulted in for it.
+void keep_freed_memory();
+
+// For a whole program (keep_freed_memory first): `bytes` more memory faulted in now, by every
+// OpenMP thread, and kept for the run's arrays. A page's first touch is the kernel's work (on a
+// VM the host's as well) on the thread that touches it: on this 2-core VM 0.5-1.3 s per GB on
+// one thread and 2.6 times less on two (docs/benchmarks.md, "First touch"). Without this, a
+// run's arrays are faulted in by whichever thread writes them first, most often one.
 void keep_and_fault_in(double bytes);
 // The bytes keep_and_fault_in has faulted in so far: memory this process holds for the run's
 // arrays.
