@@ -3,6 +3,7 @@
 #include <metis.h>
 #include <petscpartitioner.h>
 
+#include <algorithm>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -97,45 +98,127 @@ std::pair<std::vector<PetscInt>, std::vector<PetscInt>> metis_parts(const CellGr
   return {points, sizes};
 }
 
-}  // namespace
-
-void set_partition(DM dm, CellGraph& graph) {
+// Rank 0's cells by part (as metis_parts), split as METIS splits `graph` or as the partitioner
+// the user names.
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> cell_parts(DM dm, CellGraph& graph) {
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
   const int size = mpi_size(comm);
   PetscBool named = PETSC_FALSE;
   NM_PETSC(PetscOptionsHasName(nullptr, nullptr, "-petscpartitioner_type", &named));
+  if (!named) return metis_parts(graph, size);
   std::vector<PetscInt> sizes(size), points;
-  if (named) {
-    PetscPartitioner partitioner;
-    NM_PETSC(DMPlexGetPartitioner(dm, &partitioner));
-    NM_PETSC(PetscPartitionerSetFromOptions(partitioner));
-    const PetscInt nc = static_cast<PetscInt>(graph.offsets.size()) - 1;
-    // Unit cell weights, as DMPlexDistribute passes them.
-    OwnedSection weights, part_sizes;
-    NM_PETSC(PetscSectionCreate(PETSC_COMM_SELF, weights.out()));
-    NM_PETSC(PetscSectionSetChart(weights, 0, nc));
-    for (PetscInt c = 0; c < nc; ++c) NM_PETSC(PetscSectionSetDof(weights, c, 1));
-    NM_PETSC(PetscSectionSetUp(weights));
-    NM_PETSC(PetscSectionCreate(comm, part_sizes.out()));
-    OwnedIS cells;  // by part
-    NM_PETSC(PetscPartitionerPartition(partitioner, size, nc, graph.offsets.data(),
-                                       graph.neighbours.data(), weights, nullptr, part_sizes,
-                                       cells.out()));
-    for (int r = 0; r < size; ++r) NM_PETSC(PetscSectionGetDof(part_sizes, r, &sizes[r]));
-    const PetscInt* by_part;
-    PetscInt n = 0;
-    NM_PETSC(ISGetLocalSize(cells, &n));
-    NM_PETSC(ISGetIndices(cells, &by_part));
-    points.assign(by_part, by_part + n);
-    NM_PETSC(ISRestoreIndices(cells, &by_part));
-  } else {
-    std::tie(points, sizes) = metis_parts(graph, size);
+  PetscPartitioner partitioner;
+  NM_PETSC(DMPlexGetPartitioner(dm, &partitioner));
+  NM_PETSC(PetscPartitionerSetFromOptions(partitioner));
+  const PetscInt nc = static_cast<PetscInt>(graph.offsets.size()) - 1;
+  // Unit cell weights, as DMPlexDistribute passes them.
+  OwnedSection weights, part_sizes;
+  NM_PETSC(PetscSectionCreate(PETSC_COMM_SELF, weights.out()));
+  NM_PETSC(PetscSectionSetChart(weights, 0, nc));
+  for (PetscInt c = 0; c < nc; ++c) NM_PETSC(PetscSectionSetDof(weights, c, 1));
+  NM_PETSC(PetscSectionSetUp(weights));
+  NM_PETSC(PetscSectionCreate(comm, part_sizes.out()));
+  OwnedIS cells;  // by part
+  NM_PETSC(PetscPartitionerPartition(partitioner, size, nc, graph.offsets.data(),
+                                     graph.neighbours.data(), weights, nullptr, part_sizes,
+                                     cells.out()));
+  for (int r = 0; r < size; ++r) NM_PETSC(PetscSectionGetDof(part_sizes, r, &sizes[r]));
+  const PetscInt* by_part;
+  PetscInt n = 0;
+  NM_PETSC(ISGetLocalSize(cells, &n));
+  NM_PETSC(ISGetIndices(cells, &by_part));
+  points.assign(by_part, by_part + n);
+  NM_PETSC(ISRestoreIndices(cells, &by_part));
+  return {points, sizes};
+}
+
+// DMPlexDistribute's migration before it is stratified, made from the parts at once: the leaves
+// on rank r are rank 0's points that go to r, its cells and their vertices, in increasing point
+// number (the closure that DMPlexDistribute makes through a partition label and inverts). With
+// one cell type that is also the stratified order, cells before vertices: `mixed` says whether
+// the mesh has several (collective).
+OwnedSF part_migration(DM dm, const std::vector<PetscInt>& points,
+                       const std::vector<PetscInt>& sizes, bool& mixed) {
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
+  const int size = mpi_size(comm);
+  PetscInt pStart = 0, pEnd = 0;
+  NM_PETSC(DMPlexGetChart(dm, &pStart, &pEnd));
+  std::vector<PetscInt> send;
+  std::vector<int> counts(size, 0), displacements(size, 0);
+  int several = 0;
+  if (mpi_rank(comm) == 0) {
+    PetscInt cStart = 0, cEnd = 0;
+    NM_PETSC(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+    DMPolytopeType first_type = DM_POLYTOPE_UNKNOWN, type;
+    for (PetscInt c = cStart; c < cEnd && !several; ++c) {
+      NM_PETSC(DMPlexGetCellType(dm, c, &type));
+      if (c == cStart) first_type = type;
+      several = type != first_type;
+    }
+    std::vector<int> taken_by(pEnd - pStart, -1);
+    send.reserve(pEnd - pStart);
+    std::size_t first = 0;
+    for (int r = 0; r < size; ++r) {
+      displacements[r] = static_cast<int>(send.size());
+      for (std::size_t i = first; i < first + static_cast<std::size_t>(sizes[r]); ++i) {
+        const PetscInt c = points[i];
+        send.push_back(c);
+        PetscInt n = 0;
+        const PetscInt* cone = nullptr;
+        NM_PETSC(DMPlexGetConeSize(dm, c, &n));
+        NM_PETSC(DMPlexGetCone(dm, c, &cone));
+        for (PetscInt k = 0; k < n; ++k)
+          if (taken_by[cone[k] - pStart] != r) {
+            taken_by[cone[k] - pStart] = r;
+            send.push_back(cone[k]);
+          }
+      }
+      first += static_cast<std::size_t>(sizes[r]);
+      std::sort(send.begin() + displacements[r], send.end());
+      counts[r] = static_cast<int>(send.size()) - displacements[r];
+    }
   }
-  PetscOwner<PetscPartitioner, PetscPartitionerDestroy> shell;
-  NM_PETSC(PetscPartitionerCreate(comm, shell.out()));
-  NM_PETSC(PetscPartitionerSetType(shell, PETSCPARTITIONERSHELL));
-  NM_PETSC(PetscPartitionerShellSetPartition(shell, size, sizes.data(), points.data()));
-  NM_PETSC(DMPlexSetPartitioner(dm, shell));
+  MPI_Bcast(&several, 1, MPI_INT, 0, comm);
+  mixed = several != 0;
+  int count = 0;
+  MPI_Scatter(counts.data(), 1, MPI_INT, &count, 1, MPI_INT, 0, comm);
+  std::vector<PetscInt> mine(count);
+  MPI_Scatterv(send.data(), counts.data(), displacements.data(), MPIU_INT, mine.data(), count,
+               MPIU_INT, 0, comm);
+  std::vector<PetscSFNode> remote(count);
+  for (int i = 0; i < count; ++i) remote[i] = {0, mine[i]};
+  OwnedSF sf;
+  NM_PETSC(PetscSFCreate(comm, sf.out()));
+  NM_PETSC(PetscSFSetGraph(sf, pEnd - pStart, count, nullptr, PETSC_COPY_VALUES, remote.data(),
+                           PETSC_COPY_VALUES));
+  return sf;
+}
+
+}  // namespace
+
+Distributed distribute_plex(DM dm, CellGraph& graph) {
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
+  const auto [points, sizes] = cell_parts(dm, graph);
+  Distributed d;
+  bool mixed = false;
+  d.migration = part_migration(dm, points, sizes, mixed);
+  if (mixed) {  // cells by type, as DMPlex numbers them
+    const OwnedSF unordered = std::move(d.migration);
+    NM_PETSC(DMPlexStratifyMigrationSF(dm, unordered, d.migration.out()));
+  }
+  NM_PETSC(PetscSFSetUp(d.migration));
+  // What DMPlexDistribute does with its migration, for a mesh without overlap, discretization
+  // or periodicity.
+  NM_PETSC(DMPlexCreate(comm, d.dm.out()));
+  NM_PETSC(PetscObjectSetName(reinterpret_cast<PetscObject>(d.dm.get()), "Parallel Mesh"));
+  NM_PETSC(DMPlexMigrate(dm, d.migration, d.dm));
+  OwnedSF point_sf;
+  NM_PETSC(DMPlexCreatePointSF(d.dm, d.migration, PETSC_TRUE, point_sf.out()));
+  NM_PETSC(DMSetPointSF(d.dm, point_sf));
+  DM coordinates = nullptr;
+  NM_PETSC(DMGetCoordinateDM(d.dm, &coordinates));
+  if (coordinates) NM_PETSC(DMSetPointSF(coordinates, point_sf));
+  return d;
 }
 
 }  // namespace neomesh

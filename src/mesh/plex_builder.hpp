@@ -14,12 +14,20 @@ namespace neomesh {
 // Collective; `mesh` is read on rank 0 only.
 OwnedDM build_plex(MPI_Comm comm, const InputMesh& mesh);
 
-// Collective: makes DMPlexDistribute split `dm` as METIS splits `graph` (rank 0's cells, empty
+// Collective: `dm` (every cell on rank 0, as build_plex makes it) distributed over its
+// communicator without overlap, split as METIS splits `graph` (rank 0's cells, empty
 // elsewhere), the same way in every run: PT-Scotch, PETSc's default here, seeds its random
 // generator anew each time, so two runs on the same ranks got different partitions and, through
 // the AMG hierarchies, results that differed beyond round-off. A partitioner the user names
 // (-petscpartitioner_type) is used instead. On a mesh without faces PETSc would build another
-// graph; this one is the graph of the interpolated mesh.
-void set_partition(DM dm, CellGraph& graph);
+// graph; this one is the graph of the interpolated mesh. The DM is DMPlexDistribute's, point for
+// point, but the migration is made from the parts directly instead of through a partition label
+// (square-midpoint 1024² on 2 processes: docs/benchmarks.md, "Processes").
+struct Distributed {
+  OwnedDM dm;
+  // Leaves: the new DM's points; roots: rank 0's points of `dm`.
+  OwnedSF migration;
+};
+Distributed distribute_plex(DM dm, CellGraph& graph);
 
 }  // namespace neomesh

@@ -35,16 +35,15 @@ void broadcast_groups(MPI_Comm comm, std::vector<PhysicalGroup>& groups) {
   }
 }
 
-// Distributes the cells over the ranks (no overlap) as set_partition splits `graph`. Returns,
+// Distributes the cells over the ranks (no overlap) as distribute_plex splits `graph`. Returns,
 // per local point, its point number in the undistributed DM.
 std::vector<PetscInt> distribute(Impl& m, CellGraph& graph) {
   PetscInt pStart, pEnd;
   OwnedSF migration;
   if (mpi_size(m.comm) > 1) {
-    set_partition(m.dm, graph);
-    OwnedDM distributed;
-    NM_PETSC(DMPlexDistribute(m.dm, 0, migration.out(), distributed.out()));
-    if (distributed) m.dm = std::move(distributed);
+    Distributed distributed = distribute_plex(m.dm, graph);
+    m.dm = std::move(distributed.dm);
+    migration = std::move(distributed.migration);
   }
   NM_PETSC(DMPlexGetChart(m.dm, &pStart, &pEnd));
   std::vector<PetscInt> original(pEnd - pStart);
