@@ -13,17 +13,11 @@
 namespace neomesh {
 namespace {
 
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-
 // An n × n grid of quads, and triangles where every third square is split if `split`, on rank
 // 0, its vertices numbered backwards so that cells and vertices are not in the same order.
 InputMesh grid(int n, bool split) {
   InputMesh mesh;
-  if (rank() != 0) return mesh;
+  if (mpi_rank(MPI_COMM_WORLD) != 0) return mesh;
   const PetscInt nv = (n + 1) * (n + 1);
   mesh.coords.resize(2 * nv);
   auto number = [&](int i, int j) { return nv - 1 - (j * (n + 1) + i); };
@@ -100,7 +94,7 @@ class DistributePlex : public testing::TestWithParam<bool> {};
 TEST_P(DistributePlex, MakesWhatDMPlexDistributeMakesOfTheSameParts) {
   const InputMesh input = grid(12, /*split=*/GetParam());
   CellGraph cell_graph;
-  if (rank() == 0) cell_graph = FacetTable(input).cell_graph();
+  if (mpi_rank(MPI_COMM_WORLD) == 0) cell_graph = FacetTable(input).cell_graph();
   OwnedDM ours_from = build_plex(MPI_COMM_WORLD, input);
   Distributed ours = distribute_plex(ours_from, cell_graph);
   ASSERT_TRUE(ours.dm);
@@ -119,11 +113,12 @@ TEST_P(DistributePlex, MakesWhatDMPlexDistributeMakesOfTheSameParts) {
   std::vector<int> counts(size), displacements(size, 0);
   MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
   for (int r = 1; r < size; ++r) displacements[r] = displacements[r - 1] + counts[r - 1];
-  std::vector<PetscInt> points(rank() == 0 ? displacements.back() + counts.back() : 0);
+  std::vector<PetscInt> points(mpi_rank(MPI_COMM_WORLD) == 0 ? displacements.back() + counts.back()
+                                                             : 0);
   MPI_Gatherv(mine.data(), count, MPIU_INT, points.data(), counts.data(), displacements.data(),
               MPIU_INT, 0, MPI_COMM_WORLD);
   std::vector<PetscInt> sizes(counts.begin(), counts.end());
-  if (rank() != 0) std::fill(sizes.begin(), sizes.end(), 0);
+  if (mpi_rank(MPI_COMM_WORLD) != 0) std::fill(sizes.begin(), sizes.end(), 0);
 
   OwnedDM theirs_from = build_plex(MPI_COMM_WORLD, input);
   PetscOwner<PetscPartitioner, PetscPartitionerDestroy> shell;
