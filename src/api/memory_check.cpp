@@ -16,6 +16,17 @@ constexpr double kLibraries = 60 * kMiB;
 constexpr double kPerVertex2D = 0.97 * kKiB, kPerVertex3D = 4.1 * kKiB;
 constexpr double kPerCell2D = 0.37 * kKiB, kPerCell3D = 0.13 * kKiB;
 
+// With a hierarchy of H(α), what lies beyond the libraries grows by a factor measured on the
+// boxes (docs/benchmarks.md, "Memory"): from the grid of squares or cubes (a cell per vertex) to
+// the split one (2 triangles, 5.6 tetrahedra per vertex), quads 2.35 → triangles 1.85,
+// hexahedra 3.6 → tetrahedra 2.0; a mesh between them, in proportion.
+double hessian_hierarchy_factor(int dim, double cells_per_vertex) {
+  const double split = dim == 2 ? 2.0 : 5.6;
+  const double grid_factor = dim == 2 ? 2.35 : 3.6, split_factor = dim == 2 ? 1.85 : 2.0;
+  const double t = std::clamp((cells_per_vertex - 1.0) / (split - 1.0), 0.0, 1.0);
+  return grid_factor + t * (split_factor - grid_factor);
+}
+
 // "21.5 GiB", or "40 MiB" below a GiB.
 std::string size_text(double bytes) {
   return bytes >= kGiB ? fmt::format("{:.1f} GiB", bytes / kGiB)
@@ -24,14 +35,21 @@ std::string size_text(double bytes) {
 
 }  // namespace
 
-double estimated_peak_bytes(int dim, std::int64_t vertices, std::int64_t cells) {
-  return kLibraries + static_cast<double>(vertices) * (dim == 2 ? kPerVertex2D : kPerVertex3D) +
-         static_cast<double>(cells) * (dim == 2 ? kPerCell2D : kPerCell3D);
+double estimated_peak_bytes(int dim, std::int64_t vertices, std::int64_t cells,
+                            bool hessian_hierarchy) {
+  const double factor = !hessian_hierarchy || vertices == 0
+                            ? 1.0
+                            : hessian_hierarchy_factor(
+                                  dim, static_cast<double>(cells) / static_cast<double>(vertices));
+  return kLibraries +
+         factor * (static_cast<double>(vertices) * (dim == 2 ? kPerVertex2D : kPerVertex3D) +
+                   static_cast<double>(cells) * (dim == 2 ? kPerCell2D : kPerCell3D));
 }
 
-double further_bytes(int dim, std::int64_t vertices, std::int64_t cells, double held) {
-  return std::max(0.0,
-                  estimated_peak_bytes(dim, vertices, cells) - kLibraries - held - kept_bytes());
+double further_bytes(int dim, std::int64_t vertices, std::int64_t cells, bool hessian_hierarchy,
+                     double held) {
+  return std::max(0.0, estimated_peak_bytes(dim, vertices, cells, hessian_hierarchy) - kLibraries -
+                           held - kept_bytes());
 }
 
 double node_sum(MPI_Comm comm, double bytes) {
@@ -43,9 +61,11 @@ double node_sum(MPI_Comm comm, double bytes) {
 }
 
 void check_memory_fits(MPI_Comm comm, int dim, std::int64_t local_vertices,
-                       std::int64_t local_cells, double held, const std::string& name) {
-  const double further = further_bytes(dim, local_vertices, local_cells, held);
-  const double need = node_sum(comm, estimated_peak_bytes(dim, local_vertices, local_cells));
+                       std::int64_t local_cells, bool hessian_hierarchy, double held,
+                       const std::string& name) {
+  const double further = further_bytes(dim, local_vertices, local_cells, hessian_hierarchy, held);
+  const double need =
+      node_sum(comm, estimated_peak_bytes(dim, local_vertices, local_cells, hessian_hierarchy));
   const double more = node_sum(comm, further);
   const double have = available_bytes();
   std::string message;

@@ -58,12 +58,16 @@ std::string list_cells(const Inversion& inversion) {
 
 Optimizer::Impl::Impl(Mesh& m) : mesh(m) {}
 
-void Optimizer::Impl::start(const EnergyOptions& e, const BoundaryOptions& b) {
+void Optimizer::Impl::start(const EnergyOptions& e, const BoundaryOptions& b,
+                            const SolverOptions* solver) {
   x = mesh.plex().coordinates();
   const bool same_problem = functional && same(*energy, e) && same(*boundary_options, b);
-  if (!functional)
+  if (!functional) {
+    const bool hessian_hierarchy = solver && solver->linear_solver == LinearSolverKind::Amg &&
+                                   solver->advanced.hessian_pc == HessianPreconditioner::Hessian;
     check_memory_fits(mesh.comm(), view().dim, view().num_vertices, view().num_cells,
-                      mesh.creation_bytes_, mesh.name());
+                      hessian_hierarchy, mesh.creation_bytes_, mesh.name());
+  }
   if (!same_problem) {
     double local = 0.0;
     for (double v : cell_volumes()) local += v;

@@ -45,10 +45,12 @@ struct Optimizer::Impl {
     started = MPI_Wtime();
     Result result;
     result.quality_before = input_quality(options.untangle);
-    start(options.energy, options.boundary);
+    start(options.energy, options.boundary, &options.solver);
     return result;
   }
-  void start(const EnergyOptions& energy, const BoundaryOptions& boundary);
+  // `solver`: the solves to come, for the memory check (none: evaluation only).
+  void start(const EnergyOptions& energy, const BoundaryOptions& boundary,
+             const SolverOptions* solver = nullptr);
   // Absolute desired volumes per local cell (MeshView order), summing to mesh_volume.
   void set_desired_volumes(std::vector<double> volumes);
   // Smoothing's targets (solver/targets.hpp) from the input cells at x, and setting them.
