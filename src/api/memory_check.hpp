@@ -9,7 +9,7 @@
 // the boxes: 2.35 for quads, 1.85 for triangles, 3.6 for hexahedra, 2.0 for tetrahedra. What the
 // process already holds of the peak (the libraries, the mesh read) is not asked of the machine
 // again: counted twice, it refused square-midpoint 4096² (21.5 GiB estimated, 4.3 GiB held,
-// 18.6 GiB available), which runs at a peak of 18.1 GiB.
+// 18.6 GiB available), which runs at a peak of 20.1 GiB.
 #pragma once
 
 #include <cstdint>
