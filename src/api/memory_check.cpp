@@ -13,8 +13,8 @@ namespace {
 
 constexpr double kKiB = 1024.0, kMiB = 1024.0 * kKiB, kGiB = 1024.0 * kMiB;
 constexpr double kLibraries = 60 * kMiB;
-constexpr double kPerVertex2D = 0.97 * kKiB, kPerVertex3D = 4.1 * kKiB;
-constexpr double kPerCell2D = 0.37 * kKiB, kPerCell3D = 0.13 * kKiB;
+constexpr double kPerVertex2D = 1.02 * kKiB, kPerVertex3D = 4.2 * kKiB;
+constexpr double kPerCell2D = 0.30 * kKiB, kPerCell3D = 0.04 * kKiB;
 
 // With a hierarchy of H(α), what lies beyond the libraries grows by a factor measured on the
 // boxes (docs/benchmarks.md, "Memory"): from the grid of squares or cubes (a cell per vertex) to

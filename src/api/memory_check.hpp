@@ -2,14 +2,14 @@
 // memory is killed by the kernel without a word (square-midpoint 4096², 16.8 M quads, after
 // 103 s). The estimate is a fit of the peak resident memory of `neomesh smooth` with the
 // defaults (peak_rss_mib of the report; docs/benchmarks.md, "Memory") to 60 MiB of libraries +
-// a per vertex (the matrices' rows) + b per cell (targets, shapes, quality): 2D a = 0.97 KiB,
-// b = 0.37 KiB; 3D a = 4.1 KiB, b = 0.13 KiB. It leaves out what a run spends only where the
+// a per vertex (the matrices' rows) + b per cell (targets, shapes, quality): 2D a = 1.02 KiB,
+// b = 0.30 KiB; 3D a = 4.2 KiB, b = 0.04 KiB. It leaves out what a run spends only where the
 // memory is free (a second AMG hierarchy, solver/component_preconditioner.hpp). A hierarchy of
 // H(α) (--hess-pc hessian) multiplies what lies beyond the libraries by a factor measured on
 // the boxes: 2.35 for quads, 1.85 for triangles, 3.6 for hexahedra, 2.0 for tetrahedra. What the
 // process already holds of the peak (the libraries, the mesh read) is not asked of the machine
-// again: counted twice, it refused square-midpoint 4096² (21.5 GiB estimated, 4.3 GiB held,
-// 18.6 GiB available), which runs at a peak of 20.1 GiB.
+// again: counted twice, it refused square-midpoint 4096² (about 21 GiB estimated, 4.3 GiB
+// held, 18.6 GiB available), which runs at a peak of 20.1 GiB.
 #pragma once
 
 #include <cstdint>
