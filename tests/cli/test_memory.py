@@ -24,7 +24,7 @@ def test_a_run_larger_than_the_memory_is_refused_before_it_starts(tmp):
 
 def test_what_the_run_already_holds_is_not_counted_twice(tmp):
     """The estimate is the run's peak; the libraries and the mesh it has read are part of it and
-    already in memory (square-midpoint 4096²: 4.3 of its 21.5 GiB, refused before with 18.6 GiB
+    already in memory (square-midpoint 4096²: 4.3 of its 21 GiB, refused before with 18.6 GiB
     available, runs at a peak of 20.1 GiB)."""
     mesh = os.path.join(tmp, "in.msh")
     neomesh("generate", "box-quad", "--cells", 200, "--jitter", 0.2, "-o", mesh)
