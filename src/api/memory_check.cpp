@@ -46,12 +46,6 @@ double estimated_peak_bytes(int dim, std::int64_t vertices, std::int64_t cells,
                    static_cast<double>(cells) * (dim == 2 ? kPerCell2D : kPerCell3D));
 }
 
-double further_bytes(int dim, std::int64_t vertices, std::int64_t cells, bool hessian_hierarchy,
-                     double held) {
-  return std::max(0.0, estimated_peak_bytes(dim, vertices, cells, hessian_hierarchy) - kLibraries -
-                           held - kept_bytes());
-}
-
 double node_sum(MPI_Comm comm, double bytes) {
   MPI_Comm node = MPI_COMM_NULL;
   MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
@@ -63,10 +57,10 @@ double node_sum(MPI_Comm comm, double bytes) {
 void check_memory_fits(MPI_Comm comm, int dim, std::int64_t local_vertices,
                        std::int64_t local_cells, bool hessian_hierarchy, double held,
                        const std::string& name) {
-  const double further = further_bytes(dim, local_vertices, local_cells, hessian_hierarchy, held);
-  const double need =
-      node_sum(comm, estimated_peak_bytes(dim, local_vertices, local_cells, hessian_hierarchy));
-  const double more = node_sum(comm, further);
+  const double peak = estimated_peak_bytes(dim, local_vertices, local_cells, hessian_hierarchy);
+  // What this process does not hold yet.
+  const double further = std::max(0.0, peak - kLibraries - held - kept_bytes());
+  const double need = node_sum(comm, peak), more = node_sum(comm, further);
   const double have = available_bytes();
   std::string message;
   if (more > have)

@@ -24,19 +24,15 @@ namespace neomesh {
 double estimated_peak_bytes(int dim, std::int64_t vertices, std::int64_t cells,
                             bool hessian_hierarchy = false);
 
-// Of those, the bytes the process does not hold yet: the estimate less the libraries (loaded
-// before any mesh), `held` (what making the mesh added to the process: the mesh, and what its
-// reader freed, which malloc keeps for the run) and what keep_and_fault_in faulted in for the
-// run; at least 0.
-double further_bytes(int dim, std::int64_t vertices, std::int64_t cells, bool hessian_hierarchy,
-                     double held);
-
 // Collective: `bytes` summed over the processes on this one's node.
 double node_sum(MPI_Comm comm, double bytes);
 
 // Collective: throws Error (one line, naming `name`, the estimate and what is available) if the
-// processes on one node together need more than it has beyond what they hold; else expects
-// the run's peak (core/memory.hpp, expect_peak).
+// processes on one node together need more than it has beyond what they hold: the estimate
+// less the libraries (loaded before any mesh), `held` (what making the mesh added to the
+// process: the mesh, and what its reader freed, which malloc keeps for the run) and what
+// keep_and_fault_in faulted in for the run. Else expects the run's peak (core/memory.hpp,
+// expect_peak).
 void check_memory_fits(MPI_Comm comm, int dim, std::int64_t local_vertices,
                        std::int64_t local_cells, bool hessian_hierarchy, double held,
                        const std::string& name);
