@@ -132,29 +132,37 @@ std::pair<std::vector<PetscInt>, std::vector<PetscInt>> cell_parts(DM dm, CellGr
   return {points, sizes};
 }
 
+// Collective: whether rank 0's cells are of several types.
+bool mixes_cell_types(DM dm) {
+  const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
+  int several = 0;
+  if (mpi_rank(comm) == 0) {
+    PetscInt cStart = 0, cEnd = 0;
+    NM_PETSC(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+    DMPolytopeType first = DM_POLYTOPE_UNKNOWN, type;
+    for (PetscInt c = cStart; c < cEnd && !several; ++c) {
+      NM_PETSC(DMPlexGetCellType(dm, c, &type));
+      if (c == cStart) first = type;
+      several = type != first;
+    }
+  }
+  MPI_Bcast(&several, 1, MPI_INT, 0, comm);
+  return several != 0;
+}
+
 // DMPlexDistribute's migration before it is stratified, made from the parts at once: the leaves
 // on rank r are rank 0's points that go to r, its cells and their vertices, in increasing point
 // number (the closure that DMPlexDistribute makes through a partition label and inverts). With
-// one cell type that is also the stratified order, cells before vertices: `mixed` says whether
-// the mesh has several (collective).
+// one cell type that is also the stratified order, cells before vertices.
 OwnedSF part_migration(DM dm, const std::vector<PetscInt>& points,
-                       const std::vector<PetscInt>& sizes, bool& mixed) {
+                       const std::vector<PetscInt>& sizes) {
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
   const int size = mpi_size(comm);
   PetscInt pStart = 0, pEnd = 0;
   NM_PETSC(DMPlexGetChart(dm, &pStart, &pEnd));
   std::vector<PetscInt> send;
   std::vector<int> counts(size, 0), displacements(size, 0);
-  int several = 0;
   if (mpi_rank(comm) == 0) {
-    PetscInt cStart = 0, cEnd = 0;
-    NM_PETSC(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
-    DMPolytopeType first_type = DM_POLYTOPE_UNKNOWN, type;
-    for (PetscInt c = cStart; c < cEnd && !several; ++c) {
-      NM_PETSC(DMPlexGetCellType(dm, c, &type));
-      if (c == cStart) first_type = type;
-      several = type != first_type;
-    }
     std::vector<int> taken_by(pEnd - pStart, -1);
     send.reserve(pEnd - pStart);
     std::size_t first = 0;
@@ -178,8 +186,6 @@ OwnedSF part_migration(DM dm, const std::vector<PetscInt>& points,
       counts[r] = static_cast<int>(send.size()) - displacements[r];
     }
   }
-  MPI_Bcast(&several, 1, MPI_INT, 0, comm);
-  mixed = several != 0;
   int count = 0;
   MPI_Scatter(counts.data(), 1, MPI_INT, &count, 1, MPI_INT, 0, comm);
   std::vector<PetscInt> mine(count);
@@ -200,9 +206,8 @@ Distributed distribute_plex(DM dm, CellGraph& graph) {
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
   const auto [points, sizes] = cell_parts(dm, graph);
   Distributed d;
-  bool mixed = false;
-  d.migration = part_migration(dm, points, sizes, mixed);
-  if (mixed) {  // cells by type, as DMPlex numbers them
+  d.migration = part_migration(dm, points, sizes);
+  if (mixes_cell_types(dm)) {  // cells by type, as DMPlex numbers them
     const OwnedSF unordered = std::move(d.migration);
     NM_PETSC(DMPlexStratifyMigrationSF(dm, unordered, d.migration.out()));
   }
