@@ -161,6 +161,8 @@ struct SolverOptions {
 
   // advanced.alpha0 if set; else 1 (start in the Newton regime) unless some vertex slides on a
   // curved or oblique boundary, where the thesis' 0.3 measured better (docs/benchmarks.md).
+  // From the automatic 1 the method falls back to 0.3 if its first δ̃ solve meets negative
+  // curvature (docs/method.md §4).
   double initial_alpha(bool slides) const {
     return advanced.alpha0.value_or(slides ? Advanced::kThesisAlpha0 : 1.0);
   }

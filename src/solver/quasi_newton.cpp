@@ -95,6 +95,8 @@ struct QuasiNewton::Impl {
   double initial_defect = -1.0;
   double previous_defect = 0.0;
   double alpha = 0.0;
+  // α is the automatic α₀ = 1 and no δ̃ solve has shown yet whether H(1) is positive definite.
+  bool alpha_unproven = false;
   int k = 0;
   int antigradient_left = 0;
   int hessian_pc_iterations = 0;  // δ̃ iterations right after the H preconditioner was built
@@ -113,7 +115,8 @@ struct QuasiNewton::Impl {
         hessian_solver(f.dofs().comm(), o.linear_solver, "hess_", f.dofs().dim(), o.hessian_rtol),
         riesz_solver(f.dofs().comm(), o.linear_solver, "riesz_", f.dofs().dim(), o.riesz_rtol),
         previous_defect(o.advanced.initial_previous_defect),
-        alpha(o.initial_alpha(f.slides())) {
+        alpha(o.initial_alpha(f.slides())),
+        alpha_unproven(!o.advanced.alpha0 && alpha > SolverOptions::Advanced::kThesisAlpha0) {
     Stopwatch watch(times.setup);
     if (const auto kind = riesz_components(functional, options))
       riesz_solver.precondition_per_component(*kind);
@@ -194,9 +197,8 @@ struct QuasiNewton::Impl {
     return dot(u, trial);
   }
 
-  // Solves H(α) δ̃ = −g loosely (thesis §5.2) and applies the angle test; returns true if δ̃,
-  // or its blend with −s, is the direction to take (then in `delta`).
-  bool quasi_newton_direction(Vec x, IterationRecord& rec) {
+  // Assembles H(α) at x and solves H(α) δ̃ = −g loosely (thesis §5.2).
+  LinearSolver::Outcome solve_delta(Vec x, IterationRecord& rec) {
     {
       create_hessian();
       Stopwatch watch(times.hessian_assembly);
@@ -207,11 +209,11 @@ struct QuasiNewton::Impl {
     const bool reuse =
         own_pc && options.linear_solver == LinearSolverKind::Amg && hessian_pc_iterations > 0 &&
         last_delta_iterations <= options.advanced.hessian_pc_reuse * hessian_pc_iterations;
-    rec.hessian_pc_built = own_pc && !reuse;
+    rec.hessian_pc_built = rec.hessian_pc_built || (own_pc && !reuse);
     {
       Stopwatch watch(times.hessian_setup);
       hessian_solver.set_operator(hessian, reuse);
-      if (rec.hessian_pc_built) hessian_solver.setup();
+      if (own_pc && !reuse) hessian_solver.setup();
     }
     LinearSolver::Outcome out;
     {
@@ -221,15 +223,35 @@ struct QuasiNewton::Impl {
       out = hessian_solver.solve(gradient, delta_tilde, forcing() * defect);
       NM_PETSC(VecScale(delta_tilde, -1.0));
     }
-    rec.delta_solved = true;
-    rec.krylov_delta = out.iterations;
+    rec.krylov_delta += out.iterations;
     last_delta_iterations = out.iterations;
     if (!reuse) hessian_pc_iterations = std::max(1, out.iterations);
     if (!out.converged) hessian_pc_iterations = 0;  // rebuild next time
+    return out;
+  }
+
+  // Solves for δ̃ and applies the angle test; returns true if δ̃, or its blend with −s, is the
+  // direction to take (then in `delta`).
+  bool quasi_newton_direction(Vec x, IterationRecord& rec) {
+    LinearSolver::Outcome out = solve_delta(x, rec);
+    // α₀ = 1 (SolverOptions::initial_alpha) bets that H(1) is positive definite once the
+    // quasi-Newton steps start, as it is on every generated mesh of the benchmarks. Where the
+    // first δ̃ solve meets negative curvature it is not, and the run goes on from the thesis'
+    // α₀ and its growth rule, this solve repeated: square-midpoint 4096², still far from its
+    // minimum after the antigradient steps, took 12 iterations, 4 of them truncated, and 417 s
+    // with α₀ = 1, and 8 iterations and 225 s from 0.3 (docs/benchmarks.md).
+    if (alpha_unproven && !out.converged && out.indefinite && out.iterations > 0) {
+      alpha = SolverOptions::Advanced::kThesisAlpha0;
+      rec.alpha = alpha;
+      out = solve_delta(x, rec);
+    }
+    alpha_unproven = false;
+    rec.delta_solved = true;
     rec.residual_delta = out.residual;
-    // Negative curvature: H(α) is not positive definite here. Like Newton-CG methods, keep
-    // CG's last iterate (it decreases the quadratic model) and let the angle test judge
-    // it; α is not cut, because a direct solve of the same system would not have failed.
+    // Negative curvature after that: H(α) is not positive definite here. Like Newton-CG
+    // methods, keep CG's last iterate (it decreases the quadratic model) and let the angle
+    // test judge it; α is not cut, because a direct solve of the same system would not have
+    // failed (and cut, shashkov_quad took 6–10 s instead of 3).
     rec.delta_truncated = !out.converged && out.indefinite && out.iterations > 0;
     if (!out.converged && !rec.delta_truncated) {
       rec.delta_failed = true;

@@ -275,6 +275,31 @@ TEST(SquareMidpoint, AntigradientTrialStepsBeyondTheMoveBoundAreSkipped) {
   EXPECT_LT(trials[1], trials[0]);  // 15 and 10 when written
 }
 
+// α₀ = 1 bets that H(1) is positive definite once the quasi-Newton steps start. Without the
+// antigradient steps (k_min = 0), square-midpoint's first δ̃ solve meets negative curvature at
+// α = 1: the run then goes on from the thesis' α₀, the solve repeated, and no δ̃ is truncated.
+// An α₀ the caller gave is kept, truncated δ̃ and all.
+TEST(SquareMidpoint, NegativeCurvatureInTheFirstSolveFallsBackToTheThesisAlpha0) {
+  for (const bool given : {false, true}) {
+    SCOPED_TRACE(given ? "alpha0 = 1 given" : "alpha0 automatic");
+    ThesisProblem p(square_midpoint(32));
+    QuasiNewtonOptions o;
+    o.linear_solver = LinearSolverKind::Amg;
+    o.advanced.kmin = 0;
+    if (given) o.advanced.alpha0 = 1.0;
+    const SolverRun r = p.minimize(o);
+    ASSERT_GE(r.history.size(), 2u);
+    const IterationRecord& first = r.history.front();
+    EXPECT_TRUE(first.delta_solved);
+    EXPECT_EQ(first.alpha, given ? 1.0 : SolverOptions::Advanced::kThesisAlpha0);
+    EXPECT_EQ(first.delta_truncated, given);
+    EXPECT_EQ(first.used_s, given);  // the truncated δ̃ fails the angle test here
+    // From 0.3, α grows by the thesis' rule; it is never cut again.
+    EXPECT_GE(r.history[1].alpha, first.alpha);
+    EXPECT_LT(r.final_defect, 1e-5);
+  }
+}
+
 // SolverOptions::Advanced::lazy_riesz: the quasi-Newton steps take the angle test from one V-cycle
 // of L's hierarchy instead of the Riesz solve. The same directions are taken in the same iterations
 // to the same grid; the estimated cosine is within 0.03 of the one with s; no quasi-Newton step
