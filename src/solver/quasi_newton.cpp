@@ -24,6 +24,11 @@ double dot(Vec a, Vec b) {
   NM_PETSC(VecDot(a, b, &r));
   return r;
 }
+// CG stopped at negative curvature with an iterate (H(α) is not positive definite there).
+bool truncated_at_negative_curvature(const LinearSolver::Outcome& out) {
+  return !out.converged && out.indefinite && out.iterations > 0;
+}
+
 double norm(Vec a) {
   double r = 0.0;
   NM_PETSC(VecNorm(a, NORM_2, &r));
@@ -239,8 +244,8 @@ struct QuasiNewton::Impl {
     // first δ̃ solve meets negative curvature it is not, and the run goes on from the thesis'
     // α₀ and its growth rule, this solve repeated: square-midpoint 4096², still far from its
     // minimum after the antigradient steps, took 12 iterations, 4 of them truncated, and 417 s
-    // with α₀ = 1, and 8 iterations and 225 s from 0.3 (docs/benchmarks.md).
-    if (alpha_unproven && !out.converged && out.indefinite && out.iterations > 0) {
+    // with α₀ = 1 throughout, and takes 8 iterations and 267 s so (docs/benchmarks.md).
+    if (alpha_unproven && truncated_at_negative_curvature(out)) {
       alpha = SolverOptions::Advanced::kThesisAlpha0;
       rec.alpha = alpha;
       out = solve_delta(x, rec);
@@ -252,7 +257,7 @@ struct QuasiNewton::Impl {
     // methods, keep CG's last iterate (it decreases the quadratic model) and let the angle
     // test judge it; α is not cut, because a direct solve of the same system would not have
     // failed (and cut, shashkov_quad took 6–10 s instead of 3).
-    rec.delta_truncated = !out.converged && out.indefinite && out.iterations > 0;
+    rec.delta_truncated = truncated_at_negative_curvature(out);
     if (!out.converged && !rec.delta_truncated) {
       rec.delta_failed = true;
       return false;
