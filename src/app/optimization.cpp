@@ -372,13 +372,6 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
   say("\nquality before:\n{}\nquality after:\n{}\n", format_table(result.quality_before),
       format_table(result.quality_after));
 
-  // How much the domain changed: zero with fixed boundary vertices; with sliding ones bounded
-  // by the input's discretization (vertices stay on its facets or on the given shapes).
-  const nlohmann::json boundary_change = {
-      {"max_distance_from_input_boundary", result.boundary_distance},
-      {"relative_volume_change", result.volume_change},
-      {"moved_onto_charts", result.problem.boundary.moved_onto_charts},
-      {"max_move_onto_charts", result.problem.boundary.max_move_onto_charts}};
   if (settings.boundary.mode == BoundaryMode::Slide)
     say("boundary: largest distance of a boundary vertex from the input's boundary {:.3g}, "
         "domain volume change {:+.3g}%\n",
@@ -391,37 +384,16 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
 
   if (!outputs.report.empty()) {
     const PeakMemory memory = peak_memory(r.mesh.comm());
-    nlohmann::json json = {
-        {"input", r.mesh.name()},
-        {"output", output.string()},
-        {"processes", mpi_size(r.mesh.comm())},
-        {"threads", omp_get_max_threads()},
-        {"cells", r.mesh.num_cells()},
-        {"vertices", r.mesh.num_vertices()},
-        {"free_dofs", result.problem.free_coordinates},
-        {"boundary_change", boundary_change},
-        {"result", to_json(result)},
-        {"quality_before", to_json(result.quality_before)},
-        {"quality_after", to_json(result.quality_after)},
-        {"times",
-         {{"read", r.read_seconds}, {"prepare", r.prepare_seconds}, {"write", write_seconds}}},
-        {"peak_rss_mib", memory.max_rank_mib},
-        {"peak_rss_mib_all_ranks", memory.sum_mib},
-        {"seconds", MPI_Wtime() - r.start}};
-    if (result.problem.targets.mode == "metric")
-      json["targets"] = {{"mode", "metric"}};  // the metric's cells, none of the input's
-    else if (!result.problem.targets.mode.empty())
-      json["targets"] = {{"mode", result.problem.targets.mode},
-                         {"cells_input", result.problem.targets.input},
-                         {"cells_blended", result.problem.targets.blended},
-                         {"cells_ideal", result.problem.targets.ideal},
-                         {"ideal_because_tangled", result.problem.targets.ideal_because_tangled},
-                         {"coverage", result.problem.targets.coverage},
-                         {"uniform_because_folded", result.problem.targets.uniform_because_folded}};
-    if (result.untangling) json["untangling"] = to_json(*result.untangling);
-    if (result.corner_phase) json["corner_phase"] = to_json(*result.corner_phase);
-    if (result.worst_cell_repair) json["worst_cell_repair"] = to_json(*result.worst_cell_repair);
-    if (result.quality_guard) json["quality_guard"] = to_json(*result.quality_guard);
+    nlohmann::json json = result_report(result, r.mesh);
+    json.update(
+        {{"input", r.mesh.name()},
+         {"output", output.string()},
+         {"threads", omp_get_max_threads()},
+         {"times",
+          {{"read", r.read_seconds}, {"prepare", r.prepare_seconds}, {"write", write_seconds}}},
+         {"peak_rss_mib", memory.max_rank_mib},
+         {"peak_rss_mib_all_ranks", memory.sum_mib},
+         {"seconds", MPI_Wtime() - r.start}});
     if (extra.is_object()) json.update(extra);
     on_root(r.mesh.comm(), [&] { write_json(json, outputs.report); });
   }
