@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "api/memory_check.hpp"
+#include "api/thread_count.hpp"
 #include "app/checks.hpp"
 #include "core/atomic_file.hpp"
 #include "core/collective_error.hpp"
@@ -54,28 +55,9 @@ PeakMemory peak_memory(MPI_Comm comm) {
   return m;
 }
 
-// Below this many vertices × dim² per rank a second OpenMP thread gains nothing (quads 100²,
-// tets 12³, the DFG channel's 5,878 quads under adapt: the same time or slower), above it it
-// does (quads 170²: 12% faster, hexahedra 20³: 20%); docs/benchmarks.md, "Threads and a shared
-// machine".
-constexpr double kThreadedWork = 6e4;
-
-// Unless OMP_NUM_THREADS says otherwise, the ranks on a node share its cores: P ranks times
-// T threads must not oversubscribe them (each rank would start one thread per core). A mesh
-// too small for threads to pay runs on one per rank. The count depends on the mesh and the
-// machine only, never on its load: another thread count gives other last bits (sums over cells
-// run per thread, and PETSc's norms and dot products go through OpenBLAS's OpenMP threads),
-// and the same command must give the same mesh.
+// The thread count of a run on this mesh (api/thread_count.hpp).
 void share_cores(const Mesh& mesh) {
-  if (std::getenv("OMP_NUM_THREADS")) return;
-  MPI_Comm node = MPI_COMM_NULL;
-  MPI_Comm_split_type(mesh.comm(), MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  int ranks = 1;
-  MPI_Comm_size(node, &ranks);
-  MPI_Comm_free(&node);
-  const double work =
-      static_cast<double>(mesh.num_vertices()) * mesh.dim() * mesh.dim() / mpi_size(mesh.comm());
-  omp_set_num_threads(work < kThreadedWork ? 1 : std::max(1, omp_get_num_procs() / ranks));
+  if (const int threads = run_thread_count(mesh); threads > 0) omp_set_num_threads(threads);
 }
 
 // The memory the run will use (its estimate, api/memory_check.hpp), faulted in at once by all
