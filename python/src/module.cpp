@@ -17,7 +17,10 @@
 
 #include <neomesh/neomesh.hpp>
 
+#include <omp.h>
+
 #include "api/option_table.hpp"
+#include "api/thread_count.hpp"
 #include "keywords.hpp"
 #include "report/quality_report.hpp"
 #include "report/run_report.hpp"
@@ -203,16 +206,22 @@ struct PyOptimizer {
   Mesh& mesh;
   Optimizer optimizer;
 
-  // Runs `call` without the GIL; on an exception (a Python one from a callback, Ctrl-C, an
-  // Error) the mesh keeps the coordinates it had before the call.
+  // Runs `call` without the GIL, on the command line's thread count (the same mesh to the last
+  // bit), restored afterwards; on an exception (a Python one from a callback, Ctrl-C, an Error)
+  // the mesh keeps the coordinates it had before the call.
   template <typename Call>
   Result run(const py::object& progress, Call call) {
     const std::vector<double> before = mesh.coordinates();
     const Observer observer = python_observer(progress);
+    const int threads = omp_get_max_threads();
+    if (const int t = run_thread_count(mesh); t > 0) omp_set_num_threads(t);
     try {
       py::gil_scoped_release release;
-      return call(observer);
+      Result result = call(observer);
+      omp_set_num_threads(threads);
+      return result;
     } catch (...) {
+      omp_set_num_threads(threads);
       mesh.set_coordinates(before);
       optimizer.forget_warm_start();
       throw;

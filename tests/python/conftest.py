@@ -25,10 +25,17 @@ DATA = os.path.join(SOURCE, "tests", "data")
 needs_mpi = pytest.mark.skipif(MPIEXEC is None, reason="no mpiexec (NEOMESH_MPIEXEC)")
 
 
-def run(args, cwd=None, timeout=300, env=None):
+def child_environment():
+    """The environment this process started with: importing neomesh initialized MPI, which put
+    variables of its own into the process's environment, and an mpiexec started with them fails
+    without a word."""
+    return dict(os.environ)
+
+
+def run(args, cwd=None, timeout=300):
     """Runs `args`, failing the test with its output unless it exits with 0."""
     proc = subprocess.run([str(a) for a in args], cwd=cwd, capture_output=True, text=True,
-                          timeout=timeout, env=env)
+                          timeout=timeout, env=child_environment())
     assert proc.returncode == 0, (f"{' '.join(map(str, args))}: exit {proc.returncode}\n"
                                   f"stdout:\n{proc.stdout[-3000:]}\nstderr:\n{proc.stderr[-3000:]}")
     return proc
