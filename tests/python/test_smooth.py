@@ -2,6 +2,9 @@
 the command line's and refused with its messages, errors are neomesh.Error."""
 import os
 import re
+import signal
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -136,3 +139,22 @@ def test_optimizer_warm_starts_adapt_over_time_steps():
         iterations.append(opt.adapt(field, max_iter=60).iterations)
     assert iterations[1] < iterations[0] and iterations[2] < iterations[0]
     assert set(opt.cell_fields()) >= {"Q", "energy", "desired_volume"}
+
+
+def test_ctrl_c_raises_keyboard_interrupt_and_leaves_the_mesh():
+    mesh = neomesh.Mesh.generate("square-random", size=128)
+    before = mesh.points.copy()
+    first_row = threading.Event()
+
+    def interrupt():  # Ctrl-C while the C++ code runs, the GIL released
+        first_row.wait(60)
+        time.sleep(0.05)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    threading.Thread(target=interrupt, daemon=True).start()
+    rows = []
+    with pytest.raises(KeyboardInterrupt):
+        neomesh.smooth(mesh, progress=lambda row: (rows.append(row), first_row.set()),
+                       thesis=True)  # the thesis' criterion: many iterations
+    np.testing.assert_array_equal(mesh.points, before)
+    assert len(rows) >= 1
