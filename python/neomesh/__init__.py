@@ -43,6 +43,10 @@ __all__ = [
     "__version__",
 ]
 
+# The names users see in tracebacks and help(): neomesh.Error, not neomesh._neomesh.Error.
+for _type in (Error, OptionError, LevelSet, Mesh, SizeField):
+    _type.__module__ = __name__
+
 Mesh.from_arrays = staticmethod(_from_arrays)
 Mesh.from_meshio = staticmethod(_from_meshio)
 Mesh.to_meshio = _to_meshio
@@ -124,21 +128,18 @@ def adapt(mesh: Mesh, size_field, progress=None, fit=None, **options) -> Result:
 
 
 def _option_docs(task: str) -> str:
-    """The options of `task` as a docstring section, from the option table."""
-    lines = []
-    group = None
+    """The options of `task` as a docstring section, from the option table, by group in the
+    order of the command line's --help."""
+    groups = {}
     for o in _neomesh._options(task):
-        if o["group"] != group:
-            group = o["group"]
-            lines.append(f"\n    {group or 'Options'}:")
-        default = o["default"]
+        lines = groups.setdefault(o["group"] or "Options", [])
         extra = f"; thesis=True sets {o['thesis']}" if o["thesis"] else ""
         choices = f" ({' | '.join(repr(c) for c in o['choices'])})" if o["choices"] else ""
-        lines.append(f"      {o['name']}: {o['type']}{choices} = {default}{extra}")
+        lines.append(f"      {o['name']}: {o['type']}{choices} = {o['default']}{extra}")
         # The table's help names other options by their flags: here by their keywords.
         text = _re.sub(r"--([a-z0-9-]+)", lambda m: m.group(1).replace("-", "_"), o["help"])
         lines += _textwrap.wrap(text, 92, initial_indent=" " * 10, subsequent_indent=" " * 10)
-    return "\n".join(lines)
+    return "".join(f"\n    {group}:\n" + "\n".join(lines) + "\n" for group, lines in groups.items())
 
 
 smooth.__doc__ = (
