@@ -158,3 +158,16 @@ def test_ctrl_c_raises_keyboard_interrupt_and_leaves_the_mesh():
                        thesis=True)  # the thesis' criterion: many iterations
     np.testing.assert_array_equal(mesh.points, before)
     assert len(rows) >= 1
+
+
+def test_assigning_points_moves_the_vertices_and_the_next_call_starts_there():
+    mesh = neomesh.Mesh.generate("box-quad", size=4)
+    points = mesh.points
+    points[mesh.num_vertices // 2] += [0.1, 0.05]  # the centre vertex (0, 0)
+    mesh.points = points
+    np.testing.assert_array_equal(mesh.points, points)
+    assert mesh.quality()["scaled_jacobian"].min() < 0.99
+    neomesh.smooth(mesh, boundary="fixed", targets="ideal", sizes="uniform")
+    assert mesh.quality()["scaled_jacobian"].min() > 0.999
+    with pytest.raises(neomesh.Error, match="25 × 2"):
+        mesh.points = points[:3]
