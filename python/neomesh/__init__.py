@@ -113,6 +113,12 @@ class Optimizer:
         """The next adapt() starts cold (the mesh was changed in another way)."""
         self._optimizer.forget_warm_start()
 
+    def write(self, path: str) -> None:
+        """Writes the mesh as the command line does after a run: with the last call's cell
+        fields (energy, Q, desired volume, ...) in .vtu, and after a fit the facet group
+        "interface" and the vertex fields interface and phi (collective)."""
+        self._optimizer.write(path)
+
     def cell_fields(self) -> dict:
         """Per cell (by cell number) after a call: energy, det_G_min, Q (actual / desired
         volume), desired_volume, ... (collective)."""

@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -340,6 +341,19 @@ PYBIND11_MODULE(_neomesh, m) {
                   "m33 (3D)")
       .def_static("cell_values", &SizeField::cell_values, py::arg("values"),
                   "relative volumes per cell, by cell number")
+      .def_static(
+          "read_cell_values",
+          [](const std::string& file) { return SizeField::read_cell_values(file); },
+          py::arg("file"), "one relative volume per line, in the mesh's cell order (--sizes)")
+      .def_static("vertex_metric", &SizeField::vertex_metric, py::arg("mesh"), py::arg("array"),
+                  "the metric per vertex in the input file's point data `array` (--metric-data)")
+      .def_static(
+          "read_vertex_metric",
+          [](const Mesh& mesh, const std::string& file) {
+            return SizeField::read_vertex_metric(mesh, file);
+          },
+          py::arg("mesh"), py::arg("file"),
+          "one metric per line, in the mesh's vertex order (--metric-file)")
       .def(
           "stretched",
           [](const SizeField& f, double normal, double tangent, double width, double grading) {
@@ -382,14 +396,21 @@ PYBIND11_MODULE(_neomesh, m) {
                    "A mesh whose vertices neomesh moves; the connectivity never changes.")
       .def_static(
           "read",
-          [](const std::string& path, const py::object& comm, bool allow_inverted) {
+          [](const py::object& path, const py::object& comm, bool allow_inverted) {
+            // A FEAT3 mesh with its chart files comes as a list of paths.
+            std::vector<std::filesystem::path> paths;
+            if (py::isinstance<py::str>(path) || py::hasattr(path, "__fspath__"))
+              paths.emplace_back(py::str(path).cast<std::string>());
+            else
+              for (const py::handle p : path) paths.emplace_back(py::str(p).cast<std::string>());
             const MPI_Comm c = to_comm(comm);
             py::gil_scoped_release release;
-            return Mesh::read(path, c, inverted_cells(allow_inverted));
+            return Mesh::read(paths, c, inverted_cells(allow_inverted));
           },
           py::arg("path"), py::arg("comm") = py::none(), py::arg("allow_inverted") = true,
-          "Reads a mesh file (.msh, .vtu, .vtk, .mesh, .exo, .cgns, FEAT3 .xml) and distributes "
-          "it over comm (an mpi4py communicator; default: COMM_WORLD). Inverted cells are kept "
+          "Reads a mesh file (.msh, .vtu, .vtk, .mesh, .exo, .cgns, FEAT3 .xml; a list of paths: a "
+          "FEAT3 mesh and its chart files) and distributes it over comm (an mpi4py communicator; "
+          "default: COMM_WORLD). Inverted cells are kept "
           "for smooth() to untangle unless allow_inverted is False.")
       .def_static("_from_arrays", &from_arrays, py::arg("points"), py::arg("cells"),
                   py::arg("types"), py::arg("comm"), py::arg("name"), py::arg("allow_inverted"))
@@ -492,6 +513,14 @@ PYBIND11_MODULE(_neomesh, m) {
       .def("adapt", &PyOptimizer::adapt, py::arg("size_field"), py::arg("fit") = py::none(),
            py::arg("progress") = py::none())
       .def("forget_warm_start", [](PyOptimizer& o) { o.optimizer.forget_warm_start(); })
+      .def(
+          "write",
+          [](const PyOptimizer& o, const std::string& path) {
+            py::gil_scoped_release release;
+            o.mesh.write(path, o.optimizer.cell_fields(), o.optimizer.vertex_fields(),
+                         o.optimizer.facet_groups());
+          },
+          py::arg("path"))
       .def("cell_fields", [](const PyOptimizer& o) {
         return field_dict(gather_everywhere(o.mesh, o.optimizer.cell_fields()).cell_fields);
       });

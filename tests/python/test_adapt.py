@@ -65,3 +65,28 @@ def test_fit_to_a_level_set():
     phi = neomesh.LevelSet.circle(0.1, 0.0, 0.45)
     r = neomesh.adapt(mesh, phi, fit=True)
     assert r.fit["facets"] > 10 and r.fit["max_distance"] < 1e-10
+
+
+def test_an_optimizer_writes_its_fields_and_the_fitted_interface(tmp_path):
+    import meshio
+
+    mesh = neomesh.Mesh.generate("box-tri", size=16)
+    opt = neomesh.Optimizer(mesh)
+    r = opt.adapt(neomesh.LevelSet.circle(0.1, 0.0, 0.45), fit=True)
+    opt.write(str(tmp_path / "fit.vtu"))
+    m = meshio.read(tmp_path / "fit.vtu")
+    assert {"Q", "energy", "desired_volume", "inside"} <= set(m.cell_data)
+    assert {"interface", "phi"} <= set(m.point_data)
+    on = m.point_data["interface"] == 1
+    assert on.sum() == r.fit["vertices"]
+    np.testing.assert_allclose(m.point_data["phi"][on], 0, atol=1e-10)
+
+
+def test_per_cell_values_from_a_file(tmp_path):
+    mesh = neomesh.Mesh.generate("box-quad", size=8)
+    values = np.where(np.arange(mesh.num_cells) < mesh.num_cells // 2, 1.0, 4.0)
+    np.savetxt(tmp_path / "sizes.txt", values)
+    r = neomesh.adapt(mesh, neomesh.SizeField.read_cell_values(str(tmp_path / "sizes.txt")))
+    assert r.size_field.startswith("per-cell values from")
+    v = mesh.quality()["volume"]
+    assert v[mesh.num_cells // 2:].mean() > 2 * v[:mesh.num_cells // 2].mean()

@@ -116,3 +116,9 @@ def test_write_and_read_back(tmp_path):
     np.testing.assert_allclose(again.points, mesh.points, rtol=0, atol=1e-15)
     s = mesh.quality_summary()
     assert s["cells"]["total"] == mesh.num_cells and s["inverted"] == 0
+
+
+def test_a_feat3_mesh_reads_with_its_chart_file():
+    mesh = neomesh.Mesh.read([os.path.join(DATA, "feat_chart_file_charts.xml"),
+                              os.path.join(DATA, "feat_chart_file_mesh.xml")])
+    assert mesh.num_cells > 0 and "feat_chart_file_mesh.xml" in mesh.name
