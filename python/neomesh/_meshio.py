@@ -131,7 +131,7 @@ def to_meshio(mesh):
     optimized = _cell_blocks(flat, types)
     extra = getattr(mesh, "_meshio", None)
     if extra is None:
-        return meshio.Mesh(points, optimized)
+        return _file_mesh(meshio, mesh, points, flat, types)
     if extra["columns"] == 3 and points.shape[1] == 2:
         z = extra["z"] if extra["z"] is not None else np.zeros(len(points))
         points = np.column_stack([points, z])
@@ -148,3 +148,41 @@ def to_meshio(mesh):
     return meshio.Mesh(points, out, point_data=extra.get("point_data"),
                        cell_data=extra.get("cell_data"), cell_sets=extra.get("cell_sets"),
                        field_data=extra.get("field_data"))
+
+
+# meshio's names of the facets and single vertices in groups, by their number of vertices.
+_ENTITIES = {1: "vertex", 2: "line", 3: "triangle", 4: "quad"}
+_TYPE_DIM = {"vertex": 0, "line": 1, **_DIM}
+
+
+def _file_mesh(meshio, mesh, points, flat, types):
+    """A mesh read from a file as meshio has it: the cells, then the facets and vertices in
+    groups; the groups as cell sets (and as Gmsh's physical tags with field data, which
+    meshio's Gmsh writer needs); the file's point and cell data."""
+    data = mesh._file_data()
+    offsets = np.concatenate([[0], np.cumsum([_VERTICES[_TYPES[t]] for t in types])])
+    runs = _runs(types)
+    blocks = [(_TYPES[t], flat[offsets[s]:offsets[e]].reshape(e - s, -1)) for t, s, e in runs]
+    tags = [data["cell_tags"][s:e] for _, s, e in runs]
+    starts, ends = data["entity_offsets"][:-1], data["entity_offsets"][1:]
+    kinds = {}
+    for k, (s, e) in enumerate(zip(starts, ends)):
+        kinds.setdefault(int(e - s), []).append(k)
+    for n, entities in sorted(kinds.items(), reverse=True):
+        vertices = np.stack([data["entity_vertices"][starts[k]:ends[k]] for k in entities])
+        blocks.append((_ENTITIES[n], vertices))
+        tags.append(data["entity_tags"][entities])
+    cell_sets = {}
+    field_data = {}
+    for dim, tag, name in data["groups"]:
+        cell_sets[name] = [np.flatnonzero(t == tag) if _TYPE_DIM[b] == dim
+                           else np.array([], dtype=int) for (b, _), t in zip(blocks, tags)]
+        field_data[name] = np.array([tag, dim])
+    cell_data = {"gmsh:physical": [np.asarray(t) for t in tags]} if data["groups"] else {}
+    for name, values in data["cell_data"].items():
+        per_cell = [values[s:e] for _, s, e in runs]
+        for _, vertices in blocks[len(runs):]:  # the file's cell data do not cover facets
+            per_cell.append(np.full((len(vertices), *values.shape[1:]), np.nan))
+        cell_data[name] = per_cell
+    return meshio.Mesh(points, blocks, point_data=dict(data["point_data"]),
+                       cell_data=cell_data, cell_sets=cell_sets, field_data=field_data)

@@ -111,6 +111,50 @@ py::dict field_dict(const std::vector<Field>& fields) {
   return out;
 }
 
+// The file's groups and data (MeshArrays' second part) on every process, as a dict for
+// neomesh._meshio.to_meshio (collective).
+py::dict file_data(const Mesh& mesh) {
+  MeshArrays a = mesh.gather();
+  const MPI_Comm comm = mesh.comm();
+  // Names and shapes travel as JSON text, the values as arrays.
+  nlohmann::json header = {{"groups", nlohmann::json::array()},
+                           {"point_data", nlohmann::json::array()},
+                           {"cell_data", nlohmann::json::array()}};
+  for (const MeshGroup& g : a.groups) header["groups"].push_back({g.dim, g.tag, g.name});
+  for (const char* key : {"point_data", "cell_data"})
+    for (const Field& f : key == std::string("point_data") ? a.point_data : a.cell_data)
+      header[key].push_back({f.name, f.components});
+  const std::string text = header.dump();
+  std::vector<char> bytes(text.begin(), text.end());
+  broadcast(bytes, comm);
+  header = nlohmann::json::parse(bytes.begin(), bytes.end());
+  broadcast(a.cell_tags, comm);
+  broadcast(a.entity_offsets, comm);
+  broadcast(a.entity_vertices, comm);
+  broadcast(a.entity_tags, comm);
+  py::dict out;
+  out["groups"] = to_python(header["groups"]);
+  out["cell_tags"] = vector(a.cell_tags);
+  out["entity_offsets"] = vector(a.entity_offsets);
+  out["entity_vertices"] = vector(a.entity_vertices);
+  out["entity_tags"] = vector(a.entity_tags);
+  for (auto [key, data] :
+       {std::pair("point_data", &a.point_data), std::pair("cell_data", &a.cell_data)}) {
+    data->resize(header[key].size());
+    py::dict arrays;
+    for (std::size_t i = 0; i < data->size(); ++i) {
+      Field& f = (*data)[i];
+      f.name = header[key][i][0];
+      f.components = header[key][i][1];
+      broadcast(f.values, comm);
+      arrays[py::str(f.name)] = f.components == 1 ? py::array(vector(f.values))
+                                                  : py::array(matrix(f.values, f.components));
+    }
+    out[key] = arrays;
+  }
+  return out;
+}
+
 // The coordinates of every vertex (n × dim, by vertex number), on every process.
 py::array_t<double> points(const Mesh& mesh) {
   const MeshArrays a = gather_everywhere(mesh);
@@ -167,7 +211,8 @@ Observer python_observer(const py::object& progress) {
 // A Python function d(points) on an (n, dim) array of the cells' centroids, n distances back.
 SizeField function_field(py::function f) {
   const std::string description =
-      "|" + py::str(py::getattr(f, "__qualname__", py::repr(f))).cast<std::string>() + "|";
+      fmt::format("|d| of the Python function {}",
+                  py::str(py::getattr(f, "__qualname__", py::repr(f))).cast<std::string>());
   return SizeField::distances(
       [f](std::span<const double> points, std::span<double> d) {
         py::gil_scoped_acquire gil;
@@ -477,6 +522,8 @@ PYBIND11_MODULE(_neomesh, m) {
             return py::make_tuple(matrix(a.coordinates, a.dim), vector(a.cells), vector(types));
           },
           "points, flat cell vertices and cell types, on every process (collective)")
+      .def("_file_data", &file_data,
+           "the file's groups, entities in groups and data, on every process (collective)")
       .def_property_readonly(
           "vertex_numbers", [](const Mesh& mesh) { return vector(mesh.vertex_numbers()); },
           "the vertices this process owns, by number")

@@ -122,3 +122,37 @@ def test_a_feat3_mesh_reads_with_its_chart_file():
     mesh = neomesh.Mesh.read([os.path.join(DATA, "feat_chart_file_charts.xml"),
                               os.path.join(DATA, "feat_chart_file_mesh.xml")])
     assert mesh.num_cells > 0 and "feat_chart_file_mesh.xml" in mesh.name
+
+
+def entities_by_group(m):
+    """{group name: sorted vertex tuples of its cells/facets} from meshio's Gmsh tags."""
+    out = {}
+    for name, (tag, dim) in m.field_data.items():
+        out[name] = sorted(tuple(sorted(c)) for block, tags in zip(m.cells, m.cell_data["gmsh:physical"])
+                           if meshio._mesh.topological_dimension[block.type] == dim
+                           for c in block.data[tags == tag])
+    return out
+
+
+def test_a_file_read_by_neomesh_comes_out_with_its_groups_and_data(tmp_path):
+    path = os.path.join(DATA, "mixed_tri_quad_v41.msh")
+    theirs = meshio.read(path)
+    mesh = neomesh.Mesh.read(path)
+    ours = mesh.to_meshio()
+    groups = entities_by_group(theirs)
+    assert len(groups) >= 3 and entities_by_group(ours) == groups
+    assert set(ours.cell_sets) == set(groups)
+
+    # point and cell data of a .vtu
+    m = mixed_plate()
+    data = meshio.Mesh(m.points, [("quad", m.cells[0].data), ("triangle", m.cells[2].data)],
+                       point_data={"temperature": np.arange(9.0), "velocity": np.ones((9, 2))},
+                       cell_data={"material": [np.array([1.0, 2.0]), np.array([3.0, 4, 5, 6])]})
+    data.write(tmp_path / "data.vtu")
+    mesh = neomesh.Mesh.read(str(tmp_path / "data.vtu"))
+    neomesh.smooth(mesh, boundary="fixed")
+    out = mesh.to_meshio()
+    np.testing.assert_array_equal(out.point_data["temperature"], np.arange(9.0))
+    np.testing.assert_array_equal(out.point_data["velocity"], np.ones((9, 2)))
+    np.testing.assert_array_equal(np.concatenate(out.cell_data["material"][:2]), [1, 2, 3, 4, 5, 6])
+    assert np.abs(out.points[4, :2] - m.points[4, :2]).max() > 1e-3
