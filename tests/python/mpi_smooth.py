@@ -20,7 +20,8 @@ assert len(rows) >= result.iterations > 0  # (untangling rows come first)
 smoothed = mesh.points  # collective: every rank asks
 sizes = neomesh.adapt(mesh, lambda p: np.hypot(p[:, 0], p[:, 1]) - 0.5, max_iter=10)
 points = mesh.points  # collective: every rank asks
+groups = sorted(mesh.to_meshio().cell_sets)  # the file's groups, on every rank
 if comm.rank == 0:
     print(json.dumps({"ranks": comm.size, "processes": result.processes,
-                      "smoothed": smoothed.tolist(), "points": points.tolist(), "iterations": result.iterations,
+                      "smoothed": smoothed.tolist(), "points": points.tolist(), "groups": groups, "iterations": result.iterations,
                       "adapt_iterations": sizes.iterations}))

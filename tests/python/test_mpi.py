@@ -24,6 +24,8 @@ def test_two_ranks_give_the_serial_result(tmp_path):
     assert out.returncode == 0, out.stdout + out.stderr
     parallel = json.loads(out.stdout.strip().splitlines()[-1])
     assert parallel["ranks"] == 2 and parallel["processes"] == 2
+    assert parallel["groups"] == sorted(neomesh.Mesh.read(str(source)).to_meshio().cell_sets)
+    assert len(parallel["groups"]) >= 4  # box-quad's sides
 
     mesh = neomesh.Mesh.read(str(source))
     result = neomesh.smooth(mesh)
