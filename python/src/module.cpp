@@ -197,10 +197,11 @@ Mesh from_arrays(const Points& points, const py::array_t<std::int64_t>& cells,
 
 // What a call of the Optimizer sees of Python: the progress callback, and Ctrl-C. Both run
 // with the GIL, once per iteration; an exception they raise goes through the C++ code to the
-// caller.
+// caller. A handle, not an object: the C++ code copies the observer without the GIL, and
+// `progress` outlives the call.
 Observer python_observer(const py::object& progress) {
   Observer observer;
-  observer.iteration = [progress](const IterationRecord& row) {
+  observer.iteration = [progress = py::handle(progress)](const IterationRecord& row) {
     py::gil_scoped_acquire gil;
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     if (!progress.is_none()) progress(to_python(to_json(row)));
@@ -213,9 +214,16 @@ SizeField function_field(py::function f) {
   const std::string description =
       fmt::format("|d| of the Python function {}",
                   py::str(py::getattr(f, "__qualname__", py::repr(f))).cast<std::string>());
+  // The C++ code copies the field without the GIL: copies share the function through a
+  // shared_ptr, and the last one lets it go with the GIL.
+  const std::shared_ptr<py::function> held(new py::function(std::move(f)), [](py::function* p) {
+    py::gil_scoped_acquire gil;
+    delete p;
+  });
   return SizeField::distances(
-      [f](std::span<const double> points, std::span<double> d) {
+      [held](std::span<const double> points, std::span<double> d) {
         py::gil_scoped_acquire gil;
+        const py::function& f = *held;
         const py::ssize_t n = static_cast<py::ssize_t>(d.size());
         const py::ssize_t dim = n > 0 ? static_cast<py::ssize_t>(points.size()) / n : 0;
         py::array_t<double> at({n, dim});
