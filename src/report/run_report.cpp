@@ -152,7 +152,10 @@ nlohmann::json to_json(const QualityGuardResult& guard) {
           {"min_scaled_jacobian_after", guard.min_after},
           {"vertices_moved", guard.vertices_moved},
           {"gave_up", guard.gave_up},
-          {"rounds", guard.rounds}};
+          {"rounds", guard.rounds},
+          {"input_mean_scaled_jacobian", guard.input_mean},
+          {"mean_scaled_jacobian_optimum", guard.mean_optimum},
+          {"input_returned", guard.input_returned}};
 }
 
 void write_json(const nlohmann::json& report, const std::filesystem::path& path) {

@@ -48,14 +48,14 @@ def test_smooth_every_feat3_mesh(name, tmp):
 def test_the_rotor_passes_feat3s_own_optimizer_with_the_worst_cell_repair(tmp):
     """screws_2d_mesh_quad_360_1 with its Bezier charts: FEAT3's own optimizer reaches a worst
     scaled Jacobian of 0.4835. Ideal targets leave two cells in the gap at 0.299 (the next worst
-    at 0.52); moving the vertices around them, the boundary ones along the screws
-    (--repair-worst-cells), lifts them, without collapsing an edge (which the scaled Jacobian
+    at 0.52); moving the vertices around them, the boundary ones along the screws (the
+    worst-cell repair, on by default), lifts them, without collapsing an edge (which the scaled Jacobian
     alone does not see: the edge ratio stays below the input's)."""
     inputs = [os.path.join(CORPUS, "screws_2d_chart_bezier_24_28.xml"),
               os.path.join(CORPUS, "screws_2d_mesh_quad_360_1.xml")]
     report = os.path.join(tmp, "r.json")
     neomesh("smooth", *inputs, "-o", os.path.join(tmp, "out.vtu"), "--quiet", "--report", report,
-            "--targets", "ideal", "--repair-worst-cells", timeout=120)
+            "--targets", "ideal", timeout=120)
     r = json.load(open(report))
     repair = r["worst_cell_repair"]
     assert repair["min_scaled_jacobian_before"] < 0.35 and repair["vertices_moved"] > 0, repair
