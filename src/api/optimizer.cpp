@@ -275,16 +275,27 @@ RepairFreedom Optimizer::Impl::repair_freedom() const {
                     for (int a = 0; a < d; ++a) p[a] = q[a];
                   }};
   // A cell that keeps (part of) its input cell is the mesh's design: its vertices stay, unless
-  // its angles are poor (a stretched design cell is a rectangle or brick, scaled Jacobian near
-  // 1; a skewed one is not a design to keep).
+  // its angles are poor. A kept simplex or wedge keeps its input shape: poor below 0.5. A kept
+  // quadrilateral, hexahedron or pyramid aims at a right-angled cell: its design is held where
+  // the input and the optimum are near right-angled; a graded block's skewed bricks and the
+  // cells the optimum distorted (FEAT3's rotor, in the gap between the screws) are free.
   if (!input_share.empty()) {
     const std::vector<double> input_sj = cell_scaled_jacobians(view(), view().coords);
-    for (const CellBlock& block : view().blocks)
-      for (PetscInt c = 0; c < block.size(); ++c)
-        if (input_share[block.first_cell + c] > 0.0 &&
-            input_sj[block.first_cell + c] >= kKeptCellMinScaledJacobian)
+    std::vector<double> local(dofs().num_local_dofs());
+    dofs().global_to_local(x, local);
+    const std::vector<double> sj = cell_scaled_jacobians(view(), local);
+    for (const CellBlock& block : view().blocks) {
+      const bool right_angled = !is_simplex(block.type) && block.type != CellType::Wedge;
+      for (PetscInt c = block.first_cell; c < block.first_cell + block.size(); ++c) {
+        const bool held =
+            input_share[c] > 0.0 &&
+            (right_angled ? std::min(input_sj[c], sj[c]) >= kKeptRightAngledMinScaledJacobian
+                          : input_sj[c] >= kKeptCellMinScaledJacobian);
+        if (held)
           for (int i = 0; i < facts(block.type).vertices; ++i)
-            std::fill_n(f.fixed.begin() + d * block.cell(c)[i], d, 1);
+            std::fill_n(f.fixed.begin() + d * block.cell(c - block.first_cell)[i], d, 1);
+      }
+    }
   }
   return f;
 }
