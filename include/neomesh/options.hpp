@@ -262,10 +262,10 @@ struct SmoothOptions {
   bool quality_guard = true;
   // With the quality guard: after the optimum, the vertices of the worst cells (boundary ones
   // sliding) are moved one at a time to where the worst cell around them is best
-  // (solver/worst_cell_repair.hpp). Off by default: a max–min search is discontinuous, so meshes
-  // equal up to round-off (a mirrored twin, another number of ranks) may come out visibly
-  // different.
-  bool repair_worst_cells = false;
+  // (solver/worst_cell_repair.hpp): it lifts what the energy, a sum over cells, leaves behind.
+  // A max–min search is discontinuous, so meshes equal up to round-off (a mirrored twin,
+  // another number of ranks) may come out visibly different.
+  bool repair_worst_cells = true;
 
   // `base` with the thesis' conventions: uniform desired volumes, fixed boundary vertices, no
   // practical stopping criterion, the Riesz solve to 1e-8, 3×3(×3) Gauss points, no quality

@@ -85,6 +85,10 @@ struct TargetSummary {
   // The input has inverted cells: the targets are ideal whatever was asked (its cells around
   // the inverted ones are no design to keep).
   bool ideal_because_tangled = false;
+  // Uniform sizes were asked with the smoothed targets: the targets are ideal, because a cell's
+  // design is its sizes (a layer's height is its size across the wall) and the sizes asked for
+  // replace it.
+  bool ideal_because_sizes = false;
   // How many times the input's cells cover its domain (1: nothing folded; see
   // `uniform_because_folded`).
   double coverage = 1.0;
@@ -128,6 +132,14 @@ struct QualityGuardResult {
   // Always false: the guard falls back to the input, which meets its threshold (the report
   // keeps the field).
   bool gave_up = false;
+  // The mean scaled Jacobian, the other figure users read: of the input, and of the optimized
+  // mesh after the worst cells' guard. Where the optimum's mean is below the input's by more
+  // than kMeanSlack (a mesh its author optimized by another measure), the input is returned
+  // instead (its worst cells repaired with SmoothOptions::repair_worst_cells).
+  double input_mean = 0.0;
+  double mean_optimum = 0.0;
+  bool input_returned = false;
+  static constexpr double kMeanSlack = 0.005;
 };
 
 // Smoothing's worst-cell phase (docs/method.md, "Corners"): the optimum of the thesis' energy

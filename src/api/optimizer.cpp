@@ -54,6 +54,14 @@ std::string list_cells(const Inversion& inversion) {
   return cells;
 }
 
+// Sizes asked for win over the sizes the smoothed targets would keep; and a cell's design
+// without its size (a layer's height across the wall) is no design (docs/method.md §9).
+TargetMode targets_asked(const SmoothOptions& options) {
+  return options.targets == TargetMode::Smoothed && options.sizes == SizeMode::Uniform
+             ? TargetMode::Ideal
+             : options.targets;
+}
+
 }  // namespace
 
 Optimizer::Impl::Impl(Mesh& m) : mesh(m) {}
@@ -224,15 +232,7 @@ void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& m
                                           const Observer& observer, Result& result, bool repair,
                                           double ceiling) {
   lift_corners(method, observer, result);
-  if (result.reason != StopReason::TimeLimit) {
-    if (repair) {
-      const WorstCellRepair r = repair_worst_cells(view(), dofs(), repair_freedom(), x);
-      result.worst_cell_repair = {.min_scaled_jacobian_before = r.min_before,
-                                  .min_scaled_jacobian_after = r.min_after,
-                                  .vertices_moved = r.vertices_moved,
-                                  .sweeps = r.sweeps};
-    }
-  }
+  if (repair && result.reason != StopReason::TimeLimit) repair_worst(result);
   // The threshold is the file's worst cell, or where placing vertices on their charts left it
   // (at most the ceiling).
   result.quality_guard = guard_worst_quality(
@@ -241,6 +241,27 @@ void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& m
           ? std::optional(ceiling)
           : std::optional(std::min(result.quality_before.scaled_jacobian.min, ceiling)));
   if (result.quality_guard->vertices_moved > 0) result.final_energy = functional->value(x);
+}
+
+void Optimizer::Impl::repair_worst(Result& result) {
+  const WorstCellRepair r = repair_worst_cells(view(), dofs(), repair_freedom(), x);
+  result.worst_cell_repair = {.min_scaled_jacobian_before = r.min_before,
+                              .min_scaled_jacobian_after = r.min_after,
+                              .vertices_moved = r.vertices_moved,
+                              .sweeps = r.sweeps};
+}
+
+void Optimizer::Impl::guard_mean_quality(Vec input, Result& result, bool repair) {
+  QualityGuardResult& guard = *result.quality_guard;
+  guard.input_mean = result.quality_before.scaled_jacobian.mean;
+  mesh.plex().set_coordinates(x);  // the measure users read: the mesh's own quality
+  guard.mean_optimum = mesh.quality().scaled_jacobian.mean;
+  if (guard.mean_optimum >= guard.input_mean - QualityGuardResult::kMeanSlack) return;
+  NM_PETSC(VecCopy(input, x));
+  mesh.plex().set_coordinates(x);  // what the repair judges the input cells by
+  guard.input_returned = true;
+  if (repair && result.reason != StopReason::TimeLimit) repair_worst(result);
+  result.final_energy = functional->value(x);
 }
 
 RepairFreedom Optimizer::Impl::repair_freedom() const {
@@ -254,16 +275,27 @@ RepairFreedom Optimizer::Impl::repair_freedom() const {
                     for (int a = 0; a < d; ++a) p[a] = q[a];
                   }};
   // A cell that keeps (part of) its input cell is the mesh's design: its vertices stay, unless
-  // its angles are poor (a stretched design cell is a rectangle or brick, scaled Jacobian near
-  // 1; a skewed one is not a design to keep).
+  // its angles are poor. A kept simplex or wedge keeps its input shape: poor below 0.5. A kept
+  // quadrilateral, hexahedron or pyramid aims at a right-angled cell: its design is held where
+  // the input and the optimum are near right-angled; a graded block's skewed bricks and the
+  // cells the optimum distorted (FEAT3's rotor, in the gap between the screws) are free.
   if (!input_share.empty()) {
     const std::vector<double> input_sj = cell_scaled_jacobians(view(), view().coords);
-    for (const CellBlock& block : view().blocks)
-      for (PetscInt c = 0; c < block.size(); ++c)
-        if (input_share[block.first_cell + c] > 0.0 &&
-            input_sj[block.first_cell + c] >= kKeptCellMinScaledJacobian)
+    std::vector<double> local(dofs().num_local_dofs());
+    dofs().global_to_local(x, local);
+    const std::vector<double> sj = cell_scaled_jacobians(view(), local);
+    for (const CellBlock& block : view().blocks) {
+      const bool right_angled = !is_simplex(block.type) && block.type != CellType::Wedge;
+      for (PetscInt c = block.first_cell; c < block.first_cell + block.size(); ++c) {
+        const bool held =
+            input_share[c] > 0.0 &&
+            (right_angled ? std::min(input_sj[c], sj[c]) >= kKeptRightAngledMinScaledJacobian
+                          : input_sj[c] >= kKeptCellMinScaledJacobian);
+        if (held)
           for (int i = 0; i < facts(block.type).vertices; ++i)
-            std::fill_n(f.fixed.begin() + d * block.cell(c)[i], d, 1);
+            std::fill_n(f.fixed.begin() + d * block.cell(c - block.first_cell)[i], d, 1);
+      }
+    }
   }
   return f;
 }
@@ -344,7 +376,8 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   // Targets from the input cells — not from a tangled input, whose cells around the inverted
   // ones are distorted by whatever tangled it: that is no design to keep.
   const bool tangled = result.quality_before.inverted > 0 || result.quality_before.degenerate > 0;
-  const TargetMode mode = tangled ? TargetMode::Ideal : options.targets;
+  const bool sizes_asked = targets_asked(options) != options.targets;
+  const TargetMode mode = tangled ? TargetMode::Ideal : targets_asked(options);
   // Nor are its sizes where it is folded over itself throughout: the fill-in of the inverted
   // cells' volumes from their neighbours then starts from cells that were squeezed and stretched
   // with them (copy-morph-for-ricoh: desired volumes from 7e-4 to 26 in a ring of equal cells,
@@ -365,6 +398,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
                             kept.part,
                             kept.none,
                             tangled && options.targets != TargetMode::Ideal,
+                            !tangled && sizes_asked,
                             coverage,
                             folded && options.sizes != SizeMode::Uniform};
   if (observer.started) observer.started(result.problem);
@@ -375,8 +409,10 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   if (options.untangle) result.untangling = r.untangle(method, observer);
   static_cast<SolverRun&>(result) =
       minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
-  if (options.quality_guard)
+  if (options.quality_guard) {
     r.protect_worst_cells(input, method, observer, result, options.repair_worst_cells);
+    if (!tangled) r.guard_mean_quality(input, result, options.repair_worst_cells);
+  }
   r.finish(result);
   result.seconds = MPI_Wtime() - r.started;
   return result;
@@ -481,7 +517,7 @@ double Optimizer::evaluate(const SmoothOptions& options) {
   r.start(options.energy, options.boundary);
   r.x = r.mesh.plex().coordinates();  // as they are: sliding vertices not projected
   r.warm = false;
-  r.set_targets(r.smoothing_targets(options.targets, options.sizes));
+  r.set_targets(r.smoothing_targets(targets_asked(options), options.sizes));
   return r.functional->value(r.x);
 }
 

@@ -404,12 +404,14 @@ const OptionTable<SmoothOptions>& smooth_own_option_table() {
        .negated = true,
        .report_object = "smooth_options"},
       {.path = "repair_worst_cells",
-       .flag = "--repair-worst-cells",
-       .help = "after the optimum, move the vertices of the worst cells (boundary ones sliding) "
-               "one at a time to where the worst cell around them is best (a max-min search; "
-               "meshes equal up to "
-               "round-off may come out visibly different; not with --no-guard)",
+       .flag = "--no-repair",
+       .help = "keep the optimum's worst cells instead of repairing them (default: off, i.e. "
+               "after the optimum the vertices of the worst cells, boundary ones sliding, move one "
+               "at a time to where the worst cell around them is best: a max-min search, so "
+               "meshes equal up to round-off may come out visibly different; not with "
+               "--no-guard)",
        .field = member(&O::repair_worst_cells),
+       .negated = true,
        .report_object = "smooth_options"},
       {.path = "untangle",
        .flag = "--no-untangle",

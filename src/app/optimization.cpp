@@ -105,6 +105,9 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
   const TargetSummary& t = problem.targets;
   if (t.ideal_because_tangled)
     say("targets ideal: the input has inverted cells, its cells are no design to keep\n");
+  else if (t.ideal_because_sizes)
+    say("targets ideal: --sizes uniform replaces the input's design (its cells' sizes and "
+        "proportions)\n");
   else if (t.mode == "metric")
     say("targets metric: every cell aims at the unit cell of the metric at its centroid\n");
   else if (!t.mode.empty() && t.mode != "ideal")
@@ -141,6 +144,10 @@ void print_quality_guard(const QualityGuardResult& guard) {
     say("quality guard: {} vertices pulled back toward the input so that no cell has a scaled "
         "Jacobian below {:.4f} (min {:.4f} -> {:.4f})\n",
         guard.vertices_moved, guard.input_min, guard.min_before, guard.min_after);
+  if (guard.input_returned)
+    say("quality guard: the energy's optimum lowers the mean scaled Jacobian ({:.4f} -> {:.4f}): "
+        "the input is returned instead\n",
+        guard.input_mean, guard.mean_optimum);
 }
 
 // What the worst-cell phase did, if it ran (docs/method.md, "Corners").

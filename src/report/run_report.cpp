@@ -154,7 +154,10 @@ nlohmann::json to_json(const QualityGuardResult& guard) {
           {"min_scaled_jacobian_after", guard.min_after},
           {"vertices_moved", guard.vertices_moved},
           {"gave_up", guard.gave_up},
-          {"rounds", guard.rounds}};
+          {"rounds", guard.rounds},
+          {"input_mean_scaled_jacobian", guard.input_mean},
+          {"mean_scaled_jacobian_optimum", guard.mean_optimum},
+          {"input_returned", guard.input_returned}};
 }
 
 nlohmann::json to_json(const FitSummary& f) {
@@ -193,6 +196,7 @@ nlohmann::json result_report(const Result& result, const Mesh& mesh) {
                        {"cells_blended", targets.blended},
                        {"cells_ideal", targets.ideal},
                        {"ideal_because_tangled", targets.ideal_because_tangled},
+                       {"ideal_because_sizes", targets.ideal_because_sizes},
                        {"coverage", targets.coverage},
                        {"uniform_because_folded", targets.uniform_because_folded}};
   if (result.untangling) json["untangling"] = to_json(*result.untangling);

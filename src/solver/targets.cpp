@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <tuple>
+#include <utility>
 
 #include "core/error.hpp"
 #include "solver/desired_volumes.hpp"
@@ -43,6 +45,32 @@ struct InputCell {
     return Q * ((w - 1.0) * log_stretches).array().exp().matrix().asDiagonal() * Q.transpose() * S;
   }
 };
+
+// A cell of a mesher's design without its skew (see the header), as the metric M = SᵀS of its
+// shape in the reference frame (det M = 1): the rectangle or brick of its mean edge lengths (a
+// Q1 cell's Jacobian at its centre has the means of its parallel edges as columns), the right
+// pyramid over the rectangle of its base edges, of the same height over its base.
+template <int Dim>
+Mat<Dim> right_angled_metric(CellType type, const Mat<Dim>& S) {
+  const Mat<Dim> gram = S.transpose() * S;
+  Mat<Dim> M = gram.diagonal().asDiagonal();
+  if constexpr (Dim == 3)
+    if (type == CellType::Pyramid)  // h² = det(SᵀS) / det(base Gram)
+      M(2, 2) = gram.determinant() / gram.template topLeftCorner<2, 2>().determinant();
+  return M / std::pow(M.determinant(), 1.0 / Dim);
+}
+
+// S_w with S_wᵀ S_w = M^w: only TᵀT enters the energy (docs/method.md §9), so the symmetric
+// root does. Also returns log σ_max(S_w) for the weight.
+template <int Dim>
+std::pair<Mat<Dim>, double> metric_shape(const Mat<Dim>& M, double w) {
+  Eigen::SelfAdjointEigenSolver<Mat<Dim>> eigen;
+  eigen.computeDirect(M);
+  const Eigen::Matrix<double, Dim, 1> half_logs = 0.5 * w * eigen.eigenvalues().array().log();
+  return {eigen.eigenvectors() * half_logs.array().exp().matrix().asDiagonal() *
+              eigen.eigenvectors().transpose(),
+          half_logs.maxCoeff()};
+}
 
 template <int Dim>
 double log_anisotropy(const Mat<Dim>& log_stretch) {
@@ -144,6 +172,9 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
   for (const CellBlock& block : view.blocks)
     if (block.type == CellType::Wedge)
       std::fill_n(stiffness.begin() + block.first_cell, block.size(), kKeptWedgeStiffness);
+  std::vector<CellType> types(cells);
+  for (const CellBlock& block : view.blocks)
+    std::fill_n(types.begin() + block.first_cell, block.size(), block.type);
 #pragma omp parallel for schedule(static)
   for (std::size_t c = 0; c < cells; ++c) {
     Eigen::Map<Mat<Dim>> S(t.shapes.data() + c * Dim * Dim);
@@ -152,10 +183,16 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
       S.setIdentity();
       continue;
     }
-    S = input[c]->kept_shape(w);
+    // log σ_max of the kept shape: a = σ_max^d is the isotropic cell spanning the longest edge
+    // over the cell's volume.
+    double log_longest = w * input[c]->log_stretches[Dim - 1];
+    if (kept == KeptInput::All || is_simplex(types[c]) || types[c] == CellType::Wedge)
+      S = input[c]->kept_shape(w);
+    else
+      std::tie(S, log_longest) =
+          metric_shape<Dim>(right_angled_metric<Dim>(types[c], input[c]->S), w);
     t.volumes[c] = std::exp(w * std::log(cell_volumes[c]) + (1.0 - w) * std::log(t.volumes[c]));
-    // a = σ_max^d: the isotropic cell spanning the longest edge over the cell's volume.
-    t.weights[c] = std::exp(w * (std::log(stiffness[c]) + Dim * input[c]->log_stretches[Dim - 1]));
+    t.weights[c] = std::exp(w * std::log(stiffness[c]) + Dim * log_longest);
   }
   normalize_volumes(t.volumes, total, dofs.comm());
   return t;

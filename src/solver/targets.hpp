@@ -13,8 +13,16 @@
 // their own. Noise stretches cells in scattered directions, which cancel in the mean. A cell
 // keeps the share
 //   w = ramp(Ā; kStretched) · ramp(Ā / Â; kCoherence)
-// of its input cell: S = V^w R, v = v_input^w v_sizes^(1−w) (then all volumes are scaled to
-// the mesh volume). Only cells of one type count: layers are made of one type, and the many
+// of its input cell: its size and, for a simplex or wedge, its shape S = V^w R; v = v_input^w
+// v_sizes^(1−w) (then all volumes are scaled to the mesh volume). A mesher designs sizes and
+// the stretch of a cell along its own edges (a layer's rectangles, a graded block's bricks),
+// never skew: a kept quad, hexahedron or pyramid aims at the right-angled cell of its
+// proportions — the rectangle or brick of its mean edge lengths, the right pyramid over the
+// rectangle of its base edges — with the metric M of that cell, S_wᵀ S_w = M^w. A simplex has no
+// right-angled form (a boundary layer of split quads is right triangles, which its affine
+// stretch V keeps); a layer's prisms are extruded right prisms already, and a right-prism target
+// moved the sphere's layer by up to 6 % (docs/method.md §9). Only cells of one type count:
+// layers are made of one type, and the many
 // tetrahedra or triangles around a layer's outer cells would hide it.
 // A mesh generator's stretched cells are stretched along their edges (a layer's rectangles and
 // prisms, a graded block's bricks); a mesh deformed afterwards (a moved vertex, a moved

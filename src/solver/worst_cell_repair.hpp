@@ -36,8 +36,11 @@ struct WorstCellRepair {
 inline constexpr int kRepairWorstCells = 6;
 inline constexpr int kRepairMaxSweeps = 100;
 // The vertices of a cell that keeps its input cell as its target stay in the repair if that
-// input cell's scaled Jacobian is at least this.
+// input cell's scaled Jacobian is at least this; for a kept quadrilateral, hexahedron or
+// pyramid, whose target is right-angled, if the input cell and the optimum's are at least
+// kKeptRightAngledMinScaledJacobian.
 inline constexpr double kKeptCellMinScaledJacobian = 0.5;
+inline constexpr double kKeptRightAngledMinScaledJacobian = 0.9;
 
 // How each local vertex may move.
 struct RepairFreedom {

@@ -113,6 +113,20 @@ def test_an_optimized_graded_mesh_is_not_made_worse(tmp):
     assert after["min"] >= before["min"] and after["mean"] >= before["mean"]
 
 
+@needs_corpus
+def test_an_optimum_with_a_lower_mean_returns_the_input(tmp):
+    """shashkov_opt with ideal targets: the optimum lowers the mean scaled Jacobian, so the
+    input comes back (its worst cells repaired) and the run says so."""
+    mesh = os.path.join(CORPUS, "mesquite", "2D", "vtk", "tris", "untangled", "shashkov_opt.vtk")
+    out, report = smooth(tmp, mesh, "--targets", "ideal")
+    guard = report["quality_guard"]
+    assert guard["input_returned"] is True, guard
+    assert guard["mean_scaled_jacobian_optimum"] < guard["input_mean_scaled_jacobian"] - 0.005
+    sj = lambda q: q["metrics"]["scaled_jacobian"]  # noqa: E731
+    before, after = sj(report["quality_before"]), sj(report["quality_after"])
+    assert after["min"] >= before["min"] and after["mean"] >= before["mean"] - 0.005
+
+
 def test_a_tangled_input_gets_ideal_targets(tmp):
     """A tangled mesh's cells around the inverted ones are no design to keep."""
     mesh = os.path.join(tmp, "box.msh")
@@ -141,3 +155,28 @@ def test_a_deformed_mesh_is_repaired_not_kept(tmp):
     assert report["quality_before"]["metrics"]["scaled_jacobian"]["min"] < 0.1
     assert sj["min"] > 0.8 and sj["mean"] > 0.99, sj
     assert report["targets"]["cells_input"] == 0
+
+
+def test_a_kept_stretched_quad_aims_at_its_rectangle_not_its_skew(tmp):
+    """A block of 10:1 quads whose columns lean by up to 14 degrees: coherently stretched, so
+    the default keeps the cells' sizes and proportions, but a mesher designs no skew: the cells
+    come back as rectangles (the input cells as targets kept the lean, min scaled Jacobian
+    0.97)."""
+    import meshio
+    columns, rows = 20, 10
+    x, y = np.meshgrid(np.arange(columns + 1, dtype=float), np.linspace(0, 1, rows + 1))
+    x = x + 0.25 * y * np.sin(np.pi * x / columns)  # the ends stay straight
+    points = np.stack([x.ravel(), y.ravel()], axis=1)
+    index = lambda i, j: j * (columns + 1) + i  # noqa: E731
+    quads = [[index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1)]
+             for j in range(rows) for i in range(columns)]
+    mesh = os.path.join(tmp, "leaning.msh")
+    meshio.write(mesh, meshio.Mesh(points, [("quad", np.array(quads))]), file_format="gmsh22",
+                 binary=False)
+    out, report = smooth(tmp, mesh)
+    sj = lambda q: q["metrics"]["scaled_jacobian"]  # noqa: E731
+    assert sj(report["quality_before"])["min"] < 0.98
+    assert report["targets"]["cells_input"] + report["targets"]["cells_blended"] > 100
+    assert sj(report["quality_after"])["min"] > 0.995, sj(report["quality_after"])
+    # The proportions stay: the cells keep their 10:1 (the domain's corners do not move).
+    assert sj(report["quality_after"])["mean"] > 0.999
