@@ -19,17 +19,23 @@ packages=(
   python3-netcdf4              # tests: meshio's Exodus II reader and writer
   cgns-convert                 # tests: tetgen_to_cgns writes .cgns files
   python3-vtk9                 # tests: VTK's own readers read neomesh's .vtu and .vtk
+  pybind11-dev python3-dev     # the Python package (python/)
+  python3-petsc4py python3-mpi4py  # Python: DMPlex objects and communicators in and out
+  python3-matplotlib python3-gmsh  # examples/python: Gmsh's API, pictures
 )
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if ((${#missing[@]})); then
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
   $sudo apt-get update
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
 fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j "$(nproc)"
+# The Python package into Debian's python3 path (/usr/local/lib/python3.X/dist-packages), so
+# that `import neomesh` works from any folder.
+$sudo cmake --install build --component python

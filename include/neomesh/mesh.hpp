@@ -143,9 +143,9 @@ class Mesh {
 
   // The whole mesh at its current coordinates on the communicator's first process, as
   // from_arrays takes it and in the same numbering (its vertex numbers, cells in input order),
-  // with `cell_fields` (per local cell, as quality_by_cell() gives them) by cell number. The other
-  // processes get only `dim` and the fields' names. Throws Error if a field does not have a
-  // value per cell. Collective.
+  // with `cell_fields` (per local cell, as quality_by_cell() gives them) by cell number, and
+  // the file's groups and data. The other processes get only `dim` and the fields' names.
+  // Throws Error if a field does not have a value per cell. Collective.
   MeshArrays gather(const std::vector<Field>& cell_fields = {}) const;
 
   // Writes the mesh without fields (.vtu: no quality fields either; the input's data are
@@ -171,6 +171,14 @@ class Mesh {
   double creation_bytes_ = 0.0;
 };
 
+// A physical group of the input file (Gmsh's, or an Exodus block or side set, ...): cells
+// (dim = the mesh's), boundary facets (dim − 1) or single vertices (0).
+struct MeshGroup {
+  int dim = 0;
+  int tag = 0;
+  std::string name;
+};
+
 // A whole mesh as arrays (Mesh::gather), the inverse of Mesh::from_arrays:
 // Mesh::from_arrays(comm, a.dim, a.coordinates, a.cells, a.types) builds the same mesh.
 struct MeshArrays {
@@ -179,6 +187,17 @@ struct MeshArrays {
   std::vector<std::int64_t> cells;  // each cell's vertices in Gmsh's order, by cell number
   std::vector<CellType> types;      // one per cell
   std::vector<Field> cell_fields;   // `components` values per cell, by cell number
+  // What the file of Mesh::read carries besides the mesh, as write() writes it back (empty for
+  // a mesh from arrays or a DM): its groups; the tag of each cell's group (0: none); the facets
+  // and single vertices in groups (vertex numbers, facets in Gmsh's order) with their groups'
+  // tags; its point and cell data by vertex and cell number.
+  std::vector<MeshGroup> groups;
+  std::vector<int> cell_tags;
+  std::vector<std::int64_t> entity_offsets = {
+      0};  // entity e is entity_vertices[offsets[e], [e + 1])
+  std::vector<std::int64_t> entity_vertices;
+  std::vector<int> entity_tags;
+  std::vector<Field> point_data, cell_data;
 };
 
 }  // namespace neomesh

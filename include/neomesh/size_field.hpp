@@ -47,6 +47,12 @@ class SizeField {
   // d = |φ(x, y, z, t)| for a signed-distance expression φ (muparser syntax; z = 0 in 2D; t is
   // the time set by set_time, 0 until then).
   static SizeField level_set(const std::string& expression);
+  // A caller's distance function evaluated on all points at once (one call per evaluation of
+  // the field, e.g. a numpy function): it gets n points, `dim` values each (the local cells'
+  // centroids), and writes their n signed distances d. `dim` 0: a field of any dimension.
+  // An exception it throws goes through the optimization to the caller.
+  using Distances = std::function<void(std::span<const double> points, std::span<double> d)>;
+  static SizeField distances(Distances distances, const std::string& description, int dim = 0);
   // Relative volumes per cell, indexed by the cell's number in the input mesh.
   static SizeField cell_values(std::vector<double> values);
   // One value per line, in the input mesh's cell order.
@@ -91,6 +97,7 @@ class SizeField {
   int dim_ = 0;               // dimension the field needs, 0 for any
   Distance signed_distance_;  // negative on one side of the target surface; d = its magnitude
   Metric metric_;             // for an anisotropic field; empty otherwise
+  Distances distances_;       // for distances() (signed_distance_ then calls it per point)
   std::vector<double> cell_values_;       // for cell_values(); empty otherwise
   std::function<void(double)> set_time_;  // for level_set(); empty otherwise
 };

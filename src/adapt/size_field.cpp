@@ -226,6 +226,18 @@ void SizeField::set_time(double t) {
   if (set_time_) set_time_(t);
 }
 
+SizeField SizeField::distances(Distances distances, const std::string& description, int dim) {
+  if (!distances) fail("the size field's distance function is empty");
+  // One point at a time for what needs single points (the normal of stretched()).
+  SizeField field(description, dim, [distances](std::span<const double> p) {
+    double d = 0.0;
+    distances(p, std::span(&d, 1));
+    return d;
+  });
+  field.distances_ = std::move(distances);
+  return field;
+}
+
 SizeField SizeField::cell_values(std::vector<double> values) {
   SizeField field(fmt::format("{} per-cell values", values.size()), 0, {});
   field.cell_values_ = std::move(values);
@@ -274,6 +286,7 @@ struct SizeFieldAccess {
   }
   static const SizeField::Metric& metric(const SizeField& f) { return f.metric_; }
   static const std::vector<double>& cell_values(const SizeField& f) { return f.cell_values_; }
+  static const SizeField::Distances& distances(const SizeField& f) { return f.distances_; }
 };
 
 namespace {
@@ -348,6 +361,9 @@ std::vector<double> relative_volumes(const SizeField& field, const MeshView& vie
     if (static_cast<long long>(values.size()) != total)
       fail("the size field has {} values but the mesh has {} cells", values.size(), total);
     for (PetscInt c = 0; c < view.num_cells; ++c) v[c] = values[view.global_cell[c]];
+  } else if (const auto& distances = SizeFieldAccess::distances(field)) {
+    distances(centroids, v);  // d, then v = floor + |d|^p in place
+    for (double& x : v) x = options.floor + std::pow(std::abs(x), options.power);
   } else {
     for (PetscInt c = 0; c < view.num_cells; ++c)
       v[c] = options.floor +

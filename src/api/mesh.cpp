@@ -264,6 +264,19 @@ MeshArrays Mesh::gather(const std::vector<Field>& cell_fields) const {
     for (int i = 0; i < facts.vertices; ++i)  // canonical → Gmsh order
       out.cells.push_back(m.cell_vertices[m.cell_offsets[c] + facts.gmsh_order[i]]);
   }
+  for (const PhysicalGroup& g : m.groups) out.groups.push_back({g.dim, g.tag, g.name});
+  out.cell_tags = m.cell_tags;
+  for (const TaggedEntities* tagged : {&m.facets, &m.points})
+    for (PetscInt e = 0; e < tagged->size(); ++e) {
+      out.entity_vertices.insert(out.entity_vertices.end(),
+                                 tagged->vertices.begin() + tagged->offsets[e],
+                                 tagged->vertices.begin() + tagged->offsets[e + 1]);
+      out.entity_offsets.push_back(static_cast<std::int64_t>(out.entity_vertices.size()));
+      out.entity_tags.push_back(tagged->tags[e]);
+    }
+  for (auto [from, to] :
+       {std::pair(&m.point_data, &out.point_data), std::pair(&m.cell_data, &out.cell_data)})
+    for (const DataArray& a : *from) to->push_back({a.name, a.values, a.components});
   return out;
 }
 

@@ -255,19 +255,7 @@ void adapt(AdaptCommand& o) {
   const Observer observe = run.observer(settings, o.outputs.progress_lines, picture_before);
   const Result result = phi ? run.optimizer().adapt(*field, *phi, options, observe)
                             : run.optimizer().adapt(*field, options, observe);
-  nlohmann::json fit_report;
-  if (result.fit) {
-    const FitSummary& f = *result.fit;
-    always("{}; {} iterations\n", describe(f), f.iterations);
-    fit_report = {{"level_set", f.level_set},
-                  {"facets", f.facets},
-                  {"vertices", f.vertices},
-                  {"max_distance", f.max_distance},
-                  {"stages", f.stages},
-                  {"undone", f.undone},
-                  {"cells_moved_across", f.cells_moved_across},
-                  {"iterations", f.iterations}};
-  }
+  if (result.fit) always("{}; {} iterations\n", describe(*result.fit), result.fit->iterations);
 
   const VolumeRatioStats& q = result.volume_ratio;
   always(
@@ -275,15 +263,8 @@ void adapt(AdaptCommand& o) {
       "volume in [0.5, 2] for {:.1f}% of the cells, min {:.3g}, median {:.3g}, max {:.3g}\n",
       result.update_iterations.size(), fmt::join(result.update_iterations, ", "), 100 * q.within,
       q.min, q.median, q.max);
-  // α₀ and the bound of the desired volumes the run used: numbers, also where they were "auto".
-  AdaptOptions reported = options;
-  reported.solver.advanced.alpha0 = result.problem.alpha0;
-  reported.sizes.max_ratio = options.sizes.ratio(o.fit);
-  nlohmann::json report = to_json(reported);
-  report["picard"]["update_iterations"] = result.update_iterations;
-  report.update(
-      {{"size_field", field->description()}, {"volume_ratio", to_json(q)}, {"fit", fit_report}});
-  run.finish(result, settings, o.output, o.outputs, report);
+  run.finish(result, settings, o.output, o.outputs,
+             adapt_report(options, result, field->description()));
 }
 
 }  // namespace

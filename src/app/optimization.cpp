@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "api/memory_check.hpp"
+#include "api/thread_count.hpp"
 #include "app/checks.hpp"
 #include "core/atomic_file.hpp"
 #include "core/collective_error.hpp"
@@ -54,28 +55,9 @@ PeakMemory peak_memory(MPI_Comm comm) {
   return m;
 }
 
-// Below this many vertices × dim² per rank a second OpenMP thread gains nothing (quads 100²,
-// tets 12³, the DFG channel's 5,878 quads under adapt: the same time or slower), above it it
-// does (quads 170²: 12% faster, hexahedra 20³: 20%); docs/benchmarks.md, "Threads and a shared
-// machine".
-constexpr double kThreadedWork = 6e4;
-
-// Unless OMP_NUM_THREADS says otherwise, the ranks on a node share its cores: P ranks times
-// T threads must not oversubscribe them (each rank would start one thread per core). A mesh
-// too small for threads to pay runs on one per rank. The count depends on the mesh and the
-// machine only, never on its load: another thread count gives other last bits (sums over cells
-// run per thread, and PETSc's norms and dot products go through OpenBLAS's OpenMP threads),
-// and the same command must give the same mesh.
+// The thread count of a run on this mesh (api/thread_count.hpp).
 void share_cores(const Mesh& mesh) {
-  if (std::getenv("OMP_NUM_THREADS")) return;
-  MPI_Comm node = MPI_COMM_NULL;
-  MPI_Comm_split_type(mesh.comm(), MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  int ranks = 1;
-  MPI_Comm_size(node, &ranks);
-  MPI_Comm_free(&node);
-  const double work =
-      static_cast<double>(mesh.num_vertices()) * mesh.dim() * mesh.dim() / mpi_size(mesh.comm());
-  omp_set_num_threads(work < kThreadedWork ? 1 : std::max(1, omp_get_num_procs() / ranks));
+  if (const int threads = run_thread_count(mesh); threads > 0) omp_set_num_threads(threads);
 }
 
 // The memory the run will use (its estimate, api/memory_check.hpp), faulted in at once by all
@@ -379,13 +361,6 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
   say("\nquality before:\n{}\nquality after:\n{}\n", format_table(result.quality_before),
       format_table(result.quality_after));
 
-  // How much the domain changed: zero with fixed boundary vertices; with sliding ones bounded
-  // by the input's discretization (vertices stay on its facets or on the given shapes).
-  const nlohmann::json boundary_change = {
-      {"max_distance_from_input_boundary", result.boundary_distance},
-      {"relative_volume_change", result.volume_change},
-      {"moved_onto_charts", result.problem.boundary.moved_onto_charts},
-      {"max_move_onto_charts", result.problem.boundary.max_move_onto_charts}};
   if (settings.boundary.mode == BoundaryMode::Slide)
     say("boundary: largest distance of a boundary vertex from the input's boundary {:.3g}, "
         "domain volume change {:+.3g}%\n",
@@ -398,38 +373,16 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
 
   if (!outputs.report.empty()) {
     const PeakMemory memory = peak_memory(r.mesh.comm());
-    nlohmann::json json = {
-        {"input", r.mesh.name()},
-        {"output", output.string()},
-        {"processes", mpi_size(r.mesh.comm())},
-        {"threads", omp_get_max_threads()},
-        {"cells", r.mesh.num_cells()},
-        {"vertices", r.mesh.num_vertices()},
-        {"free_dofs", result.problem.free_coordinates},
-        {"boundary_change", boundary_change},
-        {"result", to_json(result)},
-        {"quality_before", to_json(result.quality_before)},
-        {"quality_after", to_json(result.quality_after)},
-        {"times",
-         {{"read", r.read_seconds}, {"prepare", r.prepare_seconds}, {"write", write_seconds}}},
-        {"peak_rss_mib", memory.max_rank_mib},
-        {"peak_rss_mib_all_ranks", memory.sum_mib},
-        {"seconds", MPI_Wtime() - r.start}};
-    if (result.problem.targets.mode == "metric")
-      json["targets"] = {{"mode", "metric"}};  // the metric's cells, none of the input's
-    else if (!result.problem.targets.mode.empty())
-      json["targets"] = {{"mode", result.problem.targets.mode},
-                         {"cells_input", result.problem.targets.input},
-                         {"cells_blended", result.problem.targets.blended},
-                         {"cells_ideal", result.problem.targets.ideal},
-                         {"ideal_because_tangled", result.problem.targets.ideal_because_tangled},
-                         {"ideal_because_sizes", result.problem.targets.ideal_because_sizes},
-                         {"coverage", result.problem.targets.coverage},
-                         {"uniform_because_folded", result.problem.targets.uniform_because_folded}};
-    if (result.untangling) json["untangling"] = to_json(*result.untangling);
-    if (result.corner_phase) json["corner_phase"] = to_json(*result.corner_phase);
-    if (result.worst_cell_repair) json["worst_cell_repair"] = to_json(*result.worst_cell_repair);
-    if (result.quality_guard) json["quality_guard"] = to_json(*result.quality_guard);
+    nlohmann::json json = result_report(result, r.mesh);
+    json.update(
+        {{"input", r.mesh.name()},
+         {"output", output.string()},
+         {"threads", omp_get_max_threads()},
+         {"times",
+          {{"read", r.read_seconds}, {"prepare", r.prepare_seconds}, {"write", write_seconds}}},
+         {"peak_rss_mib", memory.max_rank_mib},
+         {"peak_rss_mib_all_ranks", memory.sum_mib},
+         {"seconds", MPI_Wtime() - r.start}});
     if (extra.is_object()) json.update(extra);
     on_root(r.mesh.comm(), [&] { write_json(json, outputs.report); });
   }

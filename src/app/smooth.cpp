@@ -39,10 +39,7 @@ void smooth(SmoothCommand& o) {
   };
   const Result result = run.optimizer().smooth(
       options, run.observer(settings, o.outputs.progress_lines, picture_before));
-  // The α₀ the run started with: a number, as the banner prints it, also when it was "auto".
-  SmoothOptions reported = options;
-  reported.solver.advanced.alpha0 = result.problem.alpha0;
-  run.finish(result, settings, o.output, o.outputs, to_json(reported));
+  run.finish(result, settings, o.output, o.outputs, smooth_report(options, result));
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 
 #include "core/atomic_file.hpp"
 #include "core/log.hpp"
+#include "core/petsc.hpp"
+#include "report/quality_report.hpp"
 
 namespace neomesh {
 
@@ -156,6 +158,71 @@ nlohmann::json to_json(const QualityGuardResult& guard) {
           {"input_mean_scaled_jacobian", guard.input_mean},
           {"mean_scaled_jacobian_optimum", guard.mean_optimum},
           {"input_returned", guard.input_returned}};
+}
+
+nlohmann::json to_json(const FitSummary& f) {
+  return {{"level_set", f.level_set},
+          {"facets", f.facets},
+          {"vertices", f.vertices},
+          {"max_distance", f.max_distance},
+          {"stages", f.stages},
+          {"undone", f.undone},
+          {"cells_moved_across", f.cells_moved_across},
+          {"iterations", f.iterations}};
+}
+
+nlohmann::json result_report(const Result& result, const Mesh& mesh) {
+  // How much the domain changed: zero with fixed boundary vertices; with sliding ones bounded
+  // by the input's discretization (vertices stay on its facets or on the given shapes).
+  const nlohmann::json boundary_change = {
+      {"max_distance_from_input_boundary", result.boundary_distance},
+      {"relative_volume_change", result.volume_change},
+      {"moved_onto_charts", result.problem.boundary.moved_onto_charts},
+      {"max_move_onto_charts", result.problem.boundary.max_move_onto_charts}};
+  nlohmann::json json = {{"processes", mpi_size(mesh.comm())},
+                         {"cells", mesh.num_cells()},
+                         {"vertices", mesh.num_vertices()},
+                         {"free_dofs", result.problem.free_coordinates},
+                         {"boundary_change", boundary_change},
+                         {"result", to_json(result)},
+                         {"quality_before", to_json(result.quality_before)},
+                         {"quality_after", to_json(result.quality_after)}};
+  const TargetSummary& targets = result.problem.targets;
+  if (targets.mode == "metric")
+    json["targets"] = {{"mode", "metric"}};  // the metric's cells, none of the input's
+  else if (!targets.mode.empty())
+    json["targets"] = {{"mode", targets.mode},
+                       {"cells_input", targets.input},
+                       {"cells_blended", targets.blended},
+                       {"cells_ideal", targets.ideal},
+                       {"ideal_because_tangled", targets.ideal_because_tangled},
+                       {"ideal_because_sizes", targets.ideal_because_sizes},
+                       {"coverage", targets.coverage},
+                       {"uniform_because_folded", targets.uniform_because_folded}};
+  if (result.untangling) json["untangling"] = to_json(*result.untangling);
+  if (result.corner_phase) json["corner_phase"] = to_json(*result.corner_phase);
+  if (result.worst_cell_repair) json["worst_cell_repair"] = to_json(*result.worst_cell_repair);
+  if (result.quality_guard) json["quality_guard"] = to_json(*result.quality_guard);
+  return json;
+}
+
+nlohmann::json smooth_report(const SmoothOptions& options, const Result& result) {
+  SmoothOptions reported = options;
+  reported.solver.advanced.alpha0 = result.problem.alpha0;
+  return to_json(reported);
+}
+
+nlohmann::json adapt_report(const AdaptOptions& options, const Result& result,
+                            const std::string& size_field) {
+  AdaptOptions reported = options;
+  reported.solver.advanced.alpha0 = result.problem.alpha0;
+  reported.sizes.max_ratio = options.sizes.ratio(result.fit.has_value());
+  nlohmann::json report = to_json(reported);
+  report["picard"]["update_iterations"] = result.update_iterations;
+  report.update({{"size_field", size_field},
+                 {"volume_ratio", to_json(result.volume_ratio)},
+                 {"fit", result.fit ? to_json(*result.fit) : nlohmann::json()}});
+  return report;
 }
 
 void write_json(const nlohmann::json& report, const std::filesystem::path& path) {

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <neomesh/mesh.hpp>
 #include <neomesh/options.hpp>
 #include <neomesh/result.hpp>
 
@@ -25,6 +26,21 @@ nlohmann::json to_json(const UntanglingSummary& untangling);
 nlohmann::json to_json(const CornerPhaseSummary& phase);
 nlohmann::json to_json(const WorstCellRepairSummary& repair);
 nlohmann::json to_json(const QualityGuardResult& guard);
+
+nlohmann::json to_json(const FitSummary& fit);
+
+// The part of a run's report that its Result and mesh make (the command line adds its files,
+// timings and memory; Python's Result.to_dict() is this): the mesh's size, the free
+// coordinates, the boundary's change, the run, the quality before and after, the targets and
+// the optional phases. Collective.
+nlohmann::json result_report(const Result& result, const Mesh& mesh);
+// What a smoothing adds: its options as the run used them (α₀ as a number, also where it was
+// "auto").
+nlohmann::json smooth_report(const SmoothOptions& options, const Result& result);
+// What an adaptation adds: its options as the run used them (α₀ and the volume bound as
+// numbers), the Picard updates, the size field's description, Q's distribution and the fit.
+nlohmann::json adapt_report(const AdaptOptions& options, const Result& result,
+                            const std::string& size_field);
 
 // Writes `report` (pretty-printed) atomically; rank 0 only.
 void write_json(const nlohmann::json& report, const std::filesystem::path& path);
