@@ -56,7 +56,11 @@ def test_a_mirrored_mesh_with_a_few_inverted_cells_is_untangled_as_its_twin(tmp)
     reports = []
     for path in (twin, mirrored):
         report = path.replace(".msh", ".json")
-        neomesh("smooth", path, "-o", path.replace(".msh", "-out.msh"), "--quiet", "--report", report)
+        # The worst-cell repair is a max-min search: of two equally good moves the first wins, so
+        # mirrored twins may end visibly apart (docs/method.md, "Worst cells"); the untangling
+        # and the optimum are what must agree.
+        neomesh("smooth", path, "-o", path.replace(".msh", "-out.msh"), "--quiet", "--report", report,
+                "--no-repair")
         with open(report) as f:
             reports.append(json.load(f))
     a, b = reports

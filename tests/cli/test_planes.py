@@ -27,7 +27,9 @@ def placed(tmp, name, transform, cell="box-quad"):
 def smooth(tmp, path, *options, output=".msh"):
     out = path.replace(".msh", "-out" + output)
     report = path.replace(".msh", ".json")
-    neomesh("smooth", path, "-o", out, "--quiet", "--report", report, *options)
+    # Without the worst-cell repair, a max-min search whose choices round-off can flip (docs/
+    # method.md, "Worst cells"): the plane's handling is what must agree to 1e-6.
+    neomesh("smooth", path, "-o", out, "--quiet", "--report", report, "--no-repair", *options)
     with open(report) as f:
         r = json.load(f)
     sj = lambda q: q["metrics"]["scaled_jacobian"]["min"]
@@ -96,7 +98,8 @@ def test_a_tilted_plane_on_two_ranks_is_written_back_in_it(tmp):
     outputs = []
     for ranks in (1, 2):
         out = path.replace(".msh", f"-{ranks}.msh")
-        neomesh("smooth", path, "-o", out, "--quiet", "--boundary", "fixed", ranks=ranks)
+        neomesh("smooth", path, "-o", out, "--quiet", "--boundary", "fixed", "--no-repair",
+                ranks=ranks)
         expect_nothing_else_changed(path, out, fixed_boundary=True)
         outputs.append(read_mesh(out).points)
     assert np.abs(outputs[0] - outputs[1]).max() < 1e-6

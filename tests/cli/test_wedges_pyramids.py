@@ -50,10 +50,10 @@ def jitter(path, amplitude, seed):
         f.write("\n".join(lines))
 
 
-def smooth(cwd, mesh, out, ranks=1):
+def smooth(cwd, mesh, out, ranks=1, *options):
     report = out + ".json"
-    run([*mpiexec(ranks), NEOMESH, "smooth", mesh, "-o", out, "--report", report, "--quiet"],
-        cwd, timeout=120)
+    run([*mpiexec(ranks), NEOMESH, "smooth", mesh, "-o", out, "--report", report, "--quiet",
+         *options], cwd, timeout=120)
     with open(os.path.join(cwd, report)) as f:
         return json.load(f)
 
@@ -110,9 +110,13 @@ def test_smooth_keeps_the_cells_and_untangles(module_tmp, smoothed, name, expect
 @needs_mpi
 @pytest.mark.parametrize("name", [c[0] for c in CASES if c[4]])
 def test_two_ranks_give_the_serial_result(module_tmp, smoothed, name):
-    stem, mesh, report = smoothed(name)
-    parallel = smooth(module_tmp, mesh, stem + "-2.msh", ranks=2)
-    serial_points = read_mesh(os.path.join(module_tmp, stem + "-out.msh")).points
+    stem, mesh, _ = smoothed(name)
+    # Without the worst-cell repair: a max-min search, whose choices the round-off between the
+    # two runs can flip (hexahedra+pyramids+tetrahedra: vertices 0.24 of the mesh size apart,
+    # docs/user-guide.md "Parallel runs").
+    report = smooth(module_tmp, mesh, stem + "-1.msh", 1, "--no-repair")
+    parallel = smooth(module_tmp, mesh, stem + "-2.msh", 2, "--no-repair")
+    serial_points = read_mesh(os.path.join(module_tmp, stem + "-1.msh")).points
     parallel_points = read_mesh(os.path.join(module_tmp, stem + "-2.msh")).points
     worst = max(abs(a - b) for p, q in zip(serial_points, parallel_points) for a, b in zip(p, q))
     its = (report["result"]["iterations"], parallel["result"]["iterations"])
