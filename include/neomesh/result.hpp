@@ -132,10 +132,11 @@ struct QualityGuardResult {
   // Always false: the guard falls back to the input, which meets its threshold (the report
   // keeps the field).
   bool gave_up = false;
-  // The mean scaled Jacobian, the other figure users read: of the input, and of the optimized
-  // mesh after the worst cells' guard. Where the optimum's mean is below the input's by more
-  // than kMeanSlack (a mesh its author optimized by another measure), the input is returned
-  // instead (its worst cells repaired with SmoothOptions::repair_worst_cells).
+  // The mean scaled Jacobian, the other figure users read: of the input (its vertices placed on
+  // their charts), and of the optimized mesh after the worst cells' guard. Where the optimum's
+  // mean is below the input's by more than kMeanSlack (a mesh its author optimized by another
+  // measure), the input is returned instead (its worst cells repaired with
+  // SmoothOptions::repair_worst_cells) — unless the repair lowers its mean below the optimum's.
   double input_mean = 0.0;
   double mean_optimum = 0.0;
   bool input_returned = false;

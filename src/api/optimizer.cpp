@@ -251,16 +251,32 @@ void Optimizer::Impl::repair_worst(Result& result) {
                               .sweeps = r.sweeps};
 }
 
+double Optimizer::Impl::mean_scaled_jacobian(Vec y) {
+  mesh.plex().set_coordinates(y);
+  return mesh.quality().scaled_jacobian.mean;
+}
+
 void Optimizer::Impl::guard_mean_quality(Vec input, Result& result, bool repair) {
   QualityGuardResult& guard = *result.quality_guard;
-  guard.input_mean = result.quality_before.scaled_jacobian.mean;
-  mesh.plex().set_coordinates(x);  // the measure users read: the mesh's own quality
-  guard.mean_optimum = mesh.quality().scaled_jacobian.mean;
+  // The input as the run starts from it: vertices placed on their charts (FEAT3's unit-axe-tria:
+  // the placement alone takes its mean from 0.816 to 0.647).
+  guard.input_mean = mean_scaled_jacobian(input);
+  guard.mean_optimum = mean_scaled_jacobian(x);
   if (guard.mean_optimum >= guard.input_mean - QualityGuardResult::kMeanSlack) return;
+  const OwnedVec optimum = copy_of(x);
+  const std::optional<WorstCellRepairSummary> optimum_repair = result.worst_cell_repair;
   NM_PETSC(VecCopy(input, x));
   mesh.plex().set_coordinates(x);  // what the repair judges the input cells by
-  guard.input_returned = true;
   if (repair && result.reason != StopReason::TimeLimit) repair_worst(result);
+  // The repair moves vertices for the worst cells' sake and can lower the mean in turn: below
+  // the optimum's, the optimum was the better trade (Mesquite's cube-clip-5, a tetrahedron of
+  // scaled Jacobian 3e-4: the optimum 0.283 / 0.588, the repaired input 0.308 / 0.568).
+  if (mean_scaled_jacobian(x) < guard.mean_optimum) {
+    NM_PETSC(VecCopy(optimum, x));
+    result.worst_cell_repair = optimum_repair;
+  } else {
+    guard.input_returned = true;
+  }
   result.final_energy = functional->value(x);
 }
 

@@ -76,8 +76,11 @@ struct Optimizer::Impl {
                            Result& result, bool repair = false, double ceiling = 1.0);
   // Smoothing's promise on the mean scaled Jacobian, after protect_worst_cells(): where x's mean
   // is below the input's by more than QualityGuardResult::kMeanSlack, x becomes `input` again
-  // (with `repair`, its worst cells repaired).
+  // (with `repair`, its worst cells repaired), unless the repaired input's mean is below the
+  // optimum's: then x stays the optimum.
   void guard_mean_quality(Vec input, Result& result, bool repair);
+  // The mean scaled Jacobian of the mesh at y (the mesh's coordinates become y). Collective.
+  double mean_scaled_jacobian(Vec y);
   // The local repair of x's worst cells (worst_cell_repair.hpp), recorded in `result`.
   void repair_worst(Result& result);
   // Q = actual / desired volume at x.

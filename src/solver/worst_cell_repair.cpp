@@ -150,6 +150,16 @@ class Repair {
     return sj_.empty() ? kInfinity : *std::min_element(sj_.begin(), sj_.end());
   }
 
+  // What a sweep changes, to undo one.
+  struct Snapshot {
+    std::vector<double> coords, sj;
+  };
+  Snapshot snapshot() const { return {m_.coords, sj_}; }
+  void restore(Snapshot s) {
+    m_.coords = std::move(s.coords);
+    sj_ = std::move(s.sj);
+  }
+
   // One sweep over the worst cells' neighbourhood; false if no vertex moved.
   bool sweep(std::set<std::int64_t>& moved) {
     std::vector<std::int64_t> cells(sj_.size());
@@ -295,12 +305,20 @@ WorstCellRepair repair_worst_cells(const MeshView& view, const DofMap& dofs,
     summary.min_before = repair.min_quality();
     std::set<std::int64_t> moved;
     // Until a sweep no longer lifts the worst cell (moves elsewhere may go on improving a
-    // little for long).
+    // little for long). That last sweep is undone: its moves lift cells around a vertex at the
+    // cost of others and so only lower the mean (FEAT3's heat-v77-tria: 11 vertices moved,
+    // the worst cell unchanged, the mean scaled Jacobian 0.735 -> 0.719).
     for (double worst = summary.min_before; summary.sweeps < kRepairMaxSweeps;) {
+      Repair::Snapshot before = repair.snapshot();
+      const std::set<std::int64_t> moved_before = moved;
       const bool any = repair.sweep(moved);
       ++summary.sweeps;
       const double now = repair.min_quality();
-      if (!any || !(now > worst + kGain)) break;
+      if (!any || !(now > worst + kGain)) {
+        repair.restore(std::move(before));
+        moved = moved_before;
+        break;
+      }
       worst = now;
     }
     summary.min_after = repair.min_quality();
