@@ -203,22 +203,10 @@ template nlohmann::json option_list<SmoothOptions>();
 template nlohmann::json option_list<AdaptOptions>();
 
 std::string python_message(const std::string& message) {
-  static const std::map<std::string, std::string, std::less<>> kKeywords = [] {
-    std::map<std::string, std::string, std::less<>> keywords;
-    const auto add = [&keywords](const auto& table) {
-      for (const auto& spec : table)
-        if (!std::holds_alternative<Preset>(spec.field) &&
-            (!spec.range.text.empty() || spec.path.find('.') != std::string_view::npos))
-          keywords.emplace(spec.path, keyword(spec));
-    };
-    add(smooth_option_table());
-    add(adapt_option_table());
-    return keywords;
-  }();
-  const std::size_t end = message.find_first_of(" :");
-  if (end == std::string::npos) return message;
-  const auto it = kKeywords.find(message.substr(0, end));
-  return it != kKeywords.end() ? it->second + message.substr(end) : message;
+  static const OptionNames kKeywords = reported_option_names([](const auto& spec) {
+    return std::holds_alternative<Preset>(spec.field) ? std::string() : keyword(spec);
+  });
+  return respell_option_message(message, kKeywords);
 }
 
 }  // namespace neomesh::python

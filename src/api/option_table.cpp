@@ -568,4 +568,11 @@ template std::string to_text(const RejectedDirection&, std::string_view);
 template std::string to_text(const SizeMode&, std::string_view);
 template std::string to_text(const TargetMode&, std::string_view);
 
+std::string respell_option_message(const std::string& message, const OptionNames& names) {
+  const std::size_t end = message.find_first_of(" :");
+  if (end == std::string::npos) return message;
+  const auto it = names.find(message.substr(0, end));
+  return it != names.end() ? it->second + message.substr(end) : message;
+}
+
 }  // namespace neomesh

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -99,6 +100,28 @@ const OptionTable<AdaptOptions>& task_option_table<AdaptOptions>();
 inline constexpr std::string_view kSizeFieldGroup = "Size field (exactly one)";
 inline constexpr std::string_view kPicardGroup = "Picard iteration (thesis §6)";
 inline constexpr std::string_view kTimeGroup = "A geometry that moves, and fitting the mesh to it";
+
+// An OptionError's message begins with the option's path ("solver.advanced.eta must be ..."),
+// which the command line and Python spell their own way. The paths whose errors the library
+// reports — the ranged options and the fields of the parts ("boundary.shapes"; not "sizes" or
+// "untangle", which begin other messages too) — of smooth and adapt, each with `name(spec)`;
+// a spec whose name is empty is left out.
+using OptionNames = std::map<std::string, std::string, std::less<>>;
+template <typename Name>
+OptionNames reported_option_names(Name name) {
+  OptionNames names;
+  const auto add = [&](const auto& table) {
+    for (const auto& spec : table)
+      if (!spec.range.text.empty() || spec.path.find('.') != std::string_view::npos)
+        if (std::string spelled = name(spec); !spelled.empty())
+          names.emplace(spec.path, std::move(spelled));
+  };
+  add(smooth_option_table());
+  add(adapt_option_table());
+  return names;
+}
+// `message` with the path it begins with spelled as `names` spells it (unchanged for another).
+std::string respell_option_message(const std::string& message, const OptionNames& names);
 
 // Throws OptionError for the first field of `table` out of its range.
 template <typename S>

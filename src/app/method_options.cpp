@@ -156,24 +156,12 @@ template std::string options_markdown<SmoothOptions>();
 template std::string options_markdown<AdaptOptions>();
 
 std::string cli_message(const std::string& message) {
-  static const std::map<std::string, std::string, std::less<>> kFlags = [] {
-    // The options whose errors the library reports: the ranged ones, and the fields of the
-    // parts ("boundary.shapes"); not "sizes" or "untangle", which begin other messages too.
-    std::map<std::string, std::string, std::less<>> flags = {{"fit", "--fit"}};
-    const auto add = [&flags](const auto& table) {
-      for (const auto& spec : table)
-        if (!spec.flag.empty() &&
-            (!spec.range.text.empty() || spec.path.find('.') != std::string_view::npos))
-          flags.emplace(spec.path, spec.flag);
-    };
-    add(smooth_option_table());
-    add(adapt_option_table());
+  static const OptionNames kFlags = [] {
+    OptionNames flags = {{"fit", "--fit"}};
+    flags.merge(reported_option_names([](const auto& spec) { return std::string(spec.flag); }));
     return flags;
   }();
-  const std::size_t end = message.find_first_of(" :");
-  if (end == std::string::npos) return message;
-  const auto it = kFlags.find(message.substr(0, end));
-  return it != kFlags.end() ? it->second + message.substr(end) : message;
+  return respell_option_message(message, kFlags);
 }
 
 }  // namespace neomesh::app
