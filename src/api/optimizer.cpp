@@ -301,7 +301,7 @@ RepairFreedom Optimizer::Impl::repair_freedom() const {
     dofs().global_to_local(x, local);
     const std::vector<double> sj = cell_scaled_jacobians(view(), local);
     for (const CellBlock& block : view().blocks) {
-      const bool right_angled = !is_simplex(block.type) && block.type != CellType::Wedge;
+      const bool right_angled = right_angled_target(block.type);
       for (PetscInt c = block.first_cell; c < block.first_cell + block.size(); ++c) {
         const bool held =
             input_share[c] > 0.0 &&

@@ -186,11 +186,11 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
     // log σ_max of the kept shape: a = σ_max^d is the isotropic cell spanning the longest edge
     // over the cell's volume.
     double log_longest = w * input[c]->log_stretches[Dim - 1];
-    if (kept == KeptInput::All || is_simplex(types[c]) || types[c] == CellType::Wedge)
-      S = input[c]->kept_shape(w);
-    else
+    if (kept == KeptInput::Coherent && right_angled_target(types[c]))
       std::tie(S, log_longest) =
           metric_shape<Dim>(right_angled_metric<Dim>(types[c], input[c]->S), w);
+    else
+      S = input[c]->kept_shape(w);
     t.volumes[c] = std::exp(w * std::log(cell_volumes[c]) + (1.0 - w) * std::log(t.volumes[c]));
     t.weights[c] = std::exp(w * std::log(stiffness[c]) + Dim * log_longest);
   }

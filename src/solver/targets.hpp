@@ -71,6 +71,12 @@ struct CellTargets {
   std::vector<double> kept;     // per local cell: the share w of the input cell kept
 };
 
+// Whether a kept cell of this type aims at the right-angled cell of its proportions (quad,
+// hexahedron, pyramid); simplices and wedges keep their input shape (see above).
+inline bool right_angled_target(CellType type) {
+  return !is_simplex(type) && type != CellType::Wedge;
+}
+
 // Ideal targets of the given volumes.
 CellTargets ideal_targets(std::vector<double> volumes);
 
