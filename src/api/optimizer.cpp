@@ -251,17 +251,12 @@ void Optimizer::Impl::repair_worst(Result& result) {
                               .sweeps = r.sweeps};
 }
 
-double Optimizer::Impl::mean_scaled_jacobian(Vec y) {
-  mesh.plex().set_coordinates(y);
-  return mesh.quality().scaled_jacobian.mean;
-}
-
 void Optimizer::Impl::guard_mean_quality(Vec input, Result& result, bool repair) {
   QualityGuardResult& guard = *result.quality_guard;
   // The input as the run starts from it: vertices placed on their charts (FEAT3's unit-axe-tria:
   // the placement alone takes its mean from 0.816 to 0.647).
-  guard.input_mean = mean_scaled_jacobian(input);
-  guard.mean_optimum = mean_scaled_jacobian(x);
+  guard.input_mean = mean_scaled_jacobian(view(), dofs(), input);
+  guard.mean_optimum = mean_scaled_jacobian(view(), dofs(), x);
   if (guard.mean_optimum >= guard.input_mean - QualityGuardResult::kMeanSlack) return;
   const OwnedVec optimum = copy_of(x);
   const std::optional<WorstCellRepairSummary> optimum_repair = result.worst_cell_repair;
@@ -271,7 +266,7 @@ void Optimizer::Impl::guard_mean_quality(Vec input, Result& result, bool repair)
   // The repair moves vertices for the worst cells' sake and can lower the mean in turn: below
   // the optimum's, the optimum was the better trade (Mesquite's cube-clip-5, a tetrahedron of
   // scaled Jacobian 3e-4: the optimum 0.283 / 0.588, the repaired input 0.308 / 0.568).
-  if (mean_scaled_jacobian(x) < guard.mean_optimum) {
+  if (mean_scaled_jacobian(view(), dofs(), x) < guard.mean_optimum) {
     NM_PETSC(VecCopy(optimum, x));
     result.worst_cell_repair = optimum_repair;
   } else {

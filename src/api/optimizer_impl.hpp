@@ -79,8 +79,6 @@ struct Optimizer::Impl {
   // (with `repair`, its worst cells repaired), unless the repaired input's mean is below the
   // optimum's: then x stays the optimum.
   void guard_mean_quality(Vec input, Result& result, bool repair);
-  // The mean scaled Jacobian of the mesh at y (the mesh's coordinates become y). Collective.
-  double mean_scaled_jacobian(Vec y);
   // The local repair of x's worst cells (worst_cell_repair.hpp), recorded in `result`.
   void repair_worst(Result& result);
   // Q = actual / desired volume at x.

@@ -1,6 +1,7 @@
 #include "solver/quality_guard.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 
 #include "geometry/quality.hpp"
@@ -90,6 +91,15 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
   NM_PETSC(VecSum(ever_marked, &moved_dofs));
   result.vertices_moved = static_cast<PetscInt>(moved_dofs) / d;
   return result;
+}
+
+double mean_scaled_jacobian(const MeshView& view, const DofMap& dofs, Vec x) {
+  double sum = 0.0;
+  for (double q : scaled_jacobians(view, dofs, x)) sum += q;
+  std::int64_t cells = view.num_cells;
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, dofs.comm());
+  MPI_Allreduce(MPI_IN_PLACE, &cells, 1, MPI_INT64_T, MPI_SUM, dofs.comm());
+  return cells > 0 ? sum / static_cast<double>(cells) : 0.0;
 }
 
 }  // namespace neomesh
