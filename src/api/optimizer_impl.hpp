@@ -74,11 +74,12 @@ struct Optimizer::Impl {
   // worst or `ceiling`, whichever is lower (quality_guard.hpp; `input`: x where the call started).
   void protect_worst_cells(Vec input, const QuasiNewtonOptions& method, const Observer& observer,
                            Result& result, bool repair = false, double ceiling = 1.0);
-  // Smoothing's promise on the mean scaled Jacobian, after protect_worst_cells(): where x's mean
-  // is below the input's by more than QualityGuardResult::kMeanSlack, x becomes `input` again
-  // (with `repair`, its worst cells repaired), unless the repaired input's mean is below the
-  // optimum's: then x stays the optimum.
-  void guard_mean_quality(Vec input, Result& result, bool repair);
+  // Smoothing's promise on the mean scaled Jacobian, on the optimum and again after
+  // protect_worst_cells(): where x's mean is below the input's by more than
+  // QualityGuardResult::kMeanSlack, x becomes `input` again (with `repair`, its worst cells
+  // repaired), unless the repaired input's mean is below the optimum's: then x stays the
+  // optimum. Returns whether x is the input.
+  bool guard_mean_quality(Vec input, Result& result, bool repair);
   // The local repair of x's worst cells (worst_cell_repair.hpp), recorded in `result`.
   void repair_worst(Result& result);
   // Q = actual / desired volume at x.

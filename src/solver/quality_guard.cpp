@@ -37,7 +37,7 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
                                        const std::function<void(Vec)>& project,
                                        std::optional<double> threshold) {
   QualityGuardResult result;
-  result.input_min = global_min(scaled_jacobians(view, dofs, input), dofs.comm());
+  result.input_min = min_scaled_jacobian(view, dofs, input);
   if (threshold) result.input_min = std::min(result.input_min, *threshold);
   const OwnedVec optimum = copy_of(x);  // x as the method left it, to count what moved
   OwnedVec marked = dofs.create_global_vector(), ever_marked = dofs.create_global_vector();
@@ -85,12 +85,16 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
       for (PetscInt i = 0; i < xv.size(); ++i)
         if (xv[i] != x0[i]) ever[i] = 1.0;
     }
-    result.min_after = global_min(scaled_jacobians(view, dofs, x), dofs.comm());
+    result.min_after = min_scaled_jacobian(view, dofs, x);
   }
   double moved_dofs = 0.0;
   NM_PETSC(VecSum(ever_marked, &moved_dofs));
   result.vertices_moved = static_cast<PetscInt>(moved_dofs) / d;
   return result;
+}
+
+double min_scaled_jacobian(const MeshView& view, const DofMap& dofs, Vec x) {
+  return global_min(scaled_jacobians(view, dofs, x), dofs.comm());
 }
 
 double mean_scaled_jacobian(const MeshView& view, const DofMap& dofs, Vec x) {

@@ -31,6 +31,9 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
                                        const std::function<void(Vec)>& project = {},
                                        std::optional<double> threshold = {});
 
+// The min scaled Jacobian at x (a global coordinate Vec laid out by `dofs`). Collective.
+double min_scaled_jacobian(const MeshView& view, const DofMap& dofs, Vec x);
+
 // The mean scaled Jacobian at x (a global coordinate Vec laid out by `dofs`), as
 // Mesh::quality() reports it, without moving the mesh there. Collective.
 double mean_scaled_jacobian(const MeshView& view, const DofMap& dofs, Vec x);
