@@ -308,7 +308,7 @@ RepairFreedom Optimizer::Impl::repair_freedom() const {
       const bool right_angled = right_angled_target(block.type);
       for (PetscInt c = block.first_cell; c < block.first_cell + block.size(); ++c) {
         const bool held =
-            input_share[c] > 0.0 &&
+            input_share[c] >= kHeldInputShare &&
             (right_angled ? std::min(input_sj[c], sj[c]) >= kKeptRightAngledMinScaledJacobian
                           : input_sj[c] >= kKeptCellMinScaledJacobian);
         if (held)

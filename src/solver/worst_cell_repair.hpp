@@ -40,6 +40,9 @@ inline constexpr int kRepairMaxSweeps = 100;
 // pyramid, whose target is right-angled, if the input cell and the optimum's are at least
 // kKeptRightAngledMinScaledJacobian.
 inline constexpr double kKeptCellMinScaledJacobian = 0.5;
+// ... and if its target keeps at least this share of the input cell: a cell kept in part is a
+// transition between a design and the ideal, no design of its own.
+inline constexpr double kHeldInputShare = 0.5;
 inline constexpr double kKeptRightAngledMinScaledJacobian = 0.9;
 
 // How each local vertex may move.
