@@ -136,7 +136,7 @@ struct QualityGuardResult {
   // their charts), and of the optimized mesh after the worst cells' guard. Where the optimum's
   // mean is below the input's by more than kMeanSlack (a mesh its author optimized by another
   // measure), the input is returned instead (its worst cells repaired with
-  // SmoothOptions::repair_worst_cells) — unless the repair lowers its mean below the optimum's.
+  // SmoothOptions::repair_worst_cells, within kMeanSlack of the input's mean).
   double input_mean = 0.0;
   double mean_optimum = 0.0;
   bool input_returned = false;

@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <limits>
 #include <utility>
 
 #include "adapt/picard.hpp"
@@ -232,7 +233,15 @@ void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& m
                                           const Observer& observer, Result& result, bool repair,
                                           double ceiling) {
   lift_corners(method, observer, result);
-  if (repair && result.reason != StopReason::TimeLimit) repair_worst(result);
+  if (repair && result.reason != StopReason::TimeLimit) {
+    // The repair keeps the mean promise where the optimum still keeps it; below it, the mean
+    // guard returns the input anyway (guard_mean_quality).
+    const double floor =
+        mean_scaled_jacobian(view(), dofs(), input) - QualityGuardResult::kMeanSlack;
+    repair_worst(result, mean_scaled_jacobian(view(), dofs(), x) >= floor
+                             ? floor
+                             : -std::numeric_limits<double>::infinity());
+  }
   // The threshold is the file's worst cell, or where placing vertices on their charts left it
   // (at most the ceiling).
   result.quality_guard = guard_worst_quality(
@@ -243,45 +252,29 @@ void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& m
   if (result.quality_guard->vertices_moved > 0) result.final_energy = functional->value(x);
 }
 
-void Optimizer::Impl::repair_worst(Result& result) {
-  const WorstCellRepair r = repair_worst_cells(view(), dofs(), repair_freedom(), x);
+void Optimizer::Impl::repair_worst(Result& result, double min_mean) {
+  const WorstCellRepair r = repair_worst_cells(view(), dofs(), repair_freedom(), x, min_mean);
   result.worst_cell_repair = {.min_scaled_jacobian_before = r.min_before,
                               .min_scaled_jacobian_after = r.min_after,
                               .vertices_moved = r.vertices_moved,
                               .sweeps = r.sweeps};
 }
 
-bool Optimizer::Impl::guard_mean_quality(Vec input, Result& result, bool repair) {
-  if (!result.quality_guard) {  // before protect_worst_cells(): its threshold, nothing moved
-    QualityGuardResult first;
-    first.input_min = std::min(min_scaled_jacobian(view(), dofs(), input),
-                               result.quality_before.scaled_jacobian.min);
-    first.min_before = first.min_after = min_scaled_jacobian(view(), dofs(), x);
-    result.quality_guard = first;
-  }
+void Optimizer::Impl::guard_mean_quality(Vec input, Result& result, bool repair) {
   QualityGuardResult& guard = *result.quality_guard;
   // The input as the run starts from it: vertices placed on their charts (FEAT3's unit-axe-tria:
   // the placement alone takes its mean from 0.816 to 0.647).
   guard.input_mean = mean_scaled_jacobian(view(), dofs(), input);
   guard.mean_optimum = mean_scaled_jacobian(view(), dofs(), x);
-  if (guard.mean_optimum >= guard.input_mean - QualityGuardResult::kMeanSlack) return false;
-  const OwnedVec optimum = copy_of(x);
-  const std::optional<WorstCellRepairSummary> optimum_repair = result.worst_cell_repair;
+  if (guard.mean_optimum >= guard.input_mean - QualityGuardResult::kMeanSlack) return;
   NM_PETSC(VecCopy(input, x));
   mesh.plex().set_coordinates(x);  // what the repair judges the input cells by
-  if (repair && result.reason != StopReason::TimeLimit) repair_worst(result);
-  // The repair moves vertices for the worst cells' sake and can lower the mean in turn: below
-  // the optimum's, the optimum was the better trade (Mesquite's cube-clip-5, a tetrahedron of
-  // scaled Jacobian 3e-4: the optimum 0.283 / 0.588, the repaired input 0.308 / 0.568).
-  if (mean_scaled_jacobian(view(), dofs(), x) < guard.mean_optimum) {
-    NM_PETSC(VecCopy(optimum, x));
-    result.worst_cell_repair = optimum_repair;
-    return false;
-  }
+  // Within the slack of the input's mean, so above the optimum's.
+  if (repair && result.reason != StopReason::TimeLimit)
+    repair_worst(result, guard.input_mean - QualityGuardResult::kMeanSlack);
   guard.input_returned = true;
   guard.min_after = min_scaled_jacobian(view(), dofs(), x);
   result.final_energy = functional->value(x);
-  return true;
 }
 
 RepairFreedom Optimizer::Impl::repair_freedom() const {
@@ -429,13 +422,9 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   if (options.untangle) result.untangling = r.untangle(method, observer);
   static_cast<SolverRun&>(result) =
       minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
-  // The mean is judged on the optimum first: where the input is returned, the corner phase and
-  // the guard's rounds on the optimum would be time lost (a twisted graded block of 27,000
-  // hexahedra: 34 rounds); and again once they have moved it.
-  const bool repair = options.repair_worst_cells;
-  if (options.quality_guard && !(!tangled && r.guard_mean_quality(input, result, repair))) {
-    r.protect_worst_cells(input, method, observer, result, repair);
-    if (!tangled) r.guard_mean_quality(input, result, repair);
+  if (options.quality_guard) {
+    r.protect_worst_cells(input, method, observer, result, options.repair_worst_cells);
+    if (!tangled) r.guard_mean_quality(input, result, options.repair_worst_cells);
   }
   r.finish(result);
   result.seconds = MPI_Wtime() - r.started;

@@ -127,13 +127,14 @@ std::vector<std::vector<double>> directions(int dim) {
 // The search on rank 0. Returns the indices of the moved vertices.
 class Repair {
  public:
-  Repair(WholeMesh& m, const RepairFreedom& freedom)
+  Repair(WholeMesh& m, const RepairFreedom& freedom, double min_mean)
       : m_(m),
         project_(freedom.project),
         star_first_(m.vertex_id.size() + 1, 0),
         star_(m.vertices.size()),
         sj_(m.types.size()),
         start_(m.coords) {
+    min_sum_ = min_mean * static_cast<double>(m.types.size());
     for (std::int64_t v : m.vertices) ++star_first_[v + 1];
     std::partial_sum(star_first_.begin(), star_first_.end(), star_first_.begin());
     std::vector<std::int64_t> next(star_first_.begin(), star_first_.end() - 1);
@@ -142,6 +143,7 @@ class Repair {
         star_[next[m.vertices[k]]++] = static_cast<std::int64_t>(c);
       const auto x = cell_coords(c);
       sj_[c] = cell_scaled_jacobian(m.types[c], x.data());
+      sum_ += sj_[c];
       max_edge_ratio_ = std::max(max_edge_ratio_, cell_edge_ratio(m.types[c], x.data()));
     }
   }
@@ -153,11 +155,13 @@ class Repair {
   // What a sweep changes, to undo one.
   struct Snapshot {
     std::vector<double> coords, sj;
+    double sum;
   };
-  Snapshot snapshot() const { return {m_.coords, sj_}; }
+  Snapshot snapshot() const { return {m_.coords, sj_, sum_}; }
   void restore(Snapshot s) {
     m_.coords = std::move(s.coords);
     sj_ = std::move(s.sj);
+    sum_ = s.sum;
   }
 
   // One sweep over the worst cells' neighbourhood; false if no vertex moved.
@@ -229,17 +233,22 @@ class Repair {
     return std::sqrt(s);
   }
 
-  // The worst scaled Jacobian of v's cells, or -infinity if v came too close to one of their
-  // vertices.
-  double worst_around(std::int64_t v) const {
-    double q = kInfinity;
+  // The worst scaled Jacobian of v's cells and their sum; the worst is -infinity if v came too
+  // close to one of their vertices.
+  struct Star {
+    double worst = kInfinity, sum = 0.0;
+  };
+  Star around(std::int64_t v) const {
+    Star q;
     for (std::int64_t c : star(v)) {
       for (std::int64_t u : cell_vertices(c))
         if (u != v && !(distance(m_.coords, u, v) >= kMinDistanceFraction * distance(start_, u, v)))
-          return -kInfinity;
+          return {-kInfinity, 0.0};
       const auto x = cell_coords(c);  // once for both measures: this is the search's inner loop
-      if (!(cell_edge_ratio(m_.types[c], x.data()) <= max_edge_ratio_)) return -kInfinity;
-      q = std::min(q, cell_scaled_jacobian(m_.types[c], x.data()));
+      if (!(cell_edge_ratio(m_.types[c], x.data()) <= max_edge_ratio_)) return {-kInfinity, 0.0};
+      const double sj = cell_scaled_jacobian(m_.types[c], x.data());
+      q.worst = std::min(q.worst, sj);
+      q.sum += sj;
     }
     return q;
   }
@@ -253,16 +262,19 @@ class Repair {
       for (std::int64_t u : cell_vertices(c))
         if (u != v) h = std::min(h, distance(m_.coords, u, v));
     if (!(h > 0.0) || !std::isfinite(h)) return false;
-    const double base = worst_around(v);
-    double best = base;
+    double base_sum = 0.0;
+    for (std::int64_t c : star(v)) base_sum += sj_[c];
+    double best = around(v).worst;
     std::vector<double> best_move, by(d);
     for (double step : kSteps) {
       for (const std::vector<double>& dir : dirs_) {
         for (int a = 0; a < d; ++a) by[a] = step * h * dir[a];
         move(v, from, by);
-        const double q = worst_around(v);
-        if (q > best + kGain) {
-          best = q;
+        const Star q = around(v);
+        // A move that lowers the mean may not take it below the floor.
+        const bool affordable = q.sum >= base_sum || sum_ - base_sum + q.sum >= min_sum_;
+        if (q.worst > best + kGain && affordable) {
+          best = q.worst;
           best_move = by;
         }
       }
@@ -273,7 +285,11 @@ class Repair {
       return false;
     }
     move(v, from, best_move);
-    for (std::int64_t c : star(v)) sj_[c] = scaled_jacobian(c);
+    for (std::int64_t c : star(v)) {
+      sum_ -= sj_[c];
+      sj_[c] = scaled_jacobian(c);
+      sum_ += sj_[c];
+    }
     return true;
   }
 
@@ -282,6 +298,8 @@ class Repair {
   std::vector<std::int64_t> star_first_,
       star_;                         // the cells of vertex v: star_[first[v], first[v+1])
   std::vector<double> sj_;           // per cell
+  double sum_ = 0.0;                 // of sj_
+  double min_sum_ = 0.0;             // the floor of sum_ for a move that lowers it
   double max_edge_ratio_ = 0.0;      // the mesh's largest at the repair's start
   const std::vector<double> start_;  // the coordinates at the repair's start
   std::vector<std::vector<double>> dirs_ = directions(m_.dim);
@@ -290,7 +308,7 @@ class Repair {
 }  // namespace
 
 WorstCellRepair repair_worst_cells(const MeshView& view, const DofMap& dofs,
-                                   const RepairFreedom& freedom, Vec x) {
+                                   const RepairFreedom& freedom, Vec x, double min_mean) {
   const MPI_Comm comm = dofs.comm();
   const int d = view.dim;
   std::vector<double> local(dofs.num_local_dofs());
@@ -301,7 +319,7 @@ WorstCellRepair repair_worst_cells(const MeshView& view, const DofMap& dofs,
   std::vector<std::int64_t> moved_ids;
   std::vector<double> moved_coords;
   if (mpi_rank(comm) == 0) {
-    Repair repair(mesh, freedom);
+    Repair repair(mesh, freedom, min_mean);
     summary.min_before = repair.min_quality();
     std::set<std::int64_t> moved;
     // Until a sweep no longer lifts the worst cell (moves elsewhere may go on improving a
