@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -233,24 +234,32 @@ class Repair {
     return std::sqrt(s);
   }
 
-  // The worst scaled Jacobian of v's cells and their sum; the worst is -infinity if v came too
-  // close to one of their vertices.
+  // The worst scaled Jacobian of v's cells and their sum; nothing as soon as one of them is at
+  // most `beat` (the search's inner loop: the test that fails most, first).
   struct Star {
     double worst = kInfinity, sum = 0.0;
   };
-  Star around(std::int64_t v) const {
+  std::optional<Star> around(std::int64_t v, double beat) const {
     Star q;
     for (std::int64_t c : star(v)) {
-      for (std::int64_t u : cell_vertices(c))
-        if (u != v && !(distance(m_.coords, u, v) >= kMinDistanceFraction * distance(start_, u, v)))
-          return {-kInfinity, 0.0};
-      const auto x = cell_coords(c);  // once for both measures: this is the search's inner loop
-      if (!(cell_edge_ratio(m_.types[c], x.data()) <= max_edge_ratio_)) return {-kInfinity, 0.0};
-      const double sj = cell_scaled_jacobian(m_.types[c], x.data());
+      const double sj = scaled_jacobian(c);
+      if (!(sj > beat)) return std::nullopt;
       q.worst = std::min(q.worst, sj);
       q.sum += sj;
     }
     return q;
+  }
+
+  // Whether v is at least kMinDistanceFraction of its distance at the repair's start from each
+  // vertex of its cells, and their edge ratios at most the mesh's largest at the start.
+  bool admissible(std::int64_t v) const {
+    for (std::int64_t c : star(v)) {
+      for (std::int64_t u : cell_vertices(c))
+        if (u != v && !(distance(m_.coords, u, v) >= kMinDistanceFraction * distance(start_, u, v)))
+          return false;
+      if (!(cell_edge_ratio(m_.types[c], cell_coords(c).data()) <= max_edge_ratio_)) return false;
+    }
+    return true;
   }
 
   // Moves v to the best of the trial points if that raises the worst cell around it.
@@ -264,19 +273,18 @@ class Repair {
     if (!(h > 0.0) || !std::isfinite(h)) return false;
     double base_sum = 0.0;
     for (std::int64_t c : star(v)) base_sum += sj_[c];
-    double best = around(v).worst;
+    double best = admissible(v) ? around(v, -kInfinity)->worst : -kInfinity;
     std::vector<double> best_move, by(d);
     for (double step : kSteps) {
       for (const std::vector<double>& dir : dirs_) {
         for (int a = 0; a < d; ++a) by[a] = step * h * dir[a];
         move(v, from, by);
-        const Star q = around(v);
+        const std::optional<Star> q = around(v, best + kGain);
         // A move that lowers the mean may not take it below the floor.
-        const bool affordable = q.sum >= base_sum || sum_ - base_sum + q.sum >= min_sum_;
-        if (q.worst > best + kGain && affordable) {
-          best = q.worst;
-          best_move = by;
-        }
+        if (!q || !(q->sum >= base_sum || sum_ - base_sum + q->sum >= min_sum_) || !admissible(v))
+          continue;
+        best = q->worst;
+        best_move = by;
       }
       if (!best_move.empty()) break;
     }
