@@ -149,7 +149,6 @@ struct Boundary::Impl {
   Impl(const MeshView& v, const DofMap& d, const BoundaryOptions& o)
       : view(v), dofs(d), options(o), surface(*v.boundary) {
     fixed.assign(static_cast<std::size_t>(view.num_vertices) * view.dim, 0);
-    fix_vertices_of_no_cell();
     if (options.mode == BoundaryMode::Fixed) {
       for (PetscInt u = 0; u < view.num_vertices; ++u)
         if (view.on_boundary[u]) std::fill_n(fixed.begin() + u * view.dim, view.dim, 1);
@@ -165,18 +164,6 @@ struct Boundary::Impl {
     summary.surface_vertices = features.count(VertexFeature::Surface);
     summary.patches = features.num_patches;
     summary.ridges = static_cast<int>(features.ridge_edges.size());
-  }
-
-  // A file's vertex that no cell uses (Gmsh writes the nodes of every curve of an extrusion with
-  // rotation, not all of them the volume's) has no energy: free, its rows of the matrices would
-  // be empty, and hypre's eigenvalue estimate loops forever on them.
-  void fix_vertices_of_no_cell() {
-    std::vector<std::uint8_t> used(view.num_vertices, 0);
-    for (const CellBlock& block : view.blocks)
-      for (PetscInt c = 0; c < block.size(); ++c)
-        for (int i = 0; i < num_vertices(block.type); ++i) used[block.cell(c)[i]] = 1;
-    for (PetscInt u = 0; u < view.num_vertices; ++u)
-      if (!used[u]) std::fill_n(fixed.begin() + u * view.dim, view.dim, 1);
   }
 
   std::string part_name(int part) const {

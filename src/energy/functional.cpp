@@ -407,6 +407,15 @@ Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOpt
   for (const CellBlock& block : view.blocks)
     if (dimension(block.type) != view.dim)
       fail("Functional: {} cells in a {}D mesh", name(block.type), view.dim);
+  // A file's vertex that no cell uses (Gmsh writes the nodes of every curve of an extrusion with
+  // rotation, not all of them the volume's) has no energy: free, its rows of the matrices would
+  // be empty, and hypre's eigenvalue estimate loops forever on them. It stays.
+  std::vector<std::uint8_t> used(view.num_vertices, 0);
+  for (const CellBlock& block : view.blocks)
+    for (PetscInt c = 0; c < block.size(); ++c)
+      for (int i = 0; i < num_vertices(block.type); ++i) used[block.cell(c)[i]] = 1;
+  for (PetscInt u = 0; u < view.num_vertices; ++u)
+    if (!used[u]) std::fill_n(impl_->fixed.begin() + u * view.dim, view.dim, 1);
   impl_->local_x.resize(static_cast<std::size_t>(dofs.num_local_dofs()));
   impl_->projector_of.assign(view.num_vertices, -1);
   for (std::size_t i = 0; i < impl_->sliding.vertices.size(); ++i)
