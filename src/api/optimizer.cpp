@@ -230,18 +230,15 @@ void Optimizer::Impl::lift_corners(const QuasiNewtonOptions& method, const Obser
 }
 
 void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& method,
-                                          const Observer& observer, Result& result, bool repair,
-                                          double ceiling) {
+                                          const Observer& observer, Result& result,
+                                          std::optional<double> repair_floor, double ceiling) {
   lift_corners(method, observer, result);
-  if (repair && result.reason != StopReason::TimeLimit) {
-    // The repair keeps the mean promise where the optimum still keeps it; below it, the mean
-    // guard returns the input anyway (guard_mean_quality).
-    const double floor =
-        mean_scaled_jacobian(view(), dofs(), input) - QualityGuardResult::kMeanSlack;
-    repair_worst(result, mean_scaled_jacobian(view(), dofs(), x) >= floor
-                             ? floor
+  // The floor binds where the optimum is above it; below it, the mean guard returns the input
+  // anyway (guard_mean_quality).
+  if (repair_floor && result.reason != StopReason::TimeLimit)
+    repair_worst(result, mean_scaled_jacobian(view(), dofs(), x) >= *repair_floor
+                             ? *repair_floor
                              : -std::numeric_limits<double>::infinity());
-  }
   // The threshold is the file's worst cell, or where placing vertices on their charts left it
   // (at most the ceiling).
   result.quality_guard = guard_worst_quality(
@@ -260,18 +257,17 @@ void Optimizer::Impl::repair_worst(Result& result, double min_mean) {
                               .sweeps = r.sweeps};
 }
 
-void Optimizer::Impl::guard_mean_quality(Vec input, Result& result, bool repair) {
+void Optimizer::Impl::guard_mean_quality(Vec input, double input_mean, Result& result,
+                                         bool repair) {
   QualityGuardResult& guard = *result.quality_guard;
-  // The input as the run starts from it: vertices placed on their charts (FEAT3's unit-axe-tria:
-  // the placement alone takes its mean from 0.816 to 0.647).
-  guard.input_mean = mean_scaled_jacobian(view(), dofs(), input);
+  guard.input_mean = input_mean;
   guard.mean_optimum = mean_scaled_jacobian(view(), dofs(), x);
-  if (guard.mean_optimum >= guard.input_mean - QualityGuardResult::kMeanSlack) return;
+  const double floor = input_mean - QualityGuardResult::kMeanSlack;
+  if (guard.mean_optimum >= floor) return;
   NM_PETSC(VecCopy(input, x));
   mesh.plex().set_coordinates(x);  // what the repair judges the input cells by
   // Within the slack of the input's mean, so above the optimum's.
-  if (repair && result.reason != StopReason::TimeLimit)
-    repair_worst(result, guard.input_mean - QualityGuardResult::kMeanSlack);
+  if (repair && result.reason != StopReason::TimeLimit) repair_worst(result, floor);
   guard.input_returned = true;
   guard.min_after = min_scaled_jacobian(view(), dofs(), x);
   result.final_energy = functional->value(x);
@@ -423,8 +419,15 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   static_cast<SolverRun&>(result) =
       minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
   if (options.quality_guard) {
-    r.protect_worst_cells(input, method, observer, result, options.repair_worst_cells);
-    if (!tangled) r.guard_mean_quality(input, result, options.repair_worst_cells);
+    // The input as the run starts from it: vertices placed on their charts (FEAT3's
+    // unit-axe-tria: the placement alone takes its mean from 0.816 to 0.647). The repair spends
+    // no more of its mean than the promise allows.
+    const double input_mean = mean_scaled_jacobian(r.view(), r.dofs(), input);
+    const bool repair = options.repair_worst_cells;
+    r.protect_worst_cells(
+        input, method, observer, result,
+        repair ? std::optional(input_mean - QualityGuardResult::kMeanSlack) : std::nullopt);
+    if (!tangled) r.guard_mean_quality(input, input_mean, result, repair);
   }
   r.finish(result);
   result.seconds = MPI_Wtime() - r.started;
@@ -443,7 +446,7 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
   if (options.quality_guard && field.anisotropic())
     r.lift_corners(r.method(options.solver), observer, result);
   else if (options.quality_guard)
-    r.protect_worst_cells(input, r.method(options.solver), observer, result, false,
+    r.protect_worst_cells(input, r.method(options.solver), observer, result, std::nullopt,
                           AdaptOptions::kGuardCeiling);
   r.finish(result);
   result.volume_ratio = r.volume_ratio();

@@ -69,17 +69,21 @@ struct Optimizer::Impl {
            const PicardOptions& last_stage, const Observer& observer, Result& result);
   // Once the method has stopped: corners it left nearly flat are lifted (worst_cells.hpp).
   void lift_corners(const QuasiNewtonOptions& method, const Observer& observer, Result& result);
-  // The worst cells once the method has stopped (smooth, adapt): lift_corners(), with `repair` the
-  // worst cells are repaired locally (worst_cell_repair.hpp), then no cell stays below the input's
-  // worst or `ceiling`, whichever is lower (quality_guard.hpp; `input`: x where the call started).
+  // The worst cells once the method has stopped (smooth, adapt): lift_corners(), with
+  // `repair_floor` the worst cells are repaired locally (worst_cell_repair.hpp; no move takes the
+  // mean scaled Jacobian below the floor while x's is above it), then no cell stays below the
+  // input's worst or `ceiling`, whichever is lower (quality_guard.hpp; `input`: x where the call
+  // started).
   void protect_worst_cells(Vec input, const QuasiNewtonOptions& method, const Observer& observer,
-                           Result& result, bool repair = false, double ceiling = 1.0);
+                           Result& result, std::optional<double> repair_floor = {},
+                           double ceiling = 1.0);
   // Smoothing's promise on the mean scaled Jacobian, after protect_worst_cells(): where x's mean
-  // is below the input's by more than QualityGuardResult::kMeanSlack, x becomes `input` again
+  // is below `input`'s (`input_mean`) by more than QualityGuardResult::kMeanSlack, x becomes
+  // `input` again
   // (with `repair`, its worst cells repaired, the mean kept within the slack). Judged after the
   // worst cells' phases, not before: they lift the optimum's mean back within the slack on some
   // meshes (FEAT3's flowbench_c3d_00_hexa_48: 0.825 instead of the input's 0.591).
-  void guard_mean_quality(Vec input, Result& result, bool repair);
+  void guard_mean_quality(Vec input, double input_mean, Result& result, bool repair);
   // The local repair of x's worst cells (worst_cell_repair.hpp), recorded in `result`; no move
   // takes the mean scaled Jacobian below `min_mean`.
   void repair_worst(Result& result, double min_mean);

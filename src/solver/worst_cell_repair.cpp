@@ -271,9 +271,9 @@ class Repair {
       for (std::int64_t u : cell_vertices(c))
         if (u != v) h = std::min(h, distance(m_.coords, u, v));
     if (!(h > 0.0) || !std::isfinite(h)) return false;
-    double base_sum = 0.0;
-    for (std::int64_t c : star(v)) base_sum += sj_[c];
-    double best = admissible(v) ? around(v, -kInfinity)->worst : -kInfinity;
+    Star base;  // where v is: its cells' scaled Jacobians are up to date
+    for (std::int64_t c : star(v)) base.worst = std::min(base.worst, sj_[c]), base.sum += sj_[c];
+    double best = admissible(v) ? base.worst : -kInfinity;
     std::vector<double> best_move, by(d);
     for (double step : kSteps) {
       for (const std::vector<double>& dir : dirs_) {
@@ -281,7 +281,7 @@ class Repair {
         move(v, from, by);
         const std::optional<Star> q = around(v, best + kGain);
         // A move that lowers the mean may not take it below the floor.
-        if (!q || !(q->sum >= base_sum || sum_ - base_sum + q->sum >= min_sum_) || !admissible(v))
+        if (!q || !(q->sum >= base.sum || sum_ - base.sum + q->sum >= min_sum_) || !admissible(v))
           continue;
         best = q->worst;
         best_move = by;
