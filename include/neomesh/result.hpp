@@ -153,6 +153,17 @@ struct CornerPhaseSummary {
   bool gave_up = false;  // lifting stalled with a cell inverted: the optimum was kept
 };
 
+// Smoothing once more, towards ideal cells (docs/method.md, "Worst cells"): the corner phase gave
+// up, so the cells kept from the input ask for a corner the mesh cannot open (Mesquite's
+// shashkov_quad, a grid sheared by an ALE step). The run from the input with ideal targets is
+// kept where its worst cell is better.
+struct IdealRetrySummary {
+  double min_scaled_jacobian_kept = 0.0;   // where the run with the smoothed targets ended
+  double min_scaled_jacobian_ideal = 0.0;  // where the run towards ideal cells ended
+  int iterations = 0;                      // of the run towards ideal cells
+  bool ideal_kept = false;
+};
+
 // The local repair of the worst cells after the optimization (docs/method.md, "Worst cells"):
 // interior vertices of the worst cells moved to raise the worst scaled Jacobian around them.
 struct WorstCellRepairSummary {
@@ -192,6 +203,7 @@ struct Result : SolverRun {
   double boundary_distance = 0.0, volume_change = 0.0;
   std::optional<UntanglingSummary> untangling;              // smooth, if cells were inverted
   std::optional<CornerPhaseSummary> corner_phase;           // smooth, if a corner had flattened
+  std::optional<IdealRetrySummary> ideal_retry;             // smooth, if the corner phase gave up
   std::optional<WorstCellRepairSummary> worst_cell_repair;  // unless the guard is off
   std::optional<QualityGuardResult> quality_guard;          // smooth, unless switched off
   std::vector<int> update_iterations;  // adapt: iterations after which volumes were updated

@@ -416,18 +416,48 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   // untangled output keeps it.
   const OwnedVec input = copy_of(r.x);
   if (options.untangle) result.untangling = r.untangle(method, observer);
-  static_cast<SolverRun&>(result) =
-      minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
-  if (options.quality_guard) {
-    // The input as the run starts from it: vertices placed on their charts (FEAT3's
-    // unit-axe-tria: the placement alone takes its mean from 0.816 to 0.647). The repair spends
-    // no more of its mean than the promise allows.
-    const double input_mean = mean_scaled_jacobian(r.view(), r.dofs(), input);
+  // The input as the run starts from it: vertices placed on their charts (FEAT3's
+  // unit-axe-tria: the placement alone takes its mean from 0.816 to 0.647).
+  const double input_mean = mean_scaled_jacobian(r.view(), r.dofs(), input);
+  // The minimization and the worst cells' phases into `run`.
+  const auto optimize = [&](Result& run) {
+    static_cast<SolverRun&>(run) =
+        minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
+    if (!options.quality_guard) return;
+    // The repair spends no more of the mean than the promise allows.
     const bool repair = options.repair_worst_cells;
     r.protect_worst_cells(
-        input, method, observer, result,
+        input, method, observer, run,
         repair ? std::optional(input_mean - QualityGuardResult::kMeanSlack) : std::nullopt);
-    if (!tangled) r.guard_mean_quality(input, input_mean, result, repair);
+    if (!tangled) r.guard_mean_quality(input, input_mean, run, repair);
+  };
+  optimize(result);
+  // Where the kept cells ask for a corner the mesh cannot open, towards ideal cells from the
+  // input too; the better worst cell wins, the design's on a tie.
+  if (result.corner_phase && result.corner_phase->gave_up && mode != TargetMode::Ideal &&
+      result.reason != StopReason::TimeLimit) {
+    const OwnedVec kept = copy_of(r.x);
+    NM_PETSC(VecCopy(input, r.x));
+    r.set_targets(r.smoothing_targets(TargetMode::Ideal, options.sizes));
+    Result ideal;
+    ideal.quality_before = result.quality_before;
+    optimize(ideal);
+    IdealRetrySummary& retry = result.ideal_retry.emplace();
+    retry.min_scaled_jacobian_kept = min_scaled_jacobian(r.view(), r.dofs(), kept);
+    retry.min_scaled_jacobian_ideal = min_scaled_jacobian(r.view(), r.dofs(), r.x);
+    retry.iterations = static_cast<int>(ideal.history.size());
+    retry.ideal_kept = retry.min_scaled_jacobian_ideal > retry.min_scaled_jacobian_kept;
+    result.history.insert(result.history.end(), ideal.history.begin(), ideal.history.end());
+    if (retry.ideal_kept) {
+      result.reason = ideal.reason;
+      result.final_energy = ideal.final_energy;
+      result.final_defect = ideal.final_defect;
+      result.worst_cell_repair = ideal.worst_cell_repair;
+      result.quality_guard = ideal.quality_guard;
+    } else {
+      NM_PETSC(VecCopy(kept, r.x));
+      r.set_targets(r.smoothing_targets(mode, options.sizes));
+    }
   }
   r.finish(result);
   result.seconds = MPI_Wtime() - r.started;

@@ -162,6 +162,15 @@ void print_corner_phase(const CornerPhaseSummary& phase) {
         phase.min_scaled_jacobian_before, phase.iterations, phase.min_scaled_jacobian_after);
 }
 
+// Whether smoothing towards ideal cells won, if the corner phase gave up (docs/method.md,
+// "Worst cells").
+void print_ideal_retry(const IdealRetrySummary& retry) {
+  say("worst cells: smoothed again from the input towards ideal cells ({} iterations): min scaled "
+      "Jacobian {:.4f} against {:.4f} with the cells kept from the input; the {} run is kept\n",
+      retry.iterations, retry.min_scaled_jacobian_ideal, retry.min_scaled_jacobian_kept,
+      retry.ideal_kept ? "ideal" : "first");
+}
+
 // What the local repair of the worst cells did, if it moved a vertex (docs/method.md, "Worst
 // cells").
 void print_worst_cell_repair(const WorstCellRepairSummary& repair) {
@@ -355,6 +364,7 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
   if (result.corner_phase) print_corner_phase(*result.corner_phase);
   if (result.worst_cell_repair) print_worst_cell_repair(*result.worst_cell_repair);
   if (result.quality_guard) print_quality_guard(*result.quality_guard);
+  if (result.ideal_retry) print_ideal_retry(*result.ideal_retry);
   always("stopped after {} iterations: {}\nF {:.6g} -> {:.6g}, Newton defect {:.3e} -> {:.3e}\n",
          result.history.size(), describe(result.reason), result.initial_energy, result.final_energy,
          result.initial_defect, result.final_defect);

@@ -148,6 +148,13 @@ nlohmann::json to_json(const CornerPhaseSummary& phase) {
           {"gave_up", phase.gave_up}};
 }
 
+nlohmann::json to_json(const IdealRetrySummary& retry) {
+  return {{"min_scaled_jacobian_kept", retry.min_scaled_jacobian_kept},
+          {"min_scaled_jacobian_ideal", retry.min_scaled_jacobian_ideal},
+          {"iterations", retry.iterations},
+          {"ideal_kept", retry.ideal_kept}};
+}
+
 nlohmann::json to_json(const QualityGuardResult& guard) {
   return {{"input_min_scaled_jacobian", guard.input_min},
           {"min_scaled_jacobian_before", guard.min_before},
@@ -201,6 +208,7 @@ nlohmann::json result_report(const Result& result, const Mesh& mesh) {
                        {"uniform_because_folded", targets.uniform_because_folded}};
   if (result.untangling) json["untangling"] = to_json(*result.untangling);
   if (result.corner_phase) json["corner_phase"] = to_json(*result.corner_phase);
+  if (result.ideal_retry) json["ideal_retry"] = to_json(*result.ideal_retry);
   if (result.worst_cell_repair) json["worst_cell_repair"] = to_json(*result.worst_cell_repair);
   if (result.quality_guard) json["quality_guard"] = to_json(*result.quality_guard);
   return json;

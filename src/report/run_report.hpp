@@ -24,6 +24,7 @@ nlohmann::json to_json(const AdaptOptions& options);
 nlohmann::json to_json(const Result& result);
 nlohmann::json to_json(const UntanglingSummary& untangling);
 nlohmann::json to_json(const CornerPhaseSummary& phase);
+nlohmann::json to_json(const IdealRetrySummary& retry);
 nlohmann::json to_json(const WorstCellRepairSummary& repair);
 nlohmann::json to_json(const QualityGuardResult& guard);
 
