@@ -239,7 +239,6 @@ void adapt(AdaptCommand& o) {
       phi->set_time(t);
       mesh.interface(*phi);
     }
-  check_run_outputs(o.outputs, mesh.dim());  // pictures of a 3D mesh: before the run
   if (!field) field = make_size_field(o, &mesh);
   say("size field: {}\n", field->description());
   if (!times.empty()) {

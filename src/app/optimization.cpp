@@ -305,10 +305,12 @@ void add_run_output_options(CLI::App& cmd, RunOutputs& o, const std::string& pic
                "table (default: table)");
   cmd.add_option(
          "--picture-before", o.picture_before,
-         "2D: draw the input mesh coloured by --picture-field (.png or .svg; default: none)")
+         "draw the input mesh coloured by --picture-field (.png or .svg; a 3D mesh's boundary "
+         "in perspective; default: none)")
       ->check(kOutputPath);
   cmd.add_option("--picture", o.picture_after,
-                 "2D: draw the result coloured by --picture-field (.png or .svg; default: none)")
+                 "draw the result coloured by --picture-field (.png or .svg; a 3D mesh's boundary "
+                 "in perspective; default: none)")
       ->check(kOutputPath);
   cmd.add_option("--picture-field", o.picture_field, "cell field the pictures are coloured by")
       ->check(CLI::IsMember(kPictureFields))
@@ -325,16 +327,6 @@ void check_run_outputs(const RunOutputs& o) {
     for (const auto& [option, path] : pictures)
       if (!path.empty()) check_output_file(option, path, OutputKind::Picture);
   });
-}
-
-void check_run_outputs(const RunOutputs& o, int dim) {
-  if (dim == 2) return;
-  for (const std::string& picture : {o.picture_before, o.picture_after})
-    if (!picture.empty())
-      fail(
-          "--picture{} {}: pictures are drawn of 2D meshes only; for this {}D mesh write a .vtu "
-          "output and open it in ParaView",
-          picture == o.picture_before ? "-before" : "", picture, dim);
 }
 
 void OptimizationRun::draw(const std::filesystem::path& path, const std::string& field,

@@ -36,9 +36,6 @@ void add_run_output_options(CLI::App& cmd, RunOutputs& outputs, const std::strin
 // Throws Error for an unwritable or unknown-format path, before the run costs any time.
 // Collective (every rank throws).
 void check_run_outputs(const RunOutputs& outputs);
-// Once the mesh is read, before the run: throws Error if `outputs` asks for a picture of a
-// mesh of dimension `dim` that cannot be drawn (3D).
-void check_run_outputs(const RunOutputs& outputs, int dim);
 
 // The options a run prints and reports.
 struct RunSettings {

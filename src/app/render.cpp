@@ -1,5 +1,6 @@
-// `neomesh render`: a picture of a 2D mesh coloured by a quality metric, the energy or the
-// volume ratio Q of its cells.
+// `neomesh render`: a picture of a mesh (a 2D mesh as it lies, a 3D mesh's boundary in
+// perspective, or cut open) coloured by a quality metric, the energy or the volume ratio Q of
+// its cells.
 #include <array>
 #include <cmath>
 #include <limits>
@@ -27,9 +28,31 @@ struct RenderCommandOptions {
   std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
   std::string output, field = "scaled_jacobian", sizes{name(SmoothOptions().sizes)}, title;
   int width = 1200;
-  std::vector<double> range, window;
+  std::vector<double> range, window, view;
+  std::string cut;
   bool log_scale = false;
 };
+
+// "x", "y", "z", or with the plane's position "x=0.5".
+RenderOptions::Cut parse_cut(const std::string& text) {
+  const std::string axis = text.substr(0, text.find('='));
+  if (axis != "x" && axis != "y" && axis != "z")
+    fail("--cut takes x, y or z, optionally with the plane's position (x=0.5); got '{}'", text);
+  RenderOptions::Cut cut{.axis = axis[0] - 'x', .position = std::nullopt};
+  if (text.size() > 1) {
+    const std::string at = text.substr(2);
+    std::size_t used = 0;
+    double value = std::numeric_limits<double>::quiet_NaN();
+    try {
+      value = std::stod(at, &used);
+    } catch (const std::exception&) {
+    }
+    if (text[1] != '=' || used != at.size() || !std::isfinite(value))
+      fail("--cut takes x, y or z, optionally with the plane's position (x=0.5); got '{}'", text);
+    cut.position = value;
+  }
+  return cut;
+}
 
 struct FieldInfo {
   const char* option;  // --field value
@@ -91,6 +114,11 @@ void run_render(const RenderCommandOptions& o) {
   if (!o.window.empty() && o.window.size() != 4)
     fail("--window takes XMIN,XMAX,YMIN,YMAX (got {} numbers)", o.window.size());
   check_finite("--window", o.window);
+  if (!o.view.empty() && o.view.size() != 2)
+    fail("--view takes AZIMUTH,ELEVATION in degrees (got {} numbers)", o.view.size());
+  check_finite("--view", o.view);
+  const std::optional<RenderOptions::Cut> cut =
+      o.cut.empty() ? std::nullopt : std::optional(parse_cut(o.cut));
   // Fail before the (possibly long) load.
   collectively(MPI_COMM_WORLD, [&] {
     check_output_file("-o/--output", o.output, OutputKind::Picture);
@@ -112,6 +140,8 @@ void run_render(const RenderCommandOptions& o) {
   options.log_scale = o.log_scale;
   if (!o.range.empty()) options.min = o.range[0], options.max = o.range[1];
   if (!o.window.empty()) options.window = {o.window[0], o.window[1], o.window[2], o.window[3]};
+  if (!o.view.empty()) options.azimuth = o.view[0], options.elevation = o.view[1];
+  options.cut = cut;
   render_mesh(mesh, field_values(mesh, o), o.output, options);
   say("wrote {}: {} of {} cells\n", o.output, o.field, mesh.num_cells());
 }
@@ -122,9 +152,10 @@ Subcommand add_render(CLI::App& app) {
   auto options = std::make_shared<RenderCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "render",
-      "Draw a 2D mesh as a .png or .svg picture. Every cell is coloured by a quality metric,\n"
+      "Draw a mesh as a .png or .svg picture. Every cell is coloured by a quality metric,\n"
       "its energy or its volume ratio Q, with a colour bar; inverted cells are drawn in red\n"
-      "and counted. For 3D meshes, open a .vtu output in ParaView instead.");
+      "and counted. A 3D mesh is drawn as its boundary in perspective, shaded; --cut opens\n"
+      "it to show the cells inside.");
   cmd->add_option("mesh", options->inputs, input_mesh_help("mesh file"))->required();
   cmd->add_option("-o,--output", options->output, "picture file (.png or .svg)")->required();
   std::vector<std::string> fields;
@@ -152,6 +183,14 @@ Subcommand add_render(CLI::App& app) {
                   "the whole mesh)")
       ->delimiter(',')
       ->expected(4);
+  cmd->add_option("--view", options->view,
+                  "3D: where the eye looks from, AZIMUTH,ELEVATION in degrees (azimuth in the "
+                  "x-y plane from the x axis; default: -60,25)")
+      ->delimiter(',')
+      ->expected(2);
+  cmd->add_option("--cut", options->cut,
+                  "3D: draw only the cells behind a plane normal to x, y or z, at the mesh's "
+                  "middle or where given (x=0.5), to show the cells inside");
   cmd->add_flag("--log", options->log_scale,
                 "colour by the logarithm of the value (default: linear)");
   return {cmd, [options] { run_render(*options); }};

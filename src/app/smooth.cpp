@@ -30,7 +30,6 @@ void smooth(SmoothCommand& o) {
   check_run_outputs(o.outputs);
 
   OptimizationRun run(o.inputs, options.untangle ? InvertedCells::Keep : InvertedCells::Refuse);
-  check_run_outputs(o.outputs, run.mesh().dim());  // pictures of a 3D mesh: before the run
   const RunSettings settings{options.energy, options.solver, options.boundary};
   const auto picture_before = [&] {
     if (!o.outputs.picture_before.empty())

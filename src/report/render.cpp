@@ -5,7 +5,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <vector>
+
+#include <Eigen/Dense>
 
 #include <fmt/format.h>
 
@@ -18,8 +21,6 @@ namespace neomesh {
 
 namespace {
 
-constexpr const char* kOnly2D =
-    "render draws 2D meshes; open the .vtu output in ParaView for 3D (see docs/user-guide.md)";
 constexpr Rgb kInvalidColour{0.85, 0.11, 0.11};  // red: absent from viridis
 constexpr Rgb kInk{0.15, 0.15, 0.15};            // text, outlines and edges
 constexpr Rgb kMutedInk{0.45, 0.45, 0.45};
@@ -166,7 +167,8 @@ Layout layout(std::span<const double> coords, const RenderOptions& o, const Lege
 // quadrilaterals) in the coordinates.
 struct Outline {
   std::span<const std::int64_t> vertices;
-  std::size_t cell;  // its number, for its value
+  std::size_t cell;    // its number, for its value
+  double shade = 1.0;  // its colour's brightness (3D: how squarely it faces the light)
 };
 
 // The cells in the order they are drawn: triangles first, then quadrilaterals, each by number.
@@ -267,6 +269,176 @@ void draw_edges(cairo_t* cr, std::span<const Outline> cells, const Layout& l,
   cairo_stroke(cr);
 }
 
+// A 3D mesh seen from the eye: the visible boundary faces of the cells drawn, far to near.
+struct Projection {
+  std::vector<double> coords;          // 2 per vertex: where it lands on the picture plane
+  std::vector<std::int64_t> vertices;  // the faces' vertices, outward (counter-clockwise seen)
+  std::vector<Outline> faces;          // far to near, spans into `vertices`
+};
+
+using Vector3 = Eigen::Vector3d;
+
+Vector3 vertex(const MeshArrays& mesh, std::int64_t v) {
+  return {mesh.coordinates[3 * v], mesh.coordinates[3 * v + 1], mesh.coordinates[3 * v + 2]};
+}
+
+// The faces that one cell drawn has and no other (the cut's faces among them), each with the
+// outward order of its cell's facet (cell_type.hpp). Throws Error unless the arrays make a 3D
+// mesh of volume cells.
+struct Face {
+  std::array<std::int64_t, 4> key;  // its vertices sorted, -1 padded
+  std::array<std::int64_t, 4> vertices;
+  int size;
+  std::size_t cell;
+};
+std::vector<Face> boundary_faces(const MeshArrays& mesh, std::span<const std::uint8_t> drawn) {
+  const auto vertex_count = static_cast<std::int64_t>(mesh.coordinates.size() / 3);
+  std::vector<Face> faces;
+  std::size_t first = 0;
+  for (std::size_t c = 0; c < mesh.types.size(); ++c) {
+    const CellFacts& f = facts(mesh.types[c]);
+    if (f.dim != 3)
+      fail("render: cell {} is a {} in a 3D mesh; only volume cells are drawn", c, f.name);
+    if (first + f.vertices > mesh.cells.size())
+      fail("render: {} vertex numbers are too few for {} cells", mesh.cells.size(),
+           mesh.types.size());
+    std::array<std::int64_t, 8> canonical{};  // Gmsh position i holds canonical gmsh_order[i]
+    for (int i = 0; i < f.vertices; ++i) {
+      const std::int64_t v = mesh.cells[first + i];
+      if (v < 0 || v >= vertex_count)
+        fail("render: a cell names vertex {}, but there are {} vertices", v, vertex_count);
+      canonical[f.gmsh_order[i]] = v;
+    }
+    first += f.vertices;
+    if (!drawn[c]) continue;
+    for (int k = 0; k < f.num_facets; ++k) {
+      Face face{.key = {-1, -1, -1, -1}, .vertices = {}, .size = f.facets[k].size, .cell = c};
+      for (int i = 0; i < face.size; ++i)
+        face.key[i] = face.vertices[i] = canonical[f.facets[k].vertices[i]];
+      sort_facet_key(face.key, face.size);
+      faces.push_back(face);
+    }
+  }
+  if (first != mesh.cells.size())
+    fail("render: {} vertex numbers for {} cells that have {}", mesh.cells.size(),
+         mesh.types.size(), first);
+  std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) {
+    return a.key < b.key || (a.key == b.key && a.cell < b.cell);
+  });
+  std::vector<Face> single;
+  for (std::size_t i = 0; i < faces.size();) {
+    std::size_t j = i + 1;
+    while (j < faces.size() && faces[j].key == faces[i].key) ++j;
+    if (j == i + 1) single.push_back(faces[i]);
+    i = j;
+  }
+  return single;
+}
+
+Projection project(const MeshArrays& mesh, const RenderOptions& o) {
+  if (mesh.coordinates.size() % 3 != 0) fail("render: a 3D mesh needs 3 coordinates per vertex");
+  const auto vertex_count = static_cast<std::int64_t>(mesh.coordinates.size() / 3);
+  Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::int64_t v = 0; v < vertex_count; ++v)
+    lo = lo.cwiseMin(vertex(mesh, v)), hi = hi.cwiseMax(vertex(mesh, v));
+  if (vertex_count == 0) lo = hi = Vector3::Zero();
+  const Vector3 centre = 0.5 * (lo + hi);
+  const double radius = std::max(0.5 * (hi - lo).norm(), 1e-300);
+
+  // The camera: the eye on the unit vector e from the centre, far enough that the mesh fills
+  // a 30° cone; r and u span the picture plane (right, up).
+  const double az = o.azimuth * std::numbers::pi / 180, el = o.elevation * std::numbers::pi / 180;
+  const Vector3 e(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+  const Vector3 eye = centre + radius / std::tan(std::numbers::pi / 12) * e;
+  Vector3 r = Vector3::UnitZ().cross(e);
+  if (r.norm() < 1e-6) r = Vector3::UnitY().cross(e);  // looking straight down or up
+  r.normalize();
+  const Vector3 u = e.cross(r);
+  const Vector3 light = (e + 0.4 * u - 0.3 * r).normalized();
+
+  // The cells drawn: all, or those on the cut's far side.
+  std::vector<std::uint8_t> drawn(mesh.types.size(), 1);
+  if (o.cut) {
+    const int a = o.cut->axis;
+    const double at = o.cut->position.value_or(centre[a]);
+    const double side = e[a] >= 0 ? 1.0 : -1.0;
+    std::size_t first = 0;
+    for (std::size_t c = 0; c < mesh.types.size(); ++c) {
+      const int n = num_vertices(mesh.types[c]);
+      double mean = 0;
+      for (int i = 0; i < n && first + i < mesh.cells.size(); ++i) {
+        const std::int64_t v = std::clamp<std::int64_t>(
+            mesh.cells[first + i], 0, std::max<std::int64_t>(vertex_count - 1, 0));
+        mean += vertex_count > 0 ? mesh.coordinates[3 * v + a] / n : 0.0;
+      }
+      drawn[c] = side * (mean - at) <= 0;
+      first += n;
+    }
+  }
+
+  Projection p;
+  p.coords.resize(2 * vertex_count);
+  for (std::int64_t v = 0; v < vertex_count; ++v) {
+    const Vector3 q = vertex(mesh, v) - eye;
+    const double depth = std::max(-q.dot(e), 1e-12 * radius);
+    p.coords[2 * v] = q.dot(r) / depth;
+    p.coords[2 * v + 1] = q.dot(u) / depth;
+  }
+  struct Visible {
+    double depth, shade;
+    std::size_t first, size, cell;
+  };
+  std::vector<Visible> visible;
+  for (const Face& f : boundary_faces(mesh, drawn)) {
+    Vector3 normal = Vector3::Zero(), mid = Vector3::Zero();  // Newell's normal
+    for (int i = 0; i < f.size; ++i) {
+      const Vector3 a = vertex(mesh, f.vertices[i]), b = vertex(mesh, f.vertices[(i + 1) % f.size]);
+      normal += a.cross(b);
+      mid += a / f.size;
+    }
+    // Faces turned away are hidden behind the ones turned towards the eye.
+    if (!(normal.dot(eye - mid) > 0)) continue;
+    const double shade = 0.45 + 0.55 * std::max(0.0, normal.normalized().dot(light));
+    visible.push_back({(eye - mid).dot(e), shade, p.vertices.size(), std::size_t(f.size), f.cell});
+    p.vertices.insert(p.vertices.end(), f.vertices.begin(), f.vertices.begin() + f.size);
+  }
+  std::stable_sort(visible.begin(), visible.end(),
+                   [](const Visible& a, const Visible& b) { return a.depth > b.depth; });
+  for (const Visible& v : visible)
+    p.faces.push_back(
+        {std::span<const std::int64_t>(p.vertices).subspan(v.first, v.size), v.cell, v.shade});
+  return p;
+}
+
+Rgb shaded(Rgb c, double shade) {
+  return {c.r * shade, c.g * shade, c.b * shade};
+}
+
+// Far to near, each face filled and then outlined, so that nearer faces cover both.
+void draw_faces(cairo_t* cr, std::span<const Outline> faces, const Layout& l,
+                std::span<const double> coords, std::span<const double> values,
+                const ColourScale& scale, double face_pixels, bool edges) {
+  const double width = std::clamp(0.03 * face_pixels, 0.3, 1.2);
+  const double alpha = std::clamp(face_pixels / 30, 0.1, 0.7);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (const Outline& face : faces) {
+    const double v = values[face.cell];
+    const Rgb colour =
+        shaded(std::isfinite(v) ? viridis(scale.position(v)) : kInvalidColour, face.shade);
+    set_colour(cr, colour);
+    trace_cell(cr, l, coords, face);
+    cairo_fill_preserve(cr);
+    cairo_set_line_width(cr, 0.6);
+    cairo_stroke_preserve(cr);  // closes the seams antialiasing leaves between fills
+    if (edges) {
+      set_colour(cr, kInk, alpha);
+      cairo_set_line_width(cr, width);
+      cairo_stroke_preserve(cr);
+    }
+    cairo_new_path(cr);
+  }
+}
+
 void draw_colour_bar(cairo_t* cr, const Layout& l, const Legend& g) {
   const double x = l.legend_x, top = l.legend_top, bottom = top + l.bar_height;
   set_colour(cr, kInk);
@@ -309,19 +481,37 @@ void draw_colour_bar(cairo_t* cr, const Layout& l, const Legend& g) {
 
 void render_mesh(const MeshArrays& mesh, std::span<const double> cell_values,
                  const std::filesystem::path& out, const RenderOptions& options) {
-  if (mesh.dim != 2) throw Error(kOnly2D);
-  const std::vector<Outline> cells = outlines(mesh);
-  if (mesh.coordinates.size() % 2 != 0 || cell_values.size() != mesh.types.size())
+  if (mesh.dim != 2 && mesh.dim != 3) fail("render: a mesh of dimension {}", mesh.dim);
+  if (mesh.dim == 3 && options.window)
+    fail("render: a window zooms into a 2D mesh; a 3D mesh is drawn whole (a cut shows inside)");
+  if (mesh.dim == 2 && options.cut) fail("render: a cut opens a 3D mesh; this mesh is 2D");
+  if (options.cut && (options.cut->axis < 0 || options.cut->axis > 2))
+    fail("render: cut axis {} is not x, y or z", options.cut->axis);
+  std::vector<Outline> cells;
+  Projection projection;
+  if (mesh.dim == 2) {
+    cells = outlines(mesh);
+  } else {
+    projection = project(mesh, options);
+    cells = projection.faces;
+  }
+  const std::span<const double> coords =
+      mesh.dim == 2 ? std::span<const double>(mesh.coordinates) : projection.coords;
+  if (mesh.coordinates.size() % mesh.dim != 0 || cell_values.size() != mesh.types.size())
     fail(
         "render: {} coordinates and {} cell values do not fit a mesh of {} vertices and {} "
         "cells",
-        mesh.coordinates.size(), cell_values.size(), mesh.coordinates.size() / 2,
+        mesh.coordinates.size(), cell_values.size(), mesh.coordinates.size() / mesh.dim,
         mesh.types.size());
   picture_format(out);  // an unknown extension fails before any work
-  const std::span<const double> coords = mesh.coordinates;
   const ColourScale scale = colour_scale(cell_values, options);
   const Legend g = legend(scale, options, cell_values);
-  const Layout l = layout(coords, options, g);
+  // Framed: what is drawn (a cut shows part of a 3D mesh).
+  std::vector<double> framed;
+  if (mesh.dim == 3)
+    for (std::int64_t v : projection.vertices)
+      framed.insert(framed.end(), {coords[2 * v], coords[2 * v + 1]});
+  const Layout l = layout(mesh.dim == 3 ? std::span<const double>(framed) : coords, options, g);
 
   Canvas canvas(out, l.width, l.height);
   cairo_t* cr = canvas.cr();
@@ -334,10 +524,14 @@ void render_mesh(const MeshArrays& mesh, std::span<const double> cell_values,
   cairo_save(cr);
   cairo_rectangle(cr, l.frame[0], l.frame[1], l.frame[2], l.frame[3]);
   cairo_clip(cr);
-  draw_cells(cr, shown, l, coords, cell_values, scale);
   const double cell_pixels = mean_cell_pixels(shown, l, coords);
-  if (options.draw_edges && cell_pixels >= kMinCellPixelsForEdges)
-    draw_edges(cr, shown, l, coords, cell_pixels);
+  const bool edges = options.draw_edges && cell_pixels >= kMinCellPixelsForEdges;
+  if (mesh.dim == 3) {
+    draw_faces(cr, shown, l, coords, cell_values, scale, cell_pixels, edges);
+  } else {
+    draw_cells(cr, shown, l, coords, cell_values, scale);
+    if (edges) draw_edges(cr, shown, l, coords, cell_pixels);
+  }
   cairo_restore(cr);
   draw_colour_bar(cr, l, g);
   canvas.finish();
@@ -345,7 +539,6 @@ void render_mesh(const MeshArrays& mesh, std::span<const double> cell_values,
 
 void render_mesh(const Mesh& mesh, std::span<const double> cell_values,
                  const std::filesystem::path& out, const RenderOptions& options) {
-  if (mesh.dim() != 2) throw Error(kOnly2D);
   picture_format(out);  // an unknown extension fails before the gather
   const MeshArrays whole = mesh.gather({{"value", {cell_values.begin(), cell_values.end()}}});
   on_root(mesh.comm(), [&] { render_mesh(whole, whole.cell_fields.front().values, out, options); });

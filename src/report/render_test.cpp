@@ -149,12 +149,79 @@ TEST(RenderMesh, WholeMeshOfTriangles) {
   EXPECT_GT(png.non_white_fraction, 0.3);
 }
 
-TEST(RenderMesh, ThreeDimensionalMeshIsRefused) {
-  MeshArrays arrays;
-  arrays.dim = 3;
-  EXPECT_THROW(render_mesh(arrays, {}, "never.png"), Error);
-  const Mesh cube = Mesh::generate({.name = "box-hex", .size = 1});
-  EXPECT_THROW(render_mesh(cube, std::vector<double>(1, 1.0), "never.png"), Error);
+// The share of the picture's pixels in viridis' dark purple end (shaded or not) and in its
+// yellow end.
+struct Ends {
+  double purple = 0, yellow = 0;
+};
+Ends colour_ends(const std::filesystem::path& path) {
+  cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
+  EXPECT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS) << path;
+  const int width = cairo_image_surface_get_width(s), height = cairo_image_surface_get_height(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  cairo_surface_flush(s);
+  const unsigned char* data = cairo_image_surface_get_data(s);
+  Ends ends;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const auto pixel = reinterpret_cast<const std::uint32_t*>(data + y * stride)[x];
+      const int r = (pixel >> 16) & 0xff, g = (pixel >> 8) & 0xff, b = pixel & 0xff;
+      ends.purple += g < 20 && b > 40 && r < 2 * b;
+      ends.yellow += r > 60 && g > r / 2 && b < r / 3;
+    }
+  cairo_surface_destroy(s);
+  ends.purple /= width * height, ends.yellow /= width * height;
+  return ends;
+}
+
+TEST(RenderMesh, ThreeDimensionalMeshShowsItsBoundaryAndACutShowsInside) {
+  const auto dir = testing::scratch_dir("render_3d");
+  const MeshArrays cube = Mesh::generate({.name = "box-hex", .size = 4}).gather();
+  // The cells inside at the bottom of the colour range, those at the boundary at the top.
+  std::vector<double> values;
+  for (std::size_t c = 0; c < cube.types.size(); ++c) {
+    bool boundary = false;
+    for (int i = 0; i < 8; ++i)
+      for (int a = 0; a < 3; ++a) {
+        const double x = cube.coordinates[3 * cube.cells[8 * c + i] + a];
+        boundary = boundary || std::abs(x) > 1 - 1e-9;  // the box is [-1, 1]³
+      }
+    values.push_back(boundary ? 1.0 : 0.0);
+  }
+  render_mesh(cube, values, dir / "whole.png");
+  const Ends whole = colour_ends(dir / "whole.png");
+  EXPECT_GT(whole.yellow, 0.2);
+  EXPECT_LT(whole.purple, 1e-3);  // the inside is hidden (only the bar's end is purple)
+
+  RenderOptions cut;
+  for (int axis = 0; axis < 3; ++axis) {
+    cut.cut = RenderOptions::Cut{.axis = axis, .position = std::nullopt};
+    render_mesh(cube, values, dir / "cut.png", cut);
+    const Ends inside = colour_ends(dir / "cut.png");
+    EXPECT_GT(inside.purple, 0.02) << "axis " << axis;
+    EXPECT_GT(inside.yellow, 0.1) << "axis " << axis;
+  }
+  // A plane beyond the mesh on the eye's side keeps every cell: the boundary alone again.
+  cut.cut = RenderOptions::Cut{.axis = 0, .position = 10.0};
+  render_mesh(cube, values, dir / "all.png", cut);
+  EXPECT_LT(colour_ends(dir / "all.png").purple, 1e-3);
+}
+
+TEST(RenderMesh, OptionsOfTheOtherDimensionAreRefused) {
+  const auto dir = testing::scratch_dir("render_dimension_options");
+  const MeshArrays cube = Mesh::generate({.name = "box-hex", .size = 1}).gather();
+  RenderOptions window;
+  window.window = {0.0, 1.0, 0.0, 1.0};
+  EXPECT_THROW(render_mesh(cube, std::vector<double>(1, 1.0), dir / "never.png", window), Error);
+  RenderOptions cut;
+  cut.cut = RenderOptions::Cut{.axis = 0, .position = std::nullopt};
+  const MeshArrays square = quad_grid(2);
+  EXPECT_THROW(render_mesh(square, ramp(4), dir / "never.png", cut), Error);
+  MeshArrays surface = quad_grid(2);  // 2D cells in a 3D mesh
+  surface.dim = 3;
+  surface.coordinates.resize(9 * 3, 0.0);
+  EXPECT_THROW(render_mesh(surface, ramp(4), dir / "never.png"), Error);
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
 TEST(RenderMesh, BadOutputPathsFailWithoutWriting) {

@@ -122,7 +122,11 @@ CASES = [
      ["hexagon", "square-midpoint"]),
     ("generate without a size", ["generate", "box-quad", "-o", "out.msh"],
      ["--level", "--cells"]),
-    ("render a 3D mesh", ["render", CUBE, "-o", "out.png"], ["ParaView"]),
+    ("render --window of a 3D mesh", ["render", CUBE, "-o", "out.png", "--window", "0,1,0,1"],
+     ["window", "3D", "cut"]),
+    ("render --cut of a 2D mesh", ["render", GOOD, "-o", "out.png", "--cut", "x"], ["cut", "2D"]),
+    ("render --cut on no axis", ["render", CUBE, "-o", "out.png", "--cut", "w=1"],
+     ["--cut", "x, y or z"]),
     ("render to an unknown format", ["render", GOOD, "-o", "out.jpg"], ["out.jpg"]),
     ("missing config file", ["--config", "nofile.toml", "smooth", GOOD, "-o", "out.msh"],
      ["nofile.toml"]),
@@ -175,10 +179,6 @@ CASES = [
     ("render -o ''", ["render", GOOD, "-o", ""], ["--output", "path is empty"]),
     ("empty report path", ["smooth", GOOD, "-o", "out.msh", "--report", ""], ["--report"]),
     # Every output checked before the run: nothing written when a picture cannot be.
-    ("picture of a 3D mesh", ["smooth", CUBE, "-o", "out.msh", "--picture", "p.png"],
-     ["--picture", "2D", "ParaView"]),
-    ("picture-before of a 3D mesh", ["adapt", CUBE, "-o", "out.msh", "--sphere", "0,0,0,0.5",
-                                     "--picture-before", "p.png"], ["--picture-before", "2D"]),
     ("unwritable history plot", ["smooth", GOOD, "-o", "out.msh", "--plot-history",
                                  "nodir/h.png"], ["--plot-history", "nodir/h.png"]),
     ("unwritable quality JSON", ["quality", GOOD, "--json", "nodir/q.json"],
@@ -188,8 +188,8 @@ CASES = [
 # Run again on 2 ranks: reading, validating, option and output checks, the command line.
 MPI_CASES = ["missing file", "text garbage", "inverted cell", "NaN coordinate", "unknown option",
              "bad number", "30,000-character number", "infinite lambda", "smooth -o ''",
-             "picture of a 3D mesh", "unwritable report", "unknown PETSc type",
-             "size field NaN (sizes file)", "generate without a size", "render a 3D mesh",
+             "unwritable report", "unknown PETSc type",
+             "size field NaN (sizes file)", "generate without a size", "render --window of a 3D mesh",
              "convert onto its input", "unwritable quality JSON"]
 
 # Raw text of standard-library exceptions that must never reach the user.

@@ -1,11 +1,11 @@
-"""smooth/adapt --picture-before/--picture: 2D pictures coloured by a run's own fields (Q needs
-the run's desired volumes, which a mesh file does not keep)."""
+"""smooth/adapt --picture-before/--picture: pictures coloured by a run's own fields (Q needs
+the run's desired volumes, which a mesh file does not keep); render's 3D views."""
 import os
 import struct
 
 import pytest
 
-from conftest import expect_one_error_line, neomesh
+from conftest import DATA, expect_one_error_line, neomesh
 
 
 def png_size(path):
@@ -65,3 +65,18 @@ def test_an_empty_render_window_is_refused_in_one_line(box, tmp):
     out = os.path.join(tmp, "never.png")
     proc = neomesh("render", box, "-o", out, "--window", "0.5,0.2,0,1", expect=None)
     expect_one_error_line(proc, ["window", "x_min < x_max"], [out])
+
+
+def test_3d_meshes_are_drawn_whole_and_cut_open(tmp):
+    """A 3D run's pictures show the mesh's boundary in perspective; render --cut opens it (the
+    cut's cells drawn, not only the outer skin: more faces than the whole view's)."""
+    cube = os.path.join(DATA, "cube_tet_v41.msh")
+    before, after = os.path.join(tmp, "before.png"), os.path.join(tmp, "after.svg")
+    neomesh("smooth", cube, "-o", os.path.join(tmp, "s.msh"), "-q", "--picture-before", before,
+            "--picture", after, timeout=120)
+    assert png_size(before)[0] == 1200
+    whole, cut = os.path.join(tmp, "whole.svg"), os.path.join(tmp, "cut.svg")
+    neomesh("render", cube, "-o", whole, "--view", "30,40")
+    neomesh("render", cube, "-o", cut, "--view", "30,40", "--cut", "z=0.3")
+    paths = lambda f: open(f).read().count("<path")
+    assert paths(cut) != paths(whole) and paths(after) > 10, (paths(cut), paths(whole))
