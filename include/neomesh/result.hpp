@@ -153,10 +153,10 @@ struct CornerPhaseSummary {
   bool gave_up = false;  // lifting stalled with a cell inverted: the optimum was kept
 };
 
-// Smoothing once more, towards ideal cells (docs/method.md, "Worst cells"): the corner phase gave
-// up, so the cells kept from the input ask for a corner the mesh cannot open (Mesquite's
-// shashkov_quad, a grid sheared by an ALE step). The run from the input with ideal targets is
-// kept where its worst cell is better.
+// Smoothing once more, towards ideal cells (docs/method.md, "Corners"): the cells kept from the
+// input ask for a corner the mesh cannot open (the corner phase gave up), or keep a cell
+// flattened across its edges (Mesquite's shashkov_quad and shashkov, grids sheared by an ALE
+// step). The run from the input with ideal targets is kept where its worst cell is better.
 struct IdealRetrySummary {
   double min_scaled_jacobian_kept = 0.0;   // where the run with the smoothed targets ended
   double min_scaled_jacobian_ideal = 0.0;  // where the run towards ideal cells ended
@@ -203,7 +203,7 @@ struct Result : SolverRun {
   double boundary_distance = 0.0, volume_change = 0.0;
   std::optional<UntanglingSummary> untangling;              // smooth, if cells were inverted
   std::optional<CornerPhaseSummary> corner_phase;           // smooth, if a corner had flattened
-  std::optional<IdealRetrySummary> ideal_retry;             // smooth, if the corner phase gave up
+  std::optional<IdealRetrySummary> ideal_retry;             // smooth, if kept cells stayed flat
   std::optional<WorstCellRepairSummary> worst_cell_repair;  // unless the guard is off
   std::optional<QualityGuardResult> quality_guard;          // smooth, unless switched off
   std::vector<int> update_iterations;  // adapt: iterations after which volumes were updated

@@ -432,10 +432,12 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
     if (!tangled) r.guard_mean_quality(input, input_mean, run, repair);
   };
   optimize(result);
-  // Where the kept cells ask for a corner the mesh cannot open, towards ideal cells from the
-  // input too; the better worst cell wins, the design's on a tie.
-  if (result.corner_phase && result.corner_phase->gave_up && mode != TargetMode::Ideal &&
-      result.reason != StopReason::TimeLimit) {
+  // Where the kept cells ask for a corner the mesh cannot open, or keep a cell flattened across
+  // its edges, towards ideal cells from the input too; the better worst cell wins, the
+  // design's on a tie.
+  const bool flat_kept = (result.corner_phase && result.corner_phase->gave_up) ||
+                         (mode != TargetMode::Ideal && flat_cap(r.view(), r.dofs(), r.x));
+  if (flat_kept && mode != TargetMode::Ideal && result.reason != StopReason::TimeLimit) {
     const OwnedVec kept = copy_of(r.x);
     NM_PETSC(VecCopy(input, r.x));
     r.set_targets(r.smoothing_targets(TargetMode::Ideal, options.sizes));

@@ -162,8 +162,8 @@ void print_corner_phase(const CornerPhaseSummary& phase) {
         phase.min_scaled_jacobian_before, phase.iterations, phase.min_scaled_jacobian_after);
 }
 
-// Whether smoothing towards ideal cells won, if the corner phase gave up (docs/method.md,
-// "Worst cells").
+// Whether smoothing towards ideal cells won, if the cells kept from the input stayed flat
+// (docs/method.md, "Corners").
 void print_ideal_retry(const IdealRetrySummary& retry) {
   say("worst cells: smoothed again from the input towards ideal cells ({} iterations): min scaled "
       "Jacobian {:.4f} against {:.4f} with the cells kept from the input; the {} run is kept\n",

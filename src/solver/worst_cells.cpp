@@ -26,6 +26,18 @@ double min_non_simplex_jacobian(const MeshView& view, const DofMap& dofs, Vec x)
 
 }  // namespace
 
+bool flat_cap(const MeshView& view, const DofMap& dofs, Vec x) {
+  std::vector<double> local(dofs.num_local_dofs());
+  dofs.global_to_local(x, local);
+  const std::vector<double> sj = cell_scaled_jacobians(view, local);
+  const std::vector<double> ratio = cell_edge_ratios(view, local);
+  int cap = 0;
+  for (std::size_t c = 0; c < sj.size() && !cap; ++c)
+    cap = sj[c] < kFlatCellJacobian && sj[c] * ratio[c] < kCapShape;
+  MPI_Allreduce(MPI_IN_PLACE, &cap, 1, MPI_INT, MPI_MAX, dofs.comm());
+  return cap != 0;
+}
+
 std::optional<CornerPhaseSummary> lift_flat_corners(
     Functional& functional, const MeshView& view, const DofMap& dofs, Vec x,
     const QuasiNewtonOptions& options, Vec cell_size, Result& run,

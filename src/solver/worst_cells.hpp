@@ -31,6 +31,16 @@ constexpr double kLiftedDet = 1e-2;
 // long.
 constexpr int kLiftRounds = 12;
 
+// A nearly flat cell whose scaled Jacobian times its edge ratio is below this is flattened
+// across its edges (a cap, a sliver: sheared), which no mesher designs; a boundary layer's
+// needle (a right triangle or tetrahedron of aspect A: scaled Jacobian ≈ 1.15 / A, edge
+// ratio ≈ A) has a product near 1.
+constexpr double kCapShape = 0.25;
+
+// Whether some cell at x has a scaled Jacobian below kFlatCellJacobian and is a cap
+// (kCapShape). Collective.
+bool flat_cap(const MeshView& view, const DofMap& dofs, Vec x);
+
 // If some cell other than a simplex has a scaled Jacobian below kFlatCellJacobian at x,
 // minimizes again from x with corner samples and returns what that did (its iterations go to
 // `observe` and are appended to `run`'s, whose stop reason, final energy (the thesis' energy)
