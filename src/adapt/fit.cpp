@@ -111,7 +111,11 @@ FitResult fit_interface(const MeshView& view, const DofMap& dofs, Vec x,
   }
   result.constraint =
       std::make_shared<InterfaceConstraint>(view, dofs, phi, result.interface.vertices, x);
-  const Functional& functional = hooks.constrain(sliding_vertices(result.constraint));
+  // The functional of the constrained problem with the latest targets.
+  const Functional* functional = &hooks.constrain(sliding_vertices(result.constraint));
+  const SetTargets set_targets = [&](const CellTargets& t) -> const Functional& {
+    return *(functional = &hooks.set_targets(t));
+  };
 
   OwnedVec accepted = copy_of(x);
   const double smallest = std::ldexp(1.0, -options.max_halvings);
@@ -120,7 +124,7 @@ FitResult fit_interface(const MeshView& view, const DofMap& dofs, Vec x,
     const double from = result.constraint->stage(), to = std::min(1.0, from + step);
     result.constraint->set_stage(to);
     move_to_stage(view, dofs, *result.constraint, x);
-    bool ok = valid(functional, view, dofs, x);
+    bool ok = valid(*functional, view, dofs, x);
     if (!ok) detail("  fit: moving the interface to stage {:.3g} would invert a cell\n", to);
     if (ok) {
       PicardOptions stage = last_stage;
@@ -130,10 +134,10 @@ FitResult fit_interface(const MeshView& view, const DofMap& dofs, Vec x,
         stage.min_updates = 0;  // the volumes of the stage's start will do
         if (options.stage_iterations > 0) stage_method.max_iterations = options.stage_iterations;
       }
-      const PicardResult r = picard(functional, view, x, hooks.targets, hooks.set_targets, stage,
-                                    stage_method, observe);
+      const PicardResult r =
+          picard(view, x, hooks.targets, set_targets, stage, stage_method, observe);
       append(result.picard, r);
-      ok = valid(functional, view, dofs, x);
+      ok = valid(*functional, view, dofs, x);
       detail("  fit: stage {:.3g}: {} iterations{}\n", to, r.run.history.size(),
              ok ? "" : ", then a cell corner inverted: undone");
     }

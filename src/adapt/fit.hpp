@@ -32,8 +32,8 @@ struct FitResult {
 
 // What the fit needs from the owner of the functional.
 struct FitHooks {
-  // Rebuilds the functional with these vertices sliding too (none: the boundary's alone),
-  // keeping its desired volumes, and returns it.
+  // The functional of the problem with these vertices sliding too (none: the boundary's
+  // alone), its targets kept; lives until the next call of a hook.
   std::function<const Functional&(SlidingVertices)> constrain;
   TargetsAt targets;
   SetTargets set_targets;

@@ -13,15 +13,15 @@ bool converged(StopReason reason) {
 
 }  // namespace
 
-PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
-                    const TargetsAt& targets, const SetTargets& set_targets,
-                    const PicardOptions& options, const QuasiNewtonOptions& method_options,
-                    const Observer& observe) {
+PicardResult picard(const MeshView& view, Vec x, const TargetsAt& targets,
+                    const SetTargets& set_targets, const PicardOptions& options,
+                    const QuasiNewtonOptions& method_options, const Observer& observe) {
   CellTargets current = targets(x);
-  set_targets(current);
+  const Functional& first = set_targets(current);
+  const DofMap& dofs = first.dofs();
   // QuasiNewton keeps this Vec; updates overwrite its values.
-  OwnedVec cell_size = local_cell_size(view, functional.dofs(), current.volumes);
-  QuasiNewton method(functional, method_options, cell_size);
+  OwnedVec cell_size = local_cell_size(view, dofs, current.volumes);
+  QuasiNewton method(first, method_options, cell_size);
   method.restart(x);
 
   PicardResult result;
@@ -34,10 +34,11 @@ PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
     for (std::size_t i = 0; i < next.volumes.size(); ++i)
       next.volumes[i] = (1.0 - w) * current.volumes[i] + w * next.volumes[i];
     current = std::move(next);
-    set_targets(current);
-    OwnedVec size = local_cell_size(view, functional.dofs(), current.volumes);
+    const Functional& functional = set_targets(current);
+    OwnedVec size = local_cell_size(view, dofs, current.volumes);
     NM_PETSC(VecCopy(size, cell_size));
-    method.restart(x);  // a new problem: new F, g, Riesz Laplacian, k_min antigradient steps
+    // A new problem: new F, g, Riesz Laplacian, k_min antigradient steps.
+    method.restart(x, functional);
     const int k = result.run.history.empty() ? 0 : result.run.history.back().k;
     result.update_iterations.push_back(k);
     since_update = 0;

@@ -32,18 +32,18 @@ struct PicardResult {
 };
 
 // What the Picard iteration asks at x for: the target cells (volumes absolute, summing to the
-// mesh volume; shapes of an anisotropic field), and how to hand them to the functional (its
+// mesh volume; shapes of an anisotropic field); and the Functional of the problem with those
+// targets (of the same Constraints each time), which must live until the next call (its
 // owner may keep more in step).
 using TargetsAt = std::function<CellTargets(Vec x)>;
-using SetTargets = std::function<void(const CellTargets&)>;
+using SetTargets = std::function<const Functional&(const CellTargets&)>;
 
-// Adapts x (a global coordinate Vec laid out by functional.dofs()) to the targets that
+// Adapts x (a global coordinate Vec laid out by the functionals' dofs()) to the targets that
 // `targets(x)` computes. An update under-relaxes the volumes (PicardOptions::relaxation) and
 // takes the new shapes. QuasiNewtonOptions::max_iterations caps the total number of iterations.
-PicardResult picard(const Functional& functional, const MeshView& view, Vec x,
-                    const TargetsAt& targets, const SetTargets& set_targets,
-                    const PicardOptions& options, const QuasiNewtonOptions& method,
-                    const Observer& observe = {});
+PicardResult picard(const MeshView& view, Vec x, const TargetsAt& targets,
+                    const SetTargets& set_targets, const PicardOptions& options,
+                    const QuasiNewtonOptions& method, const Observer& observe = {});
 
 // `targets` for picard(): the size field's targets at the centroids of x (adapt_targets),
 // volumes summing to `total`. `orientations`: for an anisotropic field, the cells' Jacobians

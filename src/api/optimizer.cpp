@@ -93,11 +93,6 @@ void Optimizer::Impl::start(const EnergyOptions& e, const BoundaryOptions& b,
   boundary->project(x);
 }
 
-void Optimizer::Impl::set_desired_volumes(std::vector<double> volumes) {
-  functional->set_desired_volumes(volumes);
-  cell_size = local_cell_size(view(), dofs(), volumes);
-}
-
 CellTargets Optimizer::Impl::smoothing_targets(TargetMode mode, SizeMode sizes) const {
   const std::vector<double> volumes = cell_volumes();
   std::vector<double> ideal = desired_volumes(sizes, view(), dofs(), volumes);
@@ -107,17 +102,22 @@ CellTargets Optimizer::Impl::smoothing_targets(TargetMode mode, SizeMode sizes) 
                        cell_edge_ratios(view(), view().coords), std::move(ideal));
 }
 
-void Optimizer::Impl::set_targets(const CellTargets& targets) {
-  set_desired_volumes(targets.volumes);
-  functional->set_target_shapes(targets.shapes, targets.weights);
+const Functional& Optimizer::Impl::set_targets(const CellTargets& targets) {
+  problem = problem.with_targets(targets.volumes, targets.shapes, targets.weights);
+  cell_size = local_cell_size(view(), dofs(), targets.volumes);
   input_share = targets.shapes.empty() ? std::vector<double>{} : targets.kept;
+  return rebuild_functional();
 }
 
 const Functional& Optimizer::Impl::constrain(SlidingVertices extra) {
-  const std::unique_ptr<Functional> previous = std::move(functional);
-  functional = std::make_unique<Functional>(view(), dofs(), *energy, boundary->fixed_dofs(),
-                                            join(boundary->sliding_vertices(), std::move(extra)));
-  if (previous) functional->set_targets_of(*previous);
+  problem = problem.with_constraints(
+      std::make_shared<const Constraints>(view(), dofs(), boundary->fixed_dofs(),
+                                          join(boundary->sliding_vertices(), std::move(extra))));
+  return rebuild_functional();
+}
+
+const Functional& Optimizer::Impl::rebuild_functional() {
+  functional = std::make_unique<Functional>(*energy, problem);
   return *functional;
 }
 
@@ -134,11 +134,14 @@ std::optional<UntanglingSummary> Optimizer::Impl::untangle(const QuasiNewtonOpti
   // can ask for what the boundary cannot give (hole_in_square_tanglap: 8 of 23 cells stayed
   // inverted; towards equal volumes none after 12 iterations). The smoothing that follows has
   // the boundary and the volumes asked for.
+  std::shared_ptr<const Constraints> every_boundary_vertex;  // built by the first retry
   const auto retry = [&](const std::vector<double>& volumes) {
     NM_PETSC(VecCopy(start, x));
-    Functional pinned(view(), dofs(), *energy, view().on_boundary);  // every boundary vertex
-    pinned.set_targets_of(*functional);
-    pinned.set_desired_volumes(volumes);
+    if (!every_boundary_vertex)
+      every_boundary_vertex =
+          std::make_shared<const Constraints>(view(), dofs(), view().on_boundary);
+    const Functional pinned(
+        *energy, problem.with_constraints(every_boundary_vertex).with_desired_volumes(volumes));
     const UntangleResult again =
         neomesh::untangle(pinned, x, method, cell_size, {}, observer.iteration);
     u.history.insert(u.history.end(), again.history.begin(), again.history.end());
@@ -148,7 +151,7 @@ std::optional<UntanglingSummary> Optimizer::Impl::untangle(const QuasiNewtonOpti
   };
   bool boundary_fixed = false, equal_volumes = false;
   if (u.after.count > 0 && boundary_options->mode == BoundaryMode::Slide) {
-    retry(functional->desired_volumes());
+    retry(problem.desired_volumes());
     boundary_fixed = true;
   }
   if (u.after.count > 0) {
@@ -174,7 +177,7 @@ std::optional<UntanglingSummary> Optimizer::Impl::untangle(const QuasiNewtonOpti
   return summary;
 }
 
-ProblemSummary Optimizer::Impl::problem(const SolverOptions& solver) const {
+ProblemSummary Optimizer::Impl::problem_summary(const SolverOptions& solver) const {
   ProblemSummary p;
   p.free_coordinates = functional->free_dofs();
   if (boundary_options->mode == BoundaryMode::Slide) p.boundary = boundary->summary();
@@ -324,14 +327,15 @@ void Optimizer::Impl::adapt(const SizeField& field, const AdaptOptions& options,
   // The size field's targets at the start: what the observer sees, and what untangling aims at.
   // They replace any a smoothing before may have left.
   set_targets(targets(x));
-  result.problem = problem(options.solver);
+  result.problem = problem_summary(options.solver);
   if (field.anisotropic()) result.problem.targets.mode = "metric";
   if (observer.started) observer.started(result.problem);
   if (options.untangle) result.untangling = untangle(method(options.solver), observer);
   PicardOptions picard = options.picard;
   if (warm) picard.min_updates = options.warm_updates;
   const PicardResult run = neomesh::picard(
-      *functional, view(), x, targets, [this](const CellTargets& t) { set_targets(t); }, picard,
+      view(), x, targets,
+      [this](const CellTargets& t) -> const Functional& { return set_targets(t); }, picard,
       method(options.solver), observer);
   warm = true;
   static_cast<SolverRun&>(result) = run.run;
@@ -342,12 +346,13 @@ void Optimizer::Impl::fit(const LevelSet& level_set, const SizeField& field,
                           const AdaptOptions& options, const PicardOptions& last_stage,
                           const Observer& observer, Result& result) {
   phi = std::make_unique<LevelSetFunction>(level_set_function(level_set, view().dim));
-  const FitHooks hooks{.constrain = [this](SlidingVertices extra) -> const Functional& {
-                         return constrain(std::move(extra));
-                       },
-                       .targets = size_field_targets(field, options.sizes, view(), dofs(),
-                                                     mesh_volume, orientations(field)),
-                       .set_targets = [this](const CellTargets& t) { set_targets(t); }};
+  const FitHooks hooks{
+      .constrain = [this](SlidingVertices extra) -> const Functional& {
+        return constrain(std::move(extra));
+      },
+      .targets = size_field_targets(field, options.sizes, view(), dofs(), mesh_volume,
+                                    orientations(field)),
+      .set_targets = [this](const CellTargets& t) -> const Functional& { return set_targets(t); }};
   fitted = fit_interface(view(), dofs(), x, *phi, hooks, last_stage, method(options.solver), {},
                          observer);
   const FitResult& f = *fitted;
@@ -394,14 +399,14 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   const double coverage = tangled ? domain_coverage(r.cell_volumes(), r.mesh.comm()) : 1.0;
   const bool folded = coverage > kFoldedCoverage;
   KeptCells kept;
-  {  // the Functional keeps its own copy of the targets: this one goes before the solve
+  {  // the problem keeps its own copy of the targets: this one goes before the solve
     const CellTargets targets =
         r.smoothing_targets(mode, folded ? SizeMode::Uniform : options.sizes);
     r.set_targets(targets);
     kept = count_kept(targets.kept, r.mesh.comm());
   }
   const QuasiNewtonOptions method = r.method(options.solver);
-  result.problem = r.problem(options.solver);
+  result.problem = r.problem_summary(options.solver);
   result.problem.targets = {std::string(name(mode)),
                             kept.all,
                             kept.part,
@@ -525,12 +530,12 @@ void Optimizer::forget_warm_start() {
 
 std::vector<Field> Optimizer::cell_fields() const {
   const Impl& r = *impl_;
-  if (!r.functional || r.functional->desired_volumes().empty()) return {};
+  if (!r.functional || r.problem.desired_volumes().empty()) return {};
   const CellFields fields = r.functional->cell_fields(r.x);
   std::vector<Field> out = {{"energy", fields.energy},
                             {"det_G_min", fields.min_det},
                             {"Q", fields.volume_ratio},
-                            {"desired_volume", r.functional->desired_volumes()}};
+                            {"desired_volume", r.problem.desired_volumes()}};
   if (!r.input_share.empty()) out.push_back({"target_input_share", r.input_share});
   if (r.fitted)
     out.push_back({"inside", std::vector<double>(r.fitted->interface.inside.begin(),

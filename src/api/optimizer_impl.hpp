@@ -1,10 +1,10 @@
 // What an Optimizer holds (include/neomesh/optimizer.hpp).
 //
 // One owner per piece of state: the Mesh owns the coordinates between calls; during a call
-// they are the Vec x, which is handed back with finish(). The Impl owns the functional, the
-// boundary classification, the desired volumes (inside the functional) and what derives from
-// them (the cell size of the practical criterion, the round-off level of F), and a fit's
-// interface with the level set its constraint refers to.
+// they are the Vec x, which is handed back with finish(). The Impl owns the problem (targets and
+// constraints) and the functional built from it, the boundary classification, what derives
+// from the desired volumes (the cell size of the practical criterion, the round-off level of
+// F), and a fit's interface with the level set its constraint refers to.
 #pragma once
 
 #include <memory>
@@ -36,8 +36,8 @@ struct Optimizer::Impl {
   QualitySummary input_quality(bool untangle) const;
   // What smooth() and adapt() do first: checks `options` and the input (input_quality), takes
   // the mesh's coordinates into x, and (re)builds the boundary classification and the
-  // functional unless they were built for the same energy and boundary options (then the
-  // desired volumes stay). An earlier fit's interface is released. Sliding vertices are
+  // problem's constraints unless they were built for the same energy and boundary options
+  // (then the desired volumes stay). An earlier fit's interface is released. Sliding vertices are
   // projected onto their geometry. Returns the result with quality_before.
   template <typename Options>
   Result start(const Options& options) {
@@ -51,14 +51,16 @@ struct Optimizer::Impl {
   // `solver`: the solves to come, for the memory check (none: evaluation only).
   void start(const EnergyOptions& energy, const BoundaryOptions& boundary,
              const SolverOptions* solver = nullptr);
-  // Absolute desired volumes per local cell (MeshView order), summing to mesh_volume.
-  void set_desired_volumes(std::vector<double> volumes);
-  // Smoothing's targets (solver/targets.hpp) from the input cells at x, and setting them.
+  // Smoothing's targets (solver/targets.hpp) from the input cells at x, and setting them: the
+  // volumes absolute per local cell (MeshView order), summing to mesh_volume. Returns the
+  // functional of the new problem.
   CellTargets smoothing_targets(TargetMode mode, SizeMode sizes) const;
-  void set_targets(const CellTargets& targets);
-  // Rebuilds the functional with `extra` vertices sliding besides the boundary's (an interface
-  // fitted to a level set; none: the boundary's alone), keeping the desired volumes.
+  const Functional& set_targets(const CellTargets& targets);
+  // The problem with `extra` vertices sliding besides the boundary's (an interface fitted to a
+  // level set; none: the boundary's alone), keeping the targets; returns its functional.
   const Functional& constrain(SlidingVertices extra);
+  // The functional of `problem` as it is now.
+  const Functional& rebuild_functional();
   // Adapts x to `field` (Picard iterations), untangling first if asked; the run goes into
   // `result`.
   void adapt(const SizeField& field, const AdaptOptions& options, const Observer& observer,
@@ -97,7 +99,7 @@ struct Optimizer::Impl {
   std::optional<UntanglingSummary> untangle(const QuasiNewtonOptions& method,
                                             const Observer& observer);
   // The free coordinates, the boundary's classification and the linear solvers.
-  ProblemSummary problem(const SolverOptions& solver) const;
+  ProblemSummary problem_summary(const SolverOptions& solver) const;
   // The solver options with what derives from the mesh.
   QuasiNewtonOptions method(const SolverOptions& solver) const;
   // Volume of each local cell at the mesh's coordinates (where a call starts).
@@ -117,7 +119,8 @@ struct Optimizer::Impl {
   std::optional<EnergyOptions> energy;
   std::optional<BoundaryOptions> boundary_options;
   std::unique_ptr<Boundary> boundary;
-  std::unique_ptr<Functional> functional;
+  Problem problem;
+  std::unique_ptr<Functional> functional;  // of `problem`
   std::vector<double> input_share;  // per local cell: the share of its input cell its target keeps
   OwnedVec cell_size;               // local cell size per dof, for the practical criterion
   bool warm = false;                // an adapt() ran: the next one starts from its volumes

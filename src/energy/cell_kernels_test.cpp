@@ -260,7 +260,7 @@ Matrix<Dim> rotation(double angle) {
   }
 }
 
-// The kernel's form of a shape: S⁻ᵀ (Functional::set_target_shapes makes it).
+// The kernel's form of a shape: S⁻ᵀ (Targets makes it).
 template <int Dim>
 Matrix<Dim> inverse_transpose(const Matrix<Dim>& S) {
   return S.inverse().transpose();

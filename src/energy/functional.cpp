@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <atomic>
 #include <limits>
-#include <optional>
 #include <string>
 #include <tuple>
 #include <type_traits>
@@ -66,33 +65,6 @@ Kernels make_kernels(const EnergyOptions& options, double corner_weight = 0.0) {
                  NeoHookeKernel<CellType::Pyramid>(law3, n, w)};
 }
 
-// S⁻ᵀ scaled to det 1 per cell (fixed-size: a mesh has up to millions of them); fails for a
-// shape or weight that is not positive.
-template <int Dim>
-void invert_target_shapes(std::span<const double> shapes, const std::vector<double>& weights,
-                          std::vector<double>& inverse_t) {
-  constexpr std::size_t n = Dim * Dim;
-  const std::size_t cells = shapes.size() / n;
-  std::size_t first_bad = cells;  // cell by cell on every thread; the first bad one is named
-#pragma omp parallel for schedule(static) reduction(min : first_bad)
-  for (std::size_t c = 0; c < cells; ++c) {
-    const Eigen::Map<const Matrix<Dim>> S(shapes.data() + c * n);
-    const double det = S.determinant();
-    if (!(det > 0.0) || !std::isfinite(det) || !(weights[c] > 0.0) || !std::isfinite(weights[c])) {
-      first_bad = std::min(first_bad, c);
-      continue;
-    }
-    Eigen::Map<Matrix<Dim>>(inverse_t.data() + c * n) =
-        std::pow(det, 1.0 / Dim) * S.inverse().transpose();
-  }
-  if (first_bad == cells) return;
-  const double det = Eigen::Map<const Matrix<Dim>>(shapes.data() + first_bad * n).determinant();
-  if (!(det > 0.0) || !std::isfinite(det))
-    fail("the target shape of local cell {} has determinant {} (must be positive)", first_bad, det);
-  fail("the target weight of local cell {} is {} (must be positive)", first_bad,
-       weights[first_bad]);
-}
-
 double sum_over_ranks(double local, MPI_Comm comm) {
   double global = 0.0;
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
@@ -102,27 +74,21 @@ double sum_over_ranks(double local, MPI_Comm comm) {
 }  // namespace
 
 struct Functional::Impl {
+  const Problem problem;
+  const Constraints& constraints;
   const MeshView& view;
   const DofMap& dofs;
   EnergyOptions options;
-  std::optional<Kernels> kernels;  // always set (optional: the laws' members are const)
-  // While `untangling`, value, gradient and H(α) are those of the untangling energy; its
-  // kernels also find inverted cells (their sample points are where det G must be > 0).
+  Kernels kernels;
+  // With problem.untangling_epsilon > 0, value, gradient and H(α) are those of the untangling
+  // energy; its kernels also find inverted cells (their sample points are where det G must be
+  // > 0), at any ε.
   UntanglingKernels untangling_kernels;
   bool untangling = false;
-  std::vector<std::uint8_t> fixed;    // per local dof
-  std::vector<double> volumes;        // desired volume per local cell
-  std::vector<double> inverse_edges;  // per local cell v^(−1/d) (CellTarget)
-  std::vector<double> shapes_inv_t;   // per local cell S⁻ᵀ with det S = 1; empty: ideal
-  std::vector<double> weights;        // per local cell with shapes: its energy's weight
-  std::int64_t free_dofs = 0;         // over all ranks
-  SlidingVertices sliding;
-  std::vector<PetscInt> projector_of;  // per local vertex: its index in sliding.vertices, or -1
-  bool slides_anywhere = false;        // sliding.vertices is not empty on some rank
-  bool scalar_laplacian = false;       // see Functional::laplacian_is_scalar
-
-  // Built by the first create_*matrix (the pattern is a one-time cost not every use needs).
-  mutable std::optional<MatrixAssembler> assembler;
+  const std::vector<std::uint8_t>& fixed;  // per local dof
+  const SlidingVertices& sliding;
+  const std::vector<PetscInt>& projector_of;  // per local vertex: index in sliding, or -1
+  const Targets* targets = nullptr;           // null until the problem has targets
 
   // Work arrays reused between calls.
   mutable std::vector<double> local_x;
@@ -131,19 +97,24 @@ struct Functional::Impl {
   mutable std::vector<double> tangent_spaces;    // per sliding.vertices entry, at local_x
   mutable std::vector<double> bending_force;     // per sliding.vertices entry: g · w (owned)
 
-  Impl(const MeshView& v, const DofMap& d, const EnergyOptions& o, std::vector<std::uint8_t> f,
-       SlidingVertices t)
-      : view(v),
-        dofs(d),
+  Impl(const EnergyOptions& o, Problem p, const Constraints& c)
+      : problem(std::move(p)),
+        constraints(c),
+        view(c.view),
+        dofs(c.dofs),
         options(o),
-        kernels(make_kernels(o)),
-        untangling_kernels(make_untangling_kernels(o, 1.0)),
-        fixed(std::move(f)),
-        sliding(std::move(t)) {}
+        kernels(make_kernels(o, problem.corner_weight)),
+        untangling_kernels(make_untangling_kernels(
+            o, problem.untangling_epsilon > 0.0 ? problem.untangling_epsilon : 1.0)),
+        untangling(problem.untangling_epsilon > 0.0),
+        fixed(c.fixed),
+        sliding(c.sliding),
+        projector_of(c.projector_of),
+        targets(problem.targets.get()) {}
 
   template <CellType Type>
   const NeoHookeKernel<Type>& kernel() const {
-    return std::get<NeoHookeKernel<Type>>(*kernels);
+    return std::get<NeoHookeKernel<Type>>(kernels);
   }
   // Calls f with the kernel of the energy being minimized: Neo-Hookean, or untangling.
   template <CellType Type, typename F>
@@ -155,17 +126,16 @@ struct Functional::Impl {
   // The target of local cell `cell` (cell_kernels.hpp).
   template <int Dim>
   CellTarget<Dim> target(PetscInt cell) const {
-    if (shapes_inv_t.empty()) return {volumes[cell], inverse_edges[cell], nullptr, 1.0};
-    return {volumes[cell], inverse_edges[cell], shapes_inv_t.data() + Dim * Dim * cell,
-            weights[cell]};
+    const Targets& t = *targets;
+    if (t.shapes_inv_t.empty()) return {t.volumes[cell], t.inverse_edges[cell], nullptr, 1.0};
+    return {t.volumes[cell], t.inverse_edges[cell], t.shapes_inv_t.data() + Dim * Dim * cell,
+            t.weights[cell]};
   }
 
   bool is_fixed_dof(PetscInt local_dof) const { return fixed[local_dof] != 0; }
 
   void require_volumes() const {
-    if (static_cast<PetscInt>(volumes.size()) != view.num_cells)
-      fail("Functional: desired volumes are not set ({} given for {} cells)", volumes.size(),
-           view.num_cells);
+    if (!targets) fail("Functional: desired volumes are not set ({} cells)", view.num_cells);
   }
 
   void load_coordinates(Vec x) const {
@@ -313,8 +283,9 @@ PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b,
   constexpr int n = NeoHookeKernel<Type>::vertices;
   constexpr int d = NeoHookeKernel<Type>::dim;
   const CellBlock& block = view.blocks[b];
-  const std::vector<PetscInt>& chunks = assembler->colour_chunks(b);
-  const std::vector<PetscInt>& start = assembler->colour_start(b);
+  const MatrixAssembler& assembler = constraints.assembler();
+  const std::vector<PetscInt>& chunks = assembler.colour_chunks(b);
+  const std::vector<PetscInt>& start = assembler.colour_start(b);
   PetscInt first_bad = std::numeric_limits<PetscInt>::max();
   for (std::size_t colour = 0; colour + 1 < start.size(); ++colour) {
     // Chunks of one colour share no vertex: their blocks go to disjoint entries.
@@ -340,8 +311,7 @@ template <typename Fill>
 void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M, double curvature) const {
   const int d = dofs.dim();
   PetscInt first_bad = std::numeric_limits<PetscInt>::max();
-  if (!assembler) fail("internal error: a matrix to assemble before create_matrix made one");
-  MatrixAssembler::Values values(*assembler, M);
+  MatrixAssembler::Values values(constraints.assembler(), M);
   for (std::size_t b = 0; b < view.blocks.size(); ++b) {
     visit_cell_type(view.blocks[b].type, [&]<CellType Type>(CellTag<Type>) {
       first_bad = std::min(first_bad, add_cell_blocks<Type>(fill, b, values));
@@ -373,114 +343,38 @@ void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M, double cur
 
 namespace {
 
-// Every coordinate of a fixed vertex is a fixed dof.
-FixedDofs per_dof(const MeshView& view, const std::vector<std::uint8_t>& fixed_vertices) {
-  if (static_cast<PetscInt>(fixed_vertices.size()) != view.num_vertices)
-    fail("Functional: {} fixed flags for {} local vertices", fixed_vertices.size(),
-         view.num_vertices);
-  FixedDofs fixed;
-  for (std::uint8_t f : fixed_vertices) fixed.flags.insert(fixed.flags.end(), view.dim, f);
-  return fixed;
+const Constraints& constraints_of(const Problem& problem) {
+  if (!problem.constraints) fail("internal error: a Functional of a problem without constraints");
+  return *problem.constraints;
 }
 
 }  // namespace
 
-Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
-                       const std::vector<std::uint8_t>& fixed)
-    : Functional(view, dofs, options, per_dof(view, fixed)) {}
-
-Functional::Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
-                       FixedDofs fixed, SlidingVertices sliding)
-    : impl_(
-          std::make_unique<Impl>(view, dofs, options, std::move(fixed.flags), std::move(sliding))) {
-  if (dofs.dim() != view.dim)
-    fail("Functional: the mesh is {}D but its DofMap has {} components", view.dim, dofs.dim());
-  if (static_cast<PetscInt>(impl_->fixed.size()) != view.num_vertices * view.dim)
-    fail("Functional: {} fixed flags for {} local dofs", impl_->fixed.size(),
-         view.num_vertices * view.dim);
-  if (dofs.num_local_dofs() != view.num_vertices * view.dim)
-    fail("Functional: DofMap has {} local dofs, the mesh {} vertices of dimension {}",
-         dofs.num_local_dofs(), view.num_vertices, view.dim);
+Functional::Functional(const EnergyOptions& options, Problem problem) {
   if (!(options.lambda > 0.0 && options.mu > 0.0))
     fail("energy parameters must be positive (lambda = {}, mu = {})", options.lambda, options.mu);
-
-  for (const CellBlock& block : view.blocks)
-    if (dimension(block.type) != view.dim)
-      fail("Functional: {} cells in a {}D mesh", name(block.type), view.dim);
-  // A file's vertex that no cell uses (Gmsh writes the nodes of every curve of an extrusion with
-  // rotation, not all of them the volume's) has no energy: free, its rows of the matrices would
-  // be empty, and hypre's eigenvalue estimate loops forever on them. It stays.
-  std::vector<std::uint8_t> used(view.num_vertices, 0);
-  for (const CellBlock& block : view.blocks)
-    for (PetscInt c = 0; c < block.size(); ++c)
-      for (int i = 0; i < num_vertices(block.type); ++i) used[block.cell(c)[i]] = 1;
-  for (PetscInt u = 0; u < view.num_vertices; ++u)
-    if (!used[u]) std::fill_n(impl_->fixed.begin() + u * view.dim, view.dim, 1);
-  impl_->local_x.resize(static_cast<std::size_t>(dofs.num_local_dofs()));
-  impl_->projector_of.assign(view.num_vertices, -1);
-  for (std::size_t i = 0; i < impl_->sliding.vertices.size(); ++i)
-    impl_->projector_of[impl_->sliding.vertices[i]] = static_cast<PetscInt>(i);
-  impl_->tangent_spaces.resize(impl_->sliding.vertices.size() * tangent_space_size(view.dim));
+  const Constraints& constraints = constraints_of(problem);
+  if (problem.targets &&
+      static_cast<PetscInt>(problem.targets->volumes.size()) != constraints.view.num_cells)
+    fail("Functional: the targets of {} cells for {} cells", problem.targets->volumes.size(),
+         constraints.view.num_cells);
+  impl_ = std::make_unique<Impl>(options, std::move(problem), constraints);
+  impl_->local_x.resize(static_cast<std::size_t>(impl_->dofs.num_local_dofs()));
+  impl_->tangent_spaces.resize(impl_->sliding.vertices.size() *
+                               tangent_space_size(impl_->view.dim));
   impl_->bending_force.assign(impl_->sliding.vertices.size(), 0.0);
-  int slides = !impl_->sliding.vertices.empty();
-  MPI_Allreduce(MPI_IN_PLACE, &slides, 1, MPI_INT, MPI_MAX, dofs.comm());
-  impl_->slides_anywhere = slides != 0;
-  int alike = 1;  // every local vertex has all or none of its coordinates fixed
-  for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l)
-    if (impl_->fixed[l] != impl_->fixed[l - l % view.dim]) alike = 0;
-  MPI_Allreduce(MPI_IN_PLACE, &alike, 1, MPI_INT, MPI_MIN, dofs.comm());
-  impl_->scalar_laplacian = !impl_->slides_anywhere && alike;
-
-  for (PetscInt l = 0; l < dofs.num_local_dofs(); ++l)
-    if (view.owned[l / view.dim] && !impl_->is_fixed_dof(l)) ++impl_->free_dofs;
-  MPI_Allreduce(MPI_IN_PLACE, &impl_->free_dofs, 1, MPI_INT64_T, MPI_SUM, dofs.comm());
 }
 
 Functional::~Functional() = default;
+Functional::Functional(Functional&&) noexcept = default;
+Functional& Functional::operator=(Functional&&) noexcept = default;
 
-void Functional::set_desired_volumes(std::span<const double> volumes) {
-  if (static_cast<PetscInt>(volumes.size()) != impl_->view.num_cells)
-    fail("Functional: {} desired volumes for {} cells", volumes.size(), impl_->view.num_cells);
-  for (std::size_t c = 0; c < volumes.size(); ++c)
-    if (!(volumes[c] > 0.0) || !std::isfinite(volumes[c]))
-      fail("desired volume of local cell {} is {} (must be positive and finite)", c, volumes[c]);
-  impl_->volumes.assign(volumes.begin(), volumes.end());
-  impl_->inverse_edges.resize(volumes.size());
-  const double power = -1.0 / impl_->view.dim;
-  for (std::size_t c = 0; c < volumes.size(); ++c)
-    impl_->inverse_edges[c] = std::pow(volumes[c], power);
+const EnergyOptions& Functional::options() const {
+  return impl_->options;
 }
 
-const std::vector<double>& Functional::desired_volumes() const {
-  return impl_->volumes;
-}
-
-void Functional::set_target_shapes(std::span<const double> shapes,
-                                   std::span<const double> weights) {
-  const int d = impl_->view.dim;
-  const std::size_t n = static_cast<std::size_t>(d * d);
-  const std::size_t cells = static_cast<std::size_t>(impl_->view.num_cells);
-  if (!shapes.empty() && shapes.size() != n * cells)
-    fail("Functional: {} target shape entries for {} cells of dimension {}", shapes.size(), cells,
-         d);
-  if (!weights.empty() && (shapes.empty() || weights.size() != cells))
-    fail("Functional: {} target weights for {} cells", weights.size(), cells);
-  impl_->weights.assign(weights.begin(), weights.end());
-  if (impl_->weights.empty() && !shapes.empty()) impl_->weights.assign(cells, 1.0);
-  impl_->shapes_inv_t.resize(shapes.size());
-  if (d == 2)
-    invert_target_shapes<2>(shapes, impl_->weights, impl_->shapes_inv_t);
-  else
-    invert_target_shapes<3>(shapes, impl_->weights, impl_->shapes_inv_t);
-}
-
-void Functional::set_targets_of(const Functional& other) {
-  if (other.impl_->view.num_cells != impl_->view.num_cells)
-    fail("Functional: the targets of {} cells for {} cells", other.impl_->view.num_cells,
-         impl_->view.num_cells);
-  if (!other.desired_volumes().empty()) set_desired_volumes(other.desired_volumes());
-  impl_->shapes_inv_t = other.impl_->shapes_inv_t;
-  impl_->weights = other.impl_->weights;
+const Problem& Functional::problem() const {
+  return impl_->problem;
 }
 
 std::vector<double> Functional::cell_jacobians(Vec x) const {
@@ -524,8 +418,7 @@ double Functional::value_and_gradient(Vec x, Vec gradient) const {
 }
 
 OwnedMat Functional::Impl::create_matrix(MatrixLayout layout) const {
-  if (!assembler) assembler.emplace(view, dofs, fixed);
-  return assembler->create(layout);
+  return constraints.assembler().create(layout);
 }
 
 OwnedMat Functional::create_matrix(HessianUse use) const {
@@ -536,16 +429,16 @@ OwnedMat Functional::create_matrix(HessianUse use) const {
 
 OwnedMat Functional::create_laplacian_matrix() const {
   // The projectors of sliding vertices couple the components.
-  return impl_->create_matrix(impl_->slides_anywhere ? MatrixLayout::Coupled
-                                                     : MatrixLayout::Uncoupled);
+  return impl_->create_matrix(impl_->constraints.slides_anywhere ? MatrixLayout::Coupled
+                                                                 : MatrixLayout::Uncoupled);
 }
 
 bool Functional::laplacian_is_scalar() const {
-  return impl_->scalar_laplacian;
+  return impl_->constraints.scalar_laplacian;
 }
 
 OwnedMat Functional::create_scalar_laplacian_matrix() const {
-  if (!impl_->scalar_laplacian)
+  if (!impl_->constraints.scalar_laplacian)
     fail(
         "internal error: a scalar Riesz Laplacian where vertices slide or have only some "
         "coordinates fixed");
@@ -580,7 +473,7 @@ void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat matrix) cons
         },
         "current-mesh Laplacian", L);
   } else {
-    if (impl_->slides_anywhere)
+    if (impl_->constraints.slides_anywhere)
       impl_->load_coordinates_and_tangents(x);
     else
       impl_->require_volumes();
@@ -617,16 +510,6 @@ CellFields Functional::cell_fields(Vec x) const {
     });
   }
   return fields;
-}
-
-void Functional::set_corner_weight(double weight) {
-  impl_->kernels.emplace(make_kernels(impl_->options, weight));
-}
-
-void Functional::set_untangling(double epsilon) {
-  impl_->untangling = epsilon > 0.0;
-  if (impl_->untangling)
-    impl_->untangling_kernels = make_untangling_kernels(impl_->options, epsilon);
 }
 
 Inversion Functional::inversion(Vec x, int listed, double below) const {
@@ -668,7 +551,7 @@ void Functional::project_onto_boundary(Vec x) const {
 }
 
 bool Functional::slides() const {
-  return impl_->slides_anywhere;
+  return impl_->constraints.slides_anywhere;
 }
 
 const DofMap& Functional::dofs() const {
@@ -676,7 +559,7 @@ const DofMap& Functional::dofs() const {
 }
 
 std::int64_t Functional::free_dofs() const {
-  return impl_->free_dofs;
+  return impl_->constraints.free_dofs;
 }
 
 double mesh_volume(const MeshView& view, const DofMap& dofs, Vec x) {

@@ -19,7 +19,7 @@
 
 #include "core/petsc.hpp"
 #include "energy/neo_hooke.hpp"
-#include "energy/sliding_vertices.hpp"
+#include "energy/problem.hpp"
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
 
@@ -29,12 +29,6 @@ struct CellFields {
   std::vector<double> energy;        // ∫ W over the cell's optimal cell
   std::vector<double> min_det;       // min over quadrature points of det G (+∞ never: see below)
   std::vector<double> volume_ratio;  // Q = actual volume / desired volume
-};
-
-// Per local dof (dim * vertex + component, MeshView order): 1 if that coordinate does not
-// move. Lets a boundary vertex slide within a plane x_j = const (boundary/boundary.hpp).
-struct FixedDofs {
-  std::vector<std::uint8_t> flags;
 };
 
 // Cells inverted at some x: det G ≤ 0 at a sample point of the untangling energy
@@ -51,29 +45,19 @@ enum class HessianUse { Entries, Products };
 
 class Functional {
  public:
-  // `fixed` marks local vertices whose coordinates do not move (MeshView order). `view` and
-  // `dofs` are kept by reference and must outlive the Functional; only their connectivity
-  // and layout are used (coordinates always come from the Vec x of each call).
-  Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
-             const std::vector<std::uint8_t>& fixed);
-  // The same with single coordinates fixed, and vertices restricted to tangent spaces.
-  Functional(const MeshView& view, const DofMap& dofs, const EnergyOptions& options,
-             FixedDofs fixed, SlidingVertices sliding = {});
+  // The functional of `problem` on its constraints' mesh; throws Error without constraints.
+  // Their view and DofMap must outlive the Functional; only their connectivity and layout are
+  // used (coordinates always come from the Vec x of each call).
+  Functional(const EnergyOptions& options, Problem problem);
   ~Functional();
-  Functional(const Functional&) = delete;
-  Functional& operator=(const Functional&) = delete;
+  // Movable, so that its holder can take the Functional of another problem instead.
+  Functional(Functional&&) noexcept;
+  Functional& operator=(Functional&&) noexcept;
 
-  // Desired (absolute) volume per local cell, MeshView order. Must be set before use.
-  void set_desired_volumes(std::span<const double> volumes);
-  const std::vector<double>& desired_volumes() const;
-  // The shape S of each local cell's target (docs/method.md, "Target cells"), MeshView order:
-  // dim² numbers per cell, column-major, scaled here to det S = 1 (the volume is the desired
-  // volume); and the weight of each cell's energy (empty: 1). Empty shapes: the thesis' ideal
-  // cells. Throws Error for det S ≤ 0, a weight ≤ 0 or a wrong length.
-  void set_target_shapes(std::span<const double> shapes, std::span<const double> weights = {});
-  // The desired volumes, target shapes and weights of `other` (of the same mesh), as they are
-  // there: a Functional that replaces another with new constraints keeps its targets.
-  void set_targets_of(const Functional& other);
+  // What it was built from: a phase derives its own problem from this one.
+  const EnergyOptions& options() const;
+  const Problem& problem() const;
+
   // Each local cell's Jacobian at x, at its centre, relative to its unit ideal cell (dim² per
   // cell, column-major, MeshView order): the shape an `input` target takes.
   std::vector<double> cell_jacobians(Vec x) const;
@@ -83,13 +67,14 @@ class Functional {
   // F(x) and its gradient (zero at fixed dofs). Returns +∞ (gradient unspecified) if inverted.
   double value_and_gradient(Vec x, Vec gradient) const;
 
-  // A matrix with the sparsity of H(α) and L (one-time pattern), not yet assembled. For
+  // A matrix with the sparsity of H(α) and L (the pattern of the problem's Constraints: any
+  // Functional of the same Constraints assembles into it), not yet assembled. For
   // HessianUse::Products, on one rank, it stores each coupling once (the blocks on and above
   // the diagonal, about half the memory) and only multiplies.
   OwnedMat create_matrix(HessianUse use = HessianUse::Entries) const;
-  // H(α) at x into a matrix made by create_matrix (values only; the pattern is reused). With
-  // vertices sliding on a curved boundary its curvature term uses the forces of the last
-  // value_and_gradient, which must have been at the same x.
+  // H(α) at x into a matrix made by create_matrix (values only). With vertices sliding on a
+  // curved boundary its curvature term uses the forces of the last value_and_gradient, which
+  // must have been at the same x.
   void assemble_hessian(Vec x, double alpha, Mat H) const;
   // A matrix with the sparsity of L only: the vector Laplacian couples no two components, so
   // it has 1/dim of the entries of create_matrix (cheaper AMG setup and V-cycles). With
@@ -108,15 +93,6 @@ class Functional {
   // and for the tangent spaces of sliding vertices.
   void assemble_laplacian(RieszLaplacian kind, Vec x, Mat L) const;
 
-  // The share of the corner samples in the Neo-Hookean energy of cells other than simplices
-  // (OptimalCellQuadrature): 0, the thesis' Gauss rule, lets a corner of a Q1 cell, wedge or
-  // pyramid flatten while its Gauss points stay well; > 0 puts the law's barrier there too
-  // (the worst-cell phase of smoothing, docs/method.md).
-  void set_corner_weight(double weight);
-  // Untangling (docs/untangling.md): with ε > 0, value, gradient and H(α) are those of the
-  // untangling energy (regularized_neo_hooke.hpp), finite on inverted cells; ε = 0 switches
-  // back to the Neo-Hookean energy. The Riesz Laplacian and cell_fields do not change.
-  void set_untangling(double epsilon);
   // The inverted cells at x, listing at most `listed` of them. Collective. With `below` > 0,
   // the cells whose det G is at most that at a sample point (nearly flat ones too).
   Inversion inversion(Vec x, int listed = 10, double below = 0.0) const;

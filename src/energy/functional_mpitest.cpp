@@ -33,10 +33,11 @@ struct Numbers {
 Numbers evaluate(const MeshData& data, MPI_Comm comm) {
   PlexMesh mesh = distribute(data, comm);
   const MeshView& view = mesh.view();
-  Functional functional(view, mesh.dofs(), EnergyOptions{}, view.on_boundary);
   OwnedVec x = mesh.coordinates();
   const double volume = mesh_volume(view, mesh.dofs(), x) / mesh.global_num_cells();
-  functional.set_desired_volumes(std::vector<double>(view.num_cells, volume));
+  const Functional functional(
+      EnergyOptions{}, Problem(view, mesh.dofs(), view.on_boundary)
+                           .with_desired_volumes(std::vector<double>(view.num_cells, volume)));
 
   Numbers n{};
   OwnedVec gradient = mesh.dofs().create_global_vector();
@@ -59,10 +60,11 @@ struct Assembled {
 
   Assembled(const MeshData& data, MPI_Comm comm) : mesh(distribute(data, comm)) {
     const MeshView& view = mesh.view();
-    functional = std::make_unique<Functional>(view, mesh.dofs(), EnergyOptions{}, view.on_boundary);
     OwnedVec x = mesh.coordinates();
     const double volume = mesh_volume(view, mesh.dofs(), x) / mesh.global_num_cells();
-    functional->set_desired_volumes(std::vector<double>(view.num_cells, volume));
+    functional = std::make_unique<Functional>(
+        EnergyOptions{}, Problem(view, mesh.dofs(), view.on_boundary)
+                             .with_desired_volumes(std::vector<double>(view.num_cells, volume)));
     hessian = functional->create_matrix();
     functional->assemble_hessian(x, 0.5, hessian);
     optimal_laplacian = functional->create_laplacian_matrix();
@@ -244,8 +246,9 @@ TEST(DistributedFunctionalErrors, InvertedCellFailsOnEveryRank) {
   ASSERT_EQ(mpi_size(), 2);
   const PlexMesh mesh = distribute(box(CellType::Quadrilateral, 8), PETSC_COMM_WORLD);
   const MeshView& view = mesh.view();
-  Functional functional(view, mesh.dofs(), EnergyOptions{}, view.on_boundary);
-  functional.set_desired_volumes(std::vector<double>(view.num_cells, 1.0 / 16));
+  const Functional functional(
+      EnergyOptions{}, Problem(view, mesh.dofs(), view.on_boundary)
+                           .with_desired_volumes(std::vector<double>(view.num_cells, 1.0 / 16)));
   OwnedVec x = mesh.coordinates();
   if (mpi_rank() == 0) {
     // An owned vertex whose 4 cells are all on rank 0 moves past the opposite corner of one

@@ -16,24 +16,35 @@ constexpr double kFdTolerance = 1e-6;  // relative error allowed against central
 
 // A serial mesh with boundary vertices fixed and the Functional on it. Not movable: the
 // Functional keeps references to the view and the DofMap.
-struct Problem {
+struct MeshCase {
   MeshData data;
   MeshView view;
   DofMap dofs;
   Functional functional;
   OwnedVec x;
 
-  explicit Problem(MeshData mesh, const EnergyOptions& options = {})
+  explicit MeshCase(MeshData mesh, const EnergyOptions& options = {})
       : data(std::move(mesh)),
         view(serial_view(data)),
         dofs(DofMap::serial(data.dim, static_cast<PetscInt>(data.num_vertices()))),
-        functional(view, dofs, options, view.on_boundary),
+        functional(options, Problem(view, dofs, view.on_boundary)),
         x(dofs.create_global_vector()) {
     VecWriteView out(x);
     for (std::size_t i = 0; i < data.coords.size(); ++i)
       out[static_cast<PetscInt>(i)] = data.coords[i];
   }
-  Problem(const Problem&) = delete;
+  MeshCase(const MeshCase&) = delete;
+
+  // The functional of the problem with these targets instead.
+  void set_desired_volumes(std::span<const double> volumes) {
+    functional =
+        Functional(functional.options(), functional.problem().with_desired_volumes(volumes));
+  }
+  void set_target_shapes(std::span<const double> shapes, std::span<const double> weights) {
+    const Problem& problem = functional.problem();
+    functional = Functional(functional.options(),
+                            problem.with_targets(problem.desired_volumes(), shapes, weights));
+  }
 
   // Equal desired volumes whose sum is the mesh's volume, each scaled by a factor in
   // [1 − spread, 1 + spread].
@@ -43,7 +54,7 @@ struct Problem {
     const double mean = mesh_volume(view, dofs, x) / view.num_cells;
     std::vector<double> volumes(view.num_cells);
     for (double& v : volumes) v = mean * (1.0 + u(rng));
-    functional.set_desired_volumes(volumes);
+    set_desired_volumes(volumes);
   }
 
   // 1 at free dofs, 0 at those of the (fixed) boundary vertices.
@@ -95,7 +106,7 @@ int cells_per_direction(CellType type) {
 }
 
 TEST_P(FunctionalTest, GradientMatchesFiniteDifferencesOfValue) {
-  Problem p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 21));
+  MeshCase p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 21));
   p.set_volumes(0.5, 22);
   OwnedVec gradient = p.dofs.create_global_vector();
   p.functional.value_and_gradient(p.x, gradient);
@@ -120,7 +131,7 @@ TEST_P(FunctionalTest, GradientMatchesFiniteDifferencesOfValue) {
 }
 
 TEST_P(FunctionalTest, HessianMatchesFiniteDifferencesOfGradient) {
-  Problem p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 23));
+  MeshCase p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 23));
   p.set_volumes(0.5, 24);
   OwnedMat H = p.functional.create_matrix();
   p.functional.assemble_hessian(p.x, 1.0, H);
@@ -158,7 +169,7 @@ TEST_P(FunctionalTest, HessianMatchesFiniteDifferencesOfGradient) {
 
 // Every cell of a uniform square/cube grid with equal desired volumes is its optimal cell.
 TEST_P(Q1FunctionalTest, UniformGridWithEqualVolumesIsOptimal) {
-  Problem p(box(GetParam(), 4));
+  MeshCase p(box(GetParam(), 4));
   p.set_volumes();
   OwnedVec gradient = p.dofs.create_global_vector();
   EXPECT_NEAR(p.functional.value_and_gradient(p.x, gradient), 0.0, 1e-13);
@@ -174,12 +185,12 @@ TEST_P(Q1FunctionalTest, UniformGridWithEqualVolumesIsOptimal) {
 TEST_P(FunctionalTest, InvariantUnderRotationAndTranslation) {
   const CellType type = GetParam();
   MeshData moved = perturbed_box(type, cells_per_direction(type), 25);
-  Problem original(moved);
+  MeshCase original(moved);
   original.set_volumes(0.3, 26);
   rotate(moved, 27.0);
   for (std::size_t i = 0; i < moved.coords.size(); ++i) moved.coords[i] += 0.5 + i % moved.dim;
-  Problem rigid(std::move(moved));
-  rigid.functional.set_desired_volumes(original.functional.desired_volumes());
+  MeshCase rigid(std::move(moved));
+  rigid.set_desired_volumes(original.functional.problem().desired_volumes());
   const double f = original.functional.value(original.x);
   EXPECT_GT(f, 0.0);
   EXPECT_NEAR(rigid.functional.value(rigid.x), f, 1e-13 * f);
@@ -189,7 +200,7 @@ TEST_P(FunctionalTest, InvariantUnderRotationAndTranslation) {
 // optimal cells' one; either has the identity's rows at fixed dofs. The Laplacian's own
 // pattern (no couplings between components) holds the same values as H's pattern.
 TEST_P(Q1FunctionalTest, LaplaciansAgreeOnOptimalMesh) {
-  Problem p(box(GetParam(), 3));
+  MeshCase p(box(GetParam(), 3));
   p.set_volumes();
   OwnedMat optimal = p.functional.create_laplacian_matrix();
   OwnedMat current = p.functional.create_matrix();
@@ -213,7 +224,7 @@ TEST_P(Q1FunctionalTest, LaplaciansAgreeOnOptimalMesh) {
 // L = L₁ ⊗ I: the scalar Laplacian's MAIJ applies exactly the vector Laplacian (the same
 // sums), with the identity at fixed vertices; for either kind of Laplacian.
 TEST_P(FunctionalTest, ScalarLaplacianActsAsTheVectorLaplacian) {
-  Problem p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 31));
+  MeshCase p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 31));
   p.set_volumes(0.3, 32);
   ASSERT_TRUE(p.functional.laplacian_is_scalar());
   OwnedVec v = p.dofs.create_global_vector(), expected = p.dofs.create_global_vector(),
@@ -238,7 +249,7 @@ TEST_P(FunctionalTest, ScalarLaplacianActsAsTheVectorLaplacian) {
   const DofMap dofs = DofMap::serial(2, view.num_vertices);
   FixedDofs fixed{std::vector<std::uint8_t>(2 * view.num_vertices, 0)};
   fixed.flags[0] = 1;
-  const Functional partly(view, dofs, EnergyOptions{}, fixed);
+  const Functional partly(EnergyOptions{}, Problem(view, dofs, fixed));
   EXPECT_FALSE(partly.laplacian_is_scalar());
   EXPECT_THROW(partly.create_scalar_laplacian_matrix(), Error);
 }
@@ -249,7 +260,7 @@ TEST_P(FunctionalTest, ScalarLaplacianActsAsTheVectorLaplacian) {
 // matrix made after it and a scalar Laplacian (which free the pattern's columns) still gets
 // its pattern.
 TEST_P(FunctionalTest, HessianStoredOnceMultipliesAsTheWholeMatrix) {
-  Problem p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 41));
+  MeshCase p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 41));
   p.set_volumes(0.4, 42);
   const int d = p.data.dim;
   // Three interior vertices slide along the line of direction t (P = t tᵀ), bending with
@@ -271,15 +282,16 @@ TEST_P(FunctionalTest, HessianStoredOnceMultipliesAsTheWholeMatrix) {
   sliding.project = [](Vec) {};
   std::vector<std::uint8_t> fixed(d * p.view.num_vertices);
   for (PetscInt l = 0; l < d * p.view.num_vertices; ++l) fixed[l] = p.view.on_boundary[l / d];
-  Functional slides(p.view, p.dofs, EnergyOptions{}, FixedDofs{fixed}, std::move(sliding));
-  slides.set_desired_volumes(p.functional.desired_volumes());
+  const Functional slides(EnergyOptions{},
+                          Problem(p.view, p.dofs, FixedDofs{fixed}, std::move(sliding))
+                              .with_desired_volumes(p.functional.problem().desired_volumes()));
 
   OwnedVec v = p.dofs.create_global_vector(), gradient = p.dofs.create_global_vector();
   {
     VecWriteView out(v);
     for (PetscInt i = 0; i < out.size(); ++i) out[i] = std::sin(1.0 + i);
   }
-  for (const Functional* f : {&p.functional, &slides}) {
+  for (const Functional* f : {static_cast<const Functional*>(&p.functional), &slides}) {
     f->value_and_gradient(p.x, gradient);  // the forces of the curvature term
     OwnedMat once = f->create_matrix(HessianUse::Products);
     const bool scalar = f->laplacian_is_scalar();
@@ -304,8 +316,8 @@ TEST_P(FunctionalTest, HessianStoredOnceMultipliesAsTheWholeMatrix) {
 TEST(Functional, InvertedCellGivesInfiniteValueAndRejectsHessian) {
   MeshData mesh = box(CellType::Quadrilateral, 2);
   mesh.coords[2 * 4] = 1.5;  // the centre vertex (1,1 in lattice order) moves outside
-  Problem p(std::move(mesh));
-  p.functional.set_desired_volumes(std::vector<double>(4, 1.0));
+  MeshCase p(std::move(mesh));
+  p.set_desired_volumes(std::vector<double>(4, 1.0));
   EXPECT_TRUE(std::isinf(p.functional.value(p.x)));
   OwnedVec gradient = p.dofs.create_global_vector();
   EXPECT_TRUE(std::isinf(p.functional.value_and_gradient(p.x, gradient)));
@@ -322,24 +334,24 @@ TEST(Functional, ValueIsInfiniteWhereverTheInvertedCellIs) {
     for (int vertex : {n + 2, (n + 1) * (n / 2) + n / 2, (n + 1) * (n - 1) + n - 1}) {
       MeshData mesh = box(CellType::Quadrilateral, n);
       const double finite = [&] {
-        Problem p{MeshData(mesh)};
-        p.functional.set_desired_volumes(std::vector<double>(n * n, 1.0));
+        MeshCase p{MeshData(mesh)};
+        p.set_desired_volumes(std::vector<double>(n * n, 1.0));
         return p.functional.value(p.x);
       }();
       EXPECT_TRUE(std::isfinite(finite));
       mesh.coords[2 * vertex] += 1.5;  // an interior vertex crosses its right-hand neighbour
-      Problem p(std::move(mesh));
-      p.functional.set_desired_volumes(std::vector<double>(n * n, 1.0));
+      MeshCase p(std::move(mesh));
+      p.set_desired_volumes(std::vector<double>(n * n, 1.0));
       EXPECT_TRUE(std::isinf(p.functional.value(p.x))) << threads << " threads, vertex " << vertex;
     }
   }
 }
 
-// A Functional that replaces another (new constraints, a retry with the boundary pinned) takes
-// over its desired volumes, target shapes and weights: the same energy on the same mesh.
-TEST(Functional, SetTargetsOfTakesOverVolumesShapesAndWeights) {
+// A problem with new constraints (a retry with the boundary pinned, a fitted interface) keeps
+// its desired volumes, target shapes and weights: the same energy on the same mesh.
+TEST(Problem, NewConstraintsKeepTheTargets) {
   MeshData mesh = perturbed_box(CellType::Quadrilateral, 4, 5);
-  Problem with_targets{MeshData(mesh)};
+  MeshCase with_targets{MeshData(mesh)};
   const PetscInt cells = with_targets.view.num_cells;
   std::vector<double> volumes(cells), shapes(4 * cells), weights(cells);
   for (PetscInt c = 0; c < cells; ++c) {
@@ -349,21 +361,43 @@ TEST(Functional, SetTargetsOfTakesOverVolumesShapesAndWeights) {
     shapes[4 * c] = stretch, shapes[4 * c + 1] = 0.1, shapes[4 * c + 2] = 0.0;
     shapes[4 * c + 3] = 1.0;
   }
-  with_targets.functional.set_desired_volumes(volumes);
-  with_targets.functional.set_target_shapes(shapes, weights);
-  Problem replacement{std::move(mesh)};
-  replacement.functional.set_targets_of(with_targets.functional);
-  EXPECT_EQ(replacement.functional.desired_volumes(), volumes);
-  EXPECT_EQ(replacement.functional.value(replacement.x),
-            with_targets.functional.value(with_targets.x));
-  Problem other(box(CellType::Quadrilateral, 3));
-  EXPECT_THROW(other.functional.set_targets_of(with_targets.functional), Error);
+  with_targets.set_desired_volumes(volumes);
+  with_targets.set_target_shapes(shapes, weights);
+  const Problem& problem = with_targets.functional.problem();
+  MeshCase replacement{std::move(mesh)};
+  const Functional replaced(EnergyOptions{},
+                            problem.with_constraints(replacement.functional.problem().constraints));
+  EXPECT_EQ(replaced.problem().desired_volumes(), volumes);
+  EXPECT_EQ(replaced.value(replacement.x), with_targets.functional.value(with_targets.x));
+  MeshCase other(box(CellType::Quadrilateral, 3));
+  EXPECT_THROW(
+      Functional(EnergyOptions{}, problem.with_constraints(other.functional.problem().constraints)),
+      Error);
+}
+
+// A problem derived for a phase (an untangling round, the corner lift) shares the targets and
+// the constraints, whose pattern serves its matrices, and leaves the problem it came from as it
+// was.
+TEST(Problem, DerivedProblemsShareTargetsConstraintsAndMatrices) {
+  MeshCase p(perturbed_box(CellType::Quadrilateral, 4, 7));
+  p.set_volumes(0.2, 8);
+  const double f = p.functional.value(p.x);
+  const Functional untangling(EnergyOptions{}, p.functional.problem().with_untangling(0.1));
+  const Functional corners(EnergyOptions{}, p.functional.problem().with_corner_weight(0.5));
+  EXPECT_NE(untangling.value(p.x), f);
+  EXPECT_NE(corners.value(p.x), f);
+  EXPECT_EQ(p.functional.value(p.x), f);
+  EXPECT_EQ(untangling.problem().targets, p.functional.problem().targets);
+  EXPECT_EQ(untangling.problem().constraints, p.functional.problem().constraints);
+  const OwnedMat H = p.functional.create_matrix();
+  EXPECT_NO_THROW(untangling.assemble_hessian(p.x, 0.5, H));
 }
 
 // The shapes are inverted cell by cell on every thread; a bad shape or weight is still named by
 // its cell, the first one.
 TEST(Functional, NamesTheFirstCellWithABadTargetShapeOrWeight) {
-  Problem p(box(CellType::Quadrilateral, 40));
+  MeshCase p(box(CellType::Quadrilateral, 40));
+  p.set_volumes();
   const PetscInt cells = p.view.num_cells;
   std::vector<double> shapes(4 * cells, 0.0), weights(cells, 1.0);
   for (PetscInt c = 0; c < cells; ++c) shapes[4 * c] = shapes[4 * c + 3] = 1.0;
@@ -371,7 +405,7 @@ TEST(Functional, NamesTheFirstCellWithABadTargetShapeOrWeight) {
   weights[1500] = 0.0;
   const auto error = [&] {
     try {
-      p.functional.set_target_shapes(shapes, weights);
+      p.set_target_shapes(shapes, weights);
     } catch (const Error& e) {
       return std::string(e.what());
     }
@@ -386,7 +420,7 @@ TEST(Functional, NamesTheFirstCellWithABadTargetShapeOrWeight) {
 }
 
 TEST(Functional, MeshVolumeAndFreeDofs) {
-  Problem p(box(CellType::Hexahedron, 3));
+  MeshCase p(box(CellType::Hexahedron, 3));
   EXPECT_NEAR(mesh_volume(p.view, p.dofs, p.x), 8.0, 1e-13);
   EXPECT_EQ(p.functional.free_dofs(), 3 * 8);  // 2×2×2 interior vertices
 }
@@ -398,8 +432,8 @@ TEST(SquareMidpoint, InitialEnergyAndDefectOfThesisTable51) {
   for (double degrees : {0.0, 27.0}) {  // Table 5.3: the same mesh rotated by 27°
     MeshData mesh = square_midpoint(16);
     rotate(mesh, degrees);
-    Problem p(std::move(mesh));
-    p.functional.set_desired_volumes(std::vector<double>(256, 1.0 / 256.0));
+    MeshCase p(std::move(mesh));
+    p.set_desired_volumes(std::vector<double>(256, 1.0 / 256.0));
     OwnedVec gradient = p.dofs.create_global_vector();
     const double f = p.functional.value_and_gradient(p.x, gradient);
     EXPECT_NEAR(f, 2.665203, 5e-7) << "rotated by " << degrees;

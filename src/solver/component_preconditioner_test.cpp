@@ -82,10 +82,11 @@ OwnedMat laplacian(CellType type, int cells, Held held = Held::Whole) {
     for (int j = 0; j < view.dim; ++j)
       fixed.flags.push_back(held == Held::Whole ? on_boundary : on_side(x[j]));
   }
-  Functional functional(view, dofs, EnergyOptions{}, std::move(fixed));
+  const Functional functional(EnergyOptions{},
+                              Problem(view, dofs, std::move(fixed))
+                                  .with_desired_volumes(std::vector<double>(view.num_cells, 1.0)));
   EXPECT_EQ(functional.laplacian_is_scalar(), held == Held::Whole);
   EXPECT_FALSE(functional.slides());
-  functional.set_desired_volumes(std::vector<double>(view.num_cells, 1.0));
   OwnedVec x = dofs.create_global_vector();
   OwnedMat vector = held == Held::Whole ? functional.create_scalar_laplacian_matrix()
                                         : functional.create_laplacian_matrix();

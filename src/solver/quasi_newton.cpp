@@ -83,7 +83,8 @@ std::optional<ComponentOperators> riesz_components(const Functional& functional,
 }
 
 struct QuasiNewton::Impl {
-  const Functional& functional;
+  const Functional* functional;  // of the problem being minimized (restart may change it)
+  std::shared_ptr<const Constraints> constraints;  // the matrices' pattern is theirs
   QuasiNewtonOptions options;
   Vec cell_size;
   LinearSolver hessian_solver;
@@ -114,7 +115,8 @@ struct QuasiNewton::Impl {
   double start_time = MPI_Wtime();
 
   Impl(const Functional& f, const QuasiNewtonOptions& o, Vec size)
-      : functional(f),
+      : functional(&f),
+        constraints(f.problem().constraints),
         options(o),
         cell_size(size),
         hessian_solver(f.dofs().comm(), o.linear_solver, "hess_", f.dofs().dim(), o.hessian_rtol),
@@ -123,11 +125,11 @@ struct QuasiNewton::Impl {
         alpha(o.initial_alpha(f.slides())),
         alpha_unproven(!o.advanced.alpha0 && alpha > SolverOptions::Advanced::kThesisAlpha0) {
     Stopwatch watch(times.setup);
-    if (const auto kind = riesz_components(functional, options))
+    if (const auto kind = riesz_components(*functional, options))
       riesz_solver.precondition_per_component(*kind);
     if (laplacian_preconditions_hessian()) hessian_solver.precondition_with(riesz_solver);
     for (OwnedVec* v : {&gradient, &s, &delta_tilde, &trial})
-      *v = functional.dofs().create_global_vector();
+      *v = functional->dofs().create_global_vector();
     delta = delta_tilde;
   }
 
@@ -137,19 +139,19 @@ struct QuasiNewton::Impl {
   void create_hessian() {
     if (hessian) return;
     Stopwatch watch(times.setup);
-    hessian = functional.create_matrix(laplacian_preconditions_hessian() ? HessianUse::Products
-                                                                         : HessianUse::Entries);
+    hessian = functional->create_matrix(laplacian_preconditions_hessian() ? HessianUse::Products
+                                                                          : HessianUse::Entries);
   }
 
   OwnedMat create_laplacian() const {
-    return riesz_components(functional, options) == ComponentOperators::Shared
-               ? functional.create_scalar_laplacian_matrix()
-               : functional.create_laplacian_matrix();
+    return riesz_components(*functional, options) == ComponentOperators::Shared
+               ? functional->create_scalar_laplacian_matrix()
+               : functional->create_laplacian_matrix();
   }
 
   void evaluate_gradient(Vec x) {
     Stopwatch watch(times.gradient);
-    energy = functional.value_and_gradient(x, gradient);
+    energy = functional->value_and_gradient(x, gradient);
     if (!std::isfinite(energy))
       fail("the mesh has an inverted or degenerate cell: its energy is not finite");
     defect = norm(gradient);
@@ -161,7 +163,7 @@ struct QuasiNewton::Impl {
       laplacian = create_laplacian();
     }
     Stopwatch watch(times.riesz_setup);
-    functional.assemble_laplacian(options.advanced.riesz, x, laplacian);
+    functional->assemble_laplacian(options.advanced.riesz, x, laplacian);
     riesz_solver.set_operator(laplacian, false);
     // The solver multiplies with its own copy of L: keeping L would hold it twice, and freed
     // now, before the hierarchies are built, its memory serves them. It is made again when it
@@ -180,7 +182,7 @@ struct QuasiNewton::Impl {
   void update_laplacian_tangents(Vec x) {
     Stopwatch watch(times.riesz_setup);
     if (!laplacian) laplacian = create_laplacian();
-    functional.assemble_laplacian(options.advanced.riesz, x, laplacian);
+    functional->assemble_laplacian(options.advanced.riesz, x, laplacian);
     riesz_solver.set_operator(laplacian, options.linear_solver != LinearSolverKind::Direct);
   }
 
@@ -207,7 +209,7 @@ struct QuasiNewton::Impl {
     {
       create_hessian();
       Stopwatch watch(times.hessian_assembly);
-      functional.assemble_hessian(x, alpha, hessian);
+      functional->assemble_hessian(x, alpha, hessian);
     }
     // With L's hierarchy (a shell PC) there is nothing of H(α) to build or keep.
     const bool own_pc = !laplacian_preconditions_hessian();
@@ -288,7 +290,7 @@ struct QuasiNewton::Impl {
   // estimates_angle(): whether quasi-Newton steps try the estimate before solving for s.
   bool estimates_angle() const {
     return options.advanced.lazy_riesz && options.linear_solver == LinearSolverKind::Amg &&
-           !functional.slides();
+           !functional->slides();
   }
   bool estimated_angle_passes(IterationRecord& rec, double delta_delta) {
     double g_m_g = 0.0;
@@ -362,8 +364,8 @@ struct QuasiNewton::Impl {
     sigma = std::ldexp(1.0, -halvings);
     for (; halvings <= options.advanced.max_halvings; ++halvings, sigma *= 0.5) {
       NM_PETSC(VecWAXPY(trial, sigma, delta, x));
-      functional.project_onto_boundary(trial);  // sliding vertices back onto the boundary
-      new_energy = functional.value(trial);
+      functional->project_onto_boundary(trial);  // sliding vertices back onto the boundary
+      new_energy = functional->value(trial);
       ++rec.trials;
       rec.armijo_steps = halvings;
       if (!std::isfinite(new_energy)) continue;
@@ -389,7 +391,7 @@ struct QuasiNewton::Impl {
     if (defect <= options.defect_atol) return StopReason::DefectAbsolute;
     if (defect <= options.defect_rtol * initial_defect) return StopReason::DefectRelative;
     if (k >= options.max_iterations) return StopReason::MaxIterations;
-    if (past_deadline(options.deadline, functional.dofs().comm())) return StopReason::TimeLimit;
+    if (past_deadline(options.deadline, functional->dofs().comm())) return StopReason::TimeLimit;
     return std::nullopt;
   }
 
@@ -401,7 +403,7 @@ struct QuasiNewton::Impl {
 
     if (options.advanced.riesz == RieszLaplacian::CurrentMesh || laplacian_pending)
       assemble_laplacian(x);
-    else if (functional.slides() && !laplacian_fresh)
+    else if (functional->slides() && !laplacian_fresh)
       update_laplacian_tangents(x);
     laplacian_fresh = false;
     const bool antigradient_step = antigradient_left > 0;
@@ -461,6 +463,14 @@ QuasiNewton::QuasiNewton(const Functional& functional, const QuasiNewtonOptions&
 QuasiNewton::~QuasiNewton() = default;
 
 void QuasiNewton::restart(Vec x) {
+  restart(x, *impl_->functional);
+}
+
+void QuasiNewton::restart(Vec x, const Functional& functional) {
+  // The Functional of the last start may be gone: only its constraints, held here, count.
+  if (functional.problem().constraints != impl_->constraints)
+    fail("internal error: a quasi-Newton restart on other constraints");
+  impl_->functional = &functional;
   impl_->evaluate_gradient(x);
   if (impl_->initial_defect < 0) impl_->initial_defect = impl_->defect;
   impl_->laplacian_pending = true;

@@ -3,8 +3,8 @@
 // Armijo backtracking that rejects non-finite energies, k_min initial antigradient steps
 // and the α heuristic; stopping on the Newton defect or on a practical criterion.
 //
-// smooth runs it to the end (minimize); adapt drives it step by step and calls restart()
-// after changing the desired volumes.
+// smooth runs it to the end (minimize); adapt drives it step by step and restarts it on the
+// Functional of each new set of desired volumes.
 #pragma once
 
 #include <functional>
@@ -54,9 +54,12 @@ class QuasiNewton {
   QuasiNewton(const Functional& functional, const QuasiNewtonOptions& options, Vec cell_size);
   ~QuasiNewton();
 
-  // Starts at x (or restarts after the desired volumes changed): evaluates F and g, builds
-  // the Riesz Laplacian and restarts the k_min antigradient steps. α keeps its value.
+  // Starts at x: evaluates F and g, builds the Riesz Laplacian and restarts the k_min
+  // antigradient steps. α keeps its value.
   void restart(Vec x);
+  // The same on a new problem (new desired volumes, a new ε) of the same Constraints, whose
+  // pattern the matrices kept share; `functional` must outlive the steps that follow.
+  void restart(Vec x, const Functional& functional);
   // The stop reason at the current iterate, if any (defect tests; after a step also the
   // practical criterion and line-search failure).
   std::optional<StopReason> stop_reason() const;

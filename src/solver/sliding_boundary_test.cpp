@@ -36,7 +36,7 @@ Outcome graded_box(CellType type, int n, BoundaryMode boundary) {
       sum += volumes[block.first_cell + c] = std::pow(4.0, x);
     }
   for (double& v : volumes) v *= p.volume / sum;
-  p.functional->set_desired_volumes(volumes);
+  p.set_desired_volumes(volumes);
   p.cell_size = local_cell_size(p.view, p.dofs, volumes);
 
   QuasiNewtonOptions options;

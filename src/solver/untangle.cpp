@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include <mpi.h>
 
@@ -26,7 +27,7 @@ double next_epsilon(double epsilon, double min_det, double energy_before, double
 
 }  // namespace
 
-UntangleResult untangle(Functional& functional, Vec x, const QuasiNewtonOptions& options,
+UntangleResult untangle(const Functional& functional, Vec x, const QuasiNewtonOptions& options,
                         Vec cell_size, const UntangleOptions& untangle_options,
                         const std::function<void(const IterationRecord&)>& observe) {
   const double start = MPI_Wtime();
@@ -42,14 +43,21 @@ UntangleResult untangle(Functional& functional, Vec x, const QuasiNewtonOptions&
   method.practical = false;
   double epsilon =
       std::max({untangle_options.initial_epsilon * std::abs(result.before.min_det), below, 1e-6});
-  functional.set_untangling(epsilon);
-  QuasiNewton solver(functional, method, cell_size);
+  // A round's problem is the given one with the untangling energy of its ε.
+  const auto untangling = [&functional](double eps) {
+    return std::make_unique<const Functional>(functional.options(),
+                                              functional.problem().with_untangling(eps));
+  };
+  // The next round's; the solver holds the current one until it restarts on the next.
+  std::unique_ptr<const Functional> next = untangling(epsilon), current;
+  QuasiNewton solver(*next, method, cell_size);
   Inversion best = result.before;
   int stalled = 0;
   for (int round = 1; round <= untangle_options.max_rounds; ++round) {
     if (past_deadline(options.deadline, functional.dofs().comm())) break;
     result.rounds = round;
-    solver.restart(x);
+    solver.restart(x, *next);
+    current = std::move(next);
     const double energy_before = solver.energy();
     for (int step = 0; step < untangle_options.steps_per_round; ++step) {
       IterationRecord rec = solver.step(x);
@@ -69,9 +77,8 @@ UntangleResult untangle(Functional& functional, Vec x, const QuasiNewtonOptions&
     stalled = progress ? 0 : stalled + 1;
     if (stalled >= untangle_options.stalled_rounds) break;
     epsilon = next_epsilon(epsilon, result.after.min_det, energy_before, solver.energy());
-    functional.set_untangling(epsilon);
+    next = untangling(epsilon);
   }
-  functional.set_untangling(0.0);
   result.seconds = MPI_Wtime() - start;
   return result;
 }

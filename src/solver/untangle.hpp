@@ -34,9 +34,9 @@ struct UntangleResult {
   double seconds = 0.0;
 };
 
-// Untangles x in place if it has inverted cells (else returns at once with no history); the
-// functional is left on the Neo-Hookean energy. `observe` sees every iteration. Collective.
-UntangleResult untangle(Functional& functional, Vec x, const QuasiNewtonOptions& options,
+// Untangles x in place if it has inverted cells (else returns at once with no history), on
+// `functional`'s problem with the untangling energy. `observe` sees every iteration. Collective.
+UntangleResult untangle(const Functional& functional, Vec x, const QuasiNewtonOptions& options,
                         Vec cell_size, const UntangleOptions& untangle_options = {},
                         const std::function<void(const IterationRecord&)>& observe = {});
 

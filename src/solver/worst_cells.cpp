@@ -39,7 +39,7 @@ bool flat_cap(const MeshView& view, const DofMap& dofs, Vec x) {
 }
 
 std::optional<CornerPhaseSummary> lift_flat_corners(
-    Functional& functional, const MeshView& view, const DofMap& dofs, Vec x,
+    const Functional& functional, const MeshView& view, const DofMap& dofs, Vec x,
     const QuasiNewtonOptions& options, Vec cell_size, Result& run,
     const std::function<void(const IterationRecord&)>& observe) {
   const double before = min_non_simplex_jacobian(view, dofs, x);
@@ -49,7 +49,7 @@ std::optional<CornerPhaseSummary> lift_flat_corners(
   // towards the desired volumes and, if that stalls, towards each cell's own volume (det G then
   // measures the shape alone: the small cells of a graded mesh are not taken for flat ones).
   const OwnedVec start = copy_of(x);
-  const std::vector<double> desired = functional.desired_volumes();
+  const std::vector<double>& desired = functional.problem().desired_volumes();
   const std::vector<double> own = [&] {
     std::vector<double> v = functional.cell_fields(x).volume_ratio;  // actual / desired
     for (std::size_t c = 0; c < v.size(); ++c) v[c] *= desired[c];
@@ -59,18 +59,18 @@ std::optional<CornerPhaseSummary> lift_flat_corners(
   bool lifted = false;
   for (const std::vector<double>* volumes : {&desired, &own}) {
     NM_PETSC(VecCopy(start, x));
-    functional.set_desired_volumes(*volumes);
+    const Functional towards(functional.options(),
+                             functional.problem().with_desired_volumes(*volumes));
     const UntangleResult lift = untangle(
-        functional, x, options, cell_size,
+        towards, x, options, cell_size,
         {.max_rounds = kLiftRounds, .stalled_rounds = 3, .tangled_below = kLiftedDet}, observe);
     run.history.insert(run.history.end(), lift.history.begin(), lift.history.end());
     iterations += static_cast<int>(lift.history.size());
     // The regularized energy is finite on inverted cells too: a lift that stalled with one
     // failed.
-    lifted = functional.inversion(x, 0).count == 0;
+    lifted = towards.inversion(x, 0).count == 0;
     if (lifted) break;
   }
-  functional.set_desired_volumes(desired);
   if (!lifted) {  // the thesis' optimum is kept
     NM_PETSC(VecCopy(start, x));
     return CornerPhaseSummary{.min_scaled_jacobian_before = before,
@@ -78,9 +78,9 @@ std::optional<CornerPhaseSummary> lift_flat_corners(
                               .iterations = iterations,
                               .gave_up = true};
   }
-  functional.set_corner_weight(kWorstCellCornerWeight);
-  const SolverRun polish = minimize(functional, x, options, cell_size, observe);
-  functional.set_corner_weight(0.0);
+  const Functional corners(functional.options(),
+                           functional.problem().with_corner_weight(kWorstCellCornerWeight));
+  const SolverRun polish = minimize(corners, x, options, cell_size, observe);
   run.history.insert(run.history.end(), polish.history.begin(), polish.history.end());
   run.reason = polish.reason;
   run.final_energy = functional.value(x);

@@ -4,7 +4,7 @@
 // the optimum under the Gauss rule lies beyond that wall (untangled meshes, hexahedra in a
 // sharp corner of the domain), the method stops against it with a corner nearly flat, min
 // scaled Jacobian 1e-10 where the connectivity allows far more. Then smoothing goes on with the
-// corners sampled too (Functional::set_corner_weight): the law's barrier −μ log det G acts
+// corners sampled too (Problem::corner_weight): the law's barrier −μ log det G acts
 // there and keeps them open, after the untangling energy has lifted them off the wall.
 #pragma once
 
@@ -44,10 +44,10 @@ bool flat_cap(const MeshView& view, const DofMap& dofs, Vec x);
 // If some cell other than a simplex has a scaled Jacobian below kFlatCellJacobian at x,
 // minimizes again from x with corner samples and returns what that did (its iterations go to
 // `observe` and are appended to `run`'s, whose stop reason, final energy (the thesis' energy)
-// and defect become the phase's); else nullopt.
-// The functional is left on the Gauss rule. Collective.
+// and defect become the phase's); else nullopt. The phase's problems derive from
+// `functional`'s. Collective.
 std::optional<CornerPhaseSummary> lift_flat_corners(
-    Functional& functional, const MeshView& view, const DofMap& dofs, Vec x,
+    const Functional& functional, const MeshView& view, const DofMap& dofs, Vec x,
     const QuasiNewtonOptions& options, Vec cell_size, Result& run,
     const std::function<void(const IterationRecord&)>& observe = {});
 

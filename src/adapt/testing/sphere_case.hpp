@@ -54,9 +54,9 @@ inline SphereOutcome adapt_to_sphere(CellType type, int n, const SizeFieldOption
   const double start = MPI_Wtime();
   SphereOutcome out;
   out.result = picard(
-      *p.functional, p.view, p.x, size_field_targets(field, sizes, p.view, p.dofs, p.volume, {}),
-      [&](const CellTargets& t) { p.functional->set_desired_volumes(t.volumes); }, picard_options,
-      method);
+      p.view, p.x, size_field_targets(field, sizes, p.view, p.dofs, p.volume, {}),
+      [&](const CellTargets& t) -> const Functional& { return p.set_desired_volumes(t.volumes); },
+      picard_options, method);
   out.seconds = MPI_Wtime() - start;
   for (const IterationRecord& r : out.result.run.history) {
     out.armijo_steps += r.armijo_steps;

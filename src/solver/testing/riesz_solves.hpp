@@ -36,8 +36,9 @@ inline double distance(Vec a, Vec b) {
 
 inline RieszSolves solve_riesz_both_ways(const MeshView& view, const DofMap& dofs, double rtol) {
   const MPI_Comm comm = dofs.comm();
-  Functional functional(view, dofs, EnergyOptions{}, view.on_boundary);
-  functional.set_desired_volumes(std::vector<double>(view.num_cells, 1.0));
+  const Functional functional(EnergyOptions{},
+                              Problem(view, dofs, view.on_boundary)
+                                  .with_desired_volumes(std::vector<double>(view.num_cells, 1.0)));
   OwnedVec x = dofs.create_global_vector();  // unused by the optimal cells' L
   OwnedMat vector = functional.create_laplacian_matrix();
   OwnedMat scalar = functional.create_scalar_laplacian_matrix();

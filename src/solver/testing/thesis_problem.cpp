@@ -13,8 +13,8 @@ ThesisProblem::ThesisProblem(MeshData mesh_data, EnergyOptions energy_options,
       dofs(DofMap::serial(view.dim, view.num_vertices)),
       energy(energy_options),
       boundary(std::make_unique<Boundary>(view, dofs, boundary_options)) {
-  functional = std::make_unique<Functional>(view, dofs, energy, boundary->fixed_dofs(),
-                                            boundary->sliding_vertices());
+  functional = std::make_unique<Functional>(
+      energy, Problem(view, dofs, boundary->fixed_dofs(), boundary->sliding_vertices()));
   x = dofs.create_global_vector();
   {
     VecWriteView out(x);
@@ -23,8 +23,14 @@ ThesisProblem::ThesisProblem(MeshData mesh_data, EnergyOptions energy_options,
   boundary->project(x);  // onto given shapes (they pass through the vertices to 1e-6 h)
   volume = mesh_volume(view, dofs, x);
   const std::vector<double> volumes(view.num_cells, volume / view.num_cells);
-  functional->set_desired_volumes(volumes);
+  set_desired_volumes(volumes);
   cell_size = local_cell_size(view, dofs, volumes);
+}
+
+const Functional& ThesisProblem::set_desired_volumes(std::span<const double> volumes) {
+  functional =
+      std::make_unique<Functional>(energy, functional->problem().with_desired_volumes(volumes));
+  return *functional;
 }
 
 QuasiNewtonOptions ThesisProblem::thesis_options() const {

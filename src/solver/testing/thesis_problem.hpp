@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 
 #include "boundary/boundary.hpp"
 #include "energy/functional.hpp"
@@ -29,6 +30,9 @@ struct ThesisProblem {
   OwnedVec cell_size;
   double volume = 0.0;
 
+  // The functional of the problem with these desired volumes (its constraints and shapes
+  // kept), replacing the one before.
+  const Functional& set_desired_volumes(std::span<const double> volumes);
   // The thesis' method options: direct solver, k_min = 0, no practical criterion.
   QuasiNewtonOptions thesis_options() const;
   SolverRun minimize(const QuasiNewtonOptions& options);
