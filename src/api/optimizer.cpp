@@ -98,8 +98,8 @@ CellTargets Optimizer::Impl::smoothing_targets(TargetMode mode, SizeMode sizes) 
   std::vector<double> ideal = desired_volumes(sizes, view(), dofs(), volumes);
   if (mode == TargetMode::Ideal) return ideal_targets(std::move(ideal));
   return input_targets(mode == TargetMode::Input ? KeptInput::All : KeptInput::Coherent, view(),
-                       dofs(), volumes, functional->cell_jacobians(x),
-                       cell_edge_ratios(view(), view().coords), std::move(ideal));
+                       dofs(), volumes, functional->cell_jacobians(x), cell_edge_ratios(),
+                       std::move(ideal));
 }
 
 const Functional& Optimizer::Impl::set_targets(const CellTargets& targets) {
@@ -201,7 +201,25 @@ QuasiNewtonOptions Optimizer::Impl::method(const SolverOptions& solver) const {
 }
 
 std::vector<double> Optimizer::Impl::cell_volumes() const {
+  if (input_cells &&
+      input_cells->coordinates_version == std::as_const(mesh).plex().coordinates_version())
+    return input_cells->volumes;
   return neomesh::cell_volumes(view(), view().coords);
+}
+
+std::vector<double> Optimizer::Impl::cell_edge_ratios() const {
+  if (input_cells &&
+      input_cells->coordinates_version == std::as_const(mesh).plex().coordinates_version())
+    return input_cells->edge_ratios;
+  return neomesh::cell_edge_ratios(view(), view().coords);
+}
+
+void Optimizer::Impl::keep_input_cells() {
+  // The quality's volumes and edge ratios are cell_volumes()'s and cell_edge_ratios()'s, from
+  // the same functions of the same coordinates (geometry/quality.cpp).
+  const CellQuality& quality = std::as_const(mesh).cell_quality();
+  input_cells = InputCells{std::as_const(mesh).plex().coordinates_version(), quality.volume,
+                           quality.edge_ratio};
 }
 
 QualitySummary Optimizer::Impl::input_quality(bool untangle) const {

@@ -7,6 +7,7 @@
 // F), and a fit's interface with the level set its constraint refers to.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -45,6 +46,7 @@ struct Optimizer::Impl {
     started = MPI_Wtime();
     Result result;
     result.quality_before = input_quality(options.untangle);
+    keep_input_cells();
     start(options.energy, options.boundary, &options.solver);
     return result;
   }
@@ -104,6 +106,12 @@ struct Optimizer::Impl {
   QuasiNewtonOptions method(const SolverOptions& solver) const;
   // Volume of each local cell at the mesh's coordinates (where a call starts).
   std::vector<double> cell_volumes() const;
+  // Longest over shortest edge of each local cell at the mesh's coordinates.
+  std::vector<double> cell_edge_ratios() const;
+  // Keeps the volumes and edge ratios of the mesh's quality (computed by input_quality) for
+  // cell_volumes() and cell_edge_ratios() while the mesh's coordinates stay: one pass over the
+  // cells for the quality before and the targets instead of three.
+  void keep_input_cells();
   // How each vertex may move in the worst-cell repair: as it does in the optimization, except
   // that the vertices of cells keeping their input cell stay.
   RepairFreedom repair_freedom() const;
@@ -122,8 +130,13 @@ struct Optimizer::Impl {
   Problem problem;
   std::unique_ptr<Functional> functional;  // of `problem`
   std::vector<double> input_share;  // per local cell: the share of its input cell its target keeps
-  OwnedVec cell_size;               // local cell size per dof, for the practical criterion
-  bool warm = false;                // an adapt() ran: the next one starts from its volumes
+  struct InputCells {
+    std::uint64_t coordinates_version;  // of the mesh, when they were kept
+    std::vector<double> volumes, edge_ratios;
+  };
+  std::optional<InputCells> input_cells;  // set by keep_input_cells()
+  OwnedVec cell_size;                     // local cell size per dof, for the practical criterion
+  bool warm = false;                      // an adapt() ran: the next one starts from its volumes
   std::unique_ptr<LevelSetFunction> phi;  // of the last fit; its constraint refers to it
   std::optional<FitResult> fitted;        // the last fit, until the next call
 };

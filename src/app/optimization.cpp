@@ -63,11 +63,13 @@ void share_cores(const Mesh& mesh) {
 // The memory the run will use (its estimate, api/memory_check.hpp), faulted in at once by all
 // threads and kept from then on (core/memory.hpp): square-midpoint 1024² 11.6 → 10.4 s,
 // 2048² 68.9 → 58.3–62.2 s (docs/benchmarks.md, "Where the time goes"). Not where there is
-// little to fault (quads 300², hexes 40³: no faster), nor where it would take more than three
-// quarters of the memory available: it is for speed, and an estimate above the run's own peak
-// must not be what takes a machine to its limit (square-midpoint 4096² on 24 GiB).
+// less than 512 MiB to fault: there the estimate's excess over the run's own peak costs more
+// than the threads save (hexes 40³ faulted 276 MiB in, peak 349 MiB instead of 230 and 0.4-2 s
+// slower; square-midpoint 512², 286 MiB: 1.5-1.9 s slower), nor where it would take more than
+// three quarters of the memory available: it is for speed, and an estimate above the run's own
+// peak must not be what takes a machine to its limit (square-midpoint 4096² on 24 GiB).
 void fault_in_the_run(const Mesh& mesh) {
-  constexpr double kWorthIt = 256.0 * 1024 * 1024;
+  constexpr double kWorthIt = 512.0 * 1024 * 1024;
   const int ranks = mpi_size(mesh.comm());
   const std::int64_t vertices = mesh.num_vertices() / ranks, cells = mesh.num_cells() / ranks;
   // The whole program is this run: what it holds now is its own.
