@@ -473,7 +473,9 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
     retry.iterations = static_cast<int>(ideal.history.size());
     retry.ideal_kept = retry.min_scaled_jacobian_ideal > retry.min_scaled_jacobian_kept;
     result.history.insert(result.history.end(), ideal.history.begin(), ideal.history.end());
-    if (retry.ideal_kept) {
+    if (retry.ideal_kept) {  // F and the defect of the energy towards ideal cells
+      result.initial_energy = ideal.initial_energy;
+      result.initial_defect = ideal.initial_defect;
       result.reason = ideal.reason;
       result.final_energy = ideal.final_energy;
       result.final_defect = ideal.final_defect;
