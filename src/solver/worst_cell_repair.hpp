@@ -37,7 +37,7 @@ struct WorstCellRepair {
 // The worst cells taken per sweep, and the sweeps at most; the repair ends earlier, at the
 // first sweep that does not lift the worst cell.
 inline constexpr int kRepairWorstCells = 6;
-inline constexpr int kRepairMaxSweeps = 100;
+inline constexpr int kRepairMaxSweeps = 400;
 // The vertices of a cell that keeps its input cell as its target stay in the repair if that
 // input cell's scaled Jacobian is at least this; for a kept quadrilateral, hexahedron or
 // pyramid, whose target is right-angled, if the input cell and the optimum's are at least
