@@ -55,8 +55,9 @@ std::string list_cells(const Inversion& inversion) {
   return cells;
 }
 
-// Sizes asked for win over the sizes the smoothed targets would keep; and a cell's design
-// without its size (a layer's height across the wall) is no design (docs/method.md §9).
+// Desired volumes asked for (a volume source, --sizes, of uniform) win over the volumes the
+// smoothed targets would keep; and a cell's design without its size (a layer's height across the
+// wall) is no design (docs/method.md §9).
 TargetMode targets_asked(const SmoothOptions& options) {
   return options.targets == TargetMode::Smoothed && options.sizes == SizeMode::Uniform
              ? TargetMode::Ideal
@@ -400,7 +401,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   // Targets from the input cells — not from a tangled input, whose cells around the inverted
   // ones are distorted by whatever tangled it: that is no design to keep.
   const bool tangled = result.quality_before.inverted > 0 || result.quality_before.degenerate > 0;
-  const bool sizes_asked = targets_asked(options) != options.targets;
+  const bool volumes_asked = targets_asked(options) != options.targets;
   const TargetMode mode = tangled ? TargetMode::Ideal : targets_asked(options);
   // Nor are its sizes where it is folded over itself throughout: the fill-in of the inverted
   // cells' volumes from their neighbours then starts from cells that were squeezed and stretched
@@ -422,7 +423,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
                             kept.part,
                             kept.none,
                             tangled && options.targets != TargetMode::Ideal,
-                            !tangled && sizes_asked,
+                            !tangled && volumes_asked,
                             coverage,
                             folded && options.sizes != SizeMode::Uniform};
   if (observer.started) observer.started(result.problem);
