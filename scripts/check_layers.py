@@ -15,7 +15,7 @@ import os
 import re
 import sys
 
-LAYERS = ["core", "mesh", "generate", "formats", "geometry", "energy", "boundary", "solver", "adapt", "api", "report", "app"]
+LAYERS = ["core", "mesh", "generate", "formats", "geometry", "energy", "boundary", "solver", "targets", "adapt", "api", "report", "app"]
 PUBLIC_LAYERS = {
     "error.hpp": "core",         # the one exception type every layer throws
     "cell_type.hpp": "mesh",     # the cell types; plural_name() in src/mesh/cell_type.cpp
@@ -23,7 +23,7 @@ PUBLIC_LAYERS = {
     "quality.hpp": "geometry",   # computed by src/geometry/quality.cpp
     "options.hpp": "energy",     # plain option structs; ranges checked in api (option table)
     "result.hpp": "boundary",    # filled by boundary, solver and adapt; describe() in solver
-    "size_field.hpp": "adapt",   # src/adapt/size_field.cpp; from a Mesh: src/api/vertex_metric.cpp
+    "size_field.hpp": "targets", # src/targets/size_field.cpp; from a Mesh: src/api/vertex_metric.cpp
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
 

@@ -66,7 +66,7 @@ class SizeField {
   // data, Gmsh $NodeData, Exodus nodal variables): 3 components in 2D (m11 m12 m22) or 6 in 3D
   // (m11 m12 m13 m22 m23 m33), or the dim² of the whole matrix. Between the vertices it is
   // interpolated linearly in log M over the mesh as it is now (adaptation moves the vertices
-  // over it; src/adapt/background_metric.hpp). Throws Error for a missing array, another number
+  // over it; src/targets/background_metric.hpp). Throws Error for a missing array, another number
   // of components or a vertex whose metric is not symmetric positive definite (naming it).
   // Collective; every process holds the whole mesh and its metrics.
   static SizeField vertex_metric(const Mesh& mesh, const std::string& array);
@@ -87,7 +87,7 @@ class SizeField {
   const std::string& description() const { return description_; }
 
  private:
-  friend struct SizeFieldAccess;  // src/adapt/size_field.cpp evaluates the field on a mesh
+  friend struct SizeFieldAccess;  // src/targets/size_field.cpp evaluates the field on a mesh
   using Distance = std::function<double(std::span<const double> point)>;
   // M at a point, dim × dim (column-major) into the second argument.
   using Metric = std::function<void(std::span<const double> point, std::span<double> m)>;

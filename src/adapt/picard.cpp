@@ -75,14 +75,4 @@ PicardResult picard(const MeshView& view, Vec x, const TargetsAt& targets,
   return result;
 }
 
-TargetsAt size_field_targets(const SizeField& field, const SizeFieldOptions& options,
-                             const MeshView& view, const DofMap& dofs, double total,
-                             std::vector<double> orientations) {
-  return [&field, &options, &view, &dofs, total, orientations = std::move(orientations)](Vec x) {
-    std::vector<double> coords(dofs.num_local_dofs());
-    dofs.global_to_local(x, coords);
-    return adapt_targets(field, options, view, dofs, coords, orientations, total);
-  };
-}
-
 }  // namespace neomesh

@@ -1,6 +1,6 @@
 #include <neomesh/level_set.hpp>
 
-#include "adapt/size_field.hpp"
+#include "targets/size_field.hpp"
 #include "api/fitting.hpp"
 #include "core/error.hpp"
 

@@ -7,7 +7,6 @@
 #include <utility>
 
 #include "adapt/picard.hpp"
-#include "adapt/size_field.hpp"
 #include "adapt/volume_ratio.hpp"
 #include "api/fitting.hpp"
 #include "api/memory_check.hpp"
@@ -16,14 +15,15 @@
 #include "boundary/interface.hpp"
 #include "core/error.hpp"
 #include "geometry/quality.hpp"
-#include "solver/desired_volumes.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/quality_guard.hpp"
 #include "solver/quasi_newton.hpp"
-#include "solver/targets.hpp"
 #include "solver/untangle.hpp"
 #include "solver/worst_cell_repair.hpp"
 #include "solver/worst_cells.hpp"
+#include "targets/cell_targets.hpp"
+#include "targets/desired_volumes.hpp"
+#include "targets/input_targets.hpp"
 
 namespace neomesh {
 
@@ -55,8 +55,9 @@ std::string list_cells(const Inversion& inversion) {
   return cells;
 }
 
-// Sizes asked for win over the sizes the smoothed targets would keep; and a cell's design
-// without its size (a layer's height across the wall) is no design (docs/method.md §9).
+// Desired volumes asked for (a volume source, --sizes, of uniform) win over the volumes the
+// smoothed targets would keep; and a cell's design without its size (a layer's height across the
+// wall) is no design (docs/method.md §9).
 TargetMode targets_asked(const SmoothOptions& options) {
   return options.targets == TargetMode::Smoothed && options.sizes == SizeMode::Uniform
              ? TargetMode::Ideal
@@ -93,19 +94,35 @@ void Optimizer::Impl::start(const EnergyOptions& e, const BoundaryOptions& b,
   boundary->project(x);
 }
 
-CellTargets Optimizer::Impl::smoothing_targets(TargetMode mode, SizeMode sizes) const {
+CellTargets Optimizer::Impl::smoothing_targets(TargetMode mode, SizeMode volume_source) const {
+  const TargetRequest request = SmoothingRequest{.mode = mode, .volume_source = volume_source};
   const std::vector<double> volumes = cell_volumes();
-  std::vector<double> ideal = desired_volumes(sizes, view(), dofs(), volumes);
-  if (mode == TargetMode::Ideal) return ideal_targets(std::move(ideal));
-  return input_targets(mode == TargetMode::Input ? KeptInput::All : KeptInput::Coherent, view(),
-                       dofs(), volumes, functional->cell_jacobians(x), cell_edge_ratios(),
-                       std::move(ideal));
+  const bool input_cells = needs_jacobians(request);
+  const std::vector<double> jacobians =
+      input_cells ? functional->cell_jacobians(x) : std::vector<double>{};
+  const std::vector<double> edge_ratios =
+      input_cells ? cell_edge_ratios() : std::vector<double>{};
+  return build_targets(request, view(), dofs(),
+                       {.volumes = volumes, .jacobians = jacobians, .edge_ratios = edge_ratios});
+}
+
+TargetsAt Optimizer::Impl::adaptation_targets(const SizeField& field,
+                                              const SizeFieldOptions& field_options) const {
+  const TargetRequest request = AdaptationRequest{.field = &field, .field_options = field_options};
+  std::vector<double> orientations =
+      needs_jacobians(request) ? functional->cell_jacobians(x) : std::vector<double>{};
+  return [this, request, orientations = std::move(orientations), total = mesh_volume](Vec at) {
+    std::vector<double> coords(dofs().num_local_dofs());
+    dofs().global_to_local(at, coords);
+    return build_targets(request, view(), dofs(),
+                         {.coords = coords, .jacobians = orientations, .mesh_volume = total});
+  };
 }
 
 const Functional& Optimizer::Impl::set_targets(const CellTargets& targets) {
   problem = problem.with_targets(targets.volumes, targets.shapes, targets.weights);
   cell_size = local_cell_size(view(), dofs(), targets.volumes);
-  input_share = targets.shapes.empty() ? std::vector<double>{} : targets.kept;
+  input_share = targets.shapes.empty() ? std::vector<double>{} : targets.input_share;
   return rebuild_functional();
 }
 
@@ -330,18 +347,13 @@ RepairFreedom Optimizer::Impl::repair_freedom() const {
   return f;
 }
 
-std::vector<double> Optimizer::Impl::orientations(const SizeField& field) const {
-  return field.anisotropic() ? functional->cell_jacobians(x) : std::vector<double>{};
-}
-
 VolumeRatioStats Optimizer::Impl::volume_ratio() const {
   return volume_ratio_stats(functional->cell_fields(x).volume_ratio, mesh.comm());
 }
 
 void Optimizer::Impl::adapt(const SizeField& field, const AdaptOptions& options,
                             const Observer& observer, Result& result) {
-  const TargetsAt targets =
-      size_field_targets(field, options.sizes, view(), dofs(), mesh_volume, orientations(field));
+  const TargetsAt targets = adaptation_targets(field, options.sizes);
   // The size field's targets at the start: what the observer sees, and what untangling aims at.
   // They replace any a smoothing before may have left.
   set_targets(targets(x));
@@ -368,8 +380,7 @@ void Optimizer::Impl::fit(const LevelSet& level_set, const SizeField& field,
       .constrain = [this](SlidingVertices extra) -> const Functional& {
         return constrain(std::move(extra));
       },
-      .targets = size_field_targets(field, options.sizes, view(), dofs(), mesh_volume,
-                                    orientations(field)),
+      .targets = adaptation_targets(field, options.sizes),
       .set_targets = [this](const CellTargets& t) -> const Functional& { return set_targets(t); }};
   fitted = fit_interface(view(), dofs(), x, *phi, hooks, last_stage, method(options.solver), {},
                          observer);
@@ -408,7 +419,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
   // Targets from the input cells — not from a tangled input, whose cells around the inverted
   // ones are distorted by whatever tangled it: that is no design to keep.
   const bool tangled = result.quality_before.inverted > 0 || result.quality_before.degenerate > 0;
-  const bool sizes_asked = targets_asked(options) != options.targets;
+  const bool volumes_asked = targets_asked(options) != options.targets;
   const TargetMode mode = tangled ? TargetMode::Ideal : targets_asked(options);
   // Nor are its sizes where it is folded over itself throughout: the fill-in of the inverted
   // cells' volumes from their neighbours then starts from cells that were squeezed and stretched
@@ -421,7 +432,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
     const CellTargets targets =
         r.smoothing_targets(mode, folded ? SizeMode::Uniform : options.sizes);
     r.set_targets(targets);
-    kept = count_kept(targets.kept, r.mesh.comm());
+    kept = count_kept(targets.input_share, r.mesh.comm());
   }
   const QuasiNewtonOptions method = r.method(options.solver);
   result.problem = r.problem_summary(options.solver);
@@ -430,7 +441,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
                             kept.part,
                             kept.none,
                             tangled && options.targets != TargetMode::Ideal,
-                            !tangled && sizes_asked,
+                            !tangled && volumes_asked,
                             coverage,
                             folded && options.sizes != SizeMode::Uniform};
   if (observer.started) observer.started(result.problem);

@@ -20,8 +20,8 @@
 #include "energy/functional.hpp"
 #include "mesh/plex_mesh.hpp"
 #include "solver/quasi_newton.hpp"
-#include "solver/targets.hpp"
 #include "solver/worst_cell_repair.hpp"
+#include "targets/cell_targets.hpp"
 
 namespace neomesh {
 
@@ -53,8 +53,8 @@ struct Optimizer::Impl {
   // `solver`: the solves to come, for the memory check (none: evaluation only).
   void start(const EnergyOptions& energy, const BoundaryOptions& boundary,
              const SolverOptions* solver = nullptr);
-  // Smoothing's targets (solver/targets.hpp) from the input cells at x, and setting them: the
-  // volumes absolute per local cell (MeshView order), summing to mesh_volume. Returns the
+  // Smoothing's targets (targets/input_targets.hpp) from the input cells at x, and setting them:
+  // the volumes absolute per local cell (MeshView order), summing to mesh_volume. Returns the
   // functional of the new problem.
   CellTargets smoothing_targets(TargetMode mode, SizeMode sizes) const;
   const Functional& set_targets(const CellTargets& targets);
@@ -93,11 +93,14 @@ struct Optimizer::Impl {
   void repair_worst(Result& result, double min_mean);
   // Q = actual / desired volume at x.
   VolumeRatioStats volume_ratio() const;
-  // What size_field_targets() orients an anisotropic field's targets by: the cells' Jacobians
-  // at x (empty for an isotropic field).
-  std::vector<double> orientations(const SizeField& field) const;
-  // If cells are inverted at x, untangles them (docs/untangling.md) towards the current desired
-  // volumes, telling `observer`; throws Error naming the cells that stay inverted.
+  // Adaptation's targets (build_targets) at the x the Picard iteration passes, desired volumes
+  // summing to mesh_volume. A metric's target shapes are turned by the cells' Jacobians where
+  // the adaptation starts (at x now), which stay fixed: taken from the moving cells, the targets
+  // would turn with them, and cells that shear away from the surface (a star of flat cells
+  // around a circle) would be their own fixed point. Keeps a reference to `field`.
+  TargetsAt adaptation_targets(const SizeField& field, const SizeFieldOptions& field_options) const;
+  // If cells are inverted at x, untangles them (docs/untangling.md) towards the current targets,
+  // telling `observer`; throws Error naming the cells that stay inverted.
   std::optional<UntanglingSummary> untangle(const QuasiNewtonOptions& method,
                                             const Observer& observer);
   // The free coordinates, the boundary's classification and the linear solvers.

@@ -1,5 +1,5 @@
 // SizeField::vertex_metric and read_vertex_metric: a metric per vertex of a mesh, interpolated
-// over the mesh as it is when the field is made (adapt/background_metric.hpp).
+// over the mesh as it is when the field is made (targets/background_metric.hpp).
 #include <algorithm>
 #include <fstream>
 #include <memory>
@@ -8,7 +8,7 @@
 #include <neomesh/mesh.hpp>
 #include <neomesh/size_field.hpp>
 
-#include "adapt/background_metric.hpp"
+#include "targets/background_metric.hpp"
 #include "core/collective_error.hpp"
 #include "core/error.hpp"
 #include "mesh/gather.hpp"

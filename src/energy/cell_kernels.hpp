@@ -133,7 +133,7 @@ struct OptimalCellQuadrature {
 // cell. Only SᵀS counts (docs/method.md, "Target cells"): W is isotropic, so S and Q S give
 // the same energy for every rotation Q. `stiffness` k weighs the cell's energy, k ∫ W: a
 // stretched cell kept from the input is as small as its shortest edge, and without k its
-// neighbours would squash it (solver/targets.hpp).
+// neighbours would squash it (targets/input_targets.hpp).
 template <int Dim>
 struct CellTarget {
   double volume;

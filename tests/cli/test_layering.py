@@ -25,8 +25,8 @@ def tree(tmp_path):
 
 
 @pytest.mark.parametrize("file, line, message", [
-    ("src/solver/targets.hpp", "#include <neomesh/mesh.hpp>",
-     "src/solver/targets.hpp (solver) includes neomesh/mesh.hpp (api)"),
+    ("src/targets/input_targets.hpp", "#include <neomesh/mesh.hpp>",
+     "src/targets/input_targets.hpp (targets) includes neomesh/mesh.hpp (api)"),
     ("src/energy/functional.hpp", '#include "adapt/fit.hpp"',
      "src/energy/functional.hpp (energy) includes adapt/fit.hpp (adapt)"),
     ("include/neomesh/result.hpp", "#include <neomesh/optimizer.hpp>",

@@ -15,6 +15,7 @@
 #include "generate/generate.hpp"
 #include "geometry/quality.hpp"
 #include "solver/testing/thesis_problem.hpp"
+#include "targets/size_field.hpp"
 
 namespace neomesh::testing {
 
@@ -42,7 +43,7 @@ struct SphereOutcome {
 // boundary vertices, desired volumes bounded (ratio 32, SizeFieldOptions) and smoothed once.
 const EnergyOptions kAdaptEnergy = AdaptOptions().energy;
 
-inline SphereOutcome adapt_to_sphere(CellType type, int n, const SizeFieldOptions& sizes,
+inline SphereOutcome adapt_to_sphere(CellType type, int n, const SizeFieldOptions& field_options,
                                      const PicardOptions& picard_options = {},
                                      const EnergyOptions& energy = {},
                                      BoundaryMode boundary = BoundaryMode::Fixed) {
@@ -54,7 +55,13 @@ inline SphereOutcome adapt_to_sphere(CellType type, int n, const SizeFieldOption
   const double start = MPI_Wtime();
   SphereOutcome out;
   out.result = picard(
-      p.view, p.x, size_field_targets(field, sizes, p.view, p.dofs, p.volume, {}),
+      p.view, p.x,
+      [&](Vec x) {
+        std::vector<double> coords(p.dofs.num_local_dofs());
+        p.dofs.global_to_local(x, coords);
+        return build_targets(AdaptationRequest{&field, field_options}, p.view, p.dofs,
+                             {.coords = coords, .mesh_volume = p.volume});
+      },
       [&](const CellTargets& t) -> const Functional& { return p.set_desired_volumes(t.volumes); },
       picard_options, method);
   out.seconds = MPI_Wtime() - start;

@@ -1,4 +1,4 @@
-#include "solver/targets.hpp"
+#include "targets/input_targets.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "core/error.hpp"
-#include "solver/desired_volumes.hpp"
+#include "targets/desired_volumes.hpp"
 
 namespace neomesh {
 
@@ -85,11 +85,11 @@ double global_max(double local, MPI_Comm comm) {
   return local;
 }
 
-// The share kept of every cell for KeptInput::Coherent (see the header).
+// The input share of every cell for TargetMode::Smoothed (see the header).
 template <int Dim>
 void coherent_shares(const MeshView& view, const DofMap& dofs,
                      const std::vector<std::optional<InputCell<Dim>>>& input,
-                     std::span<const double> edge_ratios, std::vector<double>& kept) {
+                     std::span<const double> edge_ratios, std::vector<double>& input_share) {
   const std::size_t cells = input.size();
   std::vector<Mat<Dim>> log_stretch(cells, Mat<Dim>::Zero());
   std::vector<double> own(cells, 0.0);
@@ -126,16 +126,16 @@ void coherent_shares(const MeshView& view, const DofMap& dofs,
       // log f: how much more the cell is stretched than its edges are long (not for simplices,
       // see the header).
       const double shear = is_simplex(type) ? 0.0 : own[c] - std::log(edge_ratios[c]);
-      kept[c] = ramp(anisotropy, std::log(kStretched.from), std::log(kStretched.to)) *
-                ramp(anisotropy / std::max(mean_own[c] / share[c], std::log(1.5)), kCoherence.from,
-                     kCoherence.to) *
-                (1.0 - ramp(shear, std::log(kSheared.from), std::log(kSheared.to)));
+      input_share[c] = ramp(anisotropy, std::log(kStretched.from), std::log(kStretched.to)) *
+                       ramp(anisotropy / std::max(mean_own[c] / share[c], std::log(1.5)),
+                            kCoherence.from, kCoherence.to) *
+                       (1.0 - ramp(shear, std::log(kSheared.from), std::log(kSheared.to)));
     }
   }
 }
 
 template <int Dim>
-CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& dofs,
+CellTargets input_targets(TargetMode mode, const MeshView& view, const DofMap& dofs,
                           std::span<const double> cell_volumes, std::span<const double> jacobians,
                           std::span<const double> edge_ratios, std::vector<double> ideal_volumes) {
   const std::size_t cells = cell_volumes.size();
@@ -152,14 +152,15 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
     input[c].emplace(J / std::pow(det, 1.0 / Dim));
     most_stretched = std::max(most_stretched, input[c]->anisotropy());
   }
-  if (kept == KeptInput::All) {
-    for (std::size_t c = 0; c < cells; ++c) t.kept[c] = input[c] ? 1.0 : 0.0;
+  if (mode == TargetMode::Input) {
+    for (std::size_t c = 0; c < cells; ++c) t.input_share[c] = input[c] ? 1.0 : 0.0;
   } else if (global_max(most_stretched, dofs.comm()) > std::log(kStretched.from)) {
     // (The mean's anisotropy is at most the largest cell's: no stretched cell, none kept.)
-    coherent_shares<Dim>(view, dofs, input, edge_ratios, t.kept);
+    coherent_shares<Dim>(view, dofs, input, edge_ratios, t.input_share);
   }
   // No cell kept: the thesis' ideal targets, exactly.
-  const double most_kept = t.kept.empty() ? 0.0 : *std::max_element(t.kept.begin(), t.kept.end());
+  const double most_kept =
+      t.input_share.empty() ? 0.0 : *std::max_element(t.input_share.begin(), t.input_share.end());
   if (global_max(most_kept, dofs.comm()) == 0.0) return t;
 
   // S = V^w R, v = v_input^w v_sizes^(1−w) scaled to the mesh volume, k = (C a)^w.
@@ -178,7 +179,7 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
 #pragma omp parallel for schedule(static)
   for (std::size_t c = 0; c < cells; ++c) {
     Eigen::Map<Mat<Dim>> S(t.shapes.data() + c * Dim * Dim);
-    const double w = t.kept[c];
+    const double w = t.input_share[c];
     if (w == 0.0) {
       S.setIdentity();
       continue;
@@ -186,7 +187,7 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
     // log σ_max of the kept shape: a = σ_max^d is the isotropic cell spanning the longest edge
     // over the cell's volume.
     double log_longest = w * input[c]->log_stretches[Dim - 1];
-    if (kept == KeptInput::Coherent && right_angled_target(types[c]))
+    if (mode == TargetMode::Smoothed && right_angled_target(types[c]))
       std::tie(S, log_longest) =
           metric_shape<Dim>(right_angled_metric<Dim>(types[c], input[c]->S), w);
     else
@@ -200,14 +201,7 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
 
 }  // namespace
 
-CellTargets ideal_targets(std::vector<double> volumes) {
-  CellTargets t;
-  t.kept.assign(volumes.size(), 0.0);
-  t.volumes = std::move(volumes);
-  return t;
-}
-
-CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& dofs,
+CellTargets input_targets(TargetMode mode, const MeshView& view, const DofMap& dofs,
                           std::span<const double> cell_volumes, std::span<const double> jacobians,
                           std::span<const double> edge_ratios, std::vector<double> ideal_volumes) {
   const std::size_t cells = cell_volumes.size();
@@ -216,15 +210,15 @@ CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& do
     fail("internal error: {} Jacobian entries, {} edge ratios and {} volumes for {} cells",
          jacobians.size(), edge_ratios.size(), ideal_volumes.size(), cells);
   if (view.dim == 2)
-    return input_targets<2>(kept, view, dofs, cell_volumes, jacobians, edge_ratios,
+    return input_targets<2>(mode, view, dofs, cell_volumes, jacobians, edge_ratios,
                             std::move(ideal_volumes));
-  return input_targets<3>(kept, view, dofs, cell_volumes, jacobians, edge_ratios,
+  return input_targets<3>(mode, view, dofs, cell_volumes, jacobians, edge_ratios,
                           std::move(ideal_volumes));
 }
 
-KeptCells count_kept(std::span<const double> kept, MPI_Comm comm) {
+KeptCells count_kept(std::span<const double> input_share, MPI_Comm comm) {
   long long counts[3] = {0, 0, 0};
-  for (double w : kept) ++counts[w >= 1.0 ? 0 : w > 0.0 ? 1 : 2];
+  for (double w : input_share) ++counts[w >= 1.0 ? 0 : w > 0.0 ? 1 : 2];
   MPI_Allreduce(MPI_IN_PLACE, counts, 3, MPI_LONG_LONG, MPI_SUM, comm);
   return {counts[0], counts[1], counts[2]};
 }

@@ -1,4 +1,5 @@
-// Desired cell volumes for smoothing (`--sizes`). Real meshes are graded — fine near a
+// Smoothing's desired volumes from the input cells, by the volume source (SizeMode, `--sizes`;
+// the words are those of targets/cell_targets.hpp). Real meshes are graded — fine near a
 // cylinder, coarse far away — so making every cell the same size would wreck them:
 //   uniform   every cell gets |Ω| / N (the thesis' setting and its test cases)
 //   input     every cell keeps its own input volume
@@ -20,8 +21,9 @@
 namespace neomesh {
 
 // `cell_volumes`: actual volume of each local cell (MeshView order). Collective.
-std::vector<double> desired_volumes(SizeMode mode, const MeshView& view, const DofMap& dofs,
-                                    std::span<const double> cell_volumes);
+std::vector<double> desired_volumes_from_input(SizeMode volume_source, const MeshView& view,
+                                               const DofMap& dofs,
+                                               std::span<const double> cell_volumes);
 
 // How many times the cells cover their domain: Σ|v_K| / Σ v_K over all ranks, for the actual
 // (signed) cell volumes v_K. 1 for a mesh without inverted cells; a cell folded over its
@@ -34,7 +36,8 @@ double domain_coverage(std::span<const double> cell_volumes, MPI_Comm comm);
 // cells among them were stretched and squeezed along with them, so no input volume is a size.
 constexpr double kFoldedCoverage = 2.0;
 
-// Scales `volumes` (relative, one per local cell) so that they sum to `total` over all ranks.
+// Scales `volumes` (relative volumes, one per local cell) so that they sum to `total` over all
+// ranks.
 void normalize_volumes(std::vector<double>& volumes, double total, MPI_Comm comm);
 
 // Averages per-cell values over the cells sharing a vertex with each cell: one pass

@@ -1,4 +1,4 @@
-#include "adapt/size_field.hpp"
+#include "targets/size_field.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -85,7 +85,8 @@ TEST(SizeField, DesiredVolumesSumToTheMeshVolume) {
   for (const SizeFieldOptions& o :
        {SizeFieldOptions::thesis(), SizeFieldOptions{.max_ratio = 10.0, .smoothing_passes = 0},
         SizeFieldOptions{.max_ratio = 0.0, .smoothing_passes = 2}}) {
-    const std::vector<double> v = desired_volumes(circle, o, view, dofs, view.coords, 4.0);
+    const std::vector<double> v =
+        desired_volumes_from_field(circle, o, view, dofs, view.coords, 4.0);
     EXPECT_NEAR(std::accumulate(v.begin(), v.end(), 0.0), 4.0, 1e-12);
     const auto [min, max] = std::minmax_element(v.begin(), v.end());
     if (o.ratio() > 0) {
@@ -101,7 +102,7 @@ TEST(SizeField, SmoothingLimitsTheJumpBetweenNeighbours) {
   const SizeField line = SizeField::plane({0.0, 0.0}, {1.0, 0.0});
   // Cells in a row along x: the largest ratio of consecutive volumes.
   auto worst_jump = [&](const SizeFieldOptions& o) {
-    const std::vector<double> v = desired_volumes(line, o, view, dofs, view.coords, 4.0);
+    const std::vector<double> v = desired_volumes_from_field(line, o, view, dofs, view.coords, 4.0);
     double worst = 1.0;
     for (int i = 0; i + 1 < 16; ++i) worst = std::max({worst, v[i + 1] / v[i], v[i] / v[i + 1]});
     return worst;

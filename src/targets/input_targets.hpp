@@ -1,11 +1,12 @@
 // Target cells for smoothing from the input cells (`--targets input|smoothed`; docs/method.md
-// §9): per cell a desired volume, a shape S (det S = 1) of the cell the energy pulls it
-// towards, and a weight k of its energy. (`--targets ideal` needs none of this: the thesis'
-// isotropic cells of the volumes `--sizes` asks for, k = 1.)
-//   KeptInput::All        the input cell itself: its stretch and volume at its centre ("only
-//                         untangle or repair": the input is the energy's minimum)
-//   KeptInput::Coherent   the input's design where it is coherent, ideal cells where it is
-//                         noise (`--targets smoothed`)
+// §9; the words are those of targets/cell_targets.hpp): per cell a desired volume, a target
+// shape S (det S = 1) of the cell the energy pulls it towards, and a weight k of its energy.
+// (`--targets ideal` needs none of this: the thesis' isotropic cells of the desired volumes the
+// volume source, `--sizes`, gives, k = 1.)
+//   TargetMode::Input      the input cell itself: its stretch and volume at its centre ("only
+//                          untangle or repair": the input is the energy's minimum)
+//   TargetMode::Smoothed   the input's design where it is coherent, ideal cells where it is
+//                          noise
 // Each cell's Jacobian at its centre, relative to its ideal cell, is J = s V R (det V = 1, R a
 // rotation). A region stretched on purpose — a boundary layer, a graded CAD mesh — has its cells
 // stretched alike: over the cells of the same type sharing a vertex with a cell, the mean of
@@ -47,14 +48,15 @@
 #include <span>
 #include <vector>
 
+#include <neomesh/options.hpp>
+
 #include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
+#include "targets/cell_targets.hpp"
 
 namespace neomesh {
 
-enum class KeptInput { All, Coherent };
-
-// The constants of Coherent (docs/method.md §9): the ramps' ends, of the mean's anisotropy (a
+// The constants of Smoothed (docs/method.md §9): the ramps' ends, of the mean's anisotropy (a
 // grid of right triangles, 1.73 from the equilateral one, is never kept) and of the coherence
 // Ā / Â; and C.
 struct Ramp {
@@ -64,34 +66,25 @@ inline constexpr Ramp kCoherence{0.5, 0.8}, kStretched{2.0, 3.5}, kSheared{2.0, 
 inline constexpr double kKeptStiffness = 7.0;
 inline constexpr double kKeptWedgeStiffness = 100.0;
 
-struct CellTargets {
-  std::vector<double> volumes;  // per local cell, summing to the mesh volume over all ranks
-  std::vector<double> shapes;   // per local cell dim² (column-major, det 1); empty: all ideal
-  std::vector<double> weights;  // per local cell k (with shapes)
-  std::vector<double> kept;     // per local cell: the share w of the input cell kept
-};
-
 // Whether a kept cell of this type aims at the right-angled cell of its proportions (quad,
 // hexahedron, pyramid); simplices and wedges keep their input shape (see above).
 inline bool right_angled_target(CellType type) {
   return !is_simplex(type) && type != CellType::Wedge;
 }
 
-// Ideal targets of the given volumes.
-CellTargets ideal_targets(std::vector<double> volumes);
-
 // `cell_volumes`: each local cell's actual volume; `jacobians`: each local cell's Jacobian at
 // its centre relative to its unit ideal cell (Functional::cell_jacobians); `edge_ratios`: each
 // local cell's longest over shortest edge; `ideal_volumes`: the desired volumes of the ideal
-// targets (desired_volumes.hpp), for the cells not kept. Collective.
-CellTargets input_targets(KeptInput kept, const MeshView& view, const DofMap& dofs,
+// targets (desired_volumes.hpp), for the cells not kept. `mode`: Input or Smoothed. Collective.
+CellTargets input_targets(TargetMode mode, const MeshView& view, const DofMap& dofs,
                           std::span<const double> cell_volumes, std::span<const double> jacobians,
                           std::span<const double> edge_ratios, std::vector<double> ideal_volumes);
 
-// How many local cells keep all of their input cell (w = 1), part of it, or none.
+// How many cells over all ranks keep all of their input cell (input share w = 1), part of it,
+// or none. Collective.
 struct KeptCells {
   long long all = 0, part = 0, none = 0;
 };
-KeptCells count_kept(std::span<const double> kept, MPI_Comm comm);
+KeptCells count_kept(std::span<const double> input_share, MPI_Comm comm);
 
 }  // namespace neomesh

@@ -1,4 +1,4 @@
-#include "solver/desired_volumes.hpp"
+#include "targets/desired_volumes.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "adapt/background_metric.hpp"
+#include "targets/background_metric.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "solver/desired_volumes.hpp"
+#include "targets/desired_volumes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -99,12 +99,13 @@ void fill_in_non_positive_volumes(const MeshView& view, const DofMap& dofs,
 
 }  // namespace
 
-std::vector<double> desired_volumes(SizeMode mode, const MeshView& view, const DofMap& dofs,
-                                    std::span<const double> cell_volumes) {
+std::vector<double> desired_volumes_from_input(SizeMode volume_source, const MeshView& view,
+                                               const DofMap& dofs,
+                                               std::span<const double> cell_volumes) {
   std::vector<double> volumes(cell_volumes.begin(), cell_volumes.end());
   const double total = global_sum(cell_volumes, dofs.comm());
-  if (mode != SizeMode::Uniform) fill_in_non_positive_volumes(view, dofs, volumes);
-  switch (mode) {
+  if (volume_source != SizeMode::Uniform) fill_in_non_positive_volumes(view, dofs, volumes);
+  switch (volume_source) {
     case SizeMode::Uniform:
       std::fill(volumes.begin(), volumes.end(), 1.0);
       break;

@@ -1,4 +1,4 @@
-#include "adapt/size_field.hpp"
+#include "targets/size_field.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,7 +12,7 @@
 #include <Eigen/SVD>
 
 #include "core/error.hpp"
-#include "solver/desired_volumes.hpp"
+#include "targets/desired_volumes.hpp"
 
 namespace neomesh {
 
@@ -345,7 +345,7 @@ std::vector<double> unit_cell_volumes(std::span<const double> roots, int d) {
 
 std::vector<double> relative_volumes(const SizeField& field, const MeshView& view,
                                      std::span<const double> coords,
-                                     const SizeFieldOptions& options, MPI_Comm comm) {
+                                     const SizeFieldOptions& field_options, MPI_Comm comm) {
   const std::string& description = SizeFieldAccess::description(field);
   const auto& signed_distance = SizeFieldAccess::signed_distance(field);
   const std::vector<double>& values = SizeFieldAccess::cell_values(field);
@@ -363,12 +363,12 @@ std::vector<double> relative_volumes(const SizeField& field, const MeshView& vie
     for (PetscInt c = 0; c < view.num_cells; ++c) v[c] = values[view.global_cell[c]];
   } else if (const auto& distances = SizeFieldAccess::distances(field)) {
     distances(centroids, v);  // d, then v = floor + |d|^p in place
-    for (double& x : v) x = options.floor + std::pow(std::abs(x), options.power);
+    for (double& x : v) x = field_options.floor + std::pow(std::abs(x), field_options.power);
   } else {
     for (PetscInt c = 0; c < view.num_cells; ++c)
-      v[c] = options.floor +
+      v[c] = field_options.floor +
              std::pow(std::abs(signed_distance(std::span(centroids).subspan(c * d, d))),
-                      options.power);
+                      field_options.power);
   }
   for (PetscInt c = 0; c < view.num_cells; ++c) {
     const char* problem = std::isnan(v[c])   ? "NaN"
@@ -385,19 +385,20 @@ std::vector<double> relative_volumes(const SizeField& field, const MeshView& vie
 
 namespace {
 
-// Relative volumes made consistent as `options` asks and scaled to sum to `total`. Collective.
-std::vector<double> consistent_volumes(std::vector<double> v, const SizeFieldOptions& options,
+// Relative volumes made consistent as `field_options` asks and scaled to sum to `total`: desired
+// volumes. Collective.
+std::vector<double> consistent_volumes(std::vector<double> v, const SizeFieldOptions& field_options,
                                        const MeshView& view, const DofMap& dofs, double total) {
-  if (const double ratio = options.ratio(); ratio > 0) {
+  if (const double ratio = field_options.ratio(); ratio > 0) {
     const double largest = v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
     const double smallest = global_max(largest, dofs.comm()) / ratio;
     for (double& x : v) x = std::max(x, smallest);
   }
-  if (options.smoothing_passes > 0) {
+  if (field_options.smoothing_passes > 0) {
     // Averaging log v (a geometric mean) keeps small volumes small; an arithmetic mean would
     // let one large neighbour swamp them.
     for (double& x : v) x = std::log(x);
-    for (int pass = 0; pass < options.smoothing_passes; ++pass)
+    for (int pass = 0; pass < field_options.smoothing_passes; ++pass)
       v = average_over_neighbours(view, dofs, v);
     for (double& x : v) x = std::exp(x);
   }
@@ -420,11 +421,12 @@ void orient(std::vector<double>& shapes, std::span<const double> jacobians, int 
 
 }  // namespace
 
-std::vector<double> desired_volumes(const SizeField& field, const SizeFieldOptions& options,
-                                    const MeshView& view, const DofMap& dofs,
-                                    std::span<const double> coords, double total) {
-  return consistent_volumes(relative_volumes(field, view, coords, options, dofs.comm()), options,
-                            view, dofs, total);
+std::vector<double> desired_volumes_from_field(const SizeField& field,
+                                               const SizeFieldOptions& field_options,
+                                               const MeshView& view, const DofMap& dofs,
+                                               std::span<const double> coords, double total) {
+  return consistent_volumes(relative_volumes(field, view, coords, field_options, dofs.comm()),
+                            field_options, view, dofs, total);
 }
 
 std::vector<double> target_shapes(const SizeField& field, const MeshView& view,
@@ -436,15 +438,16 @@ std::vector<double> target_shapes(const SizeField& field, const MeshView& view,
   return shapes;
 }
 
-CellTargets adapt_targets(const SizeField& field, const SizeFieldOptions& options,
+CellTargets field_targets(const SizeField& field, const SizeFieldOptions& field_options,
                           const MeshView& view, const DofMap& dofs, std::span<const double> coords,
                           std::span<const double> jacobians, double total) {
   if (!field.anisotropic())
-    return ideal_targets(desired_volumes(field, options, view, dofs, coords, total));
+    return ideal_targets(
+        desired_volumes_from_field(field, field_options, view, dofs, coords, total));
   // M is evaluated once per cell for both the volume and the shape.
   std::vector<double> shapes = metric_inverse_roots(field, view, cell_centroids(view, coords));
   CellTargets targets = ideal_targets(
-      consistent_volumes(unit_cell_volumes(shapes, view.dim), options, view, dofs, total));
+      consistent_volumes(unit_cell_volumes(shapes, view.dim), field_options, view, dofs, total));
   orient(shapes, jacobians, view.dim);
   targets.shapes = std::move(shapes);
   return targets;
