@@ -14,10 +14,10 @@ PAIRS = [("feat_ring_quad.xml", "feat_ring_quad_mirrored.xml"),
          ("feat_cube_hex_jitter.xml", "feat_cube_hex_jitter_mirrored.xml")]
 
 
-def smooth(name, tmp):
+def smooth(name, tmp, *options):
     report = os.path.join(tmp, name + ".json")
     out = os.path.join(tmp, name + ".msh")
-    neomesh("smooth", os.path.join(DATA, name), "-o", out, "--quiet", "--report", report)
+    neomesh("smooth", os.path.join(DATA, name), "-o", out, "--quiet", "--report", report, *options)
     with open(report) as f:
         return json.load(f)
 
@@ -35,12 +35,18 @@ def differences(a, b, path=""):
 
 @pytest.mark.parametrize("twin, mirrored", PAIRS, ids=[m for _, m in PAIRS])
 def test_mirrored_mesh_smooths_as_its_twin(tmp, twin, mirrored):
-    a, b = smooth(twin, tmp), smooth(mirrored, tmp)
+    # The optimum agrees to rounding. The worst-cell repair is a max-min search: of two equally
+    # good moves the first wins, so round-off between the twins' optima can send it along
+    # another path (docs/method.md, "Worst cells"); their worst cells still end alike.
+    a, b = smooth(twin, tmp, "--no-repair"), smooth(mirrored, tmp, "--no-repair")
     for key in ("quality_before", "quality_after"):
         diff = differences(a[key], b[key])
         assert not diff, f"{mirrored} vs {twin}, {key}:\n" + "\n".join(diff[:10])
-    text = json.dumps(a["quality_after"])
-    assert '"inverted": 0' in text, f"{twin}: inverted cells after smoothing: {text}"
+    a, b = smooth(twin, tmp), smooth(mirrored, tmp)
+    worst = [r["quality_after"]["metrics"]["scaled_jacobian"]["min"] for r in (a, b)]
+    assert abs(worst[0] - worst[1]) < 0.005, worst
+    for r in (a, b):
+        assert r["quality_after"]["inverted"] == 0
 
 
 def test_a_mirrored_mesh_with_a_few_inverted_cells_is_untangled_as_its_twin(tmp):
