@@ -21,7 +21,7 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Step lengths of the search, in units of the vertex's shortest edge: the longest first; a
 // shorter one is tried only when no direction of a longer one improved.
-constexpr double kSteps[] = {0.3, 0.1, 0.03, 0.01, 0.003, 0.001};
+constexpr double kSteps[] = {0.3, 0.1, 0.03, 0.01};
 // A move must raise the worst cell around the vertex by more than this.
 constexpr double kGain = 1e-9;
 // ... and keep the vertex at least this fraction of its distance at the repair's start from
