@@ -1,8 +1,8 @@
 #include <neomesh/level_set.hpp>
 
-#include "targets/size_field.hpp"
 #include "api/fitting.hpp"
 #include "core/error.hpp"
+#include "targets/size_field.hpp"
 
 namespace neomesh {
 

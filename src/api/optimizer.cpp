@@ -100,8 +100,7 @@ CellTargets Optimizer::Impl::smoothing_targets(TargetMode mode, SizeMode volume_
   const bool input_cells = needs_jacobians(request);
   const std::vector<double> jacobians =
       input_cells ? functional->cell_jacobians(x) : std::vector<double>{};
-  const std::vector<double> edge_ratios =
-      input_cells ? cell_edge_ratios() : std::vector<double>{};
+  const std::vector<double> edge_ratios = input_cells ? cell_edge_ratios() : std::vector<double>{};
   return build_targets(request, view(), dofs(),
                        {.volumes = volumes, .jacobians = jacobians, .edge_ratios = edge_ratios});
 }
@@ -217,17 +216,20 @@ QuasiNewtonOptions Optimizer::Impl::method(const SolverOptions& solver) const {
   return o;
 }
 
+const Optimizer::Impl::InputCells* Optimizer::Impl::current_input_cells() const {
+  return input_cells && input_cells->coordinates_version ==
+                            std::as_const(mesh).plex().coordinates_version()
+             ? &*input_cells
+             : nullptr;
+}
+
 std::vector<double> Optimizer::Impl::cell_volumes() const {
-  if (input_cells &&
-      input_cells->coordinates_version == std::as_const(mesh).plex().coordinates_version())
-    return input_cells->volumes;
+  if (const InputCells* kept = current_input_cells()) return kept->volumes;
   return neomesh::cell_volumes(view(), view().coords);
 }
 
 std::vector<double> Optimizer::Impl::cell_edge_ratios() const {
-  if (input_cells &&
-      input_cells->coordinates_version == std::as_const(mesh).plex().coordinates_version())
-    return input_cells->edge_ratios;
+  if (const InputCells* kept = current_input_cells()) return kept->edge_ratios;
   return neomesh::cell_edge_ratios(view(), view().coords);
 }
 

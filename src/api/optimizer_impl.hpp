@@ -138,6 +138,8 @@ struct Optimizer::Impl {
     std::vector<double> volumes, edge_ratios;
   };
   std::optional<InputCells> input_cells;  // set by keep_input_cells()
+  // input_cells if the mesh's coordinates are still those they were kept at, else null.
+  const InputCells* current_input_cells() const;
   OwnedVec cell_size;                     // local cell size per dof, for the practical criterion
   bool warm = false;                      // an adapt() ran: the next one starts from its volumes
   std::unique_ptr<LevelSetFunction> phi;  // of the last fit; its constraint refers to it

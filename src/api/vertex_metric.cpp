@@ -8,11 +8,11 @@
 #include <neomesh/mesh.hpp>
 #include <neomesh/size_field.hpp>
 
-#include "targets/background_metric.hpp"
 #include "core/collective_error.hpp"
 #include "core/error.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/plex_mesh.hpp"
+#include "targets/background_metric.hpp"
 
 namespace neomesh {
 
