@@ -29,6 +29,31 @@ double degrees(double cosine) {
   return std::acos(cosine) * kDegrees;
 }
 
+// How a Jacobian J (its columns a cell's edge vectors or derivatives) gives a signed volume:
+// for a cell of its space's dimension, det J.
+struct Determinant {
+  template <typename Jacobian>
+  double operator()(const Jacobian& j) const {
+    return j.determinant();
+  }
+};
+
+// For a surface cell, J is 3 × 2: the area of the parallelogram of its columns, signed by the
+// cell's reference normal n, (j0 × j1) · n — the determinant of J in a frame (t1, t2, n). Its
+// sign says whether the cell is folded against n; a cell lying in the plane normal to n gets
+// the determinant of its 2D image, a cell tilted by θ against that plane cos θ times it.
+struct NormalArea {
+  Vector<3> normal;
+  template <typename Jacobian>
+  double operator()(const Jacobian& j) const {
+    return Vector<3>(j.col(0)).cross(Vector<3>(j.col(1))).dot(normal);
+  }
+};
+
+// A d × D Jacobian of a cell whose coordinates `X` have X::RowsAtCompileTime rows.
+template <typename X, int D>
+using Jacobian = Eigen::Matrix<double, X::RowsAtCompileTime, D>;
+
 struct Measures {
   double volume, min_corner_det, min_gauss_det, scaled_jacobian, min_angle, max_angle, edge_ratio;
 
@@ -55,8 +80,8 @@ struct Measures {
 
 // Longest over shortest edge; every edge lies on a facet (2D: is one), so the facets' cycles
 // visit them all.
-template <CellType Type>
-double edge_ratio(const typename CellTraits<Type>::Coordinates& x) {
+template <CellType Type, typename X>
+double edge_ratio(const X& x) {
   double shortest = kInfinity, longest = 0.0;
   for (int f = 0; f < facts(Type).num_facets; ++f) {
     const FacetVertices& facet = facts(Type).facets[f];
@@ -72,14 +97,14 @@ double edge_ratio(const typename CellTraits<Type>::Coordinates& x) {
 
 // The signed volume: det J integrated exactly (Q1: 2 Gauss points per direction, degree ≤ 1 in
 // 2D and ≤ 2 per axis in 3D; wedges and pyramids: the reference map's rule, see below).
-template <CellType Type>
-double signed_volume(const typename CellTraits<Type>::Coordinates& x) {
+template <CellType Type, typename X, typename Det = Determinant>
+double signed_volume(const X& x, Det det = {}) {
   using Traits = CellTraits<Type>;
   constexpr int d = Traits::dim;
   if constexpr (Traits::shape == CellShape::Simplex) {
-    Matrix<d> edges;
+    Jacobian<X, d> edges;
     for (int j = 0; j < d; ++j) edges.col(j) = x.col(j + 1) - x.col(0);
-    return edges.determinant() / (d == 2 ? 2.0 : 6.0);
+    return det(edges) / (d == 2 ? 2.0 : 6.0);
   } else if constexpr (Traits::shape == CellShape::Tensor) {
     // The rule's weights and ∇N at its points, computed once (they were per cell: half of the
     // volume's cost).
@@ -92,7 +117,7 @@ double signed_volume(const typename CellTraits<Type>::Coordinates& x) {
     }();
     double volume = 0.0;
     for (const auto& [weight, gradients] : rule)
-      volume += weight * (x * gradients.transpose()).determinant();
+      volume += weight * det(Jacobian<X, d>(x * gradients.transpose()));
     return volume;
   } else {
     // The wedge over the unit right triangle with height 1 (ζ = 2t − 1 halves it), the pyramid
@@ -108,65 +133,64 @@ double signed_volume(const typename CellTraits<Type>::Coordinates& x) {
 
 // det / (product of the edge lengths) at corner frame K (corner_jacobian), 0 where an edge has
 // length zero.
-template <CellType Type, int K>
-double corner_sine(const typename CellTraits<Type>::Coordinates& x) {
+template <CellType Type, int K, typename X, typename Det>
+double corner_sine(const X& x, Det det) {
   constexpr int d = CellTraits<Type>::dim;
   constexpr CornerFrame frame = facts(Type).corners[K];
-  Matrix<d> edges;
+  Jacobian<X, d> edges;
   for (int j = 0; j < d; ++j) {
     const double sign = ((frame.flip >> j) & 1) ? -1.0 : 1.0;
     edges.col(j) = sign * (x.col(frame.ends[j]) - x.col(frame.vertex));
   }
   double product = 1.0;
   for (int j = 0; j < d; ++j) product *= edges.col(j).norm();
-  return product > 0.0 ? edges.determinant() / product : 0.0;
+  return product > 0.0 ? det(edges) / product : 0.0;
 }
 
 // The minimum over the corners of det / (product of the corner's edge lengths), over its value
 // on the optimal cell (see quality.hpp); 0 at a corner with a zero-length edge.
-template <CellType Type>
-double scaled_jacobian(const typename CellTraits<Type>::Coordinates& x) {
+template <CellType Type, typename X, typename Det = Determinant>
+double scaled_jacobian(const X& x, Det det = {}) {
   using Traits = CellTraits<Type>;
   constexpr int d = Traits::dim;
   double lowest = kInfinity;
   if constexpr (Traits::shape == CellShape::Simplex) {
-    Matrix<d> edges;
+    Jacobian<X, d> edges;
     for (int j = 0; j < d; ++j) edges.col(j) = x.col(j + 1) - x.col(0);
-    const double det = edges.determinant();
+    const double volume = det(edges);
     for (int i = 0; i <= d; ++i) {
       double product = 1.0;
       for (int j = 0; j <= d; ++j)
         if (j != i) product *= (x.col(j) - x.col(i)).norm();
-      lowest = std::min(lowest, product > 0.0 ? det / product : 0.0);
+      lowest = std::min(lowest, product > 0.0 ? volume / product : 0.0);
     }
   } else {
     // The corners unrolled, their frames known at compile time: the worst-cell repair evaluates
     // millions of cells (quarter annulus of 8,000 hexahedra: 2.2 million), and the loop over
     // frames read at run time cost twice the arithmetic. The same operations in the same order.
     [&]<int... K>(std::integer_sequence<int, K...>) {
-      ((lowest = std::min(lowest, corner_sine<Type, K>(x))), ...);
+      ((lowest = std::min(lowest, corner_sine<Type, K>(x, det))), ...);
     }
     (std::make_integer_sequence<int, facts(Type).num_corners>{});
   }
   return lowest / facts(Type).ideal_corner_sine;
 }
 
-template <CellType Type>
-Measures measure_simplex(const typename CellTraits<Type>::Coordinates& x) {
-  constexpr int d = CellTraits<Type>::dim;
-  Matrix<d> edges;
+template <CellType Type, typename X, typename Det = Determinant>
+Measures measure_simplex(const X& x, Det det = {}) {
+  constexpr int d = CellTraits<Type>::dim, rows = X::RowsAtCompileTime;
+  Jacobian<X, d> edges;
   for (int j = 0; j < d; ++j) edges.col(j) = x.col(j + 1) - x.col(0);
-  const double det = edges.determinant();
 
   Measures m{};
-  m.volume = signed_volume<Type>(x);
-  m.min_corner_det = m.min_gauss_det = det;
-  m.scaled_jacobian = scaled_jacobian<Type>(x);
+  m.volume = signed_volume<Type>(x, det);
+  m.min_corner_det = m.min_gauss_det = det(edges);
+  m.scaled_jacobian = scaled_jacobian<Type>(x, det);
   m.min_angle = kInfinity;
   m.max_angle = 0.0;
   if constexpr (d == 2) {
     for (int i = 0; i < 3; ++i)
-      m.record_angle_between<2>(x.col((i + 1) % 3) - x.col(i), x.col((i + 2) % 3) - x.col(i));
+      m.record_angle_between<rows>(x.col((i + 1) % 3) - x.col(i), x.col((i + 2) % 3) - x.col(i));
   } else {
     // Dihedral angle at edge (a, b): between the normals of its faces towards c and d.
     for (int a = 0; a < 4; ++a)
@@ -184,27 +208,28 @@ Measures measure_simplex(const typename CellTraits<Type>::Coordinates& x) {
   return m;
 }
 
-template <CellType Type>
-Measures measure_q1(const typename CellTraits<Type>::Coordinates& x) {
+template <CellType Type, typename X, typename Det = Determinant>
+Measures measure_q1(const X& x, Det det = {}) {
   constexpr int d = CellTraits<Type>::dim, n = CellTraits<Type>::vertices;
+  constexpr int rows = X::RowsAtCompileTime;
   Measures m{};
   m.min_corner_det = m.min_gauss_det = m.min_angle = kInfinity;
   m.max_angle = 0.0;
-  m.scaled_jacobian = scaled_jacobian<Type>(x);
-  m.volume = signed_volume<Type>(x);
+  m.scaled_jacobian = scaled_jacobian<Type>(x, det);
+  m.volume = signed_volume<Type>(x, det);
   for (int c = 0; c < n; ++c) {
     // Edges along the reference axes, pointing the way the axes do (so the unit cell has J = I).
-    const double det = corner_jacobian<Type>(x, c).determinant();
-    m.min_corner_det = std::min(m.min_corner_det, det);
+    const double corner_det = det(corner_jacobian<Type>(x, c));
+    m.min_corner_det = std::min(m.min_corner_det, corner_det);
     for (int j = 0; j < d; ++j)
       for (int k = j + 1; k < d; ++k) {
         // The actual edges leave the corner; the angle between them is the one inside the
         // cell unless the corner is reflex (2D) or inverted.
-        const Vector<d> a = x.col(c ^ (1 << j)) - x.col(c), b = x.col(c ^ (1 << k)) - x.col(c);
-        if (d == 2 && det <= 0.0)
-          m.record_angle(360.0 - degrees(cosine_between<d>(a, b)));
+        const Vector<rows> a = x.col(c ^ (1 << j)) - x.col(c), b = x.col(c ^ (1 << k)) - x.col(c);
+        if (d == 2 && corner_det <= 0.0)
+          m.record_angle(360.0 - degrees(cosine_between<rows>(a, b)));
         else
-          m.record_angle_between<d>(a, b);
+          m.record_angle_between<rows>(a, b);
       }
   }
   m.finish_angles();
@@ -216,8 +241,8 @@ Measures measure_q1(const typename CellTraits<Type>::Coordinates& x) {
     return std::pair{rule.size, g};
   }();
   for (int q = 0; q < det_gradients.first; ++q) {
-    const Matrix<d> jacobian = x * det_gradients.second[q].transpose();
-    m.min_gauss_det = std::min(m.min_gauss_det, jacobian.determinant());
+    const Jacobian<X, d> jacobian = x * det_gradients.second[q].transpose();
+    m.min_gauss_det = std::min(m.min_gauss_det, det(jacobian));
   }
   m.edge_ratio = edge_ratio<Type>(x);
   return m;
@@ -261,8 +286,8 @@ Measures measure_wedge_or_pyramid(const typename CellTraits<Type>::Coordinates& 
 // corner frame T = J W⁻¹, J the corner's Jacobian and W the optimal cell's at that corner,
 // and |T|²_F / (d det(T)^(2/d)) ≥ 1, with 1 only where T is a scaled rotation; the mean over
 // the cell's corner frames (a simplex has one). +∞ where det T ≤ 0.
-template <CellType Type>
-double inverse_mean_ratio(const typename CellTraits<Type>::Coordinates& x) {
+template <CellType Type, typename X, typename Det = Determinant>
+double inverse_mean_ratio(const X& x, Det det = {}) {
   constexpr int d = CellTraits<Type>::dim;
   static const std::array<Matrix<d>, 8> ideal_inverse = [] {
     std::array<Matrix<d>, 8> inverses;
@@ -274,10 +299,10 @@ double inverse_mean_ratio(const typename CellTraits<Type>::Coordinates& x) {
   const int corners = facts(Type).num_corners;
   double sum = 0.0;
   for (int k = 0; k < corners; ++k) {
-    const Matrix<d> t = corner_jacobian<Type>(x, k) * ideal_inverse[k];
-    const double det = t.determinant();
-    if (!(det > 0.0)) return kInfinity;
-    sum += t.squaredNorm() / (d * std::pow(det, 2.0 / d));
+    const Jacobian<X, d> t = corner_jacobian<Type>(x, k) * ideal_inverse[k];
+    const double det_t = det(t);
+    if (!(det_t > 0.0)) return kInfinity;
+    sum += t.squaredNorm() / (d * std::pow(det_t, 2.0 / d));
   }
   return sum / corners;
 }
@@ -304,13 +329,13 @@ void for_each_cell(const MeshView& view, std::span<const double> coords, PerCell
     });
 }
 
-template <CellType Type>
-Measures measure(const typename CellTraits<Type>::Coordinates& x) {
+template <CellType Type, typename X, typename Det = Determinant>
+Measures measure(const X& x, Det det = {}) {
   using Traits = CellTraits<Type>;
   if constexpr (Traits::shape == CellShape::Simplex)
-    return measure_simplex<Type>(x);
+    return measure_simplex<Type>(x, det);
   else if constexpr (Traits::shape == CellShape::Tensor)
-    return measure_q1<Type>(x);
+    return measure_q1<Type>(x, det);
   else
     return measure_wedge_or_pyramid<Type>(x);
 }
@@ -340,7 +365,49 @@ double of_one_cell(CellType type, const double* coords, Metric metric) {
   return value;
 }
 
+// metric.template operator()<Type>(x, area) of one surface cell (a triangle or quadrilateral)
+// at `coords` (3 values per vertex), with `area` the NormalArea of `normal`.
+template <class Result, class Metric>
+Result of_one_surface_cell(CellType type, const double* coords, const double* normal,
+                           Metric metric) {
+  Result value{};
+  visit_cell_type(type, [&]<CellType Type>(CellTag<Type>) {
+    if constexpr (CellTraits<Type>::dim == 2) {
+      using Coordinates = Eigen::Matrix<double, 3, CellTraits<Type>::vertices>;
+      value =
+          metric.template operator()<Type>(Eigen::Map<const Coordinates>(coords),
+                                           NormalArea{Vector<3>(normal[0], normal[1], normal[2])});
+    } else {
+      fail("a surface cell is a triangle or a quadrilateral, not a {}", name(Type));
+    }
+  });
+  return value;
+}
+
 }  // namespace
+
+SurfaceCellMeasures surface_cell_measures(CellType type, const double* coords,
+                                          const double* normal) {
+  return of_one_surface_cell<SurfaceCellMeasures>(
+      type, coords, normal, []<CellType Type>(const auto& x, const NormalArea& area) {
+        const Measures m = measure<Type>(x, area);
+        return SurfaceCellMeasures{.area = m.volume,
+                                   .min_corner_det = m.min_corner_det,
+                                   .min_gauss_det = m.min_gauss_det,
+                                   .scaled_jacobian = m.scaled_jacobian,
+                                   .min_angle = m.min_angle,
+                                   .max_angle = m.max_angle,
+                                   .edge_ratio = m.edge_ratio,
+                                   .inverse_mean_ratio = inverse_mean_ratio<Type>(x, area)};
+      });
+}
+
+double surface_cell_scaled_jacobian(CellType type, const double* coords, const double* normal) {
+  return of_one_surface_cell<double>(type, coords, normal,
+                                     []<CellType Type>(const auto& x, const NormalArea& area) {
+                                       return scaled_jacobian<Type>(x, area);
+                                     });
+}
 
 CellQuality cell_quality(const MeshView& view, std::span<const double> coords) {
   CellQuality q;

@@ -68,6 +68,30 @@ double cell_scaled_jacobian(CellType type, const double* coords);
 // Its longest over its shortest edge, likewise.
 double cell_edge_ratio(CellType type, const double* coords);
 
+// A surface cell: a triangle or quadrilateral whose vertices lie in space (a surface mesh),
+// with its reference unit normal n, the side the cell faces (surface_frame.hpp computes one
+// from the cell's vertices: surface_cell_normal). Its measures are those above, taken in
+// 3D: edge lengths and angles as they are in space, and every determinant the signed area
+// seen along n, (j0 × j1) · n for a Jacobian with columns j0, j1. So a cell folded against n
+// has a negative scaled Jacobian and counts as inverted; a cell in a plane normal to n
+// measures exactly as its 2D image in that plane; and a cell tilted by θ against that plane
+// has its determinants scaled by cos θ — one standing across the surface scores 0, as a
+// flattened 2D cell does. This is the determinant the surface kernel's energy sees.
+struct SurfaceCellMeasures {
+  double area;  // signed, seen along n
+  double min_corner_det, min_gauss_det;
+  double scaled_jacobian;
+  double min_angle, max_angle;  // degrees; a quad corner with det ≤ 0 counts as reflex
+  double edge_ratio;
+  double inverse_mean_ratio;
+};
+// `coords`: 3 values per vertex, in the cell's canonical order; `normal`: n, 3 values. Throws
+// for a type other than triangle and quadrilateral.
+SurfaceCellMeasures surface_cell_measures(CellType type, const double* coords,
+                                          const double* normal);
+// Its scaled Jacobian alone, at a fraction of the cost.
+double surface_cell_scaled_jacobian(CellType type, const double* coords, const double* normal);
+
 // The metrics of `quality` as the per-cell fields of an output (.vtu), by the names the
 // reports and `--picture-field` use.
 std::vector<Field> quality_fields(const CellQuality& quality);

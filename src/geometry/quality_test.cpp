@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
+#include <Eigen/Geometry>
 
+#include <cmath>
+#include <random>
+
+#include "core/error.hpp"
 #include "generate/generate.hpp"
 #include "generate/serial_view.hpp"
 
@@ -231,6 +235,116 @@ TEST(CellQuality, OneMetricPassesAgreeWithTheFullOne) {
     }
     EXPECT_GT(collapsed, 0) << name(type);
   }
+}
+
+namespace {
+
+// The cells of the 2D tests above (each 2 values per vertex) and a few random ones.
+std::vector<std::pair<CellType, std::vector<double>>> planar_cells() {
+  const double h = std::sqrt(3.0) / 2;
+  std::vector<std::pair<CellType, std::vector<double>>> cells = {
+      {CellType::Triangle, {0, 0, 1, 0, 0.5, h}},
+      {CellType::Triangle, {0, 0, 1, 0, 0, 1}},
+      {CellType::Triangle, {0, 0, 0, 1, 1, 0}},  // clockwise: inverted
+      {CellType::Quadrilateral, {0, 0, 1, 0, 1, 1, 2, 1}},
+      {CellType::Quadrilateral, {0, 0, 2, 0, 0.5, 1, 1.5, 1}},
+      {CellType::Quadrilateral, {0, 0, -1, 0, 0, 1, -1, 1}},     // mirrored
+      {CellType::Quadrilateral, {0, 0, 1, 0, 0, 1, 0.3, 0.3}}};  // reflex corner
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  for (CellType type : {CellType::Triangle, CellType::Quadrilateral})
+    for (int trial = 0; trial < 5; ++trial) {
+      std::vector<double> x = type == CellType::Triangle
+                                  ? std::vector<double>{0, 0, 1, 0, 0.5, h}
+                                  : std::vector<double>{0, 0, 1, 0, 0, 1, 1, 1};
+      for (double& v : x) v = 2.0 * (v + u(rng)) - 0.7;
+      cells.emplace_back(type, std::move(x));
+    }
+  return cells;
+}
+
+// The 2D cell `xy` placed in space, rotated by R: 3 values per vertex.
+std::vector<double> into_space(const std::vector<double>& xy, const Eigen::Matrix3d& R) {
+  std::vector<double> x;
+  for (std::size_t i = 0; i < xy.size(); i += 2) {
+    const Eigen::Vector3d p = R * Eigen::Vector3d(xy[i], xy[i + 1], 0.0) + Eigen::Vector3d(1, 2, 3);
+    x.insert(x.end(), p.data(), p.data() + 3);
+  }
+  return x;
+}
+
+// a and b agree to 1e-14 relative to their size (to 1e-14 where they are below 1), or are the
+// same infinity.
+void expect_close(double a, double b, const char* what) {
+  if (std::isinf(a) || std::isinf(b)) {
+    EXPECT_EQ(a, b) << what;
+  } else {
+    EXPECT_NEAR(a, b, 1e-14 * std::max(1.0, std::abs(b))) << what;
+  }
+}
+
+}  // namespace
+
+// A triangle or quadrilateral in the xy plane with normal +z, and the same cell turned anywhere
+// in space with its normal, measures as the 2D cell: the same area, determinants, scaled
+// Jacobian, angles, edge ratio and inverse mean ratio, to rounding.
+TEST(SurfaceCellQuality, EqualsThe2DMeasuresInThePlaneAndTurnedInSpace) {
+  const Eigen::Matrix3d turned =
+      Eigen::AngleAxisd(2.1, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  for (const auto& [type, xy] : planar_cells())
+    for (const Eigen::Matrix3d& R : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), turned}) {
+      const CellQuality flat = one_cell(type, xy);
+      const std::vector<double> x = into_space(xy, R);
+      const Eigen::Vector3d normal = R.col(2);
+      const SurfaceCellMeasures m = surface_cell_measures(type, x.data(), normal.data());
+      expect_close(m.area, flat.volume[0], "area");
+      expect_close(m.min_corner_det, flat.min_corner_det[0], "min corner det");
+      expect_close(m.min_gauss_det, flat.min_gauss_det[0], "min Gauss det");
+      expect_close(m.scaled_jacobian, flat.scaled_jacobian[0], "scaled Jacobian");
+      expect_close(m.min_angle, flat.min_angle[0], "min angle");
+      expect_close(m.max_angle, flat.max_angle[0], "max angle");
+      expect_close(m.edge_ratio, flat.edge_ratio[0], "edge ratio");
+      expect_close(m.inverse_mean_ratio, flat.inverse_mean_ratio[0], "inverse mean ratio");
+      EXPECT_EQ(surface_cell_scaled_jacobian(type, x.data(), normal.data()), m.scaled_jacobian);
+    }
+}
+
+// Seen from the other side — the cell folded against its normal — the determinants change
+// sign: a negative scaled Jacobian, a negative area, no inverse mean ratio.
+TEST(SurfaceCellQuality, CellFoldedAgainstItsNormalIsInverted) {
+  const double h = std::sqrt(3.0) / 2;
+  const std::vector<double> triangle = {0, 0, 0, 1, 0, 0, 0.5, h, 0};
+  const std::vector<double> square = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+  const double down[] = {0, 0, -1};
+  for (const auto& [type, x] :
+       {std::pair{CellType::Triangle, triangle}, std::pair{CellType::Quadrilateral, square}}) {
+    const SurfaceCellMeasures m = surface_cell_measures(type, x.data(), down);
+    EXPECT_NEAR(m.scaled_jacobian, -1.0, 1e-15) << name(type);
+    EXPECT_LT(m.area, 0.0);
+    EXPECT_LT(m.min_corner_det, 0.0);
+    EXPECT_TRUE(std::isinf(m.inverse_mean_ratio));
+  }
+}
+
+// A square tilted by θ against the plane normal to n is seen foreshortened: determinants and
+// scaled Jacobian times cos θ, the inverse mean ratio over cos θ; lengths and angles are its own.
+TEST(SurfaceCellQuality, CellTiltedAgainstItsNormalIsSeenForeshortened) {
+  const double theta = 0.3, c = std::cos(theta), s = std::sin(theta);
+  const std::vector<double> x = {0, 0, 0, 1, 0, 0, 0, c, s, 1, c, s};  // turned about x
+  const double up[] = {0, 0, 1};
+  const SurfaceCellMeasures m = surface_cell_measures(CellType::Quadrilateral, x.data(), up);
+  EXPECT_NEAR(m.area, c, 1e-15);
+  EXPECT_NEAR(m.scaled_jacobian, c, 1e-15);
+  EXPECT_NEAR(m.inverse_mean_ratio, 1.0 / c, 1e-15);
+  EXPECT_NEAR(m.min_angle, 90.0, 1e-12);
+  EXPECT_NEAR(m.max_angle, 90.0, 1e-12);
+  EXPECT_NEAR(m.edge_ratio, 1.0, 1e-15);
+}
+
+TEST(SurfaceCellQuality, OnlyTrianglesAndQuadrilateralsAreSurfaceCells) {
+  const std::vector<double> x(12, 0.0);
+  const double up[] = {0, 0, 1};
+  EXPECT_THROW(surface_cell_scaled_jacobian(CellType::Tetrahedron, x.data(), up), Error);
 }
 
 }  // namespace neomesh

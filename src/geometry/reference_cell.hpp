@@ -35,12 +35,14 @@ struct CellTraits {
 
 // The Jacobian at corner frame k of the cell-type table (CornerFrame): its columns are the
 // frame's edges, so det > 0 on a valid cell and, for Q1 cells, the unit square/cube has J = I.
-template <CellType Type>
-Matrix<CellTraits<Type>::dim> corner_jacobian(const typename CellTraits<Type>::Coordinates& x,
-                                              int k) {
+// `x` has one column per vertex: dim rows for a cell of its own dimension, or 3 for a triangle
+// or quadrilateral in space (a surface cell: J is then 3 × 2).
+template <CellType Type, typename Derived>
+Eigen::Matrix<double, Derived::RowsAtCompileTime, CellTraits<Type>::dim> corner_jacobian(
+    const Eigen::MatrixBase<Derived>& x, int k) {
   constexpr int dim = CellTraits<Type>::dim;
   const CornerFrame& frame = facts(Type).corners[k];
-  Matrix<dim> edges;
+  Eigen::Matrix<double, Derived::RowsAtCompileTime, dim> edges;
   for (int j = 0; j < dim; ++j) {
     const double sign = ((frame.flip >> j) & 1) ? -1.0 : 1.0;
     edges.col(j) = sign * (x.col(frame.ends[j]) - x.col(frame.vertex));
