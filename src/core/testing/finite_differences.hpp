@@ -7,6 +7,10 @@
 
 namespace neomesh::testing {
 
+// The relative error an analytic derivative may have against central differences with a step
+// of 1e-6 times the problem's length scale.
+inline constexpr double kFdTolerance = 1e-6;
+
 // ∂f/∂x_k ≈ (f(x + h e_k) − f(x − h e_k)) / 2h, shaped like x.
 template <typename Point, typename Function>
 Point fd_gradient(Function&& f, Point x, double step) {
