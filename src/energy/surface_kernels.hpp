@@ -3,7 +3,8 @@
 // space (3 coordinates each) and slide on the input surface.
 //
 // The cell gets a tangent frame Q = [t1 t2] (3 × 2, orthonormal, t1 × t2 = n its reference
-// unit normal), and its energy is the 2D Neo-Hookean energy of its image in that frame:
+// unit normal), and its energy is the 2D energy (Neo-Hookean, or the untangling law) of its
+// image in that frame:
 //
 //   G = Qᵀ X D_qᵀ,   E(X) = E₂(Qᵀ X),   ∂E/∂X = Q ∂E₂/∂Y,   ∂²E/∂X² = (I ⊗ Q) ∂²E₂/∂Y² (I ⊗ Qᵀ)
 //
@@ -21,8 +22,8 @@
 // - the energy does not see the normal direction: a move along n leaves Qᵀ X, and so E,
 //   unchanged. That direction is the one the sliding constraint removes (every vertex moves in
 //   the tangent plane of the surface, energy/sliding_vertices.hpp), so nothing is lost.
-// - the error is small: a cell tilted by θ against the plane of its frame has its edges
-//   shortened by the projection by a factor cos θ = 1 − θ²/2 + …, so its energy differs from
+// - the error is small: a cell tilted by θ against the plane of its frame is seen with its
+//   lengths across the tilt axis shortened by cos θ = 1 − θ²/2 + …, so its energy differs from
 //   that of the cell laid flat by O(θ²). A cell that turns as it slides over a curved surface
 //   stays close to its frame within one solve, and the next solve takes a new frame.
 #pragma once
