@@ -19,7 +19,6 @@
 #include "report/canvas.hpp"
 #include "report/history_plot.hpp"
 #include "report/iteration_table.hpp"
-#include "report/quality_report.hpp"
 #include "report/render.hpp"
 #include "report/run_report.hpp"
 
