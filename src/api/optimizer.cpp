@@ -64,6 +64,26 @@ TargetMode targets_asked(const SmoothOptions& options) {
              : options.targets;
 }
 
+// The options of an adaptation followed by a fit: of the adaptation, of the fit, and of the
+// fit's last stage. A warm step adapts only until the small cells have moved along with the
+// geometry: the fit goes on optimizing, and its start recomputes the desired volumes (one of the
+// step's updates). After a cold start the volumes follow the fitted cells once more.
+struct FittedAdaptation {
+  AdaptOptions adapting, fitting;
+  PicardOptions last_stage;
+};
+FittedAdaptation fitted_adaptation(const AdaptOptions& options, bool warm) {
+  FittedAdaptation parts{.adapting = options, .fitting = options, .last_stage = options.picard};
+  parts.fitting.sizes.max_ratio = options.sizes.ratio(true);
+  parts.adapting = parts.fitting;
+  if (warm) {
+    parts.adapting.warm_updates = std::max(0, options.warm_updates - 1);
+    parts.adapting.solver.max_iterations = FitOptions().stage_iterations;
+  }
+  parts.last_stage.min_updates = warm ? 0 : 1;
+  return parts;
+}
+
 }  // namespace
 
 Optimizer::Impl::Impl(Mesh& m) : mesh(m) {}
@@ -262,55 +282,144 @@ void Optimizer::Impl::finish(Result& result) {
   result.volume_change = (volume - mesh_volume) / mesh_volume;
 }
 
-void Optimizer::Impl::lift_corners(const QuasiNewtonOptions& method, const Observer& observer,
-                                   Result& result) {
-  if (result.reason != StopReason::TimeLimit)
-    result.corner_phase = lift_flat_corners(*functional, view(), dofs(), x, method, cell_size,
-                                            result, observer.iteration);
+Optimizer::Impl::Smoothing Optimizer::Impl::set_up_smoothing(const SmoothOptions& options,
+                                                             const Observer& observer,
+                                                             Result& result) {
+  warm = false;  // the desired volumes are smoothing's now
+  // Targets from the input cells — not from a tangled input, whose cells around the inverted
+  // ones are distorted by whatever tangled it: that is no design to keep.
+  const bool tangled = result.quality_before.inverted > 0 || result.quality_before.degenerate > 0;
+  const bool volumes_asked = targets_asked(options) != options.targets;
+  const TargetMode mode = tangled ? TargetMode::Ideal : targets_asked(options);
+  // Nor are its sizes where it is folded over itself throughout: the fill-in of the inverted
+  // cells' volumes from their neighbours then starts from cells that were squeezed and stretched
+  // with them (copy-morph-for-ricoh: desired volumes from 7e-4 to 26 in a ring of equal cells,
+  // an optimum with corners nearly flat, 5 + 123 iterations and 76 s; uniform: 4 + 7, 3.8 s).
+  const double coverage = tangled ? domain_coverage(cell_volumes(), mesh.comm()) : 1.0;
+  const bool folded = coverage > kFoldedCoverage;
+  KeptCells kept;
+  {  // the problem keeps its own copy of the targets: this one goes before the solve
+    const CellTargets targets = smoothing_targets(mode, folded ? SizeMode::Uniform : options.sizes);
+    set_targets(targets);
+    kept = count_kept(targets.input_share, mesh.comm());
+  }
+  const QuasiNewtonOptions run_method = method(options.solver);
+  result.problem = problem_summary(options.solver);
+  result.problem.targets = {std::string(name(mode)),
+                            kept.all,
+                            kept.part,
+                            kept.none,
+                            tangled && options.targets != TargetMode::Ideal,
+                            !tangled && volumes_asked,
+                            coverage,
+                            folded && options.sizes != SizeMode::Uniform};
+  if (observer.started) observer.started(result.problem);
+  // The guard's promise is about the input (before untangling): a tangled input's worst cell is
+  // inverted, so any untangled output keeps it.
+  OwnedVec input = copy_of(x);
+  // The input as the run starts from it: vertices placed on their charts (FEAT3's
+  // unit-axe-tria: the placement alone takes its mean from 0.816 to 0.647).
+  const double input_mean = mean_scaled_jacobian(view(), dofs(), input);
+  return {.options = options,
+          .observer = observer,
+          .method = run_method,
+          .mode = mode,
+          .tangled = tangled,
+          .input = std::move(input),
+          .input_mean = input_mean};
 }
 
-void Optimizer::Impl::protect_worst_cells(Vec input, const QuasiNewtonOptions& method,
-                                          const Observer& observer, Result& result,
-                                          std::optional<double> repair_floor, double ceiling) {
-  lift_corners(method, observer, result);
-  // The floor binds where the optimum is above it; below it, the mean guard returns the input
-  // anyway (guard_mean_quality).
-  if (repair_floor && result.reason != StopReason::TimeLimit)
-    repair_worst(result, mean_scaled_jacobian(view(), dofs(), x) >= *repair_floor
-                             ? *repair_floor
-                             : -std::numeric_limits<double>::infinity());
+void Optimizer::Impl::optimize(const Smoothing& s, Result& run) {
+  static_cast<SolverRun&>(run) =
+      minimize(*functional, x, s.method, cell_size, s.observer.iteration);
+  if (!s.options.quality_guard) return;
+  lift_corners(s.method, s.observer, run);
+  // The repair spends no more of the mean than the promise allows.
+  if (s.options.repair_worst_cells)
+    repair_worst(run, s.input_mean - QualityGuardResult::kMeanSlack);
+  guard_worst(s.input, run);
+  if (!s.tangled) guard_mean(s, run);
+}
+
+void Optimizer::Impl::retry_towards_ideal_cells(const Smoothing& s, Result& result) {
+  if (s.mode == TargetMode::Ideal || result.reason == StopReason::TimeLimit) return;
+  // Where the kept cells ask for a corner the mesh cannot open, or keep a cell flattened across
+  // its edges, towards ideal cells from the input too; the better worst cell wins, the
+  // design's on a tie.
+  const bool flat_kept =
+      (result.corner_phase && result.corner_phase->gave_up) || flat_cap(view(), dofs(), x);
+  if (!flat_kept) return;
+  const OwnedVec kept = copy_of(x);
+  NM_PETSC(VecCopy(s.input, x));
+  set_targets(smoothing_targets(TargetMode::Ideal, s.options.sizes));
+  Result ideal;
+  ideal.quality_before = result.quality_before;
+  optimize(s, ideal);
+  IdealRetrySummary& retry = result.ideal_retry.emplace();
+  retry.min_scaled_jacobian_kept = min_scaled_jacobian(view(), dofs(), kept);
+  retry.min_scaled_jacobian_ideal = min_scaled_jacobian(view(), dofs(), x);
+  retry.iterations = static_cast<int>(ideal.history.size());
+  retry.ideal_kept = retry.min_scaled_jacobian_ideal > retry.min_scaled_jacobian_kept;
+  result.history.insert(result.history.end(), ideal.history.begin(), ideal.history.end());
+  if (retry.ideal_kept) {  // F and the defect of the energy towards ideal cells
+    result.initial_energy = ideal.initial_energy;
+    result.initial_defect = ideal.initial_defect;
+    result.reason = ideal.reason;
+    result.final_energy = ideal.final_energy;
+    result.final_defect = ideal.final_defect;
+    result.worst_cell_repair = ideal.worst_cell_repair;
+    result.quality_guard = ideal.quality_guard;
+  } else {
+    NM_PETSC(VecCopy(kept, x));
+    set_targets(smoothing_targets(s.mode, s.options.sizes));
+  }
+}
+
+void Optimizer::Impl::lift_corners(const QuasiNewtonOptions& method, const Observer& observer,
+                                   Result& run) {
+  if (run.reason != StopReason::TimeLimit)
+    run.corner_phase = lift_flat_corners(*functional, view(), dofs(), x, method, cell_size, run,
+                                         observer.iteration);
+}
+
+void Optimizer::Impl::repair_worst(Result& run, double mean_floor) {
+  if (run.reason == StopReason::TimeLimit) return;
+  // The floor binds where x's mean is above it; below it, the mean guard returns the input
+  // anyway (guard_mean).
+  const double min_mean = mean_scaled_jacobian(view(), dofs(), x) >= mean_floor
+                              ? mean_floor
+                              : -std::numeric_limits<double>::infinity();
+  const WorstCellRepair r = repair_worst_cells(view(), dofs(), repair_freedom(), x, min_mean);
+  run.worst_cell_repair = {.min_scaled_jacobian_before = r.min_before,
+                           .min_scaled_jacobian_after = r.min_after,
+                           .vertices_moved = r.vertices_moved,
+                           .sweeps = r.sweeps};
+}
+
+void Optimizer::Impl::guard_worst(Vec input, Result& run, double ceiling) {
   // The threshold is the file's worst cell, or where placing vertices on their charts left it
   // (at most the ceiling).
-  result.quality_guard = guard_worst_quality(
+  run.quality_guard = guard_worst_quality(
       view(), dofs(), input, x, [this](Vec y) { functional->project_onto_boundary(y); },
-      result.quality_before.inverted > 0
+      run.quality_before.inverted > 0
           ? std::optional(ceiling)
-          : std::optional(std::min(result.quality_before.scaled_jacobian.min, ceiling)));
-  if (result.quality_guard->vertices_moved > 0) result.final_energy = functional->value(x);
+          : std::optional(std::min(run.quality_before.scaled_jacobian.min, ceiling)));
+  if (run.quality_guard->vertices_moved > 0) run.final_energy = functional->value(x);
 }
 
-void Optimizer::Impl::repair_worst(Result& result, double min_mean) {
-  const WorstCellRepair r = repair_worst_cells(view(), dofs(), repair_freedom(), x, min_mean);
-  result.worst_cell_repair = {.min_scaled_jacobian_before = r.min_before,
-                              .min_scaled_jacobian_after = r.min_after,
-                              .vertices_moved = r.vertices_moved,
-                              .sweeps = r.sweeps};
-}
-
-void Optimizer::Impl::guard_mean_quality(Vec input, double input_mean, Result& result,
-                                         bool repair) {
-  QualityGuardResult& guard = *result.quality_guard;
-  guard.input_mean = input_mean;
+void Optimizer::Impl::guard_mean(const Smoothing& s, Result& run) {
+  QualityGuardResult& guard = *run.quality_guard;
+  guard.input_mean = s.input_mean;
   guard.mean_optimum = mean_scaled_jacobian(view(), dofs(), x);
-  const double floor = input_mean - QualityGuardResult::kMeanSlack;
+  const double floor = s.input_mean - QualityGuardResult::kMeanSlack;
   if (guard.mean_optimum >= floor) return;
-  NM_PETSC(VecCopy(input, x));
+  NM_PETSC(VecCopy(s.input, x));
   mesh.plex().set_coordinates(x);  // what the repair judges the input cells by
   // Within the slack of the input's mean, so above the optimum's.
-  if (repair && result.reason != StopReason::TimeLimit) repair_worst(result, floor);
+  if (s.options.repair_worst_cells) repair_worst(run, floor);
   guard.input_returned = true;
   guard.min_after = min_scaled_jacobian(view(), dofs(), x);
-  result.final_energy = functional->value(x);
+  run.final_energy = functional->value(x);
 }
 
 RepairFreedom Optimizer::Impl::repair_freedom() const {
@@ -353,16 +462,20 @@ VolumeRatioStats Optimizer::Impl::volume_ratio() const {
   return volume_ratio_stats(functional->cell_fields(x).volume_ratio, mesh.comm());
 }
 
-void Optimizer::Impl::adapt(const SizeField& field, const AdaptOptions& options,
-                            const Observer& observer, Result& result) {
-  const TargetsAt targets = adaptation_targets(field, options.sizes);
+TargetsAt Optimizer::Impl::set_up_adaptation(const SizeField& field, const AdaptOptions& options,
+                                             const Observer& observer, Result& result) {
+  TargetsAt targets = adaptation_targets(field, options.sizes);
   // The size field's targets at the start: what the observer sees, and what untangling aims at.
   // They replace any a smoothing before may have left.
   set_targets(targets(x));
   result.problem = problem_summary(options.solver);
   if (field.anisotropic()) result.problem.targets.mode = "metric";
   if (observer.started) observer.started(result.problem);
-  if (options.untangle) result.untangling = untangle(method(options.solver), observer);
+  return targets;
+}
+
+void Optimizer::Impl::picard_iteration(const TargetsAt& targets, const AdaptOptions& options,
+                                       const Observer& observer, Result& result) {
   PicardOptions picard = options.picard;
   if (warm) picard.min_updates = options.warm_updates;
   const PicardResult run = neomesh::picard(
@@ -372,6 +485,13 @@ void Optimizer::Impl::adapt(const SizeField& field, const AdaptOptions& options,
   warm = true;
   static_cast<SolverRun&>(result) = run.run;
   result.update_iterations = run.update_iterations;
+}
+
+void Optimizer::Impl::adapt(const SizeField& field, const AdaptOptions& options,
+                            const Observer& observer, Result& result) {
+  const TargetsAt targets = set_up_adaptation(field, options, observer, result);
+  if (options.untangle) result.untangling = untangle(method(options.solver), observer);
+  picard_iteration(targets, options, observer, result);
 }
 
 void Optimizer::Impl::fit(const LevelSet& level_set, const SizeField& field,
@@ -414,96 +534,21 @@ Optimizer::~Optimizer() = default;
 Optimizer::Optimizer(Optimizer&&) noexcept = default;
 Optimizer& Optimizer::operator=(Optimizer&&) noexcept = default;
 
+// The phases of smoothing, in the order of docs/method.md §8 (the worst cells' phases are
+// optimize()'s).
 Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer) {
   Impl& r = *impl_;
   Result result = r.start(options);
-  r.warm = false;  // the desired volumes are smoothing's now
-  // Targets from the input cells — not from a tangled input, whose cells around the inverted
-  // ones are distorted by whatever tangled it: that is no design to keep.
-  const bool tangled = result.quality_before.inverted > 0 || result.quality_before.degenerate > 0;
-  const bool volumes_asked = targets_asked(options) != options.targets;
-  const TargetMode mode = tangled ? TargetMode::Ideal : targets_asked(options);
-  // Nor are its sizes where it is folded over itself throughout: the fill-in of the inverted
-  // cells' volumes from their neighbours then starts from cells that were squeezed and stretched
-  // with them (copy-morph-for-ricoh: desired volumes from 7e-4 to 26 in a ring of equal cells,
-  // an optimum with corners nearly flat, 5 + 123 iterations and 76 s; uniform: 4 + 7, 3.8 s).
-  const double coverage = tangled ? domain_coverage(r.cell_volumes(), r.mesh.comm()) : 1.0;
-  const bool folded = coverage > kFoldedCoverage;
-  KeptCells kept;
-  {  // the problem keeps its own copy of the targets: this one goes before the solve
-    const CellTargets targets =
-        r.smoothing_targets(mode, folded ? SizeMode::Uniform : options.sizes);
-    r.set_targets(targets);
-    kept = count_kept(targets.input_share, r.mesh.comm());
-  }
-  const QuasiNewtonOptions method = r.method(options.solver);
-  result.problem = r.problem_summary(options.solver);
-  result.problem.targets = {std::string(name(mode)),
-                            kept.all,
-                            kept.part,
-                            kept.none,
-                            tangled && options.targets != TargetMode::Ideal,
-                            !tangled && volumes_asked,
-                            coverage,
-                            folded && options.sizes != SizeMode::Uniform};
-  if (observer.started) observer.started(result.problem);
-
-  // The guard's promise is about the input: a tangled input's worst cell is inverted, so any
-  // untangled output keeps it.
-  const OwnedVec input = copy_of(r.x);
-  if (options.untangle) result.untangling = r.untangle(method, observer);
-  // The input as the run starts from it: vertices placed on their charts (FEAT3's
-  // unit-axe-tria: the placement alone takes its mean from 0.816 to 0.647).
-  const double input_mean = mean_scaled_jacobian(r.view(), r.dofs(), input);
-  // The minimization and the worst cells' phases into `run`.
-  const auto optimize = [&](Result& run) {
-    static_cast<SolverRun&>(run) =
-        minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
-    if (!options.quality_guard) return;
-    // The repair spends no more of the mean than the promise allows.
-    const bool repair = options.repair_worst_cells;
-    r.protect_worst_cells(
-        input, method, observer, run,
-        repair ? std::optional(input_mean - QualityGuardResult::kMeanSlack) : std::nullopt);
-    if (!tangled) r.guard_mean_quality(input, input_mean, run, repair);
-  };
-  optimize(result);
-  // Where the kept cells ask for a corner the mesh cannot open, or keep a cell flattened across
-  // its edges, towards ideal cells from the input too; the better worst cell wins, the
-  // design's on a tie.
-  const bool flat_kept = (result.corner_phase && result.corner_phase->gave_up) ||
-                         (mode != TargetMode::Ideal && flat_cap(r.view(), r.dofs(), r.x));
-  if (flat_kept && mode != TargetMode::Ideal && result.reason != StopReason::TimeLimit) {
-    const OwnedVec kept = copy_of(r.x);
-    NM_PETSC(VecCopy(input, r.x));
-    r.set_targets(r.smoothing_targets(TargetMode::Ideal, options.sizes));
-    Result ideal;
-    ideal.quality_before = result.quality_before;
-    optimize(ideal);
-    IdealRetrySummary& retry = result.ideal_retry.emplace();
-    retry.min_scaled_jacobian_kept = min_scaled_jacobian(r.view(), r.dofs(), kept);
-    retry.min_scaled_jacobian_ideal = min_scaled_jacobian(r.view(), r.dofs(), r.x);
-    retry.iterations = static_cast<int>(ideal.history.size());
-    retry.ideal_kept = retry.min_scaled_jacobian_ideal > retry.min_scaled_jacobian_kept;
-    result.history.insert(result.history.end(), ideal.history.begin(), ideal.history.end());
-    if (retry.ideal_kept) {  // F and the defect of the energy towards ideal cells
-      result.initial_energy = ideal.initial_energy;
-      result.initial_defect = ideal.initial_defect;
-      result.reason = ideal.reason;
-      result.final_energy = ideal.final_energy;
-      result.final_defect = ideal.final_defect;
-      result.worst_cell_repair = ideal.worst_cell_repair;
-      result.quality_guard = ideal.quality_guard;
-    } else {
-      NM_PETSC(VecCopy(kept, r.x));
-      r.set_targets(r.smoothing_targets(mode, options.sizes));
-    }
-  }
+  const Impl::Smoothing s = r.set_up_smoothing(options, observer, result);
+  if (options.untangle) result.untangling = r.untangle(s.method, observer);
+  r.optimize(s, result);
+  r.retry_towards_ideal_cells(s, result);
   r.finish(result);
   result.seconds = MPI_Wtime() - r.started;
   return result;
 }
 
+// The phases of adaptation (docs/adaptivity.md).
 Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
                         const Observer& observer) {
   Impl& r = *impl_;
@@ -511,39 +556,26 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
   const OwnedVec input =
       copy_of(r.x);  // where the adaptation starts (vertices placed on their charts)
   r.adapt(field, options, observer, result);
+  if (options.quality_guard) r.lift_corners(r.method(options.solver), observer, result);
   // The guard judges cells against the ideal cell, which a metric field stretches on purpose;
   // a corner left nearly flat is no metric's aim.
-  if (options.quality_guard && field.anisotropic())
-    r.lift_corners(r.method(options.solver), observer, result);
-  else if (options.quality_guard)
-    r.protect_worst_cells(input, r.method(options.solver), observer, result, std::nullopt,
-                          AdaptOptions::kGuardCeiling);
+  if (options.quality_guard && !field.anisotropic())
+    r.guard_worst(input, result, AdaptOptions::kGuardCeiling);
   r.finish(result);
   result.volume_ratio = r.volume_ratio();
   result.seconds = MPI_Wtime() - r.started;
   return result;
 }
 
+// The phases of adaptation with a fit (docs/adaptivity.md).
 Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const AdaptOptions& options,
                         const Observer& observer) {
   Impl& r = *impl_;
   Result result = r.start(options);
-  // A warm step adapts only until the small cells have moved along with the geometry: the fit
-  // goes on optimizing, and its start recomputes the desired volumes (one of the step's
-  // updates). After a cold start the volumes follow the fitted cells once more.
-  const bool warm = r.warm;
-  AdaptOptions fitting = options;
-  fitting.sizes.max_ratio = options.sizes.ratio(true);
-  AdaptOptions adapting = fitting;
-  if (warm) {
-    adapting.warm_updates = std::max(0, options.warm_updates - 1);
-    adapting.solver.max_iterations = FitOptions().stage_iterations;
-  }
-  r.adapt(field, adapting, observer, result);
+  const FittedAdaptation parts = fitted_adaptation(options, r.warm);
+  r.adapt(field, parts.adapting, observer, result);
   if (observer.fitting) observer.fitting(fit_to.expression());
-  PicardOptions last_stage = options.picard;
-  last_stage.min_updates = warm ? 0 : 1;
-  r.fit(fit_to, field, fitting, last_stage, observer, result);
+  r.fit(fit_to, field, parts.fitting, parts.last_stage, observer, result);
   r.finish(result);
   result.volume_ratio = r.volume_ratio();
   result.seconds = MPI_Wtime() - r.started;

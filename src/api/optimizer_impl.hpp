@@ -63,34 +63,74 @@ struct Optimizer::Impl {
   const Functional& constrain(SlidingVertices extra);
   // The functional of `problem` as it is now.
   const Functional& rebuild_functional();
-  // Adapts x to `field` (Picard iterations), untangling first if asked; the run goes into
+
+  // The phases, in the order smooth() and adapt() call them: each is a function of the run's
+  // state (x, the problem, and for smoothing the Smoothing below) that fills its own part of
+  // the Result.
+
+  // What the phases of one smoothing share.
+  struct Smoothing {
+    const SmoothOptions& options;
+    const Observer& observer;
+    QuasiNewtonOptions method;
+    TargetMode mode;    // of the targets set up (ideal for a tangled input)
+    bool tangled;       // the input has inverted or degenerate cells
+    OwnedVec input;     // x before untangling: the input, its vertices placed on their charts
+    double input_mean;  // ... and its mean scaled Jacobian
+  };
+  // Smoothing's targets from the input cells (docs/method.md §9) and the problem with them:
+  // result.problem, told to the observer. Returns the run's state.
+  Smoothing set_up_smoothing(const SmoothOptions& options, const Observer& observer,
+                             Result& result);
+  // If cells are inverted at x, untangles them (docs/untangling.md) towards the current targets,
+  // telling `observer`; throws Error naming the cells that stay inverted.
+  std::optional<UntanglingSummary> untangle(const QuasiNewtonOptions& method,
+                                            const Observer& observer);
+  // The minimization (docs/method.md §4) and, unless the guard is off, the worst cells' phases
+  // after it (§8): lift_corners(), repair_worst() (unless switched off), guard_worst() and, for a
+  // valid input, guard_mean(); into `run`.
+  void optimize(const Smoothing& s, Result& run);
+  // Where the cells kept from the input stayed flat (the corner phase gave up, or a kept cell is
+  // a flat cap), optimize() once more from the input towards ideal cells; the run whose worst
+  // cell is better is kept (docs/method.md §8, "Corners"). Fills result.ideal_retry.
+  void retry_towards_ideal_cells(const Smoothing& s, Result& result);
+  // Adaptation's targets for `field` at x and the problem with them: result.problem, told to
+  // the observer. Returns the targets at any x (adaptation_targets).
+  TargetsAt set_up_adaptation(const SizeField& field, const AdaptOptions& options,
+                              const Observer& observer, Result& result);
+  // The Picard iterations towards `targets` (adapt/picard.hpp): the run and its updates go into
   // `result`.
+  void picard_iteration(const TargetsAt& targets, const AdaptOptions& options,
+                        const Observer& observer, Result& result);
+  // Adapts x to `field`: set_up_adaptation(), untangle() if asked, picard_iteration().
   void adapt(const SizeField& field, const AdaptOptions& options, const Observer& observer,
              Result& result);
   // After an adaptation: fits x to the zero set of `level_set` (adapt/fit.hpp), the last stage
-  // adapting with `last_stage`; appends the fit's iterations to `result`.
+  // adapting with `last_stage`; appends the fit's iterations to `result` and fills result.fit.
   void fit(const LevelSet& level_set, const SizeField& field, const AdaptOptions& options,
            const PicardOptions& last_stage, const Observer& observer, Result& result);
-  // Once the method has stopped: corners it left nearly flat are lifted (worst_cells.hpp).
-  void lift_corners(const QuasiNewtonOptions& method, const Observer& observer, Result& result);
-  // The worst cells once the method has stopped (smooth, adapt): lift_corners(), with
-  // `repair_floor` the worst cells are repaired locally (worst_cell_repair.hpp; no move takes the
-  // mean scaled Jacobian below the floor while x's is above it), then no cell stays below the
-  // input's worst or `ceiling`, whichever is lower (quality_guard.hpp; `input`: x where the call
-  // started).
-  void protect_worst_cells(Vec input, const QuasiNewtonOptions& method, const Observer& observer,
-                           Result& result, std::optional<double> repair_floor = {},
-                           double ceiling = 1.0);
-  // Smoothing's promise on the mean scaled Jacobian, after protect_worst_cells(): where x's mean
-  // is below `input`'s (`input_mean`) by more than QualityGuardResult::kMeanSlack, x becomes
-  // `input` again
-  // (with `repair`, its worst cells repaired, the mean kept within the slack). Judged after the
-  // worst cells' phases, not before: they lift the optimum's mean back within the slack on some
-  // meshes (FEAT3's flowbench_c3d_00_hexa_48: 0.825 instead of the input's 0.591).
-  void guard_mean_quality(Vec input, double input_mean, Result& result, bool repair);
-  // The local repair of x's worst cells (worst_cell_repair.hpp), recorded in `result`; no move
-  // takes the mean scaled Jacobian below `min_mean`.
-  void repair_worst(Result& result, double min_mean);
+  // Once the method has stopped (unless at the time limit): corners it left nearly flat are
+  // lifted (worst_cells.hpp); fills run.corner_phase and appends its iterations.
+  void lift_corners(const QuasiNewtonOptions& method, const Observer& observer, Result& run);
+  // Unless the method stopped at the time limit: the local repair of x's worst cells
+  // (worst_cell_repair.hpp) into run.worst_cell_repair. No move takes the mean scaled Jacobian
+  // below `mean_floor` while x's is above it.
+  void repair_worst(Result& run, double mean_floor);
+  // No cell stays below the input's worst (run.quality_before) or `ceiling`, whichever is
+  // lower: vertices are pulled back toward `input`, x where the call started
+  // (quality_guard.hpp). Fills run.quality_guard.
+  void guard_worst(Vec input, Result& run, double ceiling = 1.0);
+  // Smoothing's promise on the mean scaled Jacobian, after guard_worst(): where x's mean is
+  // below the input's by more than QualityGuardResult::kMeanSlack, x becomes the input again
+  // (its worst cells repaired unless switched off, the mean kept within the slack). Judged
+  // after the worst cells' phases, not before: they lift the optimum's mean back within the
+  // slack on some meshes (FEAT3's flowbench_c3d_00_hexa_48: 0.825 instead of the input's
+  // 0.591). Fills the mean's part of run.quality_guard.
+  void guard_mean(const Smoothing& s, Result& run);
+  // Moves the mesh to x and sets result's quality_after and boundary change; throws
+  // Error if a cell is inverted (the energy is infinite there, so the method cannot produce
+  // one: a promise kept for every output).
+  void finish(Result& result);
   // Q = actual / desired volume at x.
   VolumeRatioStats volume_ratio() const;
   // Adaptation's targets (build_targets) at the x the Picard iteration passes, desired volumes
@@ -99,10 +139,6 @@ struct Optimizer::Impl {
   // would turn with them, and cells that shear away from the surface (a star of flat cells
   // around a circle) would be their own fixed point. Keeps a reference to `field`.
   TargetsAt adaptation_targets(const SizeField& field, const SizeFieldOptions& field_options) const;
-  // If cells are inverted at x, untangles them (docs/untangling.md) towards the current targets,
-  // telling `observer`; throws Error naming the cells that stay inverted.
-  std::optional<UntanglingSummary> untangle(const QuasiNewtonOptions& method,
-                                            const Observer& observer);
   // The free coordinates, the boundary's classification and the linear solvers.
   ProblemSummary problem_summary(const SolverOptions& solver) const;
   // The solver options with what derives from the mesh.
@@ -118,10 +154,6 @@ struct Optimizer::Impl {
   // How each vertex may move in the worst-cell repair: as it does in the optimization, except
   // that the vertices of cells keeping their input cell stay.
   RepairFreedom repair_freedom() const;
-  // Moves the mesh to x and sets result's quality_after and boundary change; throws
-  // Error if a cell is inverted (the energy is infinite there, so the method cannot produce
-  // one: a promise kept for every output).
-  void finish(Result& result);
 
   Mesh& mesh;
   double started = 0.0;      // MPI_Wtime() at the call's start: its time, and the time limit

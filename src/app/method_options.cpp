@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "report/run_report.hpp"
 
 namespace neomesh::app {
 
@@ -104,6 +105,14 @@ void TaskOptions<Options>::add_remaining(CLI::App& cmd) {
            throw CLI::Success();
          },
          "print the table of these options in docs/user-guide.md")
+      ->group("");
+  cmd.add_flag_callback(
+         "--report-markdown",
+         [] {
+           if (is_root_rank()) std::cout << report_markdown();
+           throw CLI::Success();
+         },
+         "print the table of the report's keys in docs/user-guide.md")
       ->group("");
   for (const OptionSpec<Options>& spec : task_option_table<Options>()) {
     const bool added =

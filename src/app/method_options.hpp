@@ -32,7 +32,7 @@ class TaskOptions {
   // Adds the options of the task's table in `group` ("": the subcommand's own), in the
   // table's order, so that a subcommand can place them among options of its own.
   void add(CLI::App& cmd, std::string_view group);
-  // Adds the options not added yet, and the hidden --help-markdown.
+  // Adds the options not added yet, and the hidden --help-markdown and --report-markdown.
   void add_remaining(CLI::App& cmd);
 
   // The options of the command line: with --thesis its preset, then the options given

@@ -26,14 +26,19 @@ std::string user_guide() {
   return text.str();
 }
 
-// The generated table of `command` in docs/user-guide.md, between its markers.
-std::string documented_table(const std::string& guide, const std::string& command) {
-  const std::string begin = fmt::format("<!-- options of {}: generated", command);
-  const std::string end = fmt::format("<!-- end of the options of {} -->", command);
+// What docs/user-guide.md has between the line that begins with `begin` and `end`.
+std::string generated_text(const std::string& guide, const std::string& begin,
+                           const std::string& end) {
   const auto from = guide.find(begin), to = guide.find(end);
   if (from == std::string::npos || to == std::string::npos) return "(no markers)";
   const auto start = guide.find('\n', from) + 1;
   return guide.substr(start, to - start);
+}
+
+// The generated table of `command` in docs/user-guide.md, between its markers.
+std::string documented_table(const std::string& guide, const std::string& command) {
+  return generated_text(guide, fmt::format("<!-- options of {}: generated", command),
+                        fmt::format("<!-- end of the options of {} -->", command));
 }
 
 template <typename Options>
@@ -47,6 +52,14 @@ void expect_documented(const std::string& command) {
 TEST(OptionDocs, TheUserGuideShowsTheTablesOfSmoothAndAdapt) {
   expect_documented<SmoothOptions>("smooth");
   expect_documented<AdaptOptions>("adapt");
+}
+
+TEST(ReportDocs, TheUserGuideShowsTheTableOfTheReportsKeys) {
+  EXPECT_EQ(generated_text(user_guide(), "<!-- keys of the report: generated",
+                           "<!-- end of the keys of the report -->"),
+            report_markdown())
+      << "docs/user-guide.md's table of the report's keys is not what src/report/run_report.cpp "
+         "declares: run scripts/update_option_docs.py build/neomesh";
 }
 
 // The documented default of each row: option flag (or field path) -> default cell.

@@ -19,7 +19,6 @@
 #include "report/canvas.hpp"
 #include "report/history_plot.hpp"
 #include "report/iteration_table.hpp"
-#include "report/quality_report.hpp"
 #include "report/render.hpp"
 #include "report/run_report.hpp"
 
@@ -104,21 +103,7 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
   say("lambda {}, mu {}, alpha0 {}, eta {}, kmin {}, linear solver {}, boundary {}\n",
       s.energy.lambda, s.energy.mu, problem.alpha0, s.solver.advanced.eta, s.solver.advanced.kmin,
       name(s.solver.linear_solver), name(s.boundary.mode));
-  const TargetSummary& t = problem.targets;
-  if (t.ideal_because_tangled)
-    say("targets ideal: the input has inverted cells, its cells are no design to keep\n");
-  else if (t.ideal_because_sizes)
-    say("targets ideal: --sizes uniform replaces the input's design (its cells' sizes and "
-        "proportions)\n");
-  else if (t.mode == "metric")
-    say("targets metric: every cell aims at the unit cell of the metric at its centroid\n");
-  else if (!t.mode.empty() && t.mode != "ideal")
-    say("targets {}: {} cells keep their input cell, {} in part, {} are ideal\n", t.mode, t.input,
-        t.blended, t.ideal);
-  if (t.uniform_because_folded)
-    say("sizes uniform: the input's cells cover its domain {:.3g} times, folded over itself "
-        "throughout: its cell volumes are no sizes\n",
-        t.coverage);
+  say("{}", targets_lines(problem.targets));
   const BoundarySummary& b = problem.boundary;
   if (s.boundary.mode == BoundaryMode::Slide) {
     say("sliding boundary: {} patches, {} ridges; {} corners fixed, {} ridge and {} surface "
@@ -138,48 +123,6 @@ void print_problem(const Mesh& mesh, const ProblemSummary& problem, const RunSet
   // The first iteration assembles the matrices and builds the preconditioners: on a large
   // mesh the longest wait before the first row of the table.
   say("assembling the matrices and setting up the linear solvers ...\n");
-}
-
-// What the quality guard did, if anything (the report has its record).
-void print_quality_guard(const QualityGuardResult& guard) {
-  if (guard.vertices_moved > 0)
-    say("quality guard: {} vertices pulled back toward the input so that no cell has a scaled "
-        "Jacobian below {:.4f} (min {:.4f} -> {:.4f})\n",
-        guard.vertices_moved, guard.input_min, guard.min_before, guard.min_after);
-  if (guard.input_returned)
-    say("quality guard: the energy's optimum lowers the mean scaled Jacobian ({:.4f} -> {:.4f}): "
-        "the input is returned instead\n",
-        guard.input_mean, guard.mean_optimum);
-}
-
-// What the worst-cell phase did, if it ran (docs/method.md, "Corners").
-void print_corner_phase(const CornerPhaseSummary& phase) {
-  if (phase.gave_up)
-    say("worst cells: the optimum left a corner nearly flat (min scaled Jacobian {:.3g}); lifting "
-        "it failed after {} iterations, the optimum is kept\n",
-        phase.min_scaled_jacobian_before, phase.iterations);
-  else
-    say("worst cells: the optimum left a corner nearly flat (min scaled Jacobian {:.3g}); {} more "
-        "iterations with the corners in the energy lifted it to {:.3g}\n",
-        phase.min_scaled_jacobian_before, phase.iterations, phase.min_scaled_jacobian_after);
-}
-
-// Whether smoothing towards ideal cells won, if the cells kept from the input stayed flat
-// (docs/method.md, "Corners").
-void print_ideal_retry(const IdealRetrySummary& retry) {
-  say("worst cells: smoothed again from the input towards ideal cells ({} iterations): min scaled "
-      "Jacobian {:.4f} against {:.4f} with the cells kept from the input; the {} run is kept\n",
-      retry.iterations, retry.min_scaled_jacobian_ideal, retry.min_scaled_jacobian_kept,
-      retry.ideal_kept ? "ideal" : "first");
-}
-
-// What the local repair of the worst cells did, if it moved a vertex (docs/method.md, "Worst
-// cells").
-void print_worst_cell_repair(const WorstCellRepairSummary& repair) {
-  if (repair.vertices_moved == 0) return;
-  say("worst cells: {} interior vertices moved to lift the worst cells around them (min scaled "
-      "Jacobian {:.4f} -> {:.4f})\n",
-      repair.vertices_moved, repair.min_scaled_jacobian_before, repair.min_scaled_jacobian_after);
 }
 
 }  // namespace
@@ -246,17 +189,7 @@ Observer OptimizationRun::observer(const RunSettings& settings, bool progress_on
             say("{} cells are inverted: untangling them first\n", inverted);
             table->round = -1;
           },
-      .untangled =
-          [](const UntanglingSummary& u) {
-            say("untangled {} cells in {} iterations ({:.2f} s){}{}\n", u.inverted_before,
-                u.history.size(), u.seconds,
-                u.boundary_fixed ? "; with the boundary sliding it stalled, so the boundary "
-                                   "was kept fixed while untangling"
-                                 : "",
-                u.equal_volumes ? "; towards the desired volumes it stalled, so it aimed at "
-                                  "equal cell volumes"
-                                : "");
-          },
+      .untangled = [](const UntanglingSummary& u) { say("{}", untangled_line(u)); },
       .iteration =
           [table, progress_only](const IterationRecord& rec) {
             if (rec.untangling_round != table->round) {
@@ -355,20 +288,18 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
                              const std::filesystem::path& output, const RunOutputs& outputs,
                              const nlohmann::json& extra) {
   Impl& r = *impl_;
-  if (result.corner_phase) print_corner_phase(*result.corner_phase);
-  if (result.worst_cell_repair) print_worst_cell_repair(*result.worst_cell_repair);
-  if (result.quality_guard) print_quality_guard(*result.quality_guard);
-  if (result.ideal_retry) print_ideal_retry(*result.ideal_retry);
-  always("stopped after {} iterations: {}\nF {:.6g} -> {:.6g}, Newton defect {:.3e} -> {:.3e}\n",
-         result.history.size(), describe(result.reason), result.initial_energy, result.final_energy,
-         result.initial_defect, result.final_defect);
-  say("\nquality before:\n{}\nquality after:\n{}\n", format_table(result.quality_before),
-      format_table(result.quality_after));
-
-  if (settings.boundary.mode == BoundaryMode::Slide)
-    say("boundary: largest distance of a boundary vertex from the input's boundary {:.3g}, "
-        "domain volume change {:+.3g}%\n",
-        result.boundary_distance, 100 * result.volume_change);
+  // The summary lines of the report's parts, in the table's order.
+  const RunRecord record{.result = result,
+                         .mesh = &r.mesh,
+                         .boundary_slides = settings.boundary.mode == BoundaryMode::Slide};
+  for (const ReportPart& part : report_parts())
+    if (part.summary)
+      if (const std::string lines = part.summary(record); !lines.empty()) {
+        if (part.summary_always)
+          always("{}", lines);
+        else
+          say("{}", lines);
+      }
 
   const double write_start = MPI_Wtime();
   snapshot(output);
@@ -377,16 +308,18 @@ void OptimizationRun::finish(const Result& result, const RunSettings& settings,
 
   if (!outputs.report.empty()) {
     const PeakMemory memory = peak_memory(r.mesh.comm());
+    const CommandLineRecord command_line{.input = r.mesh.name(),
+                                         .output = output.string(),
+                                         .threads = omp_get_max_threads(),
+                                         .read_seconds = r.read_seconds,
+                                         .prepare_seconds = r.prepare_seconds,
+                                         .write_seconds = write_seconds,
+                                         .peak_rss_mib = memory.max_rank_mib,
+                                         .peak_rss_mib_all_ranks = memory.sum_mib,
+                                         .seconds = MPI_Wtime() - r.start};
     nlohmann::json json = result_report(result, r.mesh);
-    json.update(
-        {{"input", r.mesh.name()},
-         {"output", output.string()},
-         {"threads", omp_get_max_threads()},
-         {"times",
-          {{"read", r.read_seconds}, {"prepare", r.prepare_seconds}, {"write", write_seconds}}},
-         {"peak_rss_mib", memory.max_rank_mib},
-         {"peak_rss_mib_all_ranks", memory.sum_mib},
-         {"seconds", MPI_Wtime() - r.start}});
+    add_report_parts(json, ReportScope::CommandLine,
+                     {.result = result, .command_line = &command_line});
     if (extra.is_object()) json.update(extra);
     on_root(r.mesh.comm(), [&] { write_json(json, outputs.report); });
   }
