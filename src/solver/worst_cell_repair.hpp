@@ -35,7 +35,7 @@ struct WorstCellRepair {
 };
 
 // The worst cells taken per sweep, and the sweeps at most; the repair ends earlier, at the
-// first sweep that does not lift the worst cell.
+// first sweep with its shortest steps that does not lift the worst cell.
 inline constexpr int kRepairWorstCells = 6;
 inline constexpr int kRepairMaxSweeps = 400;
 // The vertices of a cell that keeps its input cell as its target stay in the repair if that

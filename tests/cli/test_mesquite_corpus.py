@@ -108,8 +108,9 @@ def test_where_the_kept_cells_stay_flat_ideal_cells_are_tried_too(tmp, name, ide
 
 
 def test_the_worst_cells_repair_goes_on_while_it_lifts_the_worst_cell(tmp):
-    # Capped at 100 sweeps the repair stopped at 0.988 while still lifting the worst cell; it
-    # ends by itself after 177 at 0.994 (Mesquite's feasible Newton: 1.000).
+    # Capped at 100 sweeps the repair stopped at 0.988 while still lifting the worst cell; its
+    # steps down to 0.01 edge lengths stall after 177 sweeps at 0.994, and the shorter ones
+    # tried from there take it to 0.997 (Mesquite's feasible Newton: 1.000).
     r, _ = smooth(tmp, "3D/vtk/hexes/untangled/1000hex-block-internal-bias")
-    assert r["worst_cell_repair"]["sweeps"] > 100
-    assert min_scaled_jacobian(r["quality_after"]) > 0.993
+    assert r["worst_cell_repair"]["sweeps"] > 177
+    assert min_scaled_jacobian(r["quality_after"]) > 0.995
