@@ -282,7 +282,7 @@ struct AdaptOptions {
   EnergyOptions energy{.lambda = 4.0, .mu = 1.0, .gauss_points = 2};
   BoundaryOptions boundary{BoundaryMode::Slide};
   SolverOptions solver;
-  SizeFieldOptions sizes;
+  SizeFieldOptions field;  // how the size field's relative volumes become desired volumes
   PicardOptions picard;
   // A warm start (adapt() after an earlier adapt() on the same Optimizer, e.g. the next time
   // step): Picard updates before it may stop, instead of picard.min_updates.

@@ -397,7 +397,8 @@ PYBIND11_MODULE(_neomesh, m) {
       .def_static(
           "read_cell_values",
           [](const std::string& file) { return SizeField::read_cell_values(file); },
-          py::arg("file"), "one relative volume per line, in the mesh's cell order (--sizes)")
+          py::arg("file"),
+          "one relative volume per line, in the mesh's cell order (adapt --volumes)")
       .def_static("vertex_metric", &SizeField::vertex_metric, py::arg("mesh"), py::arg("array"),
                   "the metric per vertex in the input file's point data `array` (--metric-data)")
       .def_static(

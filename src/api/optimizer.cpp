@@ -74,7 +74,7 @@ struct FittedAdaptation {
 };
 FittedAdaptation fitted_adaptation(const AdaptOptions& options, bool warm) {
   FittedAdaptation parts{.adapting = options, .fitting = options, .last_stage = options.picard};
-  parts.fitting.sizes.max_ratio = options.sizes.ratio(true);
+  parts.fitting.field.max_ratio = options.field.ratio(true);
   parts.adapting = parts.fitting;
   if (warm) {
     parts.adapting.warm_updates = std::max(0, options.warm_updates - 1);
@@ -464,7 +464,7 @@ VolumeRatioStats Optimizer::Impl::volume_ratio() const {
 
 TargetsAt Optimizer::Impl::set_up_adaptation(const SizeField& field, const AdaptOptions& options,
                                              const Observer& observer, Result& result) {
-  TargetsAt targets = adaptation_targets(field, options.sizes);
+  TargetsAt targets = adaptation_targets(field, options.field);
   // The size field's targets at the start: what the observer sees, and what untangling aims at.
   // They replace any a smoothing before may have left.
   set_targets(targets(x));
@@ -502,7 +502,7 @@ void Optimizer::Impl::fit(const LevelSet& level_set, const SizeField& field,
       .constrain = [this](SlidingVertices extra) -> const Functional& {
         return constrain(std::move(extra));
       },
-      .targets = adaptation_targets(field, options.sizes),
+      .targets = adaptation_targets(field, options.field),
       .set_targets = [this](const CellTargets& t) -> const Functional& { return set_targets(t); }};
   fitted = fit_interface(view(), dofs(), x, *phi, hooks, last_stage, method(options.solver), {},
                          observer);

@@ -325,26 +325,26 @@ const OptionTable<SolverOptions>& solver_option_table() {
 const OptionTable<SizeFieldOptions>& size_field_option_table() {
   using O = SizeFieldOptions;
   static const OptionTable<O> table = {
-      {.path = "sizes.power",
+      {.path = "field.power",
        .flag = "--power",
        .help = "p in v = floor + d^p",
        .group = kSizeFieldGroup,
        .field = member(&O::power),
        .range = kPositive},
-      {.path = "sizes.floor",
+      {.path = "field.floor",
        .flag = "--floor",
        .help = "floor in v = floor + d^p",
        .group = kSizeFieldGroup,
        .field = member(&O::floor),
        .range = kNonNegative},
-      {.path = "sizes.max_ratio",
+      {.path = "field.max_ratio",
        .flag = "--max-ratio",
        .help = "largest over smallest desired volume; smaller ones are raised (0: no bound; "
                "default 32, with --fit 16)",
        .group = kSizeFieldGroup,
        .field = member(&O::max_ratio),
        .range = {"above 1, or 0 for no bound", [](double x) { return x == 0 || x > 1; }}},
-      {.path = "sizes.smoothing_passes",
+      {.path = "field.smoothing_passes",
        .flag = "--smooth-sizes",
        .help = "passes of averaging log(desired volume) over neighbouring cells",
        .group = kSizeFieldGroup,
@@ -488,7 +488,7 @@ const OptionTable<AdaptOptions>& adapt_option_table() {
   using O = AdaptOptions;
   static const OptionTable<O> table = [] {
     OptionTable<O> t = adapt_own_option_table();
-    append(t, &O::sizes, size_field_option_table(), "size_options");
+    append(t, &O::field, size_field_option_table(), "field_options");
     append(t, &O::picard, picard_option_table(), "picard");
     append(t, &O::energy, energy_option_table(), "energy_options");
     append(t, &O::solver, solver_option_table(), "solver_options");

@@ -236,8 +236,8 @@ void SmoothOptions::validate() const {
 }
 
 AdaptOptions AdaptOptions::thesis(AdaptOptions o) {
-  o.sizes.max_ratio = SizeFieldOptions::thesis().max_ratio;
-  o.sizes.smoothing_passes = SizeFieldOptions::thesis().smoothing_passes;
+  o.field.max_ratio = SizeFieldOptions::thesis().max_ratio;
+  o.field.smoothing_passes = SizeFieldOptions::thesis().smoothing_passes;
   o.energy.lambda = 1.0;
   o.energy.mu = 10.0;
   use_thesis_method(o.energy, o.boundary, o.solver);
@@ -250,7 +250,7 @@ void AdaptOptions::validate() const {
   energy.validate();
   boundary.validate();
   solver.validate();
-  sizes.validate();
+  field.validate();
   picard.validate();
   check_ranges(adapt_own_option_table(), *this);
 }

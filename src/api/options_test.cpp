@@ -66,7 +66,7 @@ TEST(OptionRanges, ValidateNamesTheFieldTheRangeAndTheValue) {
   EXPECT_EQ(error_of(EnergyOptions{.gauss_points = 6}),
             "energy.gauss_points must be between 1 and 5 (got 6)");
   EXPECT_EQ(error_of(SizeFieldOptions{.max_ratio = 1.0}),
-            "sizes.max_ratio must be above 1, or 0 for no bound (got 1)");
+            "field.max_ratio must be above 1, or 0 for no bound (got 1)");
   EXPECT_EQ(error_of(PicardOptions{.relaxation = 2.0}),
             "picard.relaxation must be in (0, 1] (got 2)");
   AdaptOptions adapt;

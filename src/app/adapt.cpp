@@ -23,7 +23,7 @@ namespace {
 
 struct AdaptCommand {
   std::vector<std::string> inputs;  // the mesh, with a FEAT3 mesh's chart files
-  std::string output, levelset, sizes_file, time, metric, metric_data, metric_file;
+  std::string output, levelset, volumes_file, time, metric, metric_data, metric_file;
   std::vector<double> circle, sphere, plane, box, stretch;
   bool force = false;
   bool fit = false;
@@ -62,7 +62,7 @@ std::vector<std::string> metric_entries(const std::string& text) {
   }
 }
 
-// The distance field of --circle, --sphere, --plane, --box, --levelset, or --sizes' values.
+// The distance field of --circle, --sphere, --plane, --box, --levelset, or --volumes' values.
 SizeField distance_field(const AdaptCommand& o) {
   if (!o.circle.empty())
     return option("--circle", [&] { return SizeField::sphere(centre(o.circle), o.circle.back()); });
@@ -78,18 +78,18 @@ SizeField distance_field(const AdaptCommand& o) {
   }
   if (!o.levelset.empty())
     return option("--levelset", [&] { return SizeField::level_set(o.levelset); });
-  return SizeField::read_cell_values(o.sizes_file);
+  return SizeField::read_cell_values(o.volumes_file);
 }
 
 // The size field of the command line, stretched with --stretch. A metric per vertex
 // (--metric-data, --metric-file) needs the mesh: none while `mesh` is null.
 std::optional<SizeField> make_size_field(const AdaptCommand& o, const Mesh* mesh) {
   const int given = !o.circle.empty() + !o.sphere.empty() + !o.plane.empty() + !o.box.empty() +
-                    !o.levelset.empty() + !o.sizes_file.empty() + !o.metric.empty() +
+                    !o.levelset.empty() + !o.volumes_file.empty() + !o.metric.empty() +
                     !o.metric_data.empty() + !o.metric_file.empty();
   if (given != 1)
     fail(
-        "give exactly one size field: --circle, --sphere, --plane, --box, --levelset, --sizes, "
+        "give exactly one size field: --circle, --sphere, --plane, --box, --levelset, --volumes, "
         "--metric, --metric-data or --metric-file");
   if (!o.metric_data.empty() || !o.metric_file.empty()) {
     if (!o.stretch.empty()) fail("--stretch stretches a distance field, not a given metric");
@@ -273,7 +273,8 @@ Subcommand add_adapt(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "adapt",
       "Move the vertices so that cells are small near a surface (circle, sphere, plane, box, "
-      "level set) or follow given sizes: desired volume v = floor + d^p for the distance d of "
+      "level set) or follow given relative volumes: desired volume v = floor + d^p for the "
+      "distance d of "
       "the cell's centre, recomputed from the moving mesh in Picard iterations (thesis §6).");
   cmd->add_option("input", o->inputs, input_mesh_help("mesh to adapt"))->required();
   cmd->add_option("-o,--output", o->output, fmt::format("adapted mesh ({})", kMeshOutputs))
@@ -301,7 +302,7 @@ Subcommand add_adapt(CLI::App& app) {
   cmd->add_option("--levelset", o->levelset,
                   "signed distance φ(x, y, z) as an expression (muparser), d = |φ|")
       ->group(field);
-  cmd->add_option("--sizes", o->sizes_file,
+  cmd->add_option("--volumes", o->volumes_file,
                   "file with one relative volume per cell, in the mesh's cell order")
       ->group(field);
   cmd->add_option("--metric", o->metric,

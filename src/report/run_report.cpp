@@ -452,7 +452,7 @@ nlohmann::json adapt_report(const AdaptOptions& options, const Result& result,
                             const std::string& size_field) {
   AdaptOptions reported = options;
   reported.solver.advanced.alpha0 = result.problem.alpha0;
-  reported.sizes.max_ratio = options.sizes.ratio(result.fit.has_value());
+  reported.field.max_ratio = options.field.ratio(result.fit.has_value());
   nlohmann::json report = to_json(reported);
   report[std::string(kPicardObject)][std::string(kUpdateIterationsKey)] = result.update_iterations;
   add_report_parts(report, ReportScope::Adaptation, {.result = result, .size_field = size_field});

@@ -20,7 +20,7 @@ nlohmann::json to_json(const IterationRecord& rec);
 nlohmann::json to_json(const PhaseTimes& times);
 // The options of a run: every option of the task's table (src/api/option_table.hpp) under
 // its field's name, in the object of its part ("energy_options", "solver_options",
-// "boundary_options"; a smoothing's own in "smooth_options"; an adaptation's "size_options",
+// "boundary_options"; a smoothing's own in "smooth_options"; an adaptation's "field_options",
 // "picard" and "adapt_options"), and the boundary mode as "boundary".
 nlohmann::json to_json(const SmoothOptions& options);
 nlohmann::json to_json(const AdaptOptions& options);

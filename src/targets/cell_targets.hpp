@@ -22,7 +22,8 @@
 //                     relative volume det(M)^(-1/2) and target shape M^(-1/2).
 //   field options     how a size field's relative volumes become desired volumes: floor and
 //                     power p of floor + d^p, the bound on the ratio of volumes, the passes of
-//                     smoothing log v (public: SizeFieldOptions, AdaptOptions::sizes).
+//                     smoothing log v (public: SizeFieldOptions, AdaptOptions::field, the
+//                     options' paths field.*; a file's per-cell values: `adapt --volumes`).
 //   cell size         h, a length: v^(1/d) of a desired volume (the practical criterion's
 //                     scale, local_cell_size) or a metric's 1/sqrt(λ). Only lengths are sizes.
 //   target shape      S (dim × dim, det S = 1): the target's stretch and turn; empty for the

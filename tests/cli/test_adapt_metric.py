@@ -118,7 +118,7 @@ def test_a_stretched_cell_values_field_is_refused(tmp):
     mesh = unit_square(tmp, "quad", 4)
     sizes = os.path.join(tmp, "sizes.txt")
     open(sizes, "w").write("1\n" * 16)
-    proc = run([NEOMESH, "adapt", mesh, "-o", os.path.join(tmp, "out.vtu"), "--sizes", sizes,
+    proc = run([NEOMESH, "adapt", mesh, "-o", os.path.join(tmp, "out.vtu"), "--volumes", sizes,
                 *STRETCH], expect=None)
     assert proc.returncode != 0
     assert "only a field of the distance to a surface can be stretched" in proc.stderr

@@ -89,7 +89,7 @@ CASES = [
      ["input.msh", "--force"]),
     ("size field NaN (level set)", ["adapt", GOOD, "-o", "out.msh", "--levelset", "sqrt(-1)"],
      ["NaN", "sqrt(-1)"]),
-    ("size field NaN (sizes file)", ["adapt", GOOD, "-o", "out.msh", "--sizes", "sizes.txt"],
+    ("size field NaN (volumes file)", ["adapt", GOOD, "-o", "out.msh", "--volumes", "sizes.txt"],
      ["NaN", "sizes.txt"]),
     ("max ratio below 1", ["adapt", GOOD, "-o", "out.msh", "--circle", "0.5,0.5,0.2",
                            "--max-ratio", "0.5"], ["--max-ratio", "above 1"]),
@@ -189,7 +189,7 @@ CASES = [
 MPI_CASES = ["missing file", "text garbage", "inverted cell", "NaN coordinate", "unknown option",
              "bad number", "30,000-character number", "infinite lambda", "smooth -o ''",
              "unwritable report", "unknown PETSc type",
-             "size field NaN (sizes file)", "generate without a size", "render --window of a 3D mesh",
+             "size field NaN (volumes file)", "generate without a size", "render --window of a 3D mesh",
              "convert onto its input", "unwritable quality JSON"]
 
 # Raw text of standard-library exceptions that must never reach the user.
