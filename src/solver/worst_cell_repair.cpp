@@ -244,7 +244,7 @@ class Repair {
   // most `beat` (the search's inner loop). The cells are judged in the order `worst_first`
   // gives (positions in star(v), the worst cell where v is first): a trial point mostly fails
   // on the cell that was worst, so this is the test that fails most, first (the annulus hexes
-  // of bench/peers.py: the repair's instructions 5.3e9 -> 1.6e9). The sum is taken in star
+  // of bench/peers.py: the repair's instructions 5.3e9 -> 2.4e9). The sum is taken in star
   // order, so the order changes no result.
   struct Star {
     double worst = kInfinity, sum = 0.0;
