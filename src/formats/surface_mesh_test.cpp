@@ -1,0 +1,133 @@
+// Surface meshes in the mesh layer: 2D cells whose vertices do not lie in one plane are read
+// with their 3D coordinates, become a DMPlex of 2D cells in space, and give a view with 3
+// coordinates per vertex whose boundary is the surface itself (docs/method.md, "Surface cells").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "core/testing/test_data.hpp"
+#include "formats/gmsh_reader.hpp"
+#include "formats/mesh_io.hpp"
+#include "formats/vtu_reader.hpp"
+#include "mesh/boundary_surface.hpp"
+#include "mesh/plex_mesh.hpp"
+
+namespace neomesh {
+namespace {
+
+// A quarter of the cylinder x² + y² = 1, 0 ≤ z ≤ 1, as a Gmsh 2.2 file: n × n quadrilaterals
+// (the lower half in group 1, the upper in group 2), the quads of row 0 split into two
+// triangles each. With `flip`, one triangle runs the other way round.
+std::string cylinder_patch(int n, bool flip = false) {
+  std::string nodes, elements;
+  const auto id = [n](int i, int j) { return 1 + i + (n + 1) * j; };
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double theta = std::numbers::pi / 2 * i / n;
+      nodes += fmt::format("{} {:.17g} {:.17g} {:.17g}\n", id(i, j), std::cos(theta),
+                           std::sin(theta), static_cast<double>(j) / n);
+    }
+  int count = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int group = j < n / 2 ? 1 : 2;
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if (j == 0) {
+        elements += fmt::format("{} 2 2 {} {} {} {} {}\n", ++count, group, group, a, b, c);
+        if (flip && i == 0)
+          elements += fmt::format("{} 2 2 {} {} {} {} {}\n", ++count, group, group, a, d, c);
+        else
+          elements += fmt::format("{} 2 2 {} {} {} {} {}\n", ++count, group, group, a, c, d);
+      } else {
+        elements += fmt::format("{} 3 2 {} {} {} {} {} {}\n", ++count, group, group, a, b, c, d);
+      }
+    }
+  return fmt::format(
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 1 \"low\"\n2 2 \"high\"\n"
+      "$EndPhysicalNames\n$Nodes\n{}\n{}$EndNodes\n$Elements\n{}\n{}$EndElements\n",
+      (n + 1) * (n + 1), nodes, count, elements);
+}
+
+std::filesystem::path write_scratch(const std::string& name, const std::string& text) {
+  const auto path = testing::scratch_dir("SurfaceMesh") / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(SurfaceMesh, IsReadWithItsThreeCoordinatesPerVertex) {
+  const InputMesh mesh = read_gmsh(write_scratch("patch.msh", cylinder_patch(4)));
+  EXPECT_TRUE(mesh.surface);
+  EXPECT_EQ(mesh.dim, 2);
+  EXPECT_EQ(mesh.coord_dim(), 3);
+  EXPECT_EQ(mesh.num_vertices(), 25);
+  EXPECT_EQ(mesh.num_cells(), 4 * 2 + 12);
+  EXPECT_EQ(mesh.coords[3 * 24 + 2], 1.0);  // the last vertex at z = 1, as the file says
+}
+
+TEST(SurfaceMesh, GivesAViewInSpaceWhoseBoundaryIsTheSurface) {
+  InputMesh input = read_gmsh(write_scratch("patch.msh", cylinder_patch(4)));
+  const std::vector<double> xyz = input.coords;
+  const PlexMesh mesh = PlexMesh::from_input(input, "patch.msh", PETSC_COMM_SELF);
+  const MeshView& view = mesh.view();
+  EXPECT_TRUE(view.surface);
+  EXPECT_EQ(view.dim, 3);
+  EXPECT_EQ(view.cell_dim(), 2);
+  EXPECT_EQ(mesh.dim(), 2);
+  EXPECT_EQ(mesh.dofs().dim(), 3);
+  ASSERT_EQ(view.num_vertices, 25);
+  for (PetscInt v = 0; v < view.num_vertices; ++v) {
+    EXPECT_TRUE(view.on_boundary[v]) << v;
+    for (int d = 0; d < 3; ++d)
+      EXPECT_EQ(view.coords[3 * v + d], xyz[3 * view.input_vertex[v] + d]) << v;
+  }
+  // Its parts are its cell groups, and the vertices where they meet are in both.
+  ASSERT_EQ(view.parts.size(), 2u);
+  EXPECT_EQ(view.parts[0].name, "low");
+  EXPECT_EQ(view.parts[1].name, "high");
+  int on_both = 0;
+  for (PetscInt v = 0; v < view.num_vertices; ++v) on_both += view.part_count[v] == 2;
+  EXPECT_EQ(on_both, 5);
+  // Its boundary facets are its cells, each in its group.
+  const BoundarySurface& surface = *view.boundary;
+  EXPECT_EQ(surface.dim, 3);
+  EXPECT_EQ(surface.num_vertices(), 25);
+  ASSERT_EQ(surface.num_facets(), 20);
+  EXPECT_EQ(surface.facet(0).size(), 3u);
+  EXPECT_EQ(surface.facet(19).size(), 4u);
+  EXPECT_EQ(surface.facet_part[0], 0);
+  EXPECT_EQ(surface.facet_part[19], 1);
+}
+
+TEST(SurfaceMesh, KeepsItsCoordinatesThroughTheWriters) {
+  InputMesh input = read_gmsh(write_scratch("patch.msh", cylinder_patch(4)));
+  const PlexMesh mesh = PlexMesh::from_input(input, "patch.msh", PETSC_COMM_SELF);
+  for (const char* name : {"out.msh", "out.vtu"}) {
+    const auto path = testing::scratch_dir("SurfaceMesh") / name;
+    write_mesh(mesh, path);
+    const InputMesh back = path.extension() == ".msh" ? read_gmsh(path) : read_vtu(path);
+    EXPECT_TRUE(back.surface) << name;
+    ASSERT_EQ(back.coords.size(), mesh.view().coords.size()) << name;
+    for (std::size_t i = 0; i < back.coords.size(); ++i)
+      EXPECT_EQ(back.coords[i], mesh.view().coords[i]) << name << " " << i;
+  }
+}
+
+TEST(SurfaceMesh, WithCellsOrientedApartIsRefusedNamingTheCell) {
+  InputMesh input = read_gmsh(write_scratch("flipped.msh", cylinder_patch(4, true)));
+  try {
+    PlexMesh::from_input(input, "flipped.msh", PETSC_COMM_SELF);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("flipped.msh: its cells are not oriented alike: cell"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace neomesh
