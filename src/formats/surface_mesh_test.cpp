@@ -13,6 +13,7 @@
 #include "core/testing/test_data.hpp"
 #include "formats/gmsh_reader.hpp"
 #include "formats/mesh_io.hpp"
+#include "formats/surface_mesh_test_util.hpp"
 #include "formats/vtu_reader.hpp"
 #include "mesh/boundary_surface.hpp"
 #include "mesh/plex_mesh.hpp"
@@ -20,44 +21,8 @@
 namespace neomesh {
 namespace {
 
-// A quarter of the cylinder x² + y² = 1, 0 ≤ z ≤ 1, as a Gmsh 2.2 file: n × n quadrilaterals
-// (the lower half in group 1, the upper in group 2), the quads of row 0 split into two
-// triangles each. With `flip`, one triangle runs the other way round.
-std::string cylinder_patch(int n, bool flip = false) {
-  std::string nodes, elements;
-  const auto id = [n](int i, int j) { return 1 + i + (n + 1) * j; };
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const double theta = std::numbers::pi / 2 * i / n;
-      nodes += fmt::format("{} {:.17g} {:.17g} {:.17g}\n", id(i, j), std::cos(theta),
-                           std::sin(theta), static_cast<double>(j) / n);
-    }
-  int count = 0;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int group = j < n / 2 ? 1 : 2;
-      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      if (j == 0) {
-        elements += fmt::format("{} 2 2 {} {} {} {} {}\n", ++count, group, group, a, b, c);
-        if (flip && i == 0)
-          elements += fmt::format("{} 2 2 {} {} {} {} {}\n", ++count, group, group, a, d, c);
-        else
-          elements += fmt::format("{} 2 2 {} {} {} {} {}\n", ++count, group, group, a, c, d);
-      } else {
-        elements += fmt::format("{} 3 2 {} {} {} {} {} {}\n", ++count, group, group, a, b, c, d);
-      }
-    }
-  return fmt::format(
-      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 1 \"low\"\n2 2 \"high\"\n"
-      "$EndPhysicalNames\n$Nodes\n{}\n{}$EndNodes\n$Elements\n{}\n{}$EndElements\n",
-      (n + 1) * (n + 1), nodes, count, elements);
-}
-
-std::filesystem::path write_scratch(const std::string& name, const std::string& text) {
-  const auto path = testing::scratch_dir("SurfaceMesh") / name;
-  std::ofstream(path) << text;
-  return path;
-}
+using testing::cylinder_patch;
+using testing::write_scratch;
 
 TEST(SurfaceMesh, IsReadWithItsThreeCoordinatesPerVertex) {
   const InputMesh mesh = read_gmsh(write_scratch("patch.msh", cylinder_patch(4)));
