@@ -249,6 +249,18 @@ QualitySummary Optimizer::Impl::input_quality(bool untangle) const {
   return quality;
 }
 
+void Optimizer::Impl::refuse_surface(bool smoothing, const QualitySummary& input) const {
+  if (!view().surface) return;
+  if (!smoothing)
+    fail("{}: a surface mesh (2D cells in space) is smoothed, not adapted: use smooth",
+         mesh.name());
+  if (input.inverted > 0 || input.degenerate > 0)
+    fail(
+        "{}: a surface mesh with {} inverted and {} degenerate cells: surface meshes are not "
+        "untangled",
+        mesh.name(), input.inverted, input.degenerate);
+}
+
 void Optimizer::Impl::finish(Result& result) {
   mesh.plex().set_coordinates(x);
   result.quality_after = mesh.quality();
@@ -461,7 +473,8 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
         minimize(*r.functional, r.x, method, r.cell_size, observer.iteration);
     if (!options.quality_guard) return;
     // The repair spends no more of the mean than the promise allows.
-    const bool repair = options.repair_worst_cells;
+    // (Not on a surface: the repair measures its cells as planar or volume cells.)
+    const bool repair = options.repair_worst_cells && !r.view().surface;
     r.protect_worst_cells(
         input, method, observer, run,
         repair ? std::optional(input_mean - QualityGuardResult::kMeanSlack) : std::nullopt);

@@ -151,5 +151,33 @@ TEST_P(SurfaceFunctionalTest, QualityIsTakenAlongEachCellsOwnNormal) {
   }
 }
 
+// With the frames taken where it is, a triangle mesh's gradient is that of the energy of its
+// cells as they lie (each in the frame of its own plane, taken again at every point): the
+// frame's derivative does not change it (docs/method.md, "Surface cells").
+TEST(SurfaceFunctional, TheGradientInRefreshedFramesIsThatOfTheCellsAsTheyLie) {
+  SurfaceCase p(CellType::Triangle, 0.6, 41);
+  OwnedVec gradient = p.dofs.create_global_vector();
+  ASSERT_TRUE(p.functional.refresh_frames(p.x));
+  p.functional.value_and_gradient(p.x, gradient);
+  const auto as_they_lie = [&p] {
+    p.functional.refresh_frames(p.x);
+    return p.functional.value(p.x);
+  };
+  const double step = 1e-7;
+  double error = 0.0, size = 0.0;
+  for (PetscInt i = 0; i < p.dofs.num_global_dofs(); ++i) {
+    if (!p.free(i)) continue;
+    const double saved = entry(p.x, i);
+    testing::set_entry(p.x, i, saved + step);
+    const double plus = as_they_lie();
+    testing::set_entry(p.x, i, saved - step);
+    const double minus = as_they_lie();
+    testing::set_entry(p.x, i, saved);
+    error += std::pow((plus - minus) / (2 * step) - entry(gradient, i), 2);
+    size += std::pow(entry(gradient, i), 2);
+  }
+  EXPECT_LT(std::sqrt(error), testing::kFdTolerance * std::sqrt(size));
+}
+
 }  // namespace
 }  // namespace neomesh
