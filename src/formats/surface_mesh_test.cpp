@@ -14,7 +14,6 @@
 #include "formats/gmsh_reader.hpp"
 #include "formats/mesh_io.hpp"
 #include "formats/surface_mesh_test_util.hpp"
-#include "formats/vtu_reader.hpp"
 #include "mesh/boundary_surface.hpp"
 #include "mesh/plex_mesh.hpp"
 
@@ -71,14 +70,18 @@ TEST(SurfaceMesh, GivesAViewInSpaceWhoseBoundaryIsTheSurface) {
 TEST(SurfaceMesh, KeepsItsCoordinatesThroughTheWriters) {
   InputMesh input = read_gmsh(write_scratch("patch.msh", cylinder_patch(4)));
   const PlexMesh mesh = PlexMesh::from_input(input, "patch.msh", PETSC_COMM_SELF);
-  for (const char* name : {"out.msh", "out.vtu"}) {
+  std::vector<std::string> names = {"out.msh", "out.vtu", "out.vtk", "out.mesh", "out.exo"};
+#ifdef NEOMESH_HAS_CGNS
+  names.push_back("out.cgns");
+#endif
+  for (const std::string& name : names) {
     const auto path = testing::scratch_dir("SurfaceMesh") / name;
     write_mesh(mesh, path);
-    const InputMesh back = path.extension() == ".msh" ? read_gmsh(path) : read_vtu(path);
-    EXPECT_TRUE(back.surface) << name;
-    ASSERT_EQ(back.coords.size(), mesh.view().coords.size()) << name;
-    for (std::size_t i = 0; i < back.coords.size(); ++i)
-      EXPECT_EQ(back.coords[i], mesh.view().coords[i]) << name << " " << i;
+    const PlexMesh back = load_mesh(path, PETSC_COMM_SELF);
+    EXPECT_TRUE(back.view().surface) << name;
+    ASSERT_EQ(back.view().coords.size(), mesh.view().coords.size()) << name;
+    for (std::size_t i = 0; i < back.view().coords.size(); ++i)
+      EXPECT_EQ(back.view().coords[i], mesh.view().coords[i]) << name << " " << i;
   }
 }
 
