@@ -43,8 +43,11 @@ class Mesh {
   // binary, UNSTRUCTURED_GRID or POLYDATA), .vtu/.pvtu (VTK XML UnstructuredGrid, any encoding),
   // .mesh (Medit ASCII), .exo/.e/.ex2 (Exodus II) or .cgns (CGNS) on the first process and
   // distributes it over `comm`. Throws Error naming the file (and cell) for anything neomesh
-  // cannot use: a missing file, a malformed mesh, an unsupported cell type, NaN coordinates,
-  // 2D cells that do not lie in one plane (a surface mesh). A 2D mesh whose file places it in
+  // cannot use: a missing file, a malformed mesh, an unsupported cell type, NaN coordinates.
+  // 2D cells that do not lie in one plane are a surface mesh, read on one process only: dim() is
+  // 2, its vertices have 3 coordinates, Optimizer::smooth and write() take it, and coordinates(),
+  // set_coordinates() and gather() throw Error (docs/user-guide.md, "Surface meshes"). A 2D mesh
+  // whose file places it in
   // another plane than z = 0 is optimized in that plane (coordinates() are in-plane ones) and
   // written back in it (docs/user-guide.md, "What a run never changes").
   static Mesh read(const std::filesystem::path& path, MPI_Comm comm = MPI_COMM_WORLD,

@@ -150,8 +150,21 @@ std::vector<std::int64_t> Mesh::vertex_numbers() const {
   return numbers;
 }
 
+namespace {
+
+// A surface mesh has 3 coordinates per vertex but 2D cells: no arrays of dim() per vertex.
+void refuse_surface_arrays(const MeshView& view, const std::string& name) {
+  if (view.surface)
+    fail(
+        "{}: a surface mesh (2D cells in space) has no arrays of one dimension; write it to a file",
+        name);
+}
+
+}  // namespace
+
 std::vector<double> Mesh::coordinates() const {
   const MeshView& view = plex_->view();
+  refuse_surface_arrays(view, name());
   std::vector<double> out;
   for (PetscInt u : owned_by_number(view))
     for (int j = 0; j < view.dim; ++j) out.push_back(view.coords[u * view.dim + j]);
@@ -160,6 +173,7 @@ std::vector<double> Mesh::coordinates() const {
 
 void Mesh::set_coordinates(std::span<const double> coordinates) {
   const MeshView& view = plex_->view();
+  refuse_surface_arrays(view, name());
   const std::vector<PetscInt> owned = owned_by_number(view);
   collectively(comm(), [&] {
     if (coordinates.size() != owned.size() * view.dim)
@@ -252,6 +266,7 @@ MeshArrays Mesh::gather(const std::vector<Field>& cell_fields) const {
   fields.cell = cell_fields;
   const GatheredMesh gathered = gather_mesh(*plex_, fields);
   const InputMesh& m = gathered.mesh;
+  refuse_surface_arrays(plex_->view(), name());
   MeshArrays out;
   out.dim = m.dim;
   out.cell_fields = gathered.fields.cell;

@@ -269,6 +269,18 @@ QualitySummary Optimizer::Impl::input_quality(bool untangle) const {
   return quality;
 }
 
+void Optimizer::Impl::refuse_surface(bool smoothing, const QualitySummary& input) const {
+  if (!view().surface) return;
+  if (!smoothing)
+    fail("{}: a surface mesh (2D cells in space) is smoothed, not adapted: use smooth",
+         mesh.name());
+  if (input.inverted > 0 || input.degenerate > 0)
+    fail(
+        "{}: a surface mesh with {} inverted and {} degenerate cells: surface meshes are not "
+        "untangled",
+        mesh.name(), input.inverted, input.degenerate);
+}
+
 void Optimizer::Impl::finish(Result& result) {
   mesh.plex().set_coordinates(x);
   result.quality_after = mesh.quality();
@@ -335,8 +347,7 @@ void Optimizer::Impl::optimize(const Smoothing& s, Result& run) {
   if (!s.options.quality_guard) return;
   lift_corners(s.method, s.observer, run);
   // The repair spends no more of the mean than the promise allows.
-  if (s.options.repair_worst_cells)
-    repair_worst(run, s.input_mean - QualityGuardResult::kMeanSlack);
+  if (repairs(s.options)) repair_worst(run, s.input_mean - QualityGuardResult::kMeanSlack);
   guard_worst(s.input, run);
   if (!s.tangled) guard_mean(s, run);
 }
@@ -416,7 +427,7 @@ void Optimizer::Impl::guard_mean(const Smoothing& s, Result& run) {
   NM_PETSC(VecCopy(s.input, x));
   mesh.plex().set_coordinates(x);  // what the repair judges the input cells by
   // Within the slack of the input's mean, so above the optimum's.
-  if (s.options.repair_worst_cells) repair_worst(run, floor);
+  if (repairs(s.options)) repair_worst(run, floor);
   guard.input_returned = true;
   guard.min_after = min_scaled_jacobian(view(), dofs(), x);
   run.final_energy = functional->value(x);

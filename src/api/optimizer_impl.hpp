@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -35,6 +36,14 @@ struct Optimizer::Impl {
   // The mesh's quality where a call starts; throws Error if cells are inverted or degenerate
   // and `untangle` is false.
   QualitySummary input_quality(bool untangle) const;
+  // On a surface mesh, throws Error for what it does not support: adapt (`smoothing` false) and
+  // untangling (inverted cells in `input`).
+  void refuse_surface(bool smoothing, const QualitySummary& input) const;
+  // Whether smoothing repairs the worst cells: not on a surface, whose cells the repair would
+  // measure as planar or volume cells.
+  bool repairs(const SmoothOptions& options) const {
+    return options.repair_worst_cells && !view().surface;
+  }
   // What smooth() and adapt() do first: checks `options` and the input (input_quality), takes
   // the mesh's coordinates into x, and (re)builds the boundary classification and the
   // problem's constraints unless they were built for the same energy and boundary options
@@ -46,6 +55,7 @@ struct Optimizer::Impl {
     started = MPI_Wtime();
     Result result;
     result.quality_before = input_quality(options.untangle);
+    refuse_surface(std::is_same_v<Options, SmoothOptions>, result.quality_before);
     keep_input_cells();
     start(options.energy, options.boundary, &options.solver);
     return result;

@@ -12,21 +12,115 @@
 #include "core/collective_error.hpp"
 #include "energy/cell_kernels.hpp"
 #include "energy/matrix_assembler.hpp"
+#include "energy/surface_kernels.hpp"
 
 namespace neomesh {
 
 namespace {
 
-// The coordinates of cell c of `block` from the local coordinate array.
-template <CellType Type>
-typename NeoHookeKernel<Type>::Coordinates cell_coordinates(const CellBlock& block, PetscInt c,
-                                                            const double* local_x) {
-  constexpr int dim = NeoHookeKernel<Type>::dim;
-  typename NeoHookeKernel<Type>::Coordinates x;
+// The coordinates of cell c of `block` from the local coordinate array, as kernel K takes them
+// (K::dim per vertex).
+template <typename K>
+typename K::Coordinates cell_coordinates(const CellBlock& block, PetscInt c,
+                                         const double* local_x) {
+  constexpr int dim = K::dim;
+  typename K::Coordinates x;
   const PetscInt* vertex = block.cell(c);
-  for (int i = 0; i < NeoHookeKernel<Type>::vertices; ++i)
+  for (int i = 0; i < K::vertices; ++i)
     x.col(i) = Eigen::Map<const Vector<dim>>(local_x + dim * vertex[i]);
   return x;
+}
+
+// The target of a surface cell: its 2D target and its frame Q (Targets::frames).
+struct FramedTarget {
+  CellTarget<2> target;
+  const double* frame;  // 3 × 2, column-major
+
+  SurfaceFrame q() const { return Eigen::Map<const SurfaceFrame>(frame); }
+};
+
+// A surface kernel (surface_kernels.hpp) called as a cell kernel is, its frame in the target:
+// the loops over cells below serve volume and surface cells alike.
+template <typename Surface>
+class FramedKernel {
+ public:
+  static constexpr int dim = Surface::dim;
+  static constexpr int vertices = Surface::vertices;
+  using Coordinates = typename Surface::Coordinates;
+  using Gradient = typename Surface::Gradient;
+  using Block = typename Surface::Block;
+
+  explicit FramedKernel(Surface kernel) : k_(std::move(kernel)) {}
+
+  double energy(const Coordinates& x, const FramedTarget& t) const {
+    return k_.energy(x, t.q(), t.target);
+  }
+  double energy_and_gradient(const Coordinates& x, const FramedTarget& t, Gradient& g) const {
+    return k_.energy_and_gradient(x, t.q(), t.target, g);
+  }
+  bool hessian(const Coordinates& x, const FramedTarget& t, double alpha,
+               Eigen::Ref<Block> block) const {
+    return k_.hessian(x, t.q(), t.target, alpha, block);
+  }
+  void optimal_laplacian(const FramedTarget& t, Eigen::Ref<Block> block) const {
+    k_.optimal_laplacian(t.q(), t.target, block);
+  }
+  bool current_laplacian(const Coordinates& x, const FramedTarget& t,
+                         Eigen::Ref<Block> block) const {
+    return k_.current_laplacian(x, t.q(), t.target, block);
+  }
+  CellMeasure measure(const Coordinates& x, const FramedTarget& t) const {
+    return k_.measure(x, t.q(), t.target);
+  }
+
+ private:
+  Surface k_;
+};
+
+template <CellType Type>
+using FramedNeoHooke = FramedKernel<NeoHookeSurfaceKernel<Type>>;
+template <CellType Type>
+using FramedUntangling = FramedKernel<UntanglingSurfaceKernel<Type>>;
+
+// The kernels of the cells of `Type`: in space, framed (surface cells), or as they are.
+template <CellType Type, bool Framed>
+using EnergyKernel = std::conditional_t<Framed, FramedNeoHooke<Type>, NeoHookeKernel<Type>>;
+template <CellType Type, bool Framed>
+using UntanglingEnergyKernel =
+    std::conditional_t<Framed, FramedUntangling<Type>, UntanglingKernel<Type>>;
+
+using SurfaceKernels =
+    std::tuple<FramedNeoHooke<CellType::Triangle>, FramedNeoHooke<CellType::Quadrilateral>,
+               FramedUntangling<CellType::Triangle>, FramedUntangling<CellType::Quadrilateral>>;
+
+SurfaceKernels make_surface_kernels(const EnergyOptions& options, double corner_weight,
+                                    double epsilon) {
+  const NeoHooke<2> law{options.lambda, options.mu, options.effective_kappa()};
+  const RegularizedNeoHooke<2> untangling{options.lambda, options.mu, epsilon};
+  const int n = options.gauss_points;
+  return SurfaceKernels{
+      FramedNeoHooke<CellType::Triangle>(NeoHookeSurfaceKernel<CellType::Triangle>(law, n)),
+      FramedNeoHooke<CellType::Quadrilateral>(
+          NeoHookeSurfaceKernel<CellType::Quadrilateral>(law, n, corner_weight)),
+      FramedUntangling<CellType::Triangle>(
+          make_untangling_surface_kernel<CellType::Triangle>(untangling, n)),
+      FramedUntangling<CellType::Quadrilateral>(
+          make_untangling_surface_kernel<CellType::Quadrilateral>(untangling, n))};
+}
+
+// Calls f.template operator()<Type, Framed>() for the cells of `type`; Framed for the triangles
+// and quadrilaterals of a surface mesh.
+template <typename F>
+void visit_cells(const MeshView& view, CellType type, F&& f) {
+  visit_cell_type(type, [&]<CellType Type>(CellTag<Type>) {
+    if constexpr (CellTraits<Type>::dim == 2) {
+      if (view.surface) {
+        f.template operator()<Type, true>();
+        return;
+      }
+    }
+    f.template operator()<Type, false>();
+  });
 }
 
 using Kernels =
@@ -84,11 +178,14 @@ struct Functional::Impl {
   // energy; its kernels also find inverted cells (their sample points are where det G must be
   // > 0), at any ε.
   UntanglingKernels untangling_kernels;
+  SurfaceKernels surface_kernels;  // both laws, in the frames of a surface mesh's cells
   bool untangling = false;
   const std::vector<std::uint8_t>& fixed;  // per local dof
   const SlidingVertices& sliding;
   const std::vector<PetscInt>& projector_of;  // per local vertex: index in sliding, or -1
   const Targets* targets = nullptr;           // null until the problem has targets
+  // A surface mesh's cell frames (Targets::frames), as refresh_frames last took them.
+  mutable std::vector<double> frames;
 
   // Work arrays reused between calls.
   mutable std::vector<double> local_x;
@@ -106,21 +203,35 @@ struct Functional::Impl {
         kernels(make_kernels(o, problem.corner_weight)),
         untangling_kernels(make_untangling_kernels(
             o, problem.untangling_epsilon > 0.0 ? problem.untangling_epsilon : 1.0)),
+        surface_kernels(make_surface_kernels(
+            o, problem.corner_weight,
+            problem.untangling_epsilon > 0.0 ? problem.untangling_epsilon : 1.0)),
         untangling(problem.untangling_epsilon > 0.0),
         fixed(c.fixed),
         sliding(c.sliding),
         projector_of(c.projector_of),
-        targets(problem.targets.get()) {}
+        targets(problem.targets.get()),
+        frames(targets ? targets->frames : std::vector<double>{}) {}
 
-  template <CellType Type>
-  const NeoHookeKernel<Type>& kernel() const {
-    return std::get<NeoHookeKernel<Type>>(kernels);
+  template <CellType Type, bool Framed = false>
+  const EnergyKernel<Type, Framed>& kernel() const {
+    if constexpr (Framed)
+      return std::get<FramedNeoHooke<Type>>(surface_kernels);
+    else
+      return std::get<NeoHookeKernel<Type>>(kernels);
+  }
+  template <CellType Type, bool Framed = false>
+  const UntanglingEnergyKernel<Type, Framed>& untangling_kernel() const {
+    if constexpr (Framed)
+      return std::get<FramedUntangling<Type>>(surface_kernels);
+    else
+      return std::get<UntanglingKernel<Type>>(untangling_kernels);
   }
   // Calls f with the kernel of the energy being minimized: Neo-Hookean, or untangling.
-  template <CellType Type, typename F>
+  template <CellType Type, bool Framed, typename F>
   decltype(auto) with_energy_kernel(F&& f) const {
-    if (untangling) return f(std::get<UntanglingKernel<Type>>(untangling_kernels));
-    return f(kernel<Type>());
+    if (untangling) return f(untangling_kernel<Type, Framed>());
+    return f(kernel<Type, Framed>());
   }
 
   // The target of local cell `cell` (cell_kernels.hpp).
@@ -130,6 +241,14 @@ struct Functional::Impl {
     if (t.shapes_inv_t.empty()) return {t.volumes[cell], t.inverse_edges[cell], nullptr, 1.0};
     return {t.volumes[cell], t.inverse_edges[cell], t.shapes_inv_t.data() + Dim * Dim * cell,
             t.weights[cell]};
+  }
+  // The same as the kernel of cells of `Type` takes it: with its frame for a surface cell.
+  template <CellType Type, bool Framed>
+  auto target_of(PetscInt cell) const {
+    if constexpr (Framed)
+      return FramedTarget{target<2>(cell), frames.data() + 6 * cell};
+    else
+      return target<CellTraits<Type>::dim>(cell);
   }
 
   bool is_fixed_dof(PetscInt local_dof) const { return fixed[local_dof] != 0; }
@@ -172,7 +291,7 @@ struct Functional::Impl {
   void assemble(Fill&& fill, const char* what, Mat M, double curvature = 0.0) const;
   // Adds the blocks of the cells of block b; returns the first cell for which fill returned
   // false (or the largest PetscInt).
-  template <CellType Type, typename Fill>
+  template <CellType Type, bool Framed, typename Fill>
   PetscInt add_cell_blocks(Fill& fill, std::size_t b, MatrixAssembler::Values& values) const;
 };
 
@@ -184,15 +303,14 @@ double Functional::Impl::local_energy() const {
   std::atomic<bool> not_finite{false};
   for (const CellBlock& block : view.blocks) {
     if (not_finite.load(std::memory_order_relaxed)) break;
-    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
-      constexpr int dim = NeoHookeKernel<Type>::dim;
-      with_energy_kernel<Type>([&](const auto& k) {
+    visit_cells(view, block.type, [&]<CellType Type, bool Framed>() {
+      with_energy_kernel<Type, Framed>([&]<typename K>(const K& k) {
         double block_sum = 0.0;
 #pragma omp parallel for reduction(+ : block_sum) schedule(static)
         for (PetscInt c = 0; c < block.size(); ++c) {
           if (not_finite.load(std::memory_order_relaxed)) continue;
-          const double e = k.energy(cell_coordinates<Type>(block, c, local_x.data()),
-                                    target<dim>(block.first_cell + c));
+          const double e = k.energy(cell_coordinates<K>(block, c, local_x.data()),
+                                    target_of<Type, Framed>(block.first_cell + c));
           if (!std::isfinite(e)) not_finite.store(true, std::memory_order_relaxed);
           block_sum += e;
         }
@@ -213,21 +331,21 @@ double Functional::Impl::local_energy_and_gradient(std::span<double> gradient) c
   thread_gradients.assign(n * (threads - 1), 0.0);
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
-    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
-      constexpr int dim = NeoHookeKernel<Type>::dim;
-      with_energy_kernel<Type>([&](const auto& k) {
+    visit_cells(view, block.type, [&]<CellType Type, bool Framed>() {
+      with_energy_kernel<Type, Framed>([&]<typename K>(const K& k) {
+        constexpr int dim = K::dim;
         double block_sum = 0.0;
 #pragma omp parallel reduction(+ : block_sum)
         {
           const int t = omp_get_thread_num();
           double* mine = t == 0 ? gradient.data() : thread_gradients.data() + n * (t - 1);
-          typename NeoHookeKernel<Type>::Gradient g;
+          typename K::Gradient g;
 #pragma omp for schedule(static)
           for (PetscInt c = 0; c < block.size(); ++c) {
-            block_sum += k.energy_and_gradient(cell_coordinates<Type>(block, c, local_x.data()),
-                                               target<dim>(block.first_cell + c), g);
+            block_sum += k.energy_and_gradient(cell_coordinates<K>(block, c, local_x.data()),
+                                               target_of<Type, Framed>(block.first_cell + c), g);
             const PetscInt* vertex = block.cell(c);
-            for (int i = 0; i < NeoHookeKernel<Type>::vertices; ++i)
+            for (int i = 0; i < K::vertices; ++i)
               Eigen::Map<Vector<dim>>(mine + dim * vertex[i]) += g.col(i);
           }
         }
@@ -276,12 +394,13 @@ void Functional::Impl::project_block(const PetscInt* vertex, Block& block) const
   }
 }
 
-template <CellType Type, typename Fill>
+template <CellType Type, bool Framed, typename Fill>
 PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b,
                                            MatrixAssembler::Values& values) const {
-  using Block = typename NeoHookeKernel<Type>::Block;
-  constexpr int n = NeoHookeKernel<Type>::vertices;
-  constexpr int d = NeoHookeKernel<Type>::dim;
+  using K = EnergyKernel<Type, Framed>;
+  using Block = typename K::Block;
+  constexpr int n = K::vertices;
+  constexpr int d = K::dim;
   const CellBlock& block = view.blocks[b];
   const MatrixAssembler& assembler = constraints.assembler();
   const std::vector<PetscInt>& chunks = assembler.colour_chunks(b);
@@ -294,8 +413,9 @@ PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b,
       const PetscInt end = std::min(block.size(), (chunks[k] + 1) * MatrixAssembler::kChunk);
       for (PetscInt c = chunks[k] * MatrixAssembler::kChunk; c < end; ++c) {
         Block cell_block;
-        if (!fill(CellTag<Type>{}, cell_coordinates<Type>(block, c, local_x.data()),
-                  target<d>(block.first_cell + c), Eigen::Map<Block>(cell_block.data()))) {
+        if (!fill.template operator()<Type, Framed>(cell_coordinates<K>(block, c, local_x.data()),
+                                                    target_of<Type, Framed>(block.first_cell + c),
+                                                    Eigen::Map<Block>(cell_block.data()))) {
           first_bad = std::min(first_bad, block.first_cell + c);
           continue;
         }
@@ -313,8 +433,8 @@ void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M, double cur
   PetscInt first_bad = std::numeric_limits<PetscInt>::max();
   MatrixAssembler::Values values(constraints.assembler(), M);
   for (std::size_t b = 0; b < view.blocks.size(); ++b) {
-    visit_cell_type(view.blocks[b].type, [&]<CellType Type>(CellTag<Type>) {
-      first_bad = std::min(first_bad, add_cell_blocks<Type>(fill, b, values));
+    visit_cells(view, view.blocks[b].type, [&]<CellType Type, bool Framed>() {
+      first_bad = std::min(first_bad, add_cell_blocks<Type, Framed>(fill, b, values));
     });
   }
   values.gather();
@@ -379,18 +499,24 @@ const Problem& Functional::problem() const {
 
 std::vector<double> Functional::cell_jacobians(Vec x) const {
   const MeshView& view = impl_->view;
-  const int d = view.dim;
+  const int d = view.cell_dim();
   impl_->dofs.global_to_local(x, impl_->local_x);
   std::vector<double> jacobians(static_cast<std::size_t>(d * d * view.num_cells));
   for (const CellBlock& block : view.blocks) {
-    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
-      constexpr int dim = NeoHookeKernel<Type>::dim;
+    visit_cells(view, block.type, [&]<CellType Type, bool Framed>() {
+      constexpr int dim = CellTraits<Type>::dim;
       // One Gauss point: the centre (for a pyramid the centre of its base).
       const OptimalCellQuadrature<Type> centre(1);
-      for (PetscInt c = 0; c < block.size(); ++c)
-        Eigen::Map<Matrix<dim>>(jacobians.data() + dim * dim * (block.first_cell + c)) =
-            cell_coordinates<Type>(block, c, impl_->local_x.data()) *
-            centre.unit_gradients[0].transpose();
+      for (PetscInt c = 0; c < block.size(); ++c) {
+        const auto xc =
+            cell_coordinates<EnergyKernel<Type, Framed>>(block, c, impl_->local_x.data());
+        Eigen::Map<Matrix<dim>> jacobian(jacobians.data() + dim * dim * (block.first_cell + c));
+        if constexpr (Framed)  // of the cell's image in its frame at x
+          jacobian = surface_cell_frame<Type>(xc).value_or(SurfaceFrame::Zero()).transpose() * xc *
+                     centre.unit_gradients[0].transpose();
+        else
+          jacobian = xc * centre.unit_gradients[0].transpose();
+      }
     });
   }
   return jacobians;
@@ -452,9 +578,9 @@ void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {
   impl_->load_coordinates_and_tangents(x);
   const Impl& impl = *impl_;
   impl.assemble(
-      [&impl, alpha]<CellType Type>(CellTag<Type>, const auto& coordinates, const auto& target,
-                                    auto block) {
-        return impl.with_energy_kernel<Type>(
+      [&impl, alpha]<CellType Type, bool Framed>(const auto& coordinates, const auto& target,
+                                                 auto block) {
+        return impl.with_energy_kernel<Type, Framed>(
             [&](const auto& k) { return k.hessian(coordinates, target, alpha, block); });
       },
       "H(alpha)", H, alpha);
@@ -467,9 +593,9 @@ void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat matrix) cons
     impl_->load_coordinates_and_tangents(x);
     const Impl& impl = *impl_;
     impl.assemble(
-        [&impl]<CellType Type>(CellTag<Type>, const auto& coordinates, const auto& target,
-                               auto block) {
-          return impl.kernel<Type>().current_laplacian(coordinates, target, block);
+        [&impl]<CellType Type, bool Framed>(const auto& coordinates, const auto& target,
+                                            auto block) {
+          return impl.kernel<Type, Framed>().current_laplacian(coordinates, target, block);
         },
         "current-mesh Laplacian", L);
   } else {
@@ -479,8 +605,8 @@ void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat matrix) cons
       impl_->require_volumes();
     const Impl& impl = *impl_;
     impl.assemble(
-        [&impl]<CellType Type>(CellTag<Type>, const auto&, const auto& target, auto block) {
-          impl.kernel<Type>().optimal_laplacian(target, block);
+        [&impl]<CellType Type, bool Framed>(const auto&, const auto& target, auto block) {
+          impl.kernel<Type, Framed>().optimal_laplacian(target, block);
           return true;
         },
         "optimal-cell Laplacian", L);
@@ -495,17 +621,18 @@ CellFields Functional::cell_fields(Vec x) const {
   fields.min_det.resize(view.num_cells);
   fields.volume_ratio.resize(view.num_cells);
   for (const CellBlock& block : view.blocks) {
-    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
-      const NeoHookeKernel<Type>& k = impl_->kernel<Type>();
+    visit_cells(view, block.type, [&]<CellType Type, bool Framed>() {
+      const auto& k = impl_->kernel<Type, Framed>();
+      using K = EnergyKernel<Type, Framed>;
 #pragma omp parallel for schedule(static)
       for (PetscInt c = 0; c < block.size(); ++c) {
         const PetscInt cell = block.first_cell + c;
-        const auto target = impl_->target<NeoHookeKernel<Type>::dim>(cell);
-        const auto x = cell_coordinates<Type>(block, c, impl_->local_x.data());
+        const auto target = impl_->target_of<Type, Framed>(cell);
+        const auto x = cell_coordinates<K>(block, c, impl_->local_x.data());
         const CellMeasure measure = k.measure(x, target);
         fields.energy[cell] = k.energy(x, target);
         fields.min_det[cell] = measure.min_det;
-        fields.volume_ratio[cell] = measure.volume / target.volume;  // Q (thesis §6.2)
+        fields.volume_ratio[cell] = measure.volume / impl_->targets->volumes[cell];  // Q (§6.2)
       }
     });
   }
@@ -517,12 +644,13 @@ Inversion Functional::inversion(Vec x, int listed, double below) const {
   const MeshView& view = impl_->view;
   Inversion local{0, std::numeric_limits<double>::infinity(), {}};
   for (const CellBlock& block : view.blocks) {
-    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
-      const UntanglingKernel<Type>& k = std::get<UntanglingKernel<Type>>(impl_->untangling_kernels);
+    visit_cells(view, block.type, [&]<CellType Type, bool Framed>() {
+      const auto& k = impl_->untangling_kernel<Type, Framed>();
+      using K = UntanglingEnergyKernel<Type, Framed>;
       for (PetscInt c = 0; c < block.size(); ++c) {
         const PetscInt cell = block.first_cell + c;
-        const double det = k.measure(cell_coordinates<Type>(block, c, impl_->local_x.data()),
-                                     impl_->target<UntanglingKernel<Type>::dim>(cell))
+        const double det = k.measure(cell_coordinates<K>(block, c, impl_->local_x.data()),
+                                     impl_->target_of<Type, Framed>(cell))
                                .min_det;
         local.min_det = std::min(local.min_det, det);
         if (det > below) continue;
@@ -544,6 +672,13 @@ Inversion Functional::inversion(Vec x, int listed, double below) const {
   std::sort(global.cells.begin(), global.cells.end());
   if (static_cast<int>(global.cells.size()) > listed) global.cells.resize(listed);
   return global;
+}
+
+bool Functional::refresh_frames(Vec x) const {
+  if (!impl_->view.surface) return false;
+  impl_->load_coordinates(x);
+  impl_->frames = surface_frames(impl_->view, impl_->local_x);
+  return true;
 }
 
 void Functional::project_onto_boundary(Vec x) const {
@@ -569,10 +704,17 @@ double mesh_volume(const MeshView& view, const DofMap& dofs, Vec x) {
   dofs.global_to_local(x, local_x);
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
-    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
+    visit_cells(view, block.type, [&]<CellType Type, bool Framed>() {
       const NeoHookeKernel<Type>& k = std::get<NeoHookeKernel<Type>>(kernels);
-      for (PetscInt c = 0; c < block.size(); ++c)
-        sum += k.measure(cell_coordinates<Type>(block, c, local_x.data()), 1.0).volume;
+      for (PetscInt c = 0; c < block.size(); ++c) {
+        const auto x = cell_coordinates<EnergyKernel<Type, Framed>>(block, c, local_x.data());
+        if constexpr (Framed) {  // the area of its image in its own frame
+          if (const auto frame = surface_cell_frame<Type>(x))
+            sum += k.measure(frame->transpose() * x, 1.0).volume;
+        } else {
+          sum += k.measure(x, 1.0).volume;
+        }
+      }
     });
   }
   return sum_over_ranks(sum, dofs.comm());

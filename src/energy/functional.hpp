@@ -97,6 +97,12 @@ class Functional {
   // the cells whose det G is at most that at a sample point (nearly flat ones too).
   Inversion inversion(Vec x, int listed = 10, double below = 0.0) const;
 
+  // A surface mesh's cell frames taken again at x (docs/method.md, "Surface cells"): from now on
+  // the energy, its derivatives and the matrices are those of the cells' frames at x, until the
+  // next call (the quasi-Newton method calls it where each step starts). The targets' frames
+  // are where the first step starts. False (nothing done) for other meshes. Not collective.
+  bool refresh_frames(Vec x) const;
+
   // Moves the sliding vertices of x back onto the boundary after a step (no-op if none
   // slide). Not collective.
   void project_onto_boundary(Vec x) const;

@@ -6,13 +6,17 @@
 #include <random>
 
 #include "core/testing/thread_count.hpp"
+#include "energy/functional_test_util.hpp"
 #include "generate/generate.hpp"
 #include "generate/serial_view.hpp"
 
 namespace neomesh {
 namespace {
 
-constexpr double kFdTolerance = 1e-6;  // relative error allowed against central differences
+using testing::entry;
+using testing::kFdTolerance;
+using testing::norm;
+using testing::set_entry;
 
 // A serial mesh with boundary vertices fixed and the Functional on it. Not movable: the
 // Functional keeps references to the view and the DofMap.
@@ -72,22 +76,6 @@ MeshData perturbed_box(CellType type, int n, unsigned seed) {
   return mesh;
 }
 
-double entry(Vec v, PetscInt i) {
-  VecReadView view(v);
-  return view[i];
-}
-
-void set_entry(Vec v, PetscInt i, double value) {
-  VecWriteView view(v);
-  view[i] = value;
-}
-
-double norm(Vec v) {
-  PetscReal n = 0.0;
-  NM_PETSC(VecNorm(v, NORM_2, &n));
-  return n;
-}
-
 class FunctionalTest : public ::testing::TestWithParam<CellType> {};
 
 INSTANTIATE_TEST_SUITE_P(AllCellTypes, FunctionalTest, ::testing::ValuesIn(kAllCellTypes),
@@ -108,63 +96,17 @@ int cells_per_direction(CellType type) {
 TEST_P(FunctionalTest, GradientMatchesFiniteDifferencesOfValue) {
   MeshCase p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 21));
   p.set_volumes(0.5, 22);
-  OwnedVec gradient = p.dofs.create_global_vector();
-  p.functional.value_and_gradient(p.x, gradient);
-  OwnedVec fd = p.dofs.create_global_vector();
   const std::vector<double> free = p.free_dofs();
-  const double step = 1e-7;
-  for (PetscInt i = 0; i < p.dofs.num_global_dofs(); ++i) {
-    if (!free[i]) {
-      EXPECT_EQ(entry(gradient, i), 0.0);
-      continue;
-    }
-    const double saved = entry(p.x, i);
-    set_entry(p.x, i, saved + step);
-    const double plus = p.functional.value(p.x);
-    set_entry(p.x, i, saved - step);
-    const double minus = p.functional.value(p.x);
-    set_entry(p.x, i, saved);
-    set_entry(fd, i, (plus - minus) / (2 * step));
-  }
-  NM_PETSC(VecAXPY(fd, -1.0, gradient));
-  EXPECT_LT(norm(fd), kFdTolerance * norm(gradient));
+  testing::expect_gradient_matches_differences(p.functional, p.x,
+                                               [&free](PetscInt i) { return free[i] != 0; });
 }
 
 TEST_P(FunctionalTest, HessianMatchesFiniteDifferencesOfGradient) {
   MeshCase p(perturbed_box(GetParam(), cells_per_direction(GetParam()), 23));
   p.set_volumes(0.5, 24);
-  OwnedMat H = p.functional.create_matrix();
-  p.functional.assemble_hessian(p.x, 1.0, H);
   const std::vector<double> free = p.free_dofs();
-  OwnedVec unit = p.dofs.create_global_vector(), column = p.dofs.create_global_vector();
-  OwnedVec plus = p.dofs.create_global_vector(), minus = p.dofs.create_global_vector();
-  const double step = 1e-7;
-  double error = 0.0, size = 0.0;  // Frobenius norms over all columns
-  for (PetscInt j = 0; j < p.dofs.num_global_dofs(); ++j) {
-    set_entry(unit, j, 1.0);
-    NM_PETSC(MatMult(H, unit, column));
-    set_entry(unit, j, 0.0);
-    if (free[j]) {
-      const double saved = entry(p.x, j);
-      set_entry(p.x, j, saved + step);
-      p.functional.value_and_gradient(p.x, plus);
-      set_entry(p.x, j, saved - step);
-      p.functional.value_and_gradient(p.x, minus);
-      set_entry(p.x, j, saved);
-      NM_PETSC(VecAXPY(plus, -1.0, minus));
-      NM_PETSC(VecScale(plus, 1.0 / (2 * step)));  // central difference of the gradient
-    } else {
-      NM_PETSC(VecZeroEntries(plus));  // a fixed dof's column is the identity's
-      set_entry(plus, j, 1.0);
-    }
-    size += std::pow(norm(column), 2);
-    NM_PETSC(VecAXPY(plus, -1.0, column));
-    error += std::pow(norm(plus), 2);
-  }
-  EXPECT_LT(std::sqrt(error), kFdTolerance * std::sqrt(size));
-  PetscBool symmetric = PETSC_FALSE;
-  NM_PETSC(MatIsSymmetric(H, 0.0, &symmetric));
-  EXPECT_TRUE(symmetric);
+  testing::expect_hessian_matches_differences(p.functional, p.x,
+                                              [&free](PetscInt i) { return free[i] != 0; });
 }
 
 // Every cell of a uniform square/cube grid with equal desired volumes is its optimal cell.

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include "core/error.hpp"
+#include "geometry/surface_frame.hpp"
 
 namespace neomesh {
 
@@ -57,11 +58,34 @@ void set_volumes(const MeshView& view, std::span<const double> volumes, Targets&
       fail("desired volume of local cell {} is {} (must be positive and finite)", c, volumes[c]);
   t.volumes.assign(volumes.begin(), volumes.end());
   t.inverse_edges.resize(volumes.size());
-  const double power = -1.0 / view.dim;
+  const double power = -1.0 / view.cell_dim();
   for (std::size_t c = 0; c < volumes.size(); ++c) t.inverse_edges[c] = std::pow(volumes[c], power);
 }
 
 }  // namespace
+
+std::vector<double> surface_frames(const MeshView& view, std::span<const double> coords) {
+  if (!view.surface) return {};
+  std::vector<double> frames(static_cast<std::size_t>(6 * view.num_cells));
+  for (const CellBlock& block : view.blocks)
+    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
+      if constexpr (CellTraits<Type>::dim == 2) {
+        constexpr int n = CellTraits<Type>::vertices;
+        for (PetscInt c = 0; c < block.size(); ++c) {
+          Eigen::Matrix<double, 3, n> x;
+          for (int i = 0; i < n; ++i)
+            x.col(i) = Eigen::Map<const Vector<3>>(coords.data() + 3 * block.cell(c)[i]);
+          const std::optional<SurfaceFrame> frame = surface_cell_frame<Type>(x);
+          const PetscInt cell = block.first_cell + c;
+          if (!frame)
+            fail("surface cell {} has no area: it has no tangent plane",
+                 view.global_cell.empty() ? cell : view.global_cell[cell]);
+          Eigen::Map<SurfaceFrame>(frames.data() + 6 * cell) = *frame;
+        }
+      }
+    });
+  return frames;
+}
 
 Constraints::Constraints(const MeshView& v, const DofMap& d, const std::vector<std::uint8_t>& f)
     : Constraints(v, d, per_dof(v, f)) {}
@@ -77,8 +101,8 @@ Constraints::Constraints(const MeshView& v, const DofMap& d, FixedDofs f, Slidin
     fail("Functional: DofMap has {} local dofs, the mesh {} vertices of dimension {}",
          dofs.num_local_dofs(), view.num_vertices, view.dim);
   for (const CellBlock& block : view.blocks)
-    if (dimension(block.type) != view.dim)
-      fail("Functional: {} cells in a {}D mesh", name(block.type), view.dim);
+    if (dimension(block.type) != view.cell_dim())
+      fail("Functional: {} cells in a {}D mesh", name(block.type), view.cell_dim());
   // A file's vertex that no cell uses (Gmsh writes the nodes of every curve of an extrusion with
   // rotation, not all of them the volume's) has no energy: free, its rows of the matrices would
   // be empty, and hypre's eigenvalue estimate loops forever on them. It stays.
@@ -113,7 +137,8 @@ MatrixAssembler& Constraints::assembler() const {
 Targets::Targets(const MeshView& view, std::span<const double> volumes,
                  std::span<const double> shapes, std::span<const double> w) {
   set_volumes(view, volumes, *this);
-  const int d = view.dim;
+  frames = surface_frames(view, view.coords);
+  const int d = view.cell_dim();
   const std::size_t n = static_cast<std::size_t>(d * d);
   const std::size_t cells = static_cast<std::size_t>(view.num_cells);
   if (!shapes.empty() && shapes.size() != n * cells)
@@ -135,6 +160,7 @@ Targets::Targets(const MeshView& view, std::span<const double> volumes, const Ta
   if (shaped.volumes.size() != volumes.size())
     fail("Functional: the targets of {} cells for {} cells", shaped.volumes.size(), volumes.size());
   set_volumes(view, volumes, *this);
+  frames = surface_frames(view, view.coords);
 }
 
 Problem::Problem(const MeshView& view, const DofMap& dofs, const std::vector<std::uint8_t>& fixed)

@@ -59,10 +59,10 @@ class Constraints {
 // What each local cell should become (docs/method.md, "Target cells"), in the form the kernels
 // use (cell_kernels.hpp: CellTarget).
 struct Targets {
-  // Desired (absolute) volumes per local cell, MeshView order; and the shape S of each cell's
-  // target (dim² numbers per cell, column-major, scaled here to det S = 1) with the weight of
-  // its energy (empty: 1). Empty shapes: the thesis' ideal cells. Throws Error for a volume or
-  // det S ≤ 0, a weight ≤ 0 or a wrong length.
+  // Desired (absolute) volumes per local cell, MeshView order (a surface cell's: its area); and
+  // the shape S of each cell's target (d² numbers per cell, d = view.cell_dim(), column-major,
+  // scaled here to det S = 1) with the weight of its energy (empty: 1). Empty shapes: the thesis'
+  // ideal cells. Throws Error for a volume or det S ≤ 0, a weight ≤ 0 or a wrong length.
   Targets(const MeshView& view, std::span<const double> volumes,
           std::span<const double> shapes = {}, std::span<const double> weights = {});
   // New volumes, the shapes and weights of `shaped`.
@@ -72,7 +72,15 @@ struct Targets {
   std::vector<double> inverse_edges;  // per local cell v^(−1/d)
   std::vector<double> shapes_inv_t;   // per local cell S⁻ᵀ with det S = 1; empty: ideal
   std::vector<double> weights;        // per local cell with shapes: its energy's weight
+  // A surface mesh's: per local cell its tangent frame Q (surface_frame.hpp; 3 × 2, column-major)
+  // at the view's coordinates (where a call starts), fixed while the targets are (docs/method.md,
+  // "Surface cells"). Empty for other meshes. Throws Error for a cell without area.
+  std::vector<double> frames;
 };
+
+// Per local cell of a surface mesh its frame at `coords` (view.coords' layout): 6 numbers,
+// column-major (Targets::frames); empty for other meshes. Throws Error for a cell without area.
+std::vector<double> surface_frames(const MeshView& view, std::span<const double> coords);
 
 struct Problem {
   // Untangling (docs/untangling.md): with ε > 0 the functional's value, gradient and H(α) are

@@ -215,7 +215,7 @@ void write_cgns(const GatheredMesh& g, const std::filesystem::path& path,
   const std::vector<Section> facets = facet_sections(mesh, groups, names);
 
   CgnsFile file(path, CgnsFile::Mode::Create, target);
-  const int num_dim = mesh.dim == 2 && !mesh.plane ? 2 : 3;
+  const int num_dim = mesh.dim == 2 && !mesh.plane && !mesh.surface ? 2 : 3;
   int base = 0, zone = 0;
   file.check(cg_base_write(file.id(), "Base", mesh.dim, num_dim, &base), "writing the base");
   const cgsize_t size[3] = {static_cast<cgsize_t>(mesh.num_vertices()),

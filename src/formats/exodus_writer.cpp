@@ -276,7 +276,7 @@ void write_exodus(const GatheredMesh& g, const std::filesystem::path& path,
              "setting the name length");
   ex_init_params init{};
   std::snprintf(init.title, sizeof init.title, "neomesh");
-  init.num_dim = mesh.dim == 2 && !mesh.plane ? 2 : 3;
+  init.num_dim = mesh.dim == 2 && !mesh.plane && !mesh.surface ? 2 : 3;
   init.num_nodes = mesh.num_vertices();
   init.num_elem = mesh.num_cells();
   init.num_elem_blk = static_cast<std::int64_t>(blocks.size());

@@ -31,7 +31,7 @@ void write_medit(const GatheredMesh& g, std::ostream& f) {
   const InputMesh& mesh = g.mesh;
   // A 2D mesh in the plane z = 0 is written as Medit's 2D mesh (what MMG2D reads); one in
   // another plane keeps its third coordinate.
-  const int dimension = mesh.dim == 2 && !mesh.plane ? 2 : 3;
+  const int dimension = mesh.dim == 2 && !mesh.plane && !mesh.surface ? 2 : 3;
   fmt::print(f, "MeshVersionFormatted 2\n\nDimension {}\n\n", dimension);
   const std::vector<double> xyz = coordinates_in_space(mesh);
   // Vertex references: the point data "medit:ref" (as the reader and meshio name them), or 0.

@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "geometry/reference_cell.hpp"
+#include "geometry/surface_frame.hpp"
 
 namespace neomesh {
 
@@ -307,9 +308,10 @@ double inverse_mean_ratio(const X& x, Det det = {}) {
   return sum / corners;
 }
 
-// Calls per_cell.template operator()<Type>(i, x) with the coordinates x of every cell i (the
-// view's cell order), in parallel: cells are independent, and a run takes their quality
-// several times (before, for the guard, after).
+// Calls per_cell.template operator()<Type>(i, x, det) with the coordinates x of every cell i (the
+// view's cell order) and how its determinants are taken (a surface cell's: seen along its own
+// reference normal, surface_frame.hpp), in parallel: cells are independent, and a run takes
+// their quality several times (before, for the guard, after).
 template <typename PerCell>
 void for_each_cell(const MeshView& view, std::span<const double> coords, PerCell&& per_cell) {
   if (coords.size() != static_cast<std::size_t>(view.num_vertices) * view.dim)
@@ -318,13 +320,29 @@ void for_each_cell(const MeshView& view, std::span<const double> coords, PerCell
   for (const CellBlock& block : view.blocks)
     visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
       using Traits = CellTraits<Type>;
+      if constexpr (Traits::dim == 2) {
+        if (view.surface) {
+#pragma omp parallel for schedule(static)
+          for (PetscInt c = 0; c < block.size(); ++c) {
+            Eigen::Matrix<double, 3, Traits::vertices> x;
+            const PetscInt* cell = block.cell(c);
+            for (int i = 0; i < Traits::vertices; ++i)
+              x.col(i) = Eigen::Map<const Vector<3>>(coords.data() + 3 * cell[i]);
+            const NormalArea area{surface_cell_normal<Type>(x).value_or(Vector<3>::Zero())};
+            per_cell.template operator()<Type>(static_cast<std::size_t>(block.first_cell + c), x,
+                                               area);
+          }
+          return;
+        }
+      }
 #pragma omp parallel for schedule(static)
       for (PetscInt c = 0; c < block.size(); ++c) {
         typename Traits::Coordinates x;
         const PetscInt* cell = block.cell(c);
         for (int i = 0; i < Traits::vertices; ++i)
           for (int k = 0; k < Traits::dim; ++k) x(k, i) = coords[Traits::dim * cell[i] + k];
-        per_cell.template operator()<Type>(static_cast<std::size_t>(block.first_cell + c), x);
+        per_cell.template operator()<Type>(static_cast<std::size_t>(block.first_cell + c), x,
+                                           Determinant{});
       }
     });
 }
@@ -415,8 +433,8 @@ CellQuality cell_quality(const MeshView& view, std::span<const double> coords) {
                       &q.min_angle, &q.max_angle, &q.edge_ratio, &q.inverse_mean_ratio})
     field->resize(view.num_cells);
   q.type.resize(view.num_cells);
-  for_each_cell(view, coords, [&q]<CellType Type>(std::size_t i, const auto& x) {
-    const Measures m = measure<Type>(x);
+  for_each_cell(view, coords, [&q]<CellType Type>(std::size_t i, const auto& x, auto det) {
+    const Measures m = measure<Type>(x, det);
     q.type[i] = Type;
     q.volume[i] = m.volume;
     q.min_corner_det[i] = m.min_corner_det;
@@ -425,23 +443,23 @@ CellQuality cell_quality(const MeshView& view, std::span<const double> coords) {
     q.min_angle[i] = m.min_angle;
     q.max_angle[i] = m.max_angle;
     q.edge_ratio[i] = m.edge_ratio;
-    q.inverse_mean_ratio[i] = inverse_mean_ratio<Type>(x);
+    q.inverse_mean_ratio[i] = inverse_mean_ratio<Type>(x, det);
   });
   return q;
 }
 
 std::vector<double> cell_volumes(const MeshView& view, std::span<const double> coords) {
   std::vector<double> volume(view.num_cells);
-  for_each_cell(view, coords, [&volume]<CellType Type>(std::size_t i, const auto& x) {
-    volume[i] = signed_volume<Type>(x);
+  for_each_cell(view, coords, [&volume]<CellType Type>(std::size_t i, const auto& x, auto det) {
+    volume[i] = signed_volume<Type>(x, det);
   });
   return volume;
 }
 
 std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const double> coords) {
   std::vector<double> sj(view.num_cells);
-  for_each_cell(view, coords, [&sj]<CellType Type>(std::size_t i, const auto& x) {
-    sj[i] = scaled_jacobian<Type>(x);
+  for_each_cell(view, coords, [&sj]<CellType Type>(std::size_t i, const auto& x, auto det) {
+    sj[i] = scaled_jacobian<Type>(x, det);
   });
   return sj;
 }
@@ -458,7 +476,7 @@ double cell_edge_ratio(CellType type, const double* coords) {
 
 std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const double> coords) {
   std::vector<double> ratio(view.num_cells);
-  for_each_cell(view, coords, [&ratio]<CellType Type>(std::size_t i, const auto& x) {
+  for_each_cell(view, coords, [&ratio]<CellType Type>(std::size_t i, const auto& x, auto) {
     ratio[i] = edge_ratio<Type>(x);
   });
   return ratio;

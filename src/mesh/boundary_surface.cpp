@@ -17,15 +17,19 @@ namespace {
 // the facet and point groups in the order of mesh.groups (as input_topology's mark_parts).
 std::vector<int> facet_parts(const InputMesh& mesh, const FacetTable& table,
                              const InputTopology& topology, std::vector<std::string>& part_chart) {
-  std::vector<int> part(table.size(), -1);
+  std::vector<int> part(mesh.surface ? mesh.num_cells() : table.size(), -1);
   int index = 0;
+  const int part_dim = mesh.surface ? mesh.dim : mesh.dim - 1;
   for (const PhysicalGroup& g : mesh.groups) {
-    if (g.dim != mesh.dim - 1 && g.dim != 0) continue;
+    if (g.dim != part_dim && g.dim != 0) continue;
     std::string chart;
     for (const VertexSet& set : mesh.vertex_sets)
       if (set.tag == g.tag) chart = set.chart;
     part_chart.push_back(chart);
-    if (g.dim == mesh.dim - 1) {
+    if (mesh.surface && g.dim == mesh.dim) {
+      for (PetscInt c = 0; c < mesh.num_cells(); ++c)
+        if (mesh.cell_tags[c] == g.tag && part[c] < 0) part[c] = index;
+    } else if (g.dim == mesh.dim - 1) {
       const TaggedEntities& f = topology.facets;
       for (PetscInt k = 0; k < f.size(); ++k) {
         if (f.tags[k] != g.tag) continue;
@@ -72,20 +76,37 @@ Chart chart_from_json(const nlohmann::json& j) {
   return c;
 }
 
+// A surface mesh's own cells, its facets: quadrilaterals in cyclic order (tensor order 0 1 3 2).
+void add_cells_as_facets(const InputMesh& mesh, const std::vector<int>& part, BoundarySurface& s) {
+  for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
+    const PetscInt* v = mesh.cell_vertices.data() + mesh.cell_offsets[c];
+    if (mesh.cell_types[c] == CellType::Triangle)
+      s.facet_vertices.insert(s.facet_vertices.end(), {v[0], v[1], v[2]});
+    else
+      s.facet_vertices.insert(s.facet_vertices.end(), {v[0], v[1], v[3], v[2]});
+    s.facet_offsets.push_back(static_cast<PetscInt>(s.facet_vertices.size()));
+    s.facet_part.push_back(part[c]);
+  }
+}
+
 }  // namespace
 
 BoundarySurface boundary_surface(const InputMesh& mesh, const FacetTable& table,
                                  const InputTopology& topology) {
   BoundarySurface s;
-  s.dim = mesh.dim;
+  s.dim = mesh.coord_dim();
   s.charts = mesh.charts;
   const std::vector<int> part = facet_parts(mesh, table, topology, s.part_chart);
   for (PetscInt v = 0; v < mesh.num_vertices(); ++v)
     if (topology.on_boundary[v]) {
       s.input_vertex.push_back(v);
-      s.coords.insert(s.coords.end(), mesh.coords.begin() + v * mesh.dim,
-                      mesh.coords.begin() + (v + 1) * mesh.dim);
+      s.coords.insert(s.coords.end(), mesh.coords.begin() + v * s.dim,
+                      mesh.coords.begin() + (v + 1) * s.dim);
     }
+  if (mesh.surface) {  // every vertex, in input order: boundary vertex v is input vertex v
+    add_cells_as_facets(mesh, part, s);
+    return s;
+  }
   for (PetscInt f = 0; f < table.size(); ++f) {
     if (!table.on_boundary(f)) continue;
     PetscInt v[4];

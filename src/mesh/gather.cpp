@@ -34,7 +34,7 @@ Packet pack(const PlexMesh& mesh, const MeshFields& fields) {
   const auto& m = MeshAccess::impl(mesh);
   const MeshView& view = mesh.view();
   Packet out;
-  std::size_t num_ints = 2 + view.num_vertices, num_reals = view.num_vertices * m.dim;
+  std::size_t num_ints = 2 + view.num_vertices, num_reals = view.num_vertices * view.dim;
   for (const CellBlock& block : view.blocks) num_ints += 2 * block.size() + block.vertices.size();
   for (const Field& f : fields.vertex) num_reals += f.values.size();
   for (const Field& f : fields.cell) num_reals += f.values.size();
@@ -44,8 +44,8 @@ Packet pack(const PlexMesh& mesh, const MeshFields& fields) {
   for (PetscInt v = 0; v < view.num_vertices; ++v) {
     if (!view.owned[v]) continue;
     out.ints.push_back(m.view->input_vertex[v]);
-    out.reals.insert(out.reals.end(), view.coords.begin() + v * m.dim,
-                     view.coords.begin() + (v + 1) * m.dim);
+    out.reals.insert(out.reals.end(), view.coords.begin() + v * view.dim,
+                     view.coords.begin() + (v + 1) * view.dim);
     for (const Field& f : fields.vertex)
       out.reals.insert(out.reals.end(), f.values.begin() + v * f.components,
                        f.values.begin() + (v + 1) * f.components);
@@ -149,6 +149,7 @@ GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
   for (const Field& f : fields.vertex) out.fields.vertex.push_back({f.name, {}, f.components});
   out.fields.facet_groups = fields.facet_groups;
   out.mesh.dim = m.dim;
+  out.mesh.surface = m.surface;
   out.mesh.groups = m.groups;
   out.has_cell_groups =
       std::any_of(m.groups.begin(), m.groups.end(), [&](const auto& g) { return g.dim == m.dim; });
@@ -157,7 +158,7 @@ GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
   if (mpi_rank(mesh.comm()) != 0) return out;
 
   const PetscInt nc = m.global_num_cells, nv = m.global_num_vertices;
-  out.mesh.coords.resize(nv * m.dim);
+  out.mesh.coords.resize(nv * m.coord_dim());
   for (auto& f : out.fields.vertex) f.values.resize(nv * f.components);
   for (auto& f : out.fields.cell) f.values.resize(nc * f.components);
   std::vector<std::size_t> cell_at(nc);  // where each cell's type and vertices are in `ints`
@@ -170,7 +171,7 @@ GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
   for (int rank = 0; rank < mpi_size(mesh.comm()); ++rank) {
     for (PetscInt k = 0, n = ints[i++]; k < n; ++k) {
       const PetscInt v = ints[i++];
-      take(out.mesh.coords, v, m.dim);
+      take(out.mesh.coords, v, m.coord_dim());
       for (auto& f : out.fields.vertex) take(f.values, v, f.components);
     }
     for (PetscInt k = 0, n = ints[i++]; k < n; ++k) {

@@ -62,14 +62,17 @@ void number_used_vertices(std::vector<PetscInt>& vertex, std::span<const double>
   }
   if (mesh.dim == 3) {
     mesh.coords = std::move(used);
+  } else if (auto plane = PlaneEmbedding::fit_if_planar(used, mesh.coords, file)) {
+    if (!plane->is_xy()) mesh.plane = std::make_shared<const PlaneEmbedding>(std::move(*plane));
   } else {
-    auto plane = std::make_shared<PlaneEmbedding>(PlaneEmbedding::fit(used, mesh.coords, file));
-    if (!plane->is_xy()) mesh.plane = std::move(plane);
+    mesh.surface = true;
+    mesh.coords = std::move(used);
   }
 }
 
 std::vector<double> coordinates_in_space(const InputMesh& mesh) {
   if (mesh.dim == 2 && mesh.plane) return mesh.plane->to_space(mesh.coords);
+  if (mesh.surface) return mesh.coords;
   std::vector<double> xyz(3 * static_cast<std::size_t>(mesh.num_vertices()), 0.0);
   for (PetscInt v = 0; v < mesh.num_vertices(); ++v)
     std::copy_n(mesh.coords.begin() + v * mesh.dim, mesh.dim, xyz.begin() + 3 * v);

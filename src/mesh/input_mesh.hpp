@@ -83,8 +83,11 @@ struct TimeSteps {
 };
 
 struct InputMesh {
-  int dim = 2;
-  std::vector<double> coords;  // `dim` values per vertex (2D: in the mesh's plane)
+  int dim = 2;  // of the cells
+  // 2D cells whose vertices do not lie in one plane: a surface mesh, with 3 coordinates per
+  // vertex as the file gives them (docs/method.md, "Surface cells").
+  bool surface = false;
+  std::vector<double> coords;  // coord_dim() values per vertex (2D: in the mesh's plane)
   // 2D: the plane the mesh lies in, when the file gave 3D coordinates off z = 0; null for z = 0.
   std::shared_ptr<const PlaneEmbedding> plane;
   std::vector<CellType> cell_types;  // per cell
@@ -104,7 +107,8 @@ struct InputMesh {
   std::vector<DataArray> cell_data;
   TimeSteps steps;
 
-  PetscInt num_vertices() const { return static_cast<PetscInt>(coords.size()) / dim; }
+  int coord_dim() const { return surface ? 3 : dim; }
+  PetscInt num_vertices() const { return static_cast<PetscInt>(coords.size()) / coord_dim(); }
   PetscInt num_cells() const { return static_cast<PetscInt>(cell_types.size()); }
   void add_cell(CellType t, const PetscInt* v, int tag) {
     cell_types.push_back(t);
@@ -122,7 +126,8 @@ InputMesh input_from_data(const MeshData& data);
 // For the readers: numbers the file's nodes marked used (`vertex[n] >= 0`) in file order, into
 // `vertex`, and sets mesh.coords from their 3D coordinates `xyz` (3 per node). A 2D mesh
 // (mesh.dim) gets coordinates in its plane, and mesh.plane unless that is z = 0
-// (plane_embedding.hpp); throws Error naming `file` if it is not planar.
+// (plane_embedding.hpp); one whose vertices do not lie in one plane is a surface mesh
+// (mesh.surface) and keeps the 3D coordinates.
 void number_used_vertices(std::vector<PetscInt>& vertex, std::span<const double> xyz,
                           const std::string& file, InputMesh& mesh);
 

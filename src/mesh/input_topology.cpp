@@ -80,24 +80,35 @@ void add_vertex_sets(InputMesh& mesh, const FacetTable& table,
   });
 }
 
-// Boundary parts are the facet and point groups, in the order of mesh.groups (MeshView::parts).
+// Boundary parts are the facet and point groups, in the order of mesh.groups (MeshView::parts);
+// a surface's are its cell groups and point groups (its cells are its boundary facets).
 void mark_parts(const InputMesh& mesh, InputTopology& t) {
   const PetscInt nv = mesh.num_vertices();
   t.boundary_part.assign(nv, -1);
   t.part_count.assign(nv, 0);
   std::vector<int> seen(nv, -1);  // the last part that counted the vertex
   int part = 0;
+  const auto count = [&](std::span<const PetscInt> vertices) {
+    for (PetscInt v : vertices) {
+      if (seen[v] == part) continue;
+      seen[v] = part;
+      if (t.boundary_part[v] < 0) t.boundary_part[v] = part;
+      ++t.part_count[v];
+    }
+  };
+  const int part_dim = mesh.surface ? mesh.dim : mesh.dim - 1;
   for (const PhysicalGroup& g : mesh.groups) {
-    if (g.dim != mesh.dim - 1 && g.dim != 0) continue;
-    const TaggedEntities& e = g.dim == 0 ? t.points : t.facets;
-    const auto [first, last] = std::equal_range(e.tags.begin(), e.tags.end(), g.tag);
-    for (PetscInt k = first - e.tags.begin(); k < last - e.tags.begin(); ++k)
-      for (PetscInt v : entity(e, k)) {
-        if (seen[v] == part) continue;
-        seen[v] = part;
-        if (t.boundary_part[v] < 0) t.boundary_part[v] = part;
-        ++t.part_count[v];
-      }
+    if (g.dim != part_dim && g.dim != 0) continue;
+    if (g.dim == mesh.dim) {
+      for (PetscInt c = 0; c < mesh.num_cells(); ++c)
+        if (mesh.cell_tags[c] == g.tag)
+          count({mesh.cell_vertices.data() + mesh.cell_offsets[c],
+                 static_cast<std::size_t>(mesh.cell_offsets[c + 1] - mesh.cell_offsets[c])});
+    } else {
+      const TaggedEntities& e = g.dim == 0 ? t.points : t.facets;
+      const auto [first, last] = std::equal_range(e.tags.begin(), e.tags.end(), g.tag);
+      for (PetscInt k = first - e.tags.begin(); k < last - e.tags.begin(); ++k) count(entity(e, k));
+    }
     ++part;
   }
 }
@@ -115,6 +126,8 @@ InputTopology input_topology(InputMesh& mesh, const FacetTable& table, const std
     PetscInt v[4];
     for (int i = 0, n = table.vertices(f, v); i < n; ++i) t.on_boundary[v[i]] = 1;
   }
+  // Every vertex of a surface slides on it (its cells are the facets it slides on).
+  if (mesh.surface) std::fill(t.on_boundary.begin(), t.on_boundary.end(), 1);
   add_vertex_sets(mesh, table, boundary, t);
   sort_entities(t.facets);
   sort_entities(t.points);

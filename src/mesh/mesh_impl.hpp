@@ -14,8 +14,10 @@ namespace neomesh {
 
 struct PlexMesh::Impl {
   MPI_Comm comm = MPI_COMM_NULL;
-  OwnedDM dm;  // distributed cells and vertices (plex_builder.hpp)
-  int dim = 2;
+  OwnedDM dm;            // distributed cells and vertices (plex_builder.hpp)
+  int dim = 2;           // of the cells
+  bool surface = false;  // 2D cells in space (InputMesh::surface): 3 coordinates per vertex
+  int coord_dim() const { return surface ? 3 : dim; }
   std::string source;
   PetscInt global_num_cells = 0;
   PetscInt global_num_vertices = 0;

@@ -37,7 +37,11 @@ struct BoundaryPartInfo {
 };
 
 struct MeshView {
-  int dim = 2;
+  int dim = 2;  // coordinates per vertex
+  // A surface mesh (docs/method.md, "Surface cells"): triangles and quadrilaterals in space,
+  // dim = 3. Its boundary (`boundary`, `on_boundary`) is the surface itself: every vertex slides
+  // on the input's cells, which play the part the boundary facets play in a volume mesh.
+  bool surface = false;
   PetscInt num_vertices = 0;   // local: owned + ghost
   PetscInt num_cells = 0;      // cells of this rank (sum over blocks)
   std::vector<double> coords;  // num_vertices × dim, coordinates when the view was made
@@ -53,6 +57,9 @@ struct MeshView {
   std::vector<PetscInt> input_vertex;  // per local vertex: its number in the input (0-based)
   // The whole input boundary, the same on every rank (what sliding vertices slide on).
   std::shared_ptr<const BoundarySurface> boundary;
+
+  // The dimension of the cells: dim, or 2 on a surface.
+  int cell_dim() const { return surface ? 2 : dim; }
 };
 
 }  // namespace neomesh

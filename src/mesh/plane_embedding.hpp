@@ -3,8 +3,8 @@
 // Gmsh (and VTK) files give every node three coordinates, and a 2D mesh need not lie in z = 0:
 // a face of a 3D part, a plane at z = 5, a plane tilted out of xy. neomesh optimizes a 2D mesh in
 // coordinates (u, v) of its own plane, x = origin + u a + v b with a, b orthonormal, and writes
-// it back in 3D. A mesh of 2D cells that is not planar is a surface mesh, which neomesh does not
-// optimize (yet): reading one is an error.
+// it back in 3D. A mesh of 2D cells that is not planar is a surface mesh, which keeps its 3D
+// coordinates (input_mesh.hpp).
 //
 // Nothing the user did not ask to change changes: a vertex whose (u, v) are those it was read
 // with is written back with the file's coordinates, bit for bit; the others lie on the plane.
@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -32,6 +33,11 @@ class PlaneEmbedding {
   // point, into `uv`). Throws Error naming `file` if they do not lie in one plane.
   static PlaneEmbedding fit(std::span<const double> xyz, std::vector<double>& uv,
                             const std::string& file);
+  // The same, but none (and `uv` unspecified) for points that do not lie in one plane: a
+  // surface mesh. Throws Error naming `file` for a non-finite coordinate.
+  static std::optional<PlaneEmbedding> fit_if_planar(std::span<const double> xyz,
+                                                     std::vector<double>& uv,
+                                                     const std::string& file);
 
   // True for the plane z = 0 with u = x, v = y: 2D coordinates are 3D ones with z = 0.
   bool is_xy() const { return xy_; }
@@ -49,6 +55,11 @@ class PlaneEmbedding {
   // For a tilted plane: the file's coordinates and their (u, v) as first computed, so that a
   // vertex that has not moved is written back exactly as it was read.
   std::vector<double> input_xyz_, input_uv_;
+
+  // fit and fit_if_planar: the plane, or none if the points are `off` its best fit by more than
+  // the tolerance of the mesh's `size`.
+  static std::optional<PlaneEmbedding> fit(std::span<const double> xyz, std::vector<double>& uv,
+                                           const std::string& file, double& off, double& size);
 };
 
 }  // namespace neomesh

@@ -41,8 +41,9 @@ void set_cell_types(DM dm, const InputMesh& mesh) {
 }  // namespace
 
 OwnedDM build_plex(MPI_Comm comm, const InputMesh& mesh) {
-  int dim = mesh.dim;
-  MPI_Bcast(&dim, 1, MPI_INT, 0, comm);
+  int dims[2] = {mesh.dim, mesh.coord_dim()};
+  MPI_Bcast(dims, 2, MPI_INT, 0, comm);
+  const int dim = dims[0], coord_dim = dims[1];
   const PetscInt nc = mesh.num_cells(), nv = mesh.num_vertices();
   OwnedDM dm;
   NM_PETSC(DMCreate(comm, dm.out()));
@@ -63,7 +64,7 @@ OwnedDM build_plex(MPI_Comm comm, const InputMesh& mesh) {
   }
   NM_PETSC(DMPlexSymmetrize(dm));
   NM_PETSC(DMPlexStratify(dm));
-  NM_PETSC(DMPlexBuildCoordinatesFromCellList(dm, dim, mesh.coords.data()));
+  NM_PETSC(DMPlexBuildCoordinatesFromCellList(dm, coord_dim, mesh.coords.data()));
   return dm;
 }
 

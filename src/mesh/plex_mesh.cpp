@@ -110,8 +110,10 @@ std::vector<std::uint8_t> ghost_points(DM dm) {
 // Rank 0 knows the boundary by input vertex; each rank fetches its local vertices' share.
 void build_boundary(const Impl& m, const InputTopology& root, MeshView& view) {
   const PetscInt nv = view.num_vertices;
+  // A surface's parts are its cell groups, as its cells are its boundary facets.
+  const int part_dim = m.surface ? m.dim : m.dim - 1;
   for (const PhysicalGroup& g : m.groups)
-    if (g.dim == m.dim - 1 || g.dim == 0) view.parts.push_back({g.name, g.tag});
+    if (g.dim == part_dim || g.dim == 0) view.parts.push_back({g.name, g.tag});
   if (mpi_size(m.comm) == 1) {  // all on this rank: a star forest of every vertex costs more
     auto take = [&](const auto& from, auto& to) {
       to.resize(nv);
@@ -141,7 +143,8 @@ void build_boundary(const Impl& m, const InputTopology& root, MeshView& view) {
 void build_view(Impl& m, const std::vector<PetscInt>& original, PetscInt root_vStart,
                 const InputTopology& root, BoundarySurface surface) {
   auto view = std::make_unique<MeshView>();
-  view->dim = m.dim;
+  view->dim = m.coord_dim();
+  view->surface = m.surface;
   PetscInt pStart, pEnd, vStart, vEnd;
   NM_PETSC(DMPlexGetChart(m.dm, &pStart, &pEnd));
   NM_PETSC(DMPlexGetDepthStratum(m.dm, 0, &vStart, &vEnd));
@@ -151,7 +154,8 @@ void build_view(Impl& m, const std::vector<PetscInt>& original, PetscInt root_vS
   NM_PETSC(DMGetCoordinatesLocal(m.dm, &local));
   VecReadView x(local);
   // Built from a cell list, the coordinate section is dim values per vertex, in vertex order.
-  if (x.size() != view->num_vertices * m.dim) fail("{}: unexpected coordinate layout", m.source);
+  if (x.size() != view->num_vertices * view->dim)
+    fail("{}: unexpected coordinate layout", m.source);
   view->coords.assign(x.data(), x.data() + x.size());
 
   const auto ghost = ghost_points(m.dm);
@@ -176,7 +180,8 @@ void build_dofs(Impl& m) {
   OwnedSection local, global;
   NM_PETSC(PetscSectionCreate(m.comm, local.out()));
   NM_PETSC(PetscSectionSetChart(local, pStart, pEnd));
-  for (PetscInt v = vStart; v < vEnd; ++v) NM_PETSC(PetscSectionSetDof(local, v, m.dim));
+  const int d = m.coord_dim();
+  for (PetscInt v = vStart; v < vEnd; ++v) NM_PETSC(PetscSectionSetDof(local, v, d));
   NM_PETSC(PetscSectionSetUp(local));
   PetscSF point_sf;
   NM_PETSC(DMGetPointSF(m.dm, &point_sf));
@@ -185,12 +190,12 @@ void build_dofs(Impl& m) {
   PetscInt owned_dofs;
   NM_PETSC(PetscSectionGetConstrainedStorageSize(global, &owned_dofs));
 
-  std::vector<PetscInt> global_dof((vEnd - vStart) * m.dim);
+  std::vector<PetscInt> global_dof((vEnd - vStart) * d);
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt offset;
     NM_PETSC(PetscSectionGetOffset(global, v, &offset));
     if (offset < 0) offset = -(offset + 1);
-    for (int d = 0; d < m.dim; ++d) global_dof[(v - vStart) * m.dim + d] = offset + d;
+    for (int k = 0; k < d; ++k) global_dof[(v - vStart) * d + k] = offset + k;
   }
   // On one process local dof i is global dof i (the section numbers the vertices in order):
   // the DofMap copies values without an SF.
@@ -205,7 +210,7 @@ void build_dofs(Impl& m) {
     NM_PETSC(PetscSFSetUp(sf));
   }
   m.dofs =
-      std::make_unique<DofMap>(m.comm, m.dim, vEnd - vStart, owned_dofs, sf, std::move(global_dof));
+      std::make_unique<DofMap>(m.comm, d, vEnd - vStart, owned_dofs, sf, std::move(global_dof));
 }
 
 // The common end of from_data and from_input (and so of load_mesh()): validate on rank 0, build,
@@ -230,6 +235,9 @@ PlexMesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
   PetscInt dim, vStart, vEnd, cStart, cEnd;
   NM_PETSC(DMGetDimension(m->dm, &dim));
   m->dim = static_cast<int>(dim);
+  int is_surface = input.surface;
+  MPI_Bcast(&is_surface, 1, MPI_INT, 0, comm);
+  m->surface = is_surface != 0;
   NM_PETSC(DMPlexGetDepthStratum(m->dm, 0, &vStart, &vEnd));
   NM_PETSC(DMPlexGetHeightStratum(m->dm, 0, &cStart, &cEnd));
   PetscInt counts[3] = {cEnd - cStart, vEnd - vStart, vStart};

@@ -65,12 +65,49 @@ std::pair<double, double> scaled_corner_jacobians(CellType type, const double* x
 bool cell_coordinates(const InputMesh& mesh, PetscInt c, double* x) {
   const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
   const int n = num_vertices(mesh.cell_types[c]);
+  const int d = mesh.coord_dim();
   if (dimension(mesh.cell_types[c]) != mesh.dim) return false;
   for (int i = 0; i < n; ++i) {
     if (cell[i] < 0 || cell[i] >= mesh.num_vertices()) return false;
-    std::copy_n(mesh.coords.data() + cell[i] * mesh.dim, mesh.dim, x + i * mesh.dim);
+    std::copy_n(mesh.coords.data() + cell[i] * d, d, x + i * d);
   }
   return true;
+}
+
+// A surface cell's smallest scaled corner Jacobian seen along its own reference normal (a
+// triangle's edge cross product, a quadrilateral's Newell normal, the cross product of its
+// diagonals): ≤ 0 for a quadrilateral with a reflex or flat corner and for a cell without area.
+// x: 3 coordinates per vertex, canonical order.
+double min_scaled_surface_corner_jacobian(CellType type, const double* x) {
+  const auto minus = [](const double* a, const double* b) {
+    return std::array<double, 3>{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+  };
+  const auto cross = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                                 a[0] * b[1] - a[1] * b[0]};
+  };
+  const auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  };
+  const CellFacts& cell = facts(type);
+  const std::array<double, 3> n = type == CellType::Triangle
+                                      ? cross(minus(x + 3, x), minus(x + 6, x))
+                                      : cross(minus(x + 9, x), minus(x + 6, x + 3));
+  const double length = std::sqrt(dot(n, n));
+  if (!(length > 0)) return 0.0;
+  double worst = INFINITY;
+  for (int k = 0; k < cell.num_corners; ++k) {
+    const CornerFrame& frame = cell.corners[k];
+    std::array<double, 3> e[2];
+    for (int j = 0; j < 2; ++j) {
+      e[j] = minus(x + 3 * frame.ends[j], x + 3 * frame.vertex);
+      if ((frame.flip >> j) & 1)
+        for (double& v : e[j]) v = -v;
+    }
+    const double scale = std::sqrt(dot(e[0], e[0]) * dot(e[1], e[1])) * length;
+    worst = std::min(worst, scale > 0 ? dot(cross(e[0], e[1]), n) / scale : 0.0);
+  }
+  return worst;
 }
 
 // Mirrors a cell's local order by the table's renumbering (for simplices two vertices
@@ -111,6 +148,9 @@ double min_scaled_corner_jacobian(CellType type, const double* x) {
 }
 
 std::vector<PetscInt> orient_mirrored_cells(InputMesh& mesh) {
+  // A surface cell faces the side it is listed towards: no orientation is wrong by itself
+  // (find_fold finds neighbours that disagree).
+  if (mesh.surface) return {};
   // Cell by cell on every thread (a mirror changes only its own cell); then the list in order.
   std::vector<std::uint8_t> flipped(mesh.num_cells(), 0);
 #pragma omp parallel for schedule(static)
@@ -162,11 +202,12 @@ std::string find_fold(const InputMesh& mesh, const std::vector<PetscInt>& mirror
 
 std::string find_defect(const InputMesh& mesh, bool keep_inverted) {
   const PetscInt nv = mesh.num_vertices();
+  const int dim = mesh.coord_dim();
   for (PetscInt v = 0; v < nv; ++v)
-    for (int d = 0; d < mesh.dim; ++d)
-      if (!std::isfinite(mesh.coords[v * mesh.dim + d]))
+    for (int d = 0; d < dim; ++d)
+      if (!std::isfinite(mesh.coords[v * dim + d]))
         return fmt::format("vertex {} (0-based) has a non-finite coordinate ({})", v,
-                           mesh.coords[v * mesh.dim + d]);
+                           mesh.coords[v * dim + d]);
   for (const VertexSet& set : mesh.vertex_sets)
     for (auto v : set.vertices)
       if (v < 0 || v >= nv)
@@ -179,7 +220,8 @@ std::string find_defect(const InputMesh& mesh, bool keep_inverted) {
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
     double x[8 * 3];
     if (cell_coordinates(mesh, c, x))
-      quality[c] = min_scaled_corner_jacobian(mesh.cell_types[c], x);
+      quality[c] = mesh.surface ? min_scaled_surface_corner_jacobian(mesh.cell_types[c], x)
+                                : min_scaled_corner_jacobian(mesh.cell_types[c], x);
   }
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
     const CellType type = mesh.cell_types[c];
@@ -212,6 +254,11 @@ void validate(InputMesh& mesh, const std::string& source, MPI_Comm comm, bool ke
         keep_inverted ? mesh.cell_vertices : std::vector<PetscInt>{};
     const std::vector<PetscInt> mirrored = orient_mirrored_cells(mesh);
     defect = find_defect(mesh, keep_inverted);
+    // Two surface cells that run the same way around their common edge face opposite sides.
+    if (defect.empty() && mesh.surface) {
+      defect = find_fold(mesh, mirrored);
+      if (!defect.empty()) defect = "its cells are not oriented alike: " + defect;
+    }
     // A mirrored cell among cells of the other orientation may be a fold rather than a mirror.
     if (defect.empty() && !mirrored.empty()) {
       const std::string fold = find_fold(mesh, mirrored);

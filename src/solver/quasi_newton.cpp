@@ -400,6 +400,12 @@ struct QuasiNewton::Impl {
     rec.k = ++k;
     rec.defect = defect;
     rec.alpha = alpha;
+    // A surface's cells are seen in their frames where the step starts (docs/method.md, "Surface
+    // cells"): F and its gradient here are those of the frames the step keeps.
+    if (functional->refresh_frames(x)) {
+      evaluate_gradient(x);
+      rec.defect = defect;
+    }
 
     if (options.advanced.riesz == RieszLaplacian::CurrentMesh || laplacian_pending)
       assemble_laplacian(x);
@@ -517,9 +523,10 @@ SolverRun minimize(const Functional& functional, Vec x, const QuasiNewtonOptions
 OwnedVec local_cell_size(const MeshView& view, const DofMap& dofs,
                          std::span<const double> desired_volumes) {
   const int d = view.dim;
+  const double power = 1.0 / view.cell_dim();        // a surface cell's size from its area
   std::vector<double> size(desired_volumes.size());  // on every thread; the sums below in order
 #pragma omp parallel for schedule(static)
-  for (std::size_t c = 0; c < size.size(); ++c) size[c] = std::pow(desired_volumes[c], 1.0 / d);
+  for (std::size_t c = 0; c < size.size(); ++c) size[c] = std::pow(desired_volumes[c], power);
   std::vector<double> size_sum(view.coords.size(), 0.0), count(view.coords.size(), 0.0);
   for (const CellBlock& block : view.blocks) {
     const int nv = num_vertices(block.type);

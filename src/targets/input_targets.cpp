@@ -205,11 +205,12 @@ CellTargets input_targets(TargetMode mode, const MeshView& view, const DofMap& d
                           std::span<const double> cell_volumes, std::span<const double> jacobians,
                           std::span<const double> edge_ratios, std::vector<double> ideal_volumes) {
   const std::size_t cells = cell_volumes.size();
-  const std::size_t entries = static_cast<std::size_t>(view.dim * view.dim) * cells;
+  const int d = view.cell_dim();  // a surface cell's Jacobian is that of its image in its frame
+  const std::size_t entries = static_cast<std::size_t>(d * d) * cells;
   if (jacobians.size() != entries || ideal_volumes.size() != cells || edge_ratios.size() != cells)
     fail("internal error: {} Jacobian entries, {} edge ratios and {} volumes for {} cells",
          jacobians.size(), edge_ratios.size(), ideal_volumes.size(), cells);
-  if (view.dim == 2)
+  if (d == 2)
     return input_targets<2>(mode, view, dofs, cell_volumes, jacobians, edge_ratios,
                             std::move(ideal_volumes));
   return input_targets<3>(mode, view, dofs, cell_volumes, jacobians, edge_ratios,

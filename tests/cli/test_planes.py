@@ -1,6 +1,6 @@
 """A 2D mesh is optimized in the plane it lies in and written back there: a plane at z = 5, a
-plane tilted out of xy, Mesquite's planes off z = 0; a mesh of 2D cells that is not planar (a
-surface mesh) is refused in one line. Every output is checked for what must not change
+plane tilted out of xy, Mesquite's planes off z = 0; a mesh of 2D cells that is not planar is a
+surface mesh, smoothed on its own cells (test_surfaces.py). Every output is checked for what must not change
 (conftest.expect_nothing_else_changed). Run with NEOMESH=path/to/neomesh."""
 import json
 import os
@@ -8,7 +8,7 @@ import os
 import numpy as np
 import pytest
 
-from conftest import (CORPUS, expect_nothing_else_changed, expect_one_error_line, needs_corpus,
+from conftest import (CORPUS, expect_nothing_else_changed, needs_corpus,
                       needs_mpi, neomesh, read_mesh, vtk_to_msh)
 
 
@@ -68,14 +68,16 @@ def test_the_same_mesh_in_xy_and_in_a_tilted_plane_smooths_alike(tmp):
     assert a[1:] == pytest.approx(b[1:], rel=1e-6)
 
 
-def test_a_surface_mesh_is_refused_in_one_line(tmp):
+def test_a_surface_mesh_is_smoothed_on_its_own_cells(tmp):
+    # 2D cells off one plane are a surface mesh (test_surfaces.py): smoothed, not refused.
     bowl = placed(tmp, "bowl", lambda p: np.column_stack([p[:, 0], p[:, 1], p[:, 0] ** 2 + p[:, 1] ** 2]))
-    out = os.path.join(tmp, "out.msh")
-    proc = neomesh("smooth", bowl, "-o", out, expect=1)
-    expect_one_error_line(proc, ["a surface mesh", "not lie in one plane"], unwritten=[out])
-    # Until surfaces are supported, so does every command that reads it.
-    proc = neomesh("quality", bowl, expect=1)
-    expect_one_error_line(proc, ["a surface mesh"])
+    out, report = os.path.join(tmp, "out.msh"), os.path.join(tmp, "out.json")
+    neomesh("smooth", bowl, "-o", out, "--quiet", "--report", report)
+    with open(report) as f:
+        r = json.load(f)
+    assert r["boundary_change"]["max_distance_from_input_boundary"] < 1e-12
+    assert len(read_mesh(out).points) == len(read_mesh(bowl).points)
+    neomesh("quality", bowl)
 
 
 MESQUITE_PLANES = ["tris/untangled/tri_5_not_xy", "tris/untangled/tri_5_xz",
