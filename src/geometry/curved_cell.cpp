@@ -184,7 +184,9 @@ struct Bezier {
   static constexpr int degree = CurvedTraits<Type>::det_degree;
   std::vector<Eigen::Array<int, dim, 1>> indices;  // multi-index a of B_a
   std::vector<Vector<dim>> points;                 // the Lagrange points a/n
-  Eigen::MatrixXd to_bezier;                       // T⁻¹: values at the points → coefficients
+  // T⁻¹: simplices the whole matrix; tensor cells that of one direction, since T is the
+  // Kronecker product of d copies of it (points and basis both first index fastest).
+  Eigen::MatrixXd to_bezier;
 
   // Tensor: Π_j C(n, a_j) t_j^a_j (1 − t_j)^(n − a_j); simplex, with λ = (1 − Σ t, t) and
   // α = (n − Σ a, a): n!/Π α_k! Π λ_k^α_k.
@@ -219,11 +221,41 @@ struct Bezier {
       if (j == dim) break;
       ++a[j];
     }
-    const int n = static_cast<int>(points.size());
-    Eigen::MatrixXd t(n, n);
-    for (int p = 0; p < n; ++p)
-      for (int k = 0; k < n; ++k) t(p, k) = basis(indices[k], points[p]);
-    to_bezier = t.fullPivLu().inverse();
+    if constexpr (CurvedTraits<Type>::simplex) {
+      const int n = static_cast<int>(points.size());
+      Eigen::MatrixXd t(n, n);
+      for (int p = 0; p < n; ++p)
+        for (int k = 0; k < n; ++k) t(p, k) = basis(indices[k], points[p]);
+      to_bezier = t.fullPivLu().inverse();
+    } else {
+      Eigen::MatrixXd t(degree + 1, degree + 1);
+      for (int p = 0; p <= degree; ++p)
+        for (int k = 0; k <= degree; ++k)
+          t(p, k) = binomial(degree, k) * std::pow(double(p) / degree, k) *
+                    std::pow(1.0 - double(p) / degree, degree - k);
+      to_bezier = t.fullPivLu().inverse();
+    }
+  }
+
+  // The Bézier coefficients of the polynomial with `values` at the points.
+  Eigen::VectorXd coefficients(const Eigen::VectorXd& values) const {
+    if constexpr (CurvedTraits<Type>::simplex) {
+      return to_bezier * values;
+    } else {
+      // T⁻¹ applied along each direction in turn: (n + 1) d multiplications per value instead of
+      // (n + 1)^d (hexahedron: 18 instead of 216).
+      constexpr int m = degree + 1;
+      Eigen::VectorXd c = values;
+      Eigen::Matrix<double, m, 1> line;
+      for (int j = 0, stride = 1; j < dim; ++j, stride *= m)
+        for (int first = 0; first < c.size(); ++first) {
+          if ((first / stride) % m != 0) continue;  // not the start of a line along j
+          for (int i = 0; i < m; ++i) line[i] = c[first + i * stride];
+          line = to_bezier * line;
+          for (int i = 0; i < m; ++i) c[first + i * stride] = line[i];
+        }
+      return c;
+    }
   }
 };
 
@@ -332,12 +364,6 @@ double pointwise_sine(const Matrix<CurvedTraits<Type>::dim>& j) {
   return q;
 }
 
-// What the subdivision found.
-struct Examination {
-  JacobianCertificate certificate{Validity::Valid, kInfinity, kInfinity, 0, 0};
-  double sine_lower = kInfinity, sine_upper = kInfinity;  // of min q (only if asked)
-};
-
 // The least q can be: −1 before the division by the optimal cell's value (Hadamard's
 // inequality, |det(J A_k)| ≤ Π_j |J A_k e_j|, and |det A_k| = 1).
 template <CurvedType Type>
@@ -351,14 +377,13 @@ template <CurvedType Type>
 double sine_lower_bound(const std::vector<Matrix<CurvedTraits<Type>::dim>>& jacobians,
                         double lower) {
   constexpr int dim = CurvedTraits<Type>::dim;
-  const Eigen::MatrixXd& to_bezier = bezier<Type>().to_bezier;
   const int n = static_cast<int>(jacobians.size());
   // Control points of J: entry (r, c) of control point m is control[r + dim * c](m).
   std::array<Eigen::VectorXd, dim * dim> control;
   for (int e = 0; e < dim * dim; ++e) {
     Eigen::VectorXd values(n);
     for (int p = 0; p < n; ++p) values[p] = jacobians[p](e % dim, e / dim);
-    control[e] = to_bezier * values;
+    control[e] = bezier<Type>().coefficients(values);
   }
   double bound = kInfinity;
   for (int k = 0; k < static_cast<int>(corner_frames<Type>().size()); ++k) {
@@ -378,54 +403,96 @@ double sine_lower_bound(const std::vector<Matrix<CurvedTraits<Type>::dim>>& jaco
   return bound;
 }
 
+// What a visitor of subdivide() does with the sub-cell it was shown.
+enum class Step { Done, Split, Stop };
+
+// Sub-cells as subdivide() shows them: J and det J at the Lagrange points, and the least Bézier
+// coefficient of det J.
 template <CurvedType Type>
-Examination examine(const typename CurvedTraits<Type>::Nodes& x, int max_depth, bool with_sine) {
+struct Sample {
+  const SubCell<CurvedTraits<Type>::dim>& cell;
+  const std::vector<Matrix<CurvedTraits<Type>::dim>>& jacobians;
+  const Eigen::VectorXd& values;
+  double lower;
+  const std::vector<SubCell<CurvedTraits<Type>::dim>>& pending;  // not yet shown
+};
+
+// Shows `visit` the whole cell, then, depth first, the children of every sub-cell it splits
+// (Step::Split), until none is left or it says Step::Stop.
+template <CurvedType Type, typename Visit>
+void subdivide(const typename CurvedTraits<Type>::Nodes& x, Visit&& visit) {
   constexpr int dim = CurvedTraits<Type>::dim;
   const Bezier<Type>& b = bezier<Type>();
   static const auto children = unit_children<Type>();
   const int n = static_cast<int>(b.points.size());
-  Examination result;
-  JacobianCertificate& cert = result.certificate;
   std::vector<SubCell<dim>> pending = {whole_cell<Type>()};
   std::vector<Matrix<dim>> jacobians(n);
   Eigen::VectorXd values(n);
   while (!pending.empty()) {
     const SubCell<dim> cell = pending.back();
     pending.pop_back();
-    ++cert.subcells;
-    cert.depth = std::max(cert.depth, cell.depth);
     for (int p = 0; p < n; ++p) {
       jacobians[p] = curved_jacobian<Type>(x, cell.origin + cell.m * b.points[p]);
       values[p] = jacobians[p].determinant();
-      if (with_sine)
-        result.sine_upper = std::min(result.sine_upper, pointwise_sine<Type>(jacobians[p]));
     }
-    const double lowest_value = values.minCoeff();
-    const double lower = (b.to_bezier * values).minCoeff();
-    cert.min_det_upper = std::min(cert.min_det_upper, lowest_value);
-    if (lowest_value <= 0.0) {
-      // Invalid: what is left unexamined is bounded by its parents' coefficients.
-      cert.validity = Validity::Invalid;
-      cert.min_det_lower = std::min(cert.min_det_lower, lower);
-      for (const SubCell<dim>& rest : pending)
-        cert.min_det_lower = std::min(cert.min_det_lower, rest.parent_lower);
-      result.sine_lower = least_sine<Type>();
-      return result;
-    }
-    if (lower > 0.0) {
-      cert.min_det_lower = std::min(cert.min_det_lower, lower);
-      if (with_sine)
-        result.sine_lower = std::min(result.sine_lower, sine_lower_bound<Type>(jacobians, lower));
-    } else if (cell.depth >= max_depth) {
-      cert.validity = Validity::Undecided;
-      cert.min_det_lower = std::min(cert.min_det_lower, lower);
-      result.sine_lower = least_sine<Type>();
-    } else {
+    const double lower = b.coefficients(values).minCoeff();
+    const Step step = visit(Sample<Type>{cell, jacobians, values, lower, pending});
+    if (step == Step::Stop) return;
+    if (step == Step::Split)
       for (const auto& [o, m] : children)
         pending.push_back({cell.origin + cell.m * o, cell.m * m, cell.depth + 1, lower});
-    }
   }
-  return result;
+}
+
+template <CurvedType Type>
+JacobianCertificate certificate(const typename CurvedTraits<Type>::Nodes& x, int max_depth) {
+  JacobianCertificate cert{Validity::Valid, kInfinity, kInfinity, 0, 0};
+  subdivide<Type>(x, [&](const Sample<Type>& s) {
+    ++cert.subcells;
+    cert.depth = std::max(cert.depth, s.cell.depth);
+    const double lowest_value = s.values.minCoeff();
+    cert.min_det_upper = std::min(cert.min_det_upper, lowest_value);
+    if (lowest_value <= 0.0) {
+      // What is left unexamined is bounded by its parents' coefficients.
+      cert.validity = Validity::Invalid;
+      cert.min_det_lower = std::min(cert.min_det_lower, s.lower);
+      for (const auto& rest : s.pending)
+        cert.min_det_lower = std::min(cert.min_det_lower, rest.parent_lower);
+      return Step::Stop;
+    }
+    if (s.lower <= 0.0 && s.cell.depth < max_depth) return Step::Split;
+    cert.min_det_lower = std::min(cert.min_det_lower, s.lower);
+    if (s.lower > 0.0) return Step::Done;
+    cert.validity = Validity::Undecided;
+    return Step::Done;
+  });
+  return cert;
+}
+
+// Bounds of min q over the cell: the least sampled q above; below, on each sub-cell with
+// positive coefficients of det J, sine_lower_bound, split further while that is more than
+// `tolerance` below the least sampled q; least_sine where det J is not shown positive.
+template <CurvedType Type>
+std::pair<double, double> sine_bounds(const typename CurvedTraits<Type>::Nodes& x, int max_depth,
+                                      double tolerance) {
+  double lower = kInfinity, upper = kInfinity;
+  subdivide<Type>(x, [&](const Sample<Type>& s) {
+    for (const auto& j : s.jacobians) upper = std::min(upper, pointwise_sine<Type>(j));
+    const bool deepest = s.cell.depth >= max_depth;
+    if (s.values.minCoeff() <= 0.0) {
+      lower = least_sine<Type>();
+      return Step::Stop;
+    }
+    if (s.lower <= 0.0) {
+      if (deepest) lower = least_sine<Type>();
+      return deepest ? Step::Done : Step::Split;
+    }
+    const double bound = sine_lower_bound<Type>(s.jacobians, s.lower);
+    if (bound < upper - tolerance && !deepest) return Step::Split;
+    lower = std::min(lower, bound);
+    return Step::Done;
+  });
+  return {lower, upper};
 }
 
 }  // namespace
@@ -526,7 +593,7 @@ Eigen::VectorXd jacobian_bezier_coefficients(const typename CurvedTraits<Type>::
   Eigen::VectorXd values(b.points.size());
   for (std::size_t p = 0; p < b.points.size(); ++p)
     values[p] = curved_det<Type>(x, whole.origin + whole.m * b.points[p]);
-  return b.to_bezier * values;
+  return b.coefficients(values);
 }
 
 template <CurvedType Type>
@@ -543,24 +610,25 @@ double bezier_value(const Eigen::VectorXd& coefficients,
 
 template <CurvedType Type>
 JacobianCertificate certify_jacobian(const typename CurvedTraits<Type>::Nodes& x, int max_depth) {
-  return examine<Type>(x, max_depth, false).certificate;
+  return certificate<Type>(x, max_depth);
 }
 
 template <CurvedType Type>
 CurvedScaledJacobian curved_scaled_jacobian(const typename CurvedTraits<Type>::Nodes& x,
-                                            int max_depth) {
-  const Examination e = examine<Type>(x, max_depth, true);
+                                            int max_depth, double tolerance) {
+  const JacobianCertificate cert = certificate<Type>(x, max_depth);
+  const auto [lower, upper] = sine_bounds<Type>(x, max_depth, tolerance);
   // Frame k at corner k (tensor cells: the one frame at every corner).
   double corner = kInfinity;
   const int frames = static_cast<int>(corner_frames<Type>().size());
   for (int k = 0; k < CurvedTraits<Type>::corners; ++k)
     corner = std::min(corner, frame_sine<Type>(curved_jacobian<Type>(x, reference_corner<Type>(k)),
                                                frames == 1 ? 0 : k));
-  const bool valid = e.certificate.validity == Validity::Valid;
-  return {.certificate = e.certificate,
-          .scaled_jacobian = valid ? corner : std::min({corner, e.sine_upper, 0.0}),
-          .lower = e.sine_lower,
-          .upper = e.sine_upper};
+  const bool valid = cert.validity == Validity::Valid;
+  return {.certificate = cert,
+          .scaled_jacobian = valid ? corner : std::min({corner, upper, 0.0}),
+          .lower = valid ? lower : least_sine<Type>(),
+          .upper = upper};
 }
 
 #define NEOMESH_CURVED_INSTANTIATE(T)                                                            \
@@ -581,7 +649,8 @@ CurvedScaledJacobian curved_scaled_jacobian(const typename CurvedTraits<Type>::N
   template Eigen::VectorXd jacobian_bezier_coefficients<T>(const CurvedTraits<T>::Nodes&);       \
   template double bezier_value<T>(const Eigen::VectorXd&, const Vector<CurvedTraits<T>::dim>&);  \
   template JacobianCertificate certify_jacobian<T>(const CurvedTraits<T>::Nodes&, int);          \
-  template CurvedScaledJacobian curved_scaled_jacobian<T>(const CurvedTraits<T>::Nodes&, int);
+  template CurvedScaledJacobian curved_scaled_jacobian<T>(const CurvedTraits<T>::Nodes&, int,    \
+                                                          double);
 
 NEOMESH_CURVED_INSTANTIATE(CurvedType::Triangle6)
 NEOMESH_CURVED_INSTANTIATE(CurvedType::Quadrilateral8)

@@ -337,6 +337,25 @@ TEST(JacobianCertificate, SlightlyPushedIsValidOnlyAfterSubdivision) {
   });
 }
 
+// Asked for a tolerance, the bounds of the minimum of q close in on it (given the depth: q is
+// steep where det J is nearly 0).
+TEST(CurvedScaledJacobian, BoundsCloseToTheTolerance) {
+  for_each_curved_type([]<CurvedType Type>() {
+    constexpr bool plane = CurvedTraits<Type>::dim == 2;
+    constexpr double tolerance = plane ? 0.01 : 0.1;
+    const auto x = slightly_pushed_cell<Type>();
+    const CurvedScaledJacobian loose = curved_scaled_jacobian<Type>(x);
+    const CurvedScaledJacobian s = curved_scaled_jacobian<Type>(x, plane ? 10 : 6, tolerance);
+    EXPECT_LE(s.upper - s.lower, tolerance);
+    EXPECT_GE(s.lower, loose.lower);
+    EXPECT_LE(s.upper, loose.upper);
+    EXPECT_EQ(s.scaled_jacobian, loose.scaled_jacobian);
+    std::mt19937 rng(9);
+    for (int p = 0; p < 500; ++p)
+      EXPECT_LE(s.lower, pointwise_scaled_jacobian<Type>(x, random_point<Type>(rng)));
+  });
+}
+
 // The square [−1,1]² with its mid-edge node 4 moved by δ = 0.68 towards the opposite edge:
 // det J = 1 + δ (1 − ξ²)(η − ½), least at the edge's midpoint (0, −1), 1 − 1.5δ = −0.02. The
 // undivided cell samples ξ = ±1, ±1/3 only, where det J ≥ 1 − 1.5δ · 8/9 ≈ 0.09: the fold lies
