@@ -347,7 +347,8 @@ void Optimizer::Impl::optimize(const Smoothing& s, Result& run) {
   if (!s.options.quality_guard) return;
   lift_corners(s.method, s.observer, run);
   // The repair spends no more of the mean than the promise allows.
-  if (repairs(s.options)) repair_worst(run, s.input_mean - QualityGuardResult::kMeanSlack);
+  if (s.options.repair_worst_cells)
+    repair_worst(run, s.input_mean - QualityGuardResult::kMeanSlack);
   guard_worst(s.input, run);
   if (!s.tangled) guard_mean(s, run);
 }
@@ -427,7 +428,7 @@ void Optimizer::Impl::guard_mean(const Smoothing& s, Result& run) {
   NM_PETSC(VecCopy(s.input, x));
   mesh.plex().set_coordinates(x);  // what the repair judges the input cells by
   // Within the slack of the input's mean, so above the optimum's.
-  if (repairs(s.options)) repair_worst(run, floor);
+  if (s.options.repair_worst_cells) repair_worst(run, floor);
   guard.input_returned = true;
   guard.min_after = min_scaled_jacobian(view(), dofs(), x);
   run.final_energy = functional->value(x);

@@ -39,11 +39,6 @@ struct Optimizer::Impl {
   // On a surface mesh, throws Error for what it does not support: adapt (`smoothing` false) and
   // untangling (inverted cells in `input`).
   void refuse_surface(bool smoothing, const QualitySummary& input) const;
-  // Whether smoothing repairs the worst cells: not on a surface, whose cells the repair would
-  // measure as planar or volume cells.
-  bool repairs(const SmoothOptions& options) const {
-    return options.repair_worst_cells && !view().surface;
-  }
   // What smooth() and adapt() do first: checks `options` and the input (input_quality), takes
   // the mesh's coordinates into x, and (re)builds the boundary classification and the
   // problem's constraints unless they were built for the same energy and boundary options

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geometry/quality.hpp"
+#include "geometry/surface_frame.hpp"
 #include "mesh/cell_type.hpp"
 #include "mesh/gather.hpp"
 
@@ -37,6 +38,7 @@ constexpr double kMinDistanceFraction = 0.5;
 // The whole mesh on rank 0, vertices and cells in input order.
 struct WholeMesh {
   int dim = 0;
+  bool surface = false;                 // triangles and quadrilaterals in space (MeshView)
   std::vector<std::int64_t> vertex_id;  // input number per vertex (ascending)
   std::vector<double> coords;           // dim per vertex
   std::vector<std::uint8_t> fixed;      // per coordinate
@@ -80,6 +82,7 @@ WholeMesh gather_whole_mesh(const MeshView& view, std::span<const double> local,
 
   WholeMesh m;
   m.dim = d;
+  m.surface = view.surface;
   if (mpi_rank(comm) != 0) return m;
   std::vector<std::size_t> order(all_ids.size());
   std::iota(order.begin(), order.end(), 0);
@@ -147,10 +150,10 @@ class Repair {
     for (std::size_t c = 0; c < m.types.size(); ++c) {
       for (std::int64_t k = m.offsets[c]; k < m.offsets[c + 1]; ++k)
         star_[next[m.vertices[k]]++] = static_cast<std::int64_t>(c);
-      const auto x = cell_coords(c);
-      sj_[c] = cell_scaled_jacobian(m.types[c], x.data());
+      if (m.surface) normals_.push_back(start_normal(m.types[c], cell_coords(c).data()));
+      sj_[c] = scaled_jacobian(c);
       sum_ += sj_[c];
-      max_edge_ratio_ = std::max(max_edge_ratio_, cell_edge_ratio(m.types[c], x.data()));
+      max_edge_ratio_ = std::max(max_edge_ratio_, edge_ratio(c));
     }
   }
 
@@ -231,8 +234,31 @@ class Repair {
     }
     return x;
   }
+  // A surface cell is judged along its normal at the repair's start, so that a move that
+  // folds it (turns it against that normal) makes it inverted, not as good as it was; where
+  // it tilts, the measure is below the one along its own normal that the quality tables take.
   double scaled_jacobian(std::int64_t c) const {
-    return cell_scaled_jacobian(m_.types[c], cell_coords(c).data());
+    const auto x = cell_coords(c);
+    return m_.surface ? surface_cell_scaled_jacobian(m_.types[c], x.data(), normals_[c].data())
+                      : cell_scaled_jacobian(m_.types[c], x.data());
+  }
+  double edge_ratio(std::int64_t c) const {
+    const auto x = cell_coords(c);
+    return m_.surface ? surface_cell_measures(m_.types[c], x.data(), normals_[c].data()).edge_ratio
+                      : cell_edge_ratio(m_.types[c], x.data());
+  }
+  // The unit normal of a surface cell from its vertex coordinates (surface_frame.hpp); zero for
+  // one without area, which then measures as flat.
+  static std::array<double, 3> start_normal(CellType type, const double* coords) {
+    return visit_cell_type(type, [&]<CellType Type>(CellTag<Type>) {
+      std::array<double, 3> n{};
+      if constexpr (Type == CellType::Triangle || Type == CellType::Quadrilateral) {
+        const Eigen::Map<const Eigen::Matrix<double, 3, CellTraits<Type>::vertices>> x(coords);
+        if (const std::optional<Vector<3>> normal = surface_cell_normal<Type>(x))
+          n = {(*normal)[0], (*normal)[1], (*normal)[2]};
+      }
+      return n;
+    });
   }
   double distance(std::span<const double> x, std::int64_t u, std::int64_t v) const {
     double s = 0.0;
@@ -272,7 +298,7 @@ class Repair {
       for (std::int64_t u : cell_vertices(c))
         if (u != v && !(distance(m_.coords, u, v) >= kMinDistanceFraction * distance(start_, u, v)))
           return false;
-      if (!(cell_edge_ratio(m_.types[c], cell_coords(c).data()) <= max_edge_ratio_)) return false;
+      if (!(edge_ratio(c) <= max_edge_ratio_)) return false;
     }
     return true;
   }
@@ -325,13 +351,14 @@ class Repair {
   WholeMesh& m_;
   const std::function<void(int, std::span<double>)>& project_;
   std::vector<std::int64_t> star_first_,
-      star_;                             // the cells of vertex v: star_[first[v], first[v+1])
-  std::vector<double> sj_;               // per cell
-  mutable std::vector<double> star_sj_;  // around()'s scratch: per cell of the star
-  double sum_ = 0.0;                     // of sj_
-  double min_sum_ = 0.0;                 // the floor of sum_ for a move that lowers it
-  double max_edge_ratio_ = 0.0;          // the mesh's largest at the repair's start
-  const std::vector<double> start_;      // the coordinates at the repair's start
+      star_;  // the cells of vertex v: star_[first[v], first[v+1])
+  std::vector<std::array<double, 3>> normals_;  // per cell of a surface: at the start
+  std::vector<double> sj_;                      // per cell
+  mutable std::vector<double> star_sj_;         // around()'s scratch: per cell of the star
+  double sum_ = 0.0;                            // of sj_
+  double min_sum_ = 0.0;                        // the floor of sum_ for a move that lowers it
+  double max_edge_ratio_ = 0.0;                 // the mesh's largest at the repair's start
+  const std::vector<double> start_;             // the coordinates at the repair's start
   std::vector<std::vector<double>> dirs_ = directions(m_.dim);
 };
 
