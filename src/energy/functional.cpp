@@ -31,7 +31,7 @@ typename K::Coordinates cell_coordinates(const CellBlock& block, PetscInt c,
   return x;
 }
 
-// The target of a surface cell: its 2D target and its frame Q (Targets::frames).
+// The target of a surface cell: its 2D target and its frame Q (surface_frames).
 struct FramedTarget {
   CellTarget<2> target;
   const double* frame;  // 3 × 2, column-major
@@ -184,7 +184,8 @@ struct Functional::Impl {
   const SlidingVertices& sliding;
   const std::vector<PetscInt>& projector_of;  // per local vertex: index in sliding, or -1
   const Targets* targets = nullptr;           // null until the problem has targets
-  // A surface mesh's cell frames (Targets::frames), as refresh_frames last took them.
+  // A surface mesh's cell frames at the view's coordinates (where a call starts), or as
+  // refresh_frames last took them.
   mutable std::vector<double> frames;
 
   // Work arrays reused between calls.
@@ -211,7 +212,7 @@ struct Functional::Impl {
         sliding(c.sliding),
         projector_of(c.projector_of),
         targets(problem.targets.get()),
-        frames(targets ? targets->frames : std::vector<double>{}) {}
+        frames(targets ? surface_frames(view, view.coords) : std::vector<double>{}) {}
 
   template <CellType Type, bool Framed = false>
   const EnergyKernel<Type, Framed>& kernel() const {

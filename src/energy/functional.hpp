@@ -99,8 +99,9 @@ class Functional {
 
   // A surface mesh's cell frames taken again at x (docs/method.md, "Surface cells"): from now on
   // the energy, its derivatives and the matrices are those of the cells' frames at x, until the
-  // next call (the quasi-Newton method calls it where each step starts). The targets' frames
-  // are where the first step starts. False (nothing done) for other meshes. Not collective.
+  // next call (the quasi-Newton method calls it where each step starts). Before the first,
+  // the frames are those at the view's coordinates, where the call started. False (nothing done)
+  // for other meshes. Not collective.
   bool refresh_frames(Vec x) const;
 
   // Moves the sliding vertices of x back onto the boundary after a step (no-op if none

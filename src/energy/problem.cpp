@@ -137,7 +137,6 @@ MatrixAssembler& Constraints::assembler() const {
 Targets::Targets(const MeshView& view, std::span<const double> volumes,
                  std::span<const double> shapes, std::span<const double> w) {
   set_volumes(view, volumes, *this);
-  frames = surface_frames(view, view.coords);
   const int d = view.cell_dim();
   const std::size_t n = static_cast<std::size_t>(d * d);
   const std::size_t cells = static_cast<std::size_t>(view.num_cells);
@@ -160,7 +159,6 @@ Targets::Targets(const MeshView& view, std::span<const double> volumes, const Ta
   if (shaped.volumes.size() != volumes.size())
     fail("Functional: the targets of {} cells for {} cells", shaped.volumes.size(), volumes.size());
   set_volumes(view, volumes, *this);
-  frames = surface_frames(view, view.coords);
 }
 
 Problem::Problem(const MeshView& view, const DofMap& dofs, const std::vector<std::uint8_t>& fixed)

@@ -72,14 +72,12 @@ struct Targets {
   std::vector<double> inverse_edges;  // per local cell v^(−1/d)
   std::vector<double> shapes_inv_t;   // per local cell S⁻ᵀ with det S = 1; empty: ideal
   std::vector<double> weights;        // per local cell with shapes: its energy's weight
-  // A surface mesh's: per local cell its tangent frame Q (surface_frame.hpp; 3 × 2, column-major)
-  // at the view's coordinates (where a call starts), fixed while the targets are (docs/method.md,
-  // "Surface cells"). Empty for other meshes. Throws Error for a cell without area.
-  std::vector<double> frames;
 };
 
-// Per local cell of a surface mesh its frame at `coords` (view.coords' layout): 6 numbers,
-// column-major (Targets::frames); empty for other meshes. Throws Error for a cell without area.
+// Per local cell of a surface mesh its tangent frame Q at `coords` (view.coords' layout;
+// surface_frame.hpp): 6 numbers, column-major; empty for other meshes. Throws Error for a cell
+// without area. The Functional takes them where a call starts and again where each step starts
+// (docs/method.md, "Surface cells").
 std::vector<double> surface_frames(const MeshView& view, std::span<const double> coords);
 
 struct Problem {
