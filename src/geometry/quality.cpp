@@ -427,6 +427,13 @@ double surface_cell_scaled_jacobian(CellType type, const double* coords, const d
                                      });
 }
 
+double surface_cell_edge_ratio(CellType type, const double* coords) {
+  const double any_normal[3] = {0.0, 0.0, 1.0};  // edge lengths do not depend on it
+  return of_one_surface_cell<double>(
+      type, coords, any_normal,
+      []<CellType Type>(const auto& x, const NormalArea&) { return edge_ratio<Type>(x); });
+}
+
 CellQuality cell_quality(const MeshView& view, std::span<const double> coords) {
   CellQuality q;
   for (auto* field : {&q.volume, &q.min_corner_det, &q.min_gauss_det, &q.scaled_jacobian,

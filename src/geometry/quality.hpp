@@ -89,8 +89,10 @@ struct SurfaceCellMeasures {
 // for a type other than triangle and quadrilateral.
 SurfaceCellMeasures surface_cell_measures(CellType type, const double* coords,
                                           const double* normal);
-// Its scaled Jacobian alone, at a fraction of the cost.
+// Its scaled Jacobian alone, at a fraction of the cost; its edge ratio alone, which no normal
+// changes.
 double surface_cell_scaled_jacobian(CellType type, const double* coords, const double* normal);
+double surface_cell_edge_ratio(CellType type, const double* coords);
 
 // The metrics of `quality` as the per-cell fields of an output (.vtu), by the names the
 // reports and `--picture-field` use.

@@ -306,6 +306,7 @@ TEST(SurfaceCellQuality, EqualsThe2DMeasuresInThePlaneAndTurnedInSpace) {
       expect_close(m.edge_ratio, flat.edge_ratio[0], "edge ratio");
       expect_close(m.inverse_mean_ratio, flat.inverse_mean_ratio[0], "inverse mean ratio");
       EXPECT_EQ(surface_cell_scaled_jacobian(type, x.data(), normal.data()), m.scaled_jacobian);
+      EXPECT_EQ(surface_cell_edge_ratio(type, x.data()), m.edge_ratio);
     }
 }
 
@@ -345,6 +346,7 @@ TEST(SurfaceCellQuality, OnlyTrianglesAndQuadrilateralsAreSurfaceCells) {
   const std::vector<double> x(12, 0.0);
   const double up[] = {0, 0, 1};
   EXPECT_THROW(surface_cell_scaled_jacobian(CellType::Tetrahedron, x.data(), up), Error);
+  EXPECT_THROW(surface_cell_edge_ratio(CellType::Tetrahedron, x.data()), Error);
 }
 
 }  // namespace neomesh

@@ -244,7 +244,7 @@ class Repair {
   }
   double edge_ratio(std::int64_t c) const {
     const auto x = cell_coords(c);
-    return m_.surface ? surface_cell_measures(m_.types[c], x.data(), normals_[c].data()).edge_ratio
+    return m_.surface ? surface_cell_edge_ratio(m_.types[c], x.data())
                       : cell_edge_ratio(m_.types[c], x.data());
   }
   // The unit normal of a surface cell from its vertex coordinates (surface_frame.hpp); zero for
@@ -312,9 +312,9 @@ class Repair {
       for (std::int64_t u : cell_vertices(c))
         if (u != v) h = std::min(h, distance(m_.coords, u, v));
     if (!(h > 0.0) || !std::isfinite(h)) return false;
-    Star base;  // where v is: its cells' scaled Jacobians are up to date
-    for (std::int64_t c : star(v)) base.worst = std::min(base.worst, sj_[c]), base.sum += sj_[c];
     const std::span<const std::int64_t> cells = star(v);
+    Star base;  // where v is: its cells' scaled Jacobians are up to date
+    for (std::int64_t c : cells) base.worst = std::min(base.worst, sj_[c]), base.sum += sj_[c];
     std::vector<std::uint32_t> worst_first(cells.size());
     std::iota(worst_first.begin(), worst_first.end(), 0u);
     std::stable_sort(worst_first.begin(), worst_first.end(), [&](std::uint32_t a, std::uint32_t b) {
