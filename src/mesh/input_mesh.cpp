@@ -62,7 +62,7 @@ void number_used_vertices(std::vector<PetscInt>& vertex, std::span<const double>
   }
   if (mesh.dim == 3) {
     mesh.coords = std::move(used);
-  } else if (auto plane = PlaneEmbedding::fit_if_planar(used, mesh.coords, file)) {
+  } else if (auto plane = PlaneEmbedding::fit(used, mesh.coords, file)) {
     if (!plane->is_xy()) mesh.plane = std::make_shared<const PlaneEmbedding>(std::move(*plane));
   } else {
     mesh.surface = true;

@@ -30,28 +30,9 @@ int constant_axis(std::span<const double> xyz) {
 
 }  // namespace
 
-PlaneEmbedding PlaneEmbedding::fit(std::span<const double> xyz, std::vector<double>& uv,
-                                   const std::string& file) {
-  double off = 0, size = 0;
-  std::optional<PlaneEmbedding> plane = fit(xyz, uv, file, off, size);
-  if (!plane)
-    fail(
-        "{}: a surface mesh: its 2D cells do not lie in one plane (a vertex is {:.3g} off the "
-        "best-fitting plane, {:.2g} of the mesh's size)",
-        file, off, off / size);
-  return std::move(*plane);
-}
-
-std::optional<PlaneEmbedding> PlaneEmbedding::fit_if_planar(std::span<const double> xyz,
-                                                            std::vector<double>& uv,
-                                                            const std::string& file) {
-  double off = 0, size = 0;
-  return fit(xyz, uv, file, off, size);
-}
-
 std::optional<PlaneEmbedding> PlaneEmbedding::fit(std::span<const double> xyz,
-                                                  std::vector<double>& uv, const std::string& file,
-                                                  double& off, double& size) {
+                                                  std::vector<double>& uv,
+                                                  const std::string& file) {
   const std::size_t n = xyz.size() / 3;
   uv.resize(2 * n);
   PlaneEmbedding plane;
@@ -90,8 +71,8 @@ std::optional<PlaneEmbedding> PlaneEmbedding::fit(std::span<const double> xyz,
   int major = 0;  // the normal points along +its largest component: z-ish planes keep x, y
   normal.cwiseAbs().maxCoeff(&major);
   if (normal[major] < 0) normal = -normal;
-  size = (hi - lo).norm();
-  off = 0;
+  const double size = (hi - lo).norm();
+  double off = 0;
   for (std::size_t p = 0; p < n; ++p)
     off = std::max(off, std::abs(normal.dot(point(xyz, p) - centre)));
   if (!(off <= kPlanarTolerance * size)) return std::nullopt;

@@ -30,14 +30,10 @@ class PlaneEmbedding {
   PlaneEmbedding() = default;
 
   // The plane of the points `xyz` (3 values per point) and their coordinates in it (2 per
-  // point, into `uv`). Throws Error naming `file` if they do not lie in one plane.
-  static PlaneEmbedding fit(std::span<const double> xyz, std::vector<double>& uv,
-                            const std::string& file);
-  // The same, but none (and `uv` unspecified) for points that do not lie in one plane: a
+  // point, into `uv`); none (and `uv` unspecified) for points that do not lie in one plane: a
   // surface mesh. Throws Error naming `file` for a non-finite coordinate.
-  static std::optional<PlaneEmbedding> fit_if_planar(std::span<const double> xyz,
-                                                     std::vector<double>& uv,
-                                                     const std::string& file);
+  static std::optional<PlaneEmbedding> fit(std::span<const double> xyz, std::vector<double>& uv,
+                                           const std::string& file);
 
   // True for the plane z = 0 with u = x, v = y: 2D coordinates are 3D ones with z = 0.
   bool is_xy() const { return xy_; }
@@ -55,11 +51,6 @@ class PlaneEmbedding {
   // For a tilted plane: the file's coordinates and their (u, v) as first computed, so that a
   // vertex that has not moved is written back exactly as it was read.
   std::vector<double> input_xyz_, input_uv_;
-
-  // fit and fit_if_planar: the plane, or none if the points are `off` its best fit by more than
-  // the tolerance of the mesh's `size`.
-  static std::optional<PlaneEmbedding> fit(std::span<const double> xyz, std::vector<double>& uv,
-                                           const std::string& file, double& off, double& size);
 };
 
 }  // namespace neomesh

@@ -21,7 +21,7 @@ std::vector<double> grid(const double (&origin)[3], const double (&a)[3], const 
 TEST(PlaneEmbedding, ThePlaneZEqualsZeroIsXy) {
   std::vector<double> uv;
   const auto xyz = grid({0, 0, 0}, {1, 0, 0}, {0, 2, 0});
-  const PlaneEmbedding plane = PlaneEmbedding::fit(xyz, uv, "in.msh");
+  const PlaneEmbedding plane = PlaneEmbedding::fit(xyz, uv, "in.msh").value();
   EXPECT_TRUE(plane.is_xy());
   for (int p = 0; p < 9; ++p) {
     EXPECT_EQ(uv[2 * p], xyz[3 * p]);
@@ -32,7 +32,7 @@ TEST(PlaneEmbedding, ThePlaneZEqualsZeroIsXy) {
 TEST(PlaneEmbedding, AnAxisPlaneKeepsItsConstantAndTheOtherCoordinatesExactly) {
   std::vector<double> uv;
   const auto xyz = grid({0.1, -5, 0.3}, {0.7, 0, 0}, {0, 0, 0.3});  // y = -5
-  const PlaneEmbedding plane = PlaneEmbedding::fit(xyz, uv, "in.msh");
+  const PlaneEmbedding plane = PlaneEmbedding::fit(xyz, uv, "in.msh").value();
   EXPECT_FALSE(plane.is_xy());
   EXPECT_EQ(plane.describe(), "y = -5");
   uv[0] += 0.01;  // one vertex moves in the plane
@@ -46,7 +46,7 @@ TEST(PlaneEmbedding, ATiltedPlaneGivesUnmovedVerticesBackBitForBit) {
   std::vector<double> uv;
   const double s = 1 / std::sqrt(3.0);
   const auto xyz = grid({1, 2, 3}, {s, s, s}, {0.2, -0.1, -0.1});
-  const PlaneEmbedding plane = PlaneEmbedding::fit(xyz, uv, "in.msh");
+  const PlaneEmbedding plane = PlaneEmbedding::fit(xyz, uv, "in.msh").value();
   EXPECT_FALSE(plane.is_xy());
   // In-plane distances are those of space.
   const double du = uv[2] - uv[0], dv = uv[3] - uv[1];
@@ -70,19 +70,14 @@ TEST(PlaneEmbedding, ATiltedPlaneGivesUnmovedVerticesBackBitForBit) {
   EXPECT_NEAR(std::sqrt(dist), std::hypot(0.05, 0.02), 1e-15);
 }
 
-TEST(PlaneEmbedding, DigitsOfAFileAreNoiseButACurvedSurfaceIsRefused) {
+TEST(PlaneEmbedding, DigitsOfAFileAreNoiseButACurvedSurfaceIsNoPlane) {
   std::vector<double> uv;
   auto xyz = grid({0, 0, 0}, {1, 0, 1}, {0, 1, 0});
   xyz[3 * 4] += 1e-7;  // a coordinate stored with few digits
-  EXPECT_NO_THROW(PlaneEmbedding::fit(xyz, uv, "in.msh"));
+  EXPECT_TRUE(PlaneEmbedding::fit(xyz, uv, "in.msh").has_value());
   xyz[3 * 4] += 1e-3;  // a bump: a surface
-  try {
-    PlaneEmbedding::fit(xyz, uv, "bump.msh");
-    FAIL() << "a curved surface was taken as a plane";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("bump.msh: a surface mesh"), std::string::npos)
-        << e.what();
-  }
+  EXPECT_FALSE(PlaneEmbedding::fit(xyz, uv, "bump.msh").has_value())
+      << "a curved surface was taken as a plane";
 }
 
 TEST(PlaneEmbedding, ANonFiniteCoordinateIsNamedNotTakenForASurface) {
