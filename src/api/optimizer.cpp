@@ -269,16 +269,22 @@ QualitySummary Optimizer::Impl::input_quality(bool untangle) const {
   return quality;
 }
 
-void Optimizer::Impl::refuse_surface(bool smoothing, const QualitySummary& input) const {
-  if (!view().surface) return;
-  if (!smoothing)
-    fail("{}: a surface mesh (2D cells in space) is smoothed, not adapted: use smooth",
-         mesh.name());
-  if (input.inverted > 0 || input.degenerate > 0)
+void Optimizer::Impl::refuse_surface(const QualitySummary& input) const {
+  if (view().surface && (input.inverted > 0 || input.degenerate > 0))
     fail(
         "{}: a surface mesh with {} inverted and {} degenerate cells: surface meshes are not "
         "untangled",
         mesh.name(), input.inverted, input.degenerate);
+}
+
+void Optimizer::Impl::refuse_surface(const SizeField& field) const {
+  // A metric is a 3 × 3 matrix in space, a surface cell's target a 2 × 2 one in its tangent
+  // plane.
+  if (view().surface && field.anisotropic())
+    fail(
+        "{}: a surface mesh (2D cells in space) is adapted to sizes, not to a metric: give an "
+        "isotropic size field",
+        mesh.name());
 }
 
 void Optimizer::Impl::finish(Result& result) {
@@ -564,6 +570,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
 Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
                         const Observer& observer) {
   Impl& r = *impl_;
+  r.refuse_surface(field);
   Result result = r.start(options);
   const OwnedVec input =
       copy_of(r.x);  // where the adaptation starts (vertices placed on their charts)
@@ -583,6 +590,7 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
 Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const AdaptOptions& options,
                         const Observer& observer) {
   Impl& r = *impl_;
+  r.refuse_surface(field);
   Result result = r.start(options);
   const FittedAdaptation parts = fitted_adaptation(options, r.warm);
   r.adapt(field, parts.adapting, observer, result);

@@ -36,9 +36,10 @@ struct Optimizer::Impl {
   // The mesh's quality where a call starts; throws Error if cells are inverted or degenerate
   // and `untangle` is false.
   QualitySummary input_quality(bool untangle) const;
-  // On a surface mesh, throws Error for what it does not support: adapt (`smoothing` false) and
-  // untangling (inverted cells in `input`).
-  void refuse_surface(bool smoothing, const QualitySummary& input) const;
+  // On a surface mesh, throws Error for what it does not support: untangling (inverted cells in
+  // `input`); in adapt, a metric `field` (a fit to a level set: find_interface).
+  void refuse_surface(const QualitySummary& input) const;
+  void refuse_surface(const SizeField& field) const;
   // What smooth() and adapt() do first: checks `options` and the input (input_quality), takes
   // the mesh's coordinates into x, and (re)builds the boundary classification and the
   // problem's constraints unless they were built for the same energy and boundary options
@@ -50,7 +51,7 @@ struct Optimizer::Impl {
     started = MPI_Wtime();
     Result result;
     result.quality_before = input_quality(options.untangle);
-    refuse_surface(std::is_same_v<Options, SmoothOptions>, result.quality_before);
+    refuse_surface(result.quality_before);
     keep_input_cells();
     start(options.energy, options.boundary, &options.solver);
     return result;

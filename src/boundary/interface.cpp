@@ -213,6 +213,11 @@ void share_marks(const DofMap& dofs, std::vector<std::uint8_t>& marks) {
 
 Interface find_interface(const MeshView& view, const DofMap& dofs, std::span<const double> coords,
                          const LevelSetFunction& phi) {
+  // A surface's facets are its edges, which a level set of space does not cut into two sides.
+  if (view.surface)
+    fail(
+        "fit: a surface mesh (2D cells in space) is not fitted to a level set: adapt it without "
+        "--fit");
   const std::vector<LocalCell> cells = local_cells(view);
   std::vector<std::uint8_t> inside(view.num_cells);
   for (PetscInt c = 0; c < view.num_cells; ++c) {

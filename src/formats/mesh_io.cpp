@@ -68,11 +68,6 @@ PlexMesh load_mesh(const std::filesystem::path& path, MPI_Comm comm, bool keep_i
             : is_exodus(path) ? read_exodus(path)
             : ext == ".cgns"  ? read_cgns(path)
                               : input_from_data(read_feat(path));
-    if (input.surface && mpi_size(comm) > 1)
-      fail(
-          "{}: a surface mesh (its 2D cells do not lie in one plane) is optimized on one process; "
-          "run it without mpiexec",
-          path.string());
   });
   return PlexMesh::from_input(input, path.string(), comm, keep_inverted);
 }

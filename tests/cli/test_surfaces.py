@@ -188,17 +188,92 @@ def test_quality_measures_a_surface_as_its_cells_lie(tmp, poor_sphere):
     assert "580 triangles" in proc.stdout and "inverted cells: 0" in proc.stdout
 
 
+def cell_areas_and_centres(mesh):
+    """Each cell's area (a quadrilateral's as the mean of its two splittings) and centroid."""
+    areas, centres = [], []
+    for block in mesh.cells:
+        if block.type not in ("triangle", "quad"):
+            continue
+        p = mesh.points[block.data]
+        if block.type == "triangle":
+            a = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+        else:
+            a = 0.5 * np.linalg.norm(np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1]), axis=1)
+        areas.append(a)
+        centres.append(p.mean(1))
+    return np.concatenate(areas), np.concatenate(centres)
+
+
+def test_adapt_crowds_a_surfaces_cells_where_the_size_field_asks(tmp, poor_sphere):
+    # Small cells near the circle where the sphere of radius 0.5 about the pole cuts the unit
+    # sphere, every vertex kept on the input's cells.
+    out, report = os.path.join(tmp, "out.vtu"), os.path.join(tmp, "r.json")
+    neomesh("adapt", poor_sphere, "-o", out, "--sphere", "0,0,1,0.5", "--quiet", "--report",
+            report)
+    with open(report) as f:
+        r = json.load(f)
+    a, b = read_mesh(poor_sphere), read_mesh(out)
+    assert len(a.points) == len(b.points) and cells_of(a) == cells_of(b)
+    assert r["quality_after"]["inverted"] == 0
+    assert r["boundary_change"]["max_distance_from_input_boundary"] < 1e-12
+    near, outer = sphere_bounds(a, np.zeros(3))
+    radius = np.linalg.norm(b.points, axis=1)
+    assert radius.min() >= near - 1e-12 and radius.max() <= 1 + 1e-12
+
+    def near_over_far(mesh):
+        area, centre = cell_areas_and_centres(mesh)
+        d = np.abs(np.linalg.norm(centre - [0, 0, 1], axis=1) - 0.5)
+        return area[d < 0.1].mean() / area[d > 0.6].mean()
+
+    before, after = near_over_far(a), near_over_far(b)
+    assert after < 0.5 * before
+    print(f"Gmsh sphere, adapt --sphere 0,0,1,0.5: mean area near the circle / far from it "
+          f"{before:.3f} -> {after:.3f}, min scaled Jacobian "
+          f"{r['quality_after']['metrics']['scaled_jacobian']['min']:.3f}")
+
+
 def test_what_surfaces_do_not_support_is_refused_in_one_line(tmp, poor_sphere):
     out = os.path.join(tmp, "out.msh")
-    proc = neomesh("adapt", poor_sphere, "-o", out, "--sphere", "0,0,1,0.5", expect=1)
-    expect_one_error_line(proc, ["a surface mesh", "use smooth"], unwritten=[out])
+    proc = neomesh("adapt", poor_sphere, "-o", out, "--sphere", "0,0,1,0.5", "--fit", expect=1)
+    expect_one_error_line(proc, ["a surface mesh", "without --fit"], unwritten=[out])
+    proc = neomesh("adapt", poor_sphere, "-o", out, "--metric", "1;0;0;1;0;1", expect=1)
+    expect_one_error_line(proc, ["a surface mesh", "not to a metric"], unwritten=[out])
     picture = os.path.join(tmp, "out.png")
     proc = neomesh("render", poor_sphere, "-o", picture, expect=1)
     expect_one_error_line(proc, ["a surface mesh"], unwritten=[picture])
 
 
 @needs_mpi
-def test_a_surface_is_refused_on_two_processes(tmp, poor_sphere):
-    out = os.path.join(tmp, "out.msh")
-    proc = neomesh("smooth", poor_sphere, "-o", out, ranks=2, expect=1)
-    expect_one_error_line(proc, ["a surface mesh", "one process"], unwritten=[out])
+def test_two_processes_give_the_serial_surface(tmp, poor_sphere):
+    # Given as a sphere, the problem is smooth and the run converges: the energy and the quality
+    # are the serial ones, the vertices on the sphere; they may turn about it (a direction the
+    # energy does not see, user guide "Parallel runs").
+    tight = ("--shape", "sphere=sphere:0,0,0,1", "--no-repair", "--no-practical", "--tol", "1e-11")
+    figures = []
+    for ranks in (1, 2):
+        out, report = os.path.join(tmp, f"out{ranks}.vtu"), os.path.join(tmp, f"r{ranks}.json")
+        neomesh("smooth", poor_sphere, "-o", out, "--quiet", "--report", report, *tight,
+                ranks=ranks)
+        with open(report) as f:
+            r = json.load(f)
+        b = read_mesh(out)
+        assert np.abs(np.linalg.norm(b.points, axis=1) - 1).max() < 1e-12
+        assert r["result"]["stop_reason"] != "maximum number of iterations reached"
+        figures.append((r["result"]["final_energy"], *quality(r, "quality_after")))
+    serial, parallel = figures
+    assert parallel[0] == pytest.approx(serial[0], rel=1e-10)
+    assert parallel[1] == pytest.approx(serial[1], abs=1e-7)
+    assert parallel[2] == pytest.approx(serial[2], abs=1e-7)
+    # On the input's own cells, with the defaults (the iterations cut where the quality has
+    # settled, user guide "Surface meshes"): on the input surface, valid, the quality within what
+    # the repair's choices and the stopping rule leave apart.
+    out, r = smooth(tmp, poor_sphere, "--max-iter", "40")
+    out2 = os.path.join(tmp, "out-2.vtu")
+    report2 = out2 + ".json"
+    neomesh("smooth", poor_sphere, "-o", out2, "--quiet", "--report", report2, "--max-iter", "40",
+            ranks=2)
+    with open(report2) as f:
+        r2 = json.load(f)
+    expect_smoothed_on_the_surface(poor_sphere, out2, r2, ((0, 0, 0), 1.0))
+    for a, b in zip(quality(r, "quality_after"), quality(r2, "quality_after")):
+        assert abs(a - b) < 0.005
