@@ -20,6 +20,8 @@ build/bench/cgal_surface_smoothing; built when CMake finds CGAL), gmsh on PATH. 
 meshio.
 """
 import argparse
+import contextlib
+import io
 import json
 import os
 import subprocess
@@ -92,7 +94,8 @@ def make_mesh(tmp, name, shape, groups, size):
     with open(stem + ".geo", "w") as f:
         f.write(GMSH_POOR.format(shape=shape, size=size, groups=groups))
     run(["gmsh", "-2", stem + ".geo", "-optimize", "0", "-format", "msh41", "-o", stem + ".msh"])
-    mesh = meshio.read(stem + ".msh")
+    with contextlib.redirect_stdout(io.StringIO()):  # meshio's progress output
+        mesh = meshio.read(stem + ".msh")
     triangles = np.vstack([c.data for c in mesh.cells if c.type == "triangle"])
     with open(stem + ".off", "w") as f:
         f.write(f"OFF\n{len(mesh.points)} {len(triangles)} 0\n")
