@@ -10,6 +10,7 @@
 
 #include "core/collective_error.hpp"
 #include "mesh/cell_type.hpp"
+#include "mesh/surface_defects.hpp"
 
 namespace neomesh {
 
@@ -149,7 +150,7 @@ double min_scaled_corner_jacobian(CellType type, const double* x) {
 
 std::vector<PetscInt> orient_mirrored_cells(InputMesh& mesh) {
   // A surface cell faces the side it is listed towards: no orientation is wrong by itself
-  // (find_fold finds neighbours that disagree).
+  // (find_surface_edge_defect finds neighbours that disagree).
   if (mesh.surface) return {};
   // Cell by cell on every thread (a mirror changes only its own cell); then the list in order.
   std::vector<std::uint8_t> flipped(mesh.num_cells(), 0);
@@ -254,11 +255,8 @@ void validate(InputMesh& mesh, const std::string& source, MPI_Comm comm, bool ke
         keep_inverted ? mesh.cell_vertices : std::vector<PetscInt>{};
     const std::vector<PetscInt> mirrored = orient_mirrored_cells(mesh);
     defect = find_defect(mesh, keep_inverted);
-    // Two surface cells that run the same way around their common edge face opposite sides.
-    if (defect.empty() && mesh.surface) {
-      defect = find_fold(mesh, mirrored);
-      if (!defect.empty()) defect = "its cells are not oriented alike: " + defect;
-    }
+    if (defect.empty() && mesh.surface) defect = find_surface_edge_defect(mesh);
+    if (defect.empty() && mesh.surface) defect = find_surface_crossing(mesh);
     // A mirrored cell among cells of the other orientation may be a fold rather than a mirror.
     if (defect.empty() && !mirrored.empty()) {
       const std::string fold = find_fold(mesh, mirrored);

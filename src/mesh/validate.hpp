@@ -9,6 +9,9 @@
 // mirrored) and every output keeps the new, positive order. Only a cell with corner Jacobians
 // of mixed sign or zero is inverted or degenerate, or a mirrored cell that folds over a
 // neighbour (the two run around their common facet the same way).
+//
+// A surface mesh is checked further: its edges and whether it crosses itself
+// (surface_defects.hpp).
 #pragma once
 
 #include <string>
@@ -33,7 +36,8 @@ std::vector<PetscInt> orient_mirrored_cells(InputMesh& mesh);
 std::string find_fold(const InputMesh& mesh, const std::vector<PetscInt>& mirrored);
 
 // Collective: on rank 0 reorients mirrored cells, then throws Error "<source>: <defect>" on
-// every rank if rank 0's `mesh` has a defect.
+// every rank if rank 0's `mesh` has a defect (a surface's included, with or without
+// `keep_inverted`).
 // With `keep_inverted` (quality and render count and draw inverted cells, smooth untangles
 // them), inverted and degenerate cells are kept; mirrored cells are reoriented one by one if
 // that leaves no fold, else all cells are if most of them are mirrored.

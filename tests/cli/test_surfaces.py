@@ -513,3 +513,79 @@ def test_two_processes_give_the_serial_surface(tmp, poor_sphere):
     expect_smoothed_on_the_surface(poor_sphere, out2, r2, ((0, 0, 0), 1.0))
     for a, b in zip(quality(r, "quality_after"), quality(r2, "quality_after")):
         assert abs(a - b) < 0.005
+
+
+def write_vtk(path, points, cells):
+    """A legacy VTK file of triangles and quadrilaterals (each cell its vertices in cyclic
+    order)."""
+    with open(path, "w") as f:
+        f.write(f"# vtk DataFile Version 2.0\nsurface\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+                f"POINTS {len(points)} double\n")
+        f.writelines(f"{x!r} {y!r} {z!r}\n" for x, y, z in points)
+        f.write(f"CELLS {len(cells)} {sum(len(c) + 1 for c in cells)}\n")
+        f.writelines(" ".join(map(str, [len(c), *c])) + "\n" for c in cells)
+        f.write(f"CELL_TYPES {len(cells)}\n")
+        f.writelines(("5" if len(c) == 3 else "9") + "\n" for c in cells)
+
+
+def uv_sphere(rings, segments, centre=(0, 0, 0), first=0):
+    """A unit sphere about `centre`: the north pole, `rings` rings of `segments` points, the south
+    pole (numbered from `first`); triangles at the poles, quadrilaterals between, all facing
+    outwards. Cell j (< segments) is the north fan's triangle from ring 1's point j."""
+    theta = np.pi * np.arange(1, rings + 1) / (rings + 1)
+    phi = 2 * np.pi * np.arange(segments) / segments
+    t, p = np.meshgrid(theta, phi, indexing="ij")
+    ring = np.stack([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)], -1).reshape(-1, 3)
+    points = np.vstack([[0, 0, 1], ring, [0, 0, -1]]) + centre
+    north, south = first, first + 1 + rings * segments
+
+    def at(i, j):
+        return first + 1 + (i - 1) * segments + j % segments
+
+    cells = [[north, at(1, j), at(1, j + 1)] for j in range(segments)]
+    cells += [[at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]
+              for i in range(1, rings) for j in range(segments)]
+    cells += [[at(rings, j), south, at(rings, j + 1)] for j in range(segments)]
+    return points.tolist(), cells
+
+
+@pytest.mark.parametrize("case, words", [
+    ("fin", ["fin.vtk", "the edge between vertices 0 and 1 (0-based) is shared by 3 cells",
+             "(0, 1 and 2, 0-based)"]),
+    ("flipped", ["flipped.vtk", "not oriented alike", "cell 0 (0-based) and cell 9 (0-based)",
+                 "from vertex 1 to vertex 0"]),
+    ("crossing", ["crossing.vtk", "the surface crosses itself", "cell 0 (0-based) and cell"]),
+    ("spheres through each other", ["spheres through each other.vtk", "crosses itself"]),
+])
+def test_a_surface_that_is_no_surface_is_refused_naming_the_edge_or_cells(tmp, case, words):
+    if case == "fin":  # three triangles on the edge 0-1
+        points = [[0, 0, 0], [1, 0, 0], [0.5, 1, 0], [0.5, -1, 0], [0.5, 0, 1]]
+        cells = [[0, 1, 2], [1, 0, 3], [0, 1, 4]]
+    elif case == "flipped":  # a sphere with its first triangle facing inwards
+        points, cells = uv_sphere(6, 10)
+        cells[0] = cells[0][::-1]
+    elif case == "crossing":  # two squares of two triangles each, through each other
+        points = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+                  [0.5, 0.25, -0.25], [0.5, 0.75, -0.25], [0.5, 0.75, 0.25], [0.5, 0.25, 0.25]]
+        cells = [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]]
+    else:
+        a, cells_a = uv_sphere(8, 16)
+        b, cells_b = uv_sphere(8, 16, centre=(0.7, 0.3, 0.1), first=len(a))
+        points, cells = a + b, cells_a + cells_b
+    path, out = os.path.join(tmp, case + ".vtk"), os.path.join(tmp, "out.vtu")
+    write_vtk(path, points, cells)
+    for command in (["smooth", path, "-o", out], ["convert", path, "-o", out]):
+        proc = neomesh(*command, expect=1)
+        expect_one_error_line(proc, words, unwritten=[out])
+
+
+def test_open_surfaces_in_several_pieces_are_smoothed(tmp):
+    # Two spheres apart and a spherical cap (the first sphere's northern cells only, open).
+    a, cells_a = uv_sphere(8, 16)
+    b, cells_b = uv_sphere(8, 16, centre=(3, 0, 0), first=len(a))
+    c, cells_c = uv_sphere(8, 16, centre=(0, 3, 0), first=len(a) + len(b))
+    cap, cap_points = cells_c[:16 * 4], c[:1 + 4 * 16]  # the fan and 3 rows: rings 1 to 4
+    path = os.path.join(tmp, "pieces.vtk")
+    write_vtk(path, a + b + cap_points, cells_a + cells_b + cap)
+    out, r = smooth(tmp, path)
+    expect_smoothed_on_the_surface(path, out, r, None)
