@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <neomesh/error.hpp>
 #include <neomesh/generate.hpp>
 
 namespace neomesh {
@@ -19,7 +20,7 @@ int rank() {
 // numbered backwards.
 MeshArrays grid(int n) {
   MeshArrays mesh;
-  mesh.dim = 2;
+  mesh.dim = mesh.coordinate_dim = 2;
   const std::int64_t nv = (n + 1) * (n + 1);
   mesh.coordinates.resize(2 * nv);
   auto number = [&](int i, int j) { return nv - 1 - (j * (n + 1) + i); };
@@ -53,6 +54,7 @@ TEST(MeshGatherParallel, GivesBackTheArraysOfFromArrays) {
   for (std::int64_t c : mesh.cell_numbers()) numbers.push_back(static_cast<double>(c));
   const MeshArrays out = mesh.gather({{"number", numbers}});
   EXPECT_EQ(out.dim, 2);
+  EXPECT_EQ(out.coordinate_dim, 2);
   ASSERT_EQ(out.cell_fields.size(), 1u);
   if (rank() != 0) {
     EXPECT_TRUE(out.coordinates.empty() && out.cells.empty() && out.types.empty());
@@ -63,6 +65,18 @@ TEST(MeshGatherParallel, GivesBackTheArraysOfFromArrays) {
   EXPECT_EQ(out.types, input.types);
   for (std::size_t c = 0; c < input.types.size(); ++c)
     EXPECT_EQ(out.cell_fields[0].values[c], static_cast<double>(c));
+}
+
+// A surface mesh is optimized on one process: from_arrays refuses it on both, collectively.
+TEST(SurfaceFromArraysParallel, IsRefused) {
+  const std::vector<double> roof = {0, 0, 0, 1, 0, 0, 1, 1, 1, 0, 1, 0};  // bent along 0–2
+  const std::vector<std::int64_t> cells = {0, 1, 2, 0, 2, 3};
+  const std::vector<CellType> types(2, CellType::Triangle);
+  const bool root = rank() == 0;
+  EXPECT_THROW(Mesh::from_arrays(MPI_COMM_WORLD, 3, root ? roof : std::vector<double>{},
+                                 root ? cells : std::vector<std::int64_t>{},
+                                 root ? types : std::vector<CellType>{}),
+               Error);
 }
 
 TEST(GenerateMeshParallel, DistributesTheSerialMesh) {

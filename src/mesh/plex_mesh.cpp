@@ -334,6 +334,20 @@ void PlexMesh::set_coordinates(Vec coords) {
   ++impl_->coordinates_version;
 }
 
+void PlexMesh::move_surface_to_coordinates() {
+  MeshView& view = *impl_->view;
+  if (!view.surface || mpi_size(impl_->comm) != 1)
+    fail("{}: only a surface mesh on one process moves its surface", impl_->source);
+  BoundarySurface moved = *view.boundary;
+  for (PetscInt u = 0; u < view.num_vertices; ++u) {
+    const PetscInt b = moved.find(view.input_vertex[u]);
+    if (b >= 0)
+      std::copy_n(view.coords.begin() + u * view.dim, view.dim,
+                  moved.coords.begin() + b * view.dim);
+  }
+  view.boundary = std::make_shared<const BoundarySurface>(std::move(moved));
+}
+
 std::uint64_t PlexMesh::coordinates_version() const {
   return impl_->coordinates_version;
 }
