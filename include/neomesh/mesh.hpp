@@ -44,10 +44,10 @@ class Mesh {
   // .mesh (Medit ASCII), .exo/.e/.ex2 (Exodus II) or .cgns (CGNS) on the first process and
   // distributes it over `comm`. Throws Error naming the file (and cell) for anything neomesh
   // cannot use: a missing file, a malformed mesh, an unsupported cell type, NaN coordinates.
-  // 2D cells that do not lie in one plane are a surface mesh, read on one process only: dim() is
-  // 2 and coordinate_dim() 3 (docs/user-guide.md, "Surface meshes"). A 2D mesh whose file places
-  // it in another plane than z = 0 is optimized in that plane (coordinates() are in-plane ones)
-  // and written back in it (docs/user-guide.md, "What a run never changes").
+  // 2D cells that do not lie in one plane are a surface mesh: dim() is 2 and coordinate_dim() 3
+  // (docs/user-guide.md, "Surface meshes"). A 2D mesh whose file places it in another plane
+  // than z = 0 is optimized in that plane (coordinates() are in-plane ones) and written back in
+  // it (docs/user-guide.md, "What a run never changes").
   static Mesh read(const std::filesystem::path& path, MPI_Comm comm = MPI_COMM_WORLD,
                    InvertedCells inverted = InvertedCells::Refuse);
   // A FEAT3 mesh file together with the files holding its charts (FEAT3's chart files), in any

@@ -104,10 +104,8 @@ Mesh Mesh::from_arrays(MPI_Comm comm, int coordinate_dim, std::span<const double
   const double before = resident_bytes();
   InputMesh input;
   collectively(comm, [&] {
-    if (mpi_rank(comm) != 0) return;
-    input = input_from_arrays(coordinate_dim, coordinates, cells, types, name);
-    if (input.surface && mpi_size(comm) > 1)
-      fail("{}: a surface mesh (2D cells in space) is optimized on one process", name);
+    if (mpi_rank(comm) == 0)
+      input = input_from_arrays(coordinate_dim, coordinates, cells, types, name);
   });
   return Mesh(std::make_unique<PlexMesh>(
                   PlexMesh::from_input(input, name, comm, inverted == InvertedCells::Keep)),

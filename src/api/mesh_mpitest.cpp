@@ -2,10 +2,13 @@
 // what from_arrays was given, and measures what one process measures.
 #include <neomesh/mesh.hpp>
 
+#include <algorithm>
+#include <vector>
+
 #include <gtest/gtest.h>
 
-#include <neomesh/error.hpp>
 #include <neomesh/generate.hpp>
+#include <neomesh/optimizer.hpp>
 
 namespace neomesh {
 namespace {
@@ -67,16 +70,35 @@ TEST(MeshGatherParallel, GivesBackTheArraysOfFromArrays) {
     EXPECT_EQ(out.cell_fields[0].values[c], static_cast<double>(c));
 }
 
-// A surface mesh is optimized on one process: from_arrays refuses it on both, collectively.
-TEST(SurfaceFromArraysParallel, IsRefused) {
-  const std::vector<double> roof = {0, 0, 0, 1, 0, 0, 1, 1, 1, 0, 1, 0};  // bent along 0–2
-  const std::vector<std::int64_t> cells = {0, 1, 2, 0, 2, 3};
-  const std::vector<CellType> types(2, CellType::Triangle);
-  const bool root = rank() == 0;
-  EXPECT_THROW(Mesh::from_arrays(MPI_COMM_WORLD, 3, root ? roof : std::vector<double>{},
-                                 root ? cells : std::vector<std::int64_t>{},
-                                 root ? types : std::vector<CellType>{}),
-               Error);
+// A surface mesh split over two processes: gather gives back its 3 coordinates per vertex, and
+// coordinates set off the surface (lifted by 1) move it on both processes, so that smoothing
+// leaves the vertices where they were put rather than on the surface the mesh was made with.
+TEST(SurfaceParallel, GathersAndMovesItsSurface) {
+  const MeshArrays square = Mesh::generate({.name = "box-quad", .size = 6}).gather();
+  MeshArrays bent;  // z = x² over the generated square, on the first process
+  if (rank() == 0) {
+    for (std::size_t v = 0; v < square.coordinates.size() / 2; ++v) {
+      const double x = square.coordinates[2 * v], y = square.coordinates[2 * v + 1];
+      bent.coordinates.insert(bent.coordinates.end(), {x, y, x * x});
+    }
+    bent.cells = square.cells;
+    bent.types = square.types;
+  }
+  Mesh mesh = Mesh::from_arrays(MPI_COMM_WORLD, 3, bent.coordinates, bent.cells, bent.types);
+  EXPECT_EQ(mesh.coordinate_dim(), 3);
+  EXPECT_GT(mesh.cell_numbers().size(), 0u);  // both processes have cells
+  const MeshArrays out = mesh.gather();
+  EXPECT_EQ(out.coordinate_dim, 3);
+  if (rank() == 0) EXPECT_EQ(out.coordinates, bent.coordinates);
+  std::vector<double> x = mesh.coordinates();
+  for (std::size_t i = 2; i < x.size(); i += 3) x[i] += 1.0;
+  mesh.set_coordinates(x);
+  Optimizer(mesh).smooth();
+  double lowest = 2.0;
+  const std::vector<double> after = mesh.coordinates();
+  for (std::size_t i = 2; i < after.size(); i += 3) lowest = std::min(lowest, after[i]);
+  MPI_Allreduce(MPI_IN_PLACE, &lowest, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+  EXPECT_GE(lowest, 1.0 - 1e-12);
 }
 
 TEST(GenerateMeshParallel, DistributesTheSerialMesh) {

@@ -336,15 +336,19 @@ void PlexMesh::set_coordinates(Vec coords) {
 
 void PlexMesh::move_surface_to_coordinates() {
   MeshView& view = *impl_->view;
-  if (!view.surface || mpi_size(impl_->comm) != 1)
-    fail("{}: only a surface mesh on one process moves its surface", impl_->source);
+  if (!view.surface) fail("{}: only a surface mesh moves its surface", impl_->source);
+  // Every process holds the whole surface; each vertex's owner gives its coordinates, the
+  // others add zeros.
   BoundarySurface moved = *view.boundary;
+  std::fill(moved.coords.begin(), moved.coords.end(), 0.0);
   for (PetscInt u = 0; u < view.num_vertices; ++u) {
-    const PetscInt b = moved.find(view.input_vertex[u]);
+    const PetscInt b = view.owned[u] ? moved.find(view.input_vertex[u]) : -1;
     if (b >= 0)
       std::copy_n(view.coords.begin() + u * view.dim, view.dim,
                   moved.coords.begin() + b * view.dim);
   }
+  MPI_Allreduce(MPI_IN_PLACE, moved.coords.data(), static_cast<int>(moved.coords.size()),
+                MPI_DOUBLE, MPI_SUM, impl_->comm);
   view.boundary = std::make_shared<const BoundarySurface>(std::move(moved));
 }
 
