@@ -44,12 +44,10 @@ class Mesh {
   // .mesh (Medit ASCII), .exo/.e/.ex2 (Exodus II) or .cgns (CGNS) on the first process and
   // distributes it over `comm`. Throws Error naming the file (and cell) for anything neomesh
   // cannot use: a missing file, a malformed mesh, an unsupported cell type, NaN coordinates.
-  // 2D cells that do not lie in one plane are a surface mesh, read on one process only: dim() is
-  // 2, its vertices have 3 coordinates, Optimizer::smooth and write() take it, and coordinates(),
-  // set_coordinates() and gather() throw Error (docs/user-guide.md, "Surface meshes"). A 2D mesh
-  // whose file places it in
-  // another plane than z = 0 is optimized in that plane (coordinates() are in-plane ones) and
-  // written back in it (docs/user-guide.md, "What a run never changes").
+  // 2D cells that do not lie in one plane are a surface mesh: dim() is 2 and coordinate_dim() 3
+  // (docs/user-guide.md, "Surface meshes"). A 2D mesh whose file places it in another plane
+  // than z = 0 is optimized in that plane (coordinates() are in-plane ones) and written back in
+  // it (docs/user-guide.md, "What a run never changes").
   static Mesh read(const std::filesystem::path& path, MPI_Comm comm = MPI_COMM_WORLD,
                    InvertedCells inverted = InvertedCells::Refuse);
   // A FEAT3 mesh file together with the files holding its charts (FEAT3's chart files), in any
@@ -59,11 +57,13 @@ class Mesh {
                    InvertedCells inverted = InvertedCells::Refuse);
 
   // Builds a mesh from arrays given on the communicator's first process (the others pass
-  // empty spans) and distributes it. `coordinates`: `dim` values per vertex; `cells`: the
-  // vertices of each cell in Gmsh's order (docs/cell-types.md), 0-based, one CellType per
-  // cell in `types` (types may be mixed, of one dimension). The vertices' positions in
-  // `coordinates` are their numbers (vertex_numbers()). `name` names the mesh in messages.
-  static Mesh from_arrays(MPI_Comm comm, int dim, std::span<const double> coordinates,
+  // empty spans) and distributes it. `coordinates`: `coordinate_dim` values per vertex;
+  // `cells`: the vertices of each cell in Gmsh's order (docs/cell-types.md), 0-based, one
+  // CellType per cell in `types` (types may be mixed, of one dimension: coordinate_dim's, or
+  // triangles and quadrilaterals with 3 coordinates per vertex not in one plane, a surface
+  // mesh). The vertices' positions in `coordinates` are their numbers (vertex_numbers()).
+  // `name` names the mesh in messages.
+  static Mesh from_arrays(MPI_Comm comm, int coordinate_dim, std::span<const double> coordinates,
                           std::span<const std::int64_t> cells, std::span<const CellType> types,
                           const std::string& name = "mesh from arrays",
                           InvertedCells inverted = InvertedCells::Refuse);
@@ -83,7 +83,9 @@ class Mesh {
   ~Mesh();
 
   MPI_Comm comm() const;
-  int dim() const;
+  int dim() const;  // of the cells
+  // Coordinates per vertex: dim(), or 3 for a surface mesh (2D cells in space).
+  int coordinate_dim() const;
   const std::string& name() const;  // file name, or from_arrays' name
   std::int64_t num_cells() const;   // over all processes
   std::int64_t num_vertices() const;
@@ -91,9 +93,12 @@ class Mesh {
   // The vertices this process owns, by their number in the input (the file's order, or the
   // position in from_arrays' coordinates), ascending; every vertex is owned by one process.
   std::vector<std::int64_t> vertex_numbers() const;
-  // Their current coordinates, `dim()` values per vertex of vertex_numbers().
+  // Their current coordinates, coordinate_dim() values per vertex of vertex_numbers().
   std::vector<double> coordinates() const;
-  // Moves them (same layout as coordinates()); the next optimization starts there.
+  // Moves them (same layout as coordinates()); the next optimization starts there. A surface
+  // mesh's vertices slide on its cells as it was made; coordinates that take a vertex off that
+  // surface move the surface: from then on they slide on the cells at these coordinates
+  // (docs/user-guide.md, "Surface meshes").
   void set_coordinates(std::span<const double> coordinates);
 
   // The quality of all cells (collective).
@@ -147,7 +152,8 @@ class Mesh {
   // The whole mesh at its current coordinates on the communicator's first process, as
   // from_arrays takes it and in the same numbering (its vertex numbers, cells in input order),
   // with `cell_fields` (per local cell, as quality_by_cell() gives them) by cell number, and
-  // the file's groups and data. The other processes get only `dim` and the fields' names.
+  // the file's groups and data. The other processes get only the dimensions and the fields'
+  // names.
   // Throws Error if a field does not have a value per cell. Collective.
   MeshArrays gather(const std::vector<Field>& cell_fields = {}) const;
 
@@ -183,10 +189,12 @@ struct MeshGroup {
 };
 
 // A whole mesh as arrays (Mesh::gather), the inverse of Mesh::from_arrays:
-// Mesh::from_arrays(comm, a.dim, a.coordinates, a.cells, a.types) builds the same mesh.
+// Mesh::from_arrays(comm, a.coordinate_dim, a.coordinates, a.cells, a.types) builds the same
+// mesh.
 struct MeshArrays {
-  int dim = 0;
-  std::vector<double> coordinates;  // `dim` values per vertex, by vertex number
+  int dim = 0;                      // of the cells (Mesh::dim())
+  int coordinate_dim = 0;           // values per vertex: dim, or 3 for a surface mesh
+  std::vector<double> coordinates;  // `coordinate_dim` values per vertex, by vertex number
   std::vector<std::int64_t> cells;  // each cell's vertices in Gmsh's order, by cell number
   std::vector<CellType> types;      // one per cell
   std::vector<Field> cell_fields;   // `components` values per cell, by cell number

@@ -62,16 +62,18 @@ def from_arrays(points, cells, comm=None, name="mesh from arrays", allow_inverte
             kept.append(False)
         else:
             raise _neomesh.Error(f"cells: neomesh does not optimize '{t}' cells")
-    z = None
+    # 2D cells with 3 coordinates: in a plane z = constant, a 2D mesh whose z comes back in
+    # to_meshio(); otherwise a surface mesh, which keeps its 3 coordinates.
+    z, columns = None, dim
     if dim == 2 and points.shape[1] == 3:
         z = points[:, 2]
         if len(z) and np.ptp(z) > 1e-12 * max(1.0, np.abs(points).max()):
-            raise _neomesh.Error("points: a 2D mesh's points must lie in a plane z = constant")
+            z, columns = None, 3
     flat = [data.astype(np.int64).ravel() for (t, data), k in zip(blocks, kept) if k]
     types = [np.full(len(data), _TYPES.index(t), dtype=np.uint8)
              for (t, data), k in zip(blocks, kept) if k]
     mesh = _neomesh.Mesh._from_arrays(
-        np.ascontiguousarray(points[:, :dim]), np.concatenate(flat), np.concatenate(types), comm,
+        np.ascontiguousarray(points[:, :columns]), np.concatenate(flat), np.concatenate(types), comm,
         name, allow_inverted)
     extra = {"columns": points.shape[1], "z": None if z is None else z.copy(),
              "blocks": [(t, None if k else data.copy(), len(data))

@@ -155,23 +155,24 @@ py::dict file_data(const Mesh& mesh) {
   return out;
 }
 
-// The coordinates of every vertex (n × dim, by vertex number), on every process.
+// The coordinates of every vertex (n × coordinate_dim, by vertex number), on every process.
 py::array_t<double> points(const Mesh& mesh) {
   const MeshArrays a = gather_everywhere(mesh);
-  return matrix(a.coordinates, a.dim);
+  return matrix(a.coordinates, a.coordinate_dim);
 }
 
-// Moves this process' vertices to their rows of `points` (n × dim, by vertex number).
+// Moves this process' vertices to their rows of `points` (n × coordinate_dim, by vertex
+// number).
 void set_points(Mesh& mesh, const Points& points) {
-  if (points.ndim() != 2 || points.shape(1) != mesh.dim() || points.shape(0) != mesh.num_vertices())
-    throw Error(fmt::format("points: expected an array of {} × {} coordinates", mesh.num_vertices(),
-                            mesh.dim()));
+  const int d = mesh.coordinate_dim();
+  if (points.ndim() != 2 || points.shape(1) != d || points.shape(0) != mesh.num_vertices())
+    throw Error(
+        fmt::format("points: expected an array of {} × {} coordinates", mesh.num_vertices(), d));
   const std::vector<std::int64_t> numbers = mesh.vertex_numbers();
-  std::vector<double> owned(numbers.size() * mesh.dim());
+  std::vector<double> owned(numbers.size() * d);
   const double* all = points.data();
   for (std::size_t i = 0; i < numbers.size(); ++i)
-    for (int j = 0; j < mesh.dim(); ++j)
-      owned[i * mesh.dim() + j] = all[numbers[i] * mesh.dim() + j];
+    for (int j = 0; j < d; ++j) owned[i * d + j] = all[numbers[i] * d + j];
   mesh.set_coordinates(owned);
 }
 
@@ -515,20 +516,24 @@ PYBIND11_MODULE(_neomesh, m) {
           },
           "the mpi4py communicator the mesh is distributed over")
 #endif
-      .def_property_readonly("dim", &Mesh::dim)
+      .def_property_readonly("dim", &Mesh::dim, "the dimension of the cells")
+      .def_property_readonly("coordinate_dim", &Mesh::coordinate_dim,
+                             "coordinates per vertex: dim, or 3 for a surface mesh")
       .def_property_readonly("name", &Mesh::name)
       .def_property_readonly("num_cells", &Mesh::num_cells)
       .def_property_readonly("num_vertices", &Mesh::num_vertices)
-      .def_property("points", &points, &set_points,
-                    "every vertex's coordinates (num_vertices × dim, by vertex number) on every "
-                    "process; assigning moves the vertices (collective)")
+      .def_property(
+          "points", &points, &set_points,
+          "every vertex's coordinates (num_vertices × coordinate_dim, by vertex number) on every "
+          "process; assigning moves the vertices (collective)")
       .def(
           "_arrays",
           [](const Mesh& mesh) {
             const MeshArrays a = gather_everywhere(mesh);
             std::vector<std::uint8_t> types;
             for (CellType t : a.types) types.push_back(static_cast<std::uint8_t>(t));
-            return py::make_tuple(matrix(a.coordinates, a.dim), vector(a.cells), vector(types));
+            return py::make_tuple(matrix(a.coordinates, a.coordinate_dim), vector(a.cells),
+                                  vector(types));
           },
           "points, flat cell vertices and cell types, on every process (collective)")
       .def("_file_data", &file_data,
@@ -537,7 +542,8 @@ PYBIND11_MODULE(_neomesh, m) {
           "vertex_numbers", [](const Mesh& mesh) { return vector(mesh.vertex_numbers()); },
           "the vertices this process owns, by number")
       .def_property_readonly(
-          "local_points", [](const Mesh& mesh) { return matrix(mesh.coordinates(), mesh.dim()); },
+          "local_points",
+          [](const Mesh& mesh) { return matrix(mesh.coordinates(), mesh.coordinate_dim()); },
           "the coordinates of vertex_numbers, on this process")
       .def(
           "quality",

@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
+
+#include <Eigen/Dense>
 
 #include "api/fitting.hpp"
 #include "api/vertex_order.hpp"
@@ -17,6 +20,7 @@
 #include "mesh/dm_input.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/input_mesh.hpp"
+#include "mesh/plane_embedding.hpp"
 #include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
@@ -25,22 +29,26 @@ namespace {
 
 // The arrays of from_arrays as an InputMesh (Gmsh order → canonical order), checking what
 // the validation of the mesh layer cannot see: sizes, cell types of one dimension, indices.
-InputMesh input_from_arrays(int dim, std::span<const double> coordinates,
+// 2D cells with 3 coordinates per vertex are a surface mesh unless they lie in one plane.
+InputMesh input_from_arrays(int coordinate_dim, std::span<const double> coordinates,
                             std::span<const std::int64_t> cells, std::span<const CellType> types,
                             const std::string& name) {
+  const int dim = coordinate_dim;
   if (dim != 2 && dim != 3)
     fail("{}: dimension {} (neomesh optimizes 2D and 3D meshes)", name, dim);
   if (coordinates.size() % dim != 0)
     fail("{}: {} coordinates are not a whole number of {}D vertices", name, coordinates.size(),
          dim);
+  const bool surface = dim == 3 && !types.empty() && neomesh::facts(types[0]).dim == 2;
   InputMesh input;
-  input.dim = dim;
+  input.dim = surface ? 2 : dim;
   input.coords.assign(coordinates.begin(), coordinates.end());
   const auto num_vertices = static_cast<std::int64_t>(coordinates.size()) / dim;
   std::size_t next = 0;
   for (std::size_t c = 0; c < types.size(); ++c) {
     const CellFacts& facts = neomesh::facts(types[c]);
-    if (facts.dim != dim) fail("{}: cell {} is a {} in a {}D mesh", name, c, facts.name, dim);
+    if (facts.dim != input.dim)
+      fail("{}: cell {} is a {} in a {}D mesh", name, c, facts.name, input.dim);
     if (next + facts.vertices > cells.size())
       fail("{}: the cell array ends within cell {} ({} vertex numbers for {} cells)", name, c,
            cells.size(), types.size());
@@ -57,6 +65,12 @@ InputMesh input_from_arrays(int dim, std::span<const double> coordinates,
   }
   if (next != cells.size())
     fail("{}: {} vertex numbers for {} cells that have {}", name, cells.size(), types.size(), next);
+  if (surface) {
+    std::vector<double> in_plane;
+    if (PlaneEmbedding::fit(coordinates, in_plane, name))
+      fail("{}: its 2D cells lie in one plane: give 2 coordinates per vertex, in that plane", name);
+    input.surface = true;
+  }
   return input;
 }
 
@@ -84,13 +98,14 @@ Mesh Mesh::read(const std::vector<std::filesystem::path>& paths, MPI_Comm comm,
               before);
 }
 
-Mesh Mesh::from_arrays(MPI_Comm comm, int dim, std::span<const double> coordinates,
+Mesh Mesh::from_arrays(MPI_Comm comm, int coordinate_dim, std::span<const double> coordinates,
                        std::span<const std::int64_t> cells, std::span<const CellType> types,
                        const std::string& name, InvertedCells inverted) {
   const double before = resident_bytes();
   InputMesh input;
   collectively(comm, [&] {
-    if (mpi_rank(comm) == 0) input = input_from_arrays(dim, coordinates, cells, types, name);
+    if (mpi_rank(comm) == 0)
+      input = input_from_arrays(coordinate_dim, coordinates, cells, types, name);
   });
   return Mesh(std::make_unique<PlexMesh>(
                   PlexMesh::from_input(input, name, comm, inverted == InvertedCells::Keep)),
@@ -123,6 +138,9 @@ MPI_Comm Mesh::comm() const {
 int Mesh::dim() const {
   return plex_->dim();
 }
+int Mesh::coordinate_dim() const {
+  return plex_->view().dim;
+}
 const std::string& Mesh::name() const {
   return plex_->source();
 }
@@ -152,19 +170,30 @@ std::vector<std::int64_t> Mesh::vertex_numbers() const {
 
 namespace {
 
-// A surface mesh has 3 coordinates per vertex but 2D cells: no arrays of dim() per vertex.
-void refuse_surface_arrays(const MeshView& view, const std::string& name) {
-  if (view.surface)
-    fail(
-        "{}: a surface mesh (2D cells in space) has no arrays of one dimension; write it to a file",
-        name);
+// Relative to the size of a surface mesh, how far a vertex set by set_coordinates may lie from
+// the surface its vertices slide on before the surface counts as moved: far above the round-off
+// of the sliding projection, which leaves smoothed vertices on the surface.
+constexpr double kOnSurfaceTolerance = 1e-9;
+
+// True if a vertex of the surface mesh `view` lies off the surface it slides on (view.boundary).
+bool moved_off_surface(const MeshView& view, MPI_Comm comm) {
+  const BoundarySurface& surface = *view.boundary;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (PetscInt b = 0; b < surface.num_vertices(); ++b) {
+    const Eigen::Vector3d p(surface.coords.data() + 3 * b);
+    lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  const double size = surface.num_vertices() > 0 ? (hi - lo).norm() : 0.0;
+  const double distance =
+      max_boundary_distance(view, view.coords, DistanceToBoundary(surface), comm);
+  return distance > kOnSurfaceTolerance * size;
 }
 
 }  // namespace
 
 std::vector<double> Mesh::coordinates() const {
   const MeshView& view = plex_->view();
-  refuse_surface_arrays(view, name());
   std::vector<double> out;
   for (PetscInt u : owned_by_number(view))
     for (int j = 0; j < view.dim; ++j) out.push_back(view.coords[u * view.dim + j]);
@@ -173,7 +202,6 @@ std::vector<double> Mesh::coordinates() const {
 
 void Mesh::set_coordinates(std::span<const double> coordinates) {
   const MeshView& view = plex_->view();
-  refuse_surface_arrays(view, name());
   const std::vector<PetscInt> owned = owned_by_number(view);
   collectively(comm(), [&] {
     if (coordinates.size() != owned.size() * view.dim)
@@ -192,6 +220,9 @@ void Mesh::set_coordinates(std::span<const double> coordinates) {
   NM_PETSC(VecAssemblyBegin(x));
   NM_PETSC(VecAssemblyEnd(x));
   plex_->set_coordinates(x);
+  // A surface moved by the caller (a deforming shell in a time loop) is the surface from now
+  // on; vertices moved along it keep sliding on the cells the mesh was made with.
+  if (view.surface && moved_off_surface(view, comm())) plex_->move_surface_to_coordinates();
 }
 
 const CellQuality& Mesh::cell_quality() const {
@@ -266,9 +297,9 @@ MeshArrays Mesh::gather(const std::vector<Field>& cell_fields) const {
   fields.cell = cell_fields;
   const GatheredMesh gathered = gather_mesh(*plex_, fields);
   const InputMesh& m = gathered.mesh;
-  refuse_surface_arrays(plex_->view(), name());
   MeshArrays out;
   out.dim = m.dim;
+  out.coordinate_dim = m.coord_dim();
   out.cell_fields = gathered.fields.cell;
   if (mpi_rank(comm()) != 0) return out;
   out.coordinates = m.coords;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <numeric>
 #include <vector>
 
@@ -13,6 +14,8 @@
 
 #include <neomesh/error.hpp>
 #include <neomesh/generate.hpp>
+#include <neomesh/optimizer.hpp>
+#include <neomesh/result.hpp>
 
 #include "core/testing/test_data.hpp"
 
@@ -173,6 +176,92 @@ TEST(MeshBoundaryDistance, HowFarTheBoundaryMoved) {
   mesh.set_coordinates(x);
   EXPECT_NEAR(mesh.max_boundary_distance(reference), 0.25, 1e-12);
   EXPECT_THROW(mesh.max_boundary_distance(Mesh::generate({.name = "box-hex", .size = 1})), Error);
+}
+
+// A surface mesh: n × n quads on the parabolic patch z = x² over [0, 1]², open, its interior
+// vertices jittered in x and y (then lifted onto the patch) so that smoothing moves them.
+MeshArrays parabolic_patch(int n) {
+  MeshArrays mesh;
+  mesh.dim = 2;
+  mesh.coordinate_dim = 3;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const bool interior = i > 0 && i < n && j > 0 && j < n;
+      const double x = (i + (interior ? 0.3 * std::sin(7.0 * j + i) : 0.0)) / n;
+      const double y = (j + (interior ? 0.3 * std::cos(5.0 * i + j) : 0.0)) / n;
+      mesh.coordinates.insert(mesh.coordinates.end(), {x, y, x * x});
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const std::int64_t v = j * (n + 1) + i;
+      mesh.cells.insert(mesh.cells.end(), {v, v + 1, v + n + 2, v + n + 1});
+      mesh.types.push_back(CellType::Quadrilateral);
+    }
+  return mesh;
+}
+
+Mesh build_surface(const MeshArrays& a) {
+  return Mesh::from_arrays(MPI_COMM_WORLD, a.coordinate_dim, a.coordinates, a.cells, a.types,
+                           "parabolic patch");
+}
+
+TEST(SurfaceArrays, ThreeCoordinatesPerVertexInAndOut) {
+  const MeshArrays input = parabolic_patch(4);
+  Mesh mesh = build_surface(input);
+  EXPECT_EQ(mesh.dim(), 2);
+  EXPECT_EQ(mesh.coordinate_dim(), 3);
+  std::vector<double> by_number(input.coordinates.size());
+  const std::vector<double> x = mesh.coordinates();
+  const std::vector<std::int64_t> numbers = mesh.vertex_numbers();
+  ASSERT_EQ(x.size(), 3 * numbers.size());
+  for (std::size_t i = 0; i < numbers.size(); ++i)
+    for (int j = 0; j < 3; ++j) by_number[3 * numbers[i] + j] = x[3 * i + j];
+  EXPECT_EQ(by_number, input.coordinates);
+  const MeshArrays out = mesh.gather();
+  EXPECT_EQ(out.dim, 2);
+  EXPECT_EQ(out.coordinate_dim, 3);
+  EXPECT_EQ(out.coordinates, input.coordinates);
+  EXPECT_EQ(out.cells, input.cells);
+  EXPECT_EQ(out.types, input.types);
+  // Moved as given, 3 values per vertex.
+  std::vector<double> moved = x;
+  for (double& c : moved) c *= 2;
+  mesh.set_coordinates(moved);
+  EXPECT_EQ(mesh.coordinates(), moved);
+  EXPECT_THROW(mesh.set_coordinates(std::vector<double>(2 * numbers.size(), 0.0)), Error);
+}
+
+TEST(SurfaceArrays, TwoDimensionalCellsInOnePlaneNeedTwoCoordinates) {
+  MeshArrays flat = parabolic_patch(2);
+  for (std::size_t v = 0; v < flat.coordinates.size() / 3; ++v) flat.coordinates[3 * v + 2] = 1;
+  EXPECT_THROW(build_surface(flat), Error);
+}
+
+// The smallest z of the mesh's vertices.
+double lowest(const Mesh& mesh) {
+  double z = std::numeric_limits<double>::infinity();
+  const std::vector<double> x = mesh.coordinates();
+  for (std::size_t i = 2; i < x.size(); i += 3) z = std::min(z, x[i]);
+  return z;
+}
+
+// A surface moved by set_coordinates (the patch lifted by 1, as a shell moves in a time loop)
+// is the surface its vertices slide on from then on, also for an Optimizer that smoothed it
+// before: smoothing improves the lifted mesh and leaves it where it was put.
+TEST(SurfaceArrays, SetCoordinatesMovesTheSurface) {
+  Mesh mesh = build_surface(parabolic_patch(6));
+  Optimizer optimizer(mesh);
+  optimizer.smooth();
+  EXPECT_GE(lowest(mesh), 0.0);
+  std::vector<double> x = mesh.coordinates();
+  for (std::size_t i = 2; i < x.size(); i += 3) x[i] += 1.0;
+  for (std::size_t i = 0; i < x.size(); i += 3) x[i] += 0.02 * std::sin(3.0 * i);  // jitter
+  mesh.set_coordinates(x);
+  const double min_before = mesh.quality().scaled_jacobian.min;
+  const Result result = optimizer.smooth();
+  EXPECT_GE(lowest(mesh), 1.0 - 1e-12);
+  EXPECT_LT(result.boundary_distance, 1e-12);  // from the cells where this call started
+  EXPECT_GT(mesh.quality().scaled_jacobian.min, min_before);
 }
 
 }  // namespace

@@ -91,7 +91,8 @@ Optimizer::Impl::Impl(Mesh& m) : mesh(m) {}
 void Optimizer::Impl::start(const EnergyOptions& e, const BoundaryOptions& b,
                             const SolverOptions* solver) {
   x = mesh.plex().coordinates();
-  const bool same_problem = functional && same(*energy, e) && same(*boundary_options, b);
+  const bool same_problem = functional && same(*energy, e) && same(*boundary_options, b) &&
+                            boundary->slides_on_surface_of(view());
   if (!functional) {
     const bool hessian_hierarchy = solver && solver->linear_solver == LinearSolverKind::Amg &&
                                    solver->advanced.hessian_pc == HessianPreconditioner::Hessian;

@@ -1,6 +1,6 @@
-// `neomesh render`: a picture of a mesh (a 2D mesh as it lies, a 3D mesh's boundary in
-// perspective, or cut open) coloured by a quality metric, the energy or the volume ratio Q of
-// its cells.
+// `neomesh render`: a picture of a mesh (a 2D mesh as it lies, a 3D mesh's boundary or a surface
+// mesh's cells in perspective, or cut open) coloured by a quality metric, the energy or the
+// volume ratio Q of its cells.
 #include <array>
 #include <cmath>
 #include <limits>
@@ -154,8 +154,8 @@ Subcommand add_render(CLI::App& app) {
       "render",
       "Draw a mesh as a .png or .svg picture. Every cell is coloured by a quality metric,\n"
       "its energy or its volume ratio Q, with a colour bar; inverted cells are drawn in red\n"
-      "and counted. A 3D mesh is drawn as its boundary in perspective, shaded; --cut opens\n"
-      "it to show the cells inside.");
+      "and counted. A 3D mesh is drawn as its boundary in perspective, shaded, a surface\n"
+      "mesh as its cells (their back side darker); --cut opens it to show the cells inside.");
   cmd->add_option("mesh", options->inputs, input_mesh_help("mesh file"))->required();
   cmd->add_option("-o,--output", options->output, "picture file (.png or .svg)")->required();
   std::vector<std::string> fields;
@@ -184,12 +184,14 @@ Subcommand add_render(CLI::App& app) {
       ->delimiter(',')
       ->expected(4);
   cmd->add_option("--view", options->view,
-                  "3D: where the eye looks from, AZIMUTH,ELEVATION in degrees (azimuth in the "
+                  "3D and surface meshes: where the eye looks from, AZIMUTH,ELEVATION in degrees "
+                  "(azimuth in the "
                   "x-y plane from the x axis; default: -60,25)")
       ->delimiter(',')
       ->expected(2);
   cmd->add_option("--cut", options->cut,
-                  "3D: draw only the cells behind a plane normal to x, y or z, at the mesh's "
+                  "3D and surface meshes: draw only the cells behind a plane normal to x, y or z, "
+                  "at the mesh's "
                   "middle or where given (x=0.5), to show the cells inside");
   cmd->add_flag("--log", options->log_scale,
                 "colour by the logarithm of the value (default: linear)");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <span>
 
 #include <Eigen/Geometry>
@@ -129,6 +130,9 @@ struct Boundary::Impl {
   const MeshView& view;
   const DofMap& dofs;
   BoundaryOptions options;
+  // What the vertices slide on: the view's when the Boundary was built, kept alive here when a
+  // surface mesh moves its surface (PlexMesh::move_surface_to_coordinates).
+  std::shared_ptr<const BoundarySurface> surface_owner;
   const BoundarySurface& surface;
   BoundaryFeatures features;
   std::vector<std::unique_ptr<Surface>> patch_surface;
@@ -147,7 +151,7 @@ struct Boundary::Impl {
   mutable std::unique_ptr<DistanceToBoundary> input_boundary;  // built when first asked
 
   Impl(const MeshView& v, const DofMap& d, const BoundaryOptions& o)
-      : view(v), dofs(d), options(o), surface(*v.boundary) {
+      : view(v), dofs(d), options(o), surface_owner(v.boundary), surface(*surface_owner) {
     fixed.assign(static_cast<std::size_t>(view.num_vertices) * view.dim, 0);
     if (options.mode == BoundaryMode::Fixed) {
       for (PetscInt u = 0; u < view.num_vertices; ++u)
@@ -502,6 +506,10 @@ struct Boundary::Impl {
 Boundary::Boundary(const MeshView& view, const DofMap& dofs, const BoundaryOptions& options)
     : impl_(std::make_unique<Impl>(view, dofs, options)) {}
 Boundary::~Boundary() = default;
+
+bool Boundary::slides_on_surface_of(const MeshView& view) const {
+  return view.boundary == impl_->surface_owner;
+}
 
 FixedDofs Boundary::fixed_dofs() const {
   return FixedDofs{impl_->fixed};

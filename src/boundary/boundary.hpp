@@ -43,6 +43,9 @@ class Boundary {
   Boundary(const Boundary&) = delete;
   Boundary& operator=(const Boundary&) = delete;
 
+  // False once the surface `view`'s vertices slide on is no longer the one this Boundary was
+  // built on (Mesh::set_coordinates moved a surface mesh's surface): build a new Boundary.
+  bool slides_on_surface_of(const MeshView& view) const;
   // Per local dof: 1 if that coordinate never moves.
   FixedDofs fixed_dofs() const;
   // The vertices that slide in tangent spaces, for the Functional (refers to this Boundary,

@@ -55,7 +55,9 @@ struct MeshView {
   std::vector<BoundaryPartInfo> parts;
   std::vector<PetscInt> global_cell;   // per local cell: cell number in the input file (0-based)
   std::vector<PetscInt> input_vertex;  // per local vertex: its number in the input (0-based)
-  // The whole input boundary, the same on every rank (what sliding vertices slide on).
+  // The whole input boundary, the same on every rank (what sliding vertices slide on); a
+  // surface mesh's is replaced when the caller moves the surface
+  // (PlexMesh::move_surface_to_coordinates).
   std::shared_ptr<const BoundarySurface> boundary;
 
   // The dimension of the cells: dim, or 2 on a surface.

@@ -334,6 +334,24 @@ void PlexMesh::set_coordinates(Vec coords) {
   ++impl_->coordinates_version;
 }
 
+void PlexMesh::move_surface_to_coordinates() {
+  MeshView& view = *impl_->view;
+  if (!view.surface) fail("{}: only a surface mesh moves its surface", impl_->source);
+  // Every process holds the whole surface; each vertex's owner gives its coordinates, the
+  // others add zeros.
+  BoundarySurface moved = *view.boundary;
+  std::fill(moved.coords.begin(), moved.coords.end(), 0.0);
+  for (PetscInt u = 0; u < view.num_vertices; ++u) {
+    const PetscInt b = view.owned[u] ? moved.find(view.input_vertex[u]) : -1;
+    if (b >= 0)
+      std::copy_n(view.coords.begin() + u * view.dim, view.dim,
+                  moved.coords.begin() + b * view.dim);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, moved.coords.data(), static_cast<int>(moved.coords.size()),
+                MPI_DOUBLE, MPI_SUM, impl_->comm);
+  view.boundary = std::make_shared<const BoundarySurface>(std::move(moved));
+}
+
 std::uint64_t PlexMesh::coordinates_version() const {
   return impl_->coordinates_version;
 }

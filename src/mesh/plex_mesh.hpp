@@ -54,6 +54,10 @@ class PlexMesh {
   // Moves the vertices: `coords` is a global Vec laid out by dofs(). view().coords is the one
   // place that holds them (dm() updates the DMPlex's when asked).
   void set_coordinates(Vec coords);
+  // On a surface mesh: the surface its vertices slide on, view().boundary, becomes its cells at
+  // the current coordinates (the caller moved the surface). A new BoundarySurface: what was
+  // built on the old one keeps it and tells by comparing pointers. Collective.
+  void move_surface_to_coordinates();
   // Changes with every set_coordinates: what was computed from the coordinates at another
   // version is stale.
   std::uint64_t coordinates_version() const;

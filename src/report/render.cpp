@@ -172,7 +172,8 @@ struct Outline {
 };
 
 // The cells in the order they are drawn: triangles first, then quadrilaterals, each by number.
-// Throws Error unless the arrays make a 2D mesh of triangles and quadrilaterals.
+// Throws Error unless the arrays make a mesh of triangles and quadrilaterals (in the plane or,
+// a surface mesh, in space).
 std::vector<Outline> outlines(const MeshArrays& mesh) {
   std::vector<std::size_t> first(mesh.types.size() + 1, 0);
   for (std::size_t c = 0; c < mesh.types.size(); ++c) {
@@ -181,7 +182,8 @@ std::vector<Outline> outlines(const MeshArrays& mesh) {
            facts(mesh.types[c]).name);
     first[c + 1] = first[c] + num_vertices(mesh.types[c]);
   }
-  const auto vertex_count = static_cast<std::int64_t>(mesh.coordinates.size() / 2);
+  const auto vertex_count =
+      static_cast<std::int64_t>(mesh.coordinates.size() / mesh.coordinate_dim);
   if (first.back() != mesh.cells.size())
     fail("render: {} vertex numbers for {} cells that have {}", mesh.cells.size(),
          mesh.types.size(), first.back());
@@ -269,12 +271,17 @@ void draw_edges(cairo_t* cr, std::span<const Outline> cells, const Layout& l,
   cairo_stroke(cr);
 }
 
-// A 3D mesh seen from the eye: the visible boundary faces of the cells drawn, far to near.
+// A mesh in space seen from the eye, far to near: a 3D mesh's visible boundary faces of the
+// cells drawn, or a surface mesh's cells drawn, both sides.
 struct Projection {
   std::vector<double> coords;          // 2 per vertex: where it lands on the picture plane
-  std::vector<std::int64_t> vertices;  // the faces' vertices, outward (counter-clockwise seen)
+  std::vector<std::int64_t> vertices;  // the faces' vertices (3D: outward, counter-clockwise seen)
   std::vector<Outline> faces;          // far to near, spans into `vertices`
 };
+
+// The side of a surface cell turned away from the light's side of the picture is drawn this
+// much darker, so that the inside of an open surface reads as such.
+constexpr double kBackSideShade = 0.7;
 
 using Vector3 = Eigen::Vector3d;
 
@@ -335,8 +342,23 @@ std::vector<Face> boundary_faces(const MeshArrays& mesh, std::span<const std::ui
   return single;
 }
 
+// A surface mesh's cells drawn (those the cut keeps), as faces. Throws Error unless the arrays
+// make a mesh of triangles and quadrilaterals.
+std::vector<Face> surface_faces(const MeshArrays& mesh, std::span<const std::uint8_t> drawn) {
+  std::vector<Face> faces;
+  for (const Outline& cell : outlines(mesh)) {
+    if (!drawn[cell.cell]) continue;
+    Face face{.key = {}, .vertices = {-1, -1, -1, -1}, .size = 0, .cell = cell.cell};
+    face.size = static_cast<int>(cell.vertices.size());
+    std::copy(cell.vertices.begin(), cell.vertices.end(), face.vertices.begin());
+    faces.push_back(face);
+  }
+  return faces;
+}
+
 Projection project(const MeshArrays& mesh, const RenderOptions& o) {
-  if (mesh.coordinates.size() % 3 != 0) fail("render: a 3D mesh needs 3 coordinates per vertex");
+  if (mesh.coordinates.size() % 3 != 0)
+    fail("render: a mesh in space needs 3 coordinates per vertex");
   const auto vertex_count = static_cast<std::int64_t>(mesh.coordinates.size() / 3);
   Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::int64_t v = 0; v < vertex_count; ++v)
@@ -389,16 +411,22 @@ Projection project(const MeshArrays& mesh, const RenderOptions& o) {
     std::size_t first, size, cell;
   };
   std::vector<Visible> visible;
-  for (const Face& f : boundary_faces(mesh, drawn)) {
+  const bool surface = mesh.dim == 2;
+  for (const Face& f : surface ? surface_faces(mesh, drawn) : boundary_faces(mesh, drawn)) {
     Vector3 normal = Vector3::Zero(), mid = Vector3::Zero();  // Newell's normal
     for (int i = 0; i < f.size; ++i) {
       const Vector3 a = vertex(mesh, f.vertices[i]), b = vertex(mesh, f.vertices[(i + 1) % f.size]);
       normal += a.cross(b);
       mid += a / f.size;
     }
-    // Faces turned away are hidden behind the ones turned towards the eye.
-    if (!(normal.dot(eye - mid) > 0)) continue;
-    const double shade = 0.45 + 0.55 * std::max(0.0, normal.normalized().dot(light));
+    // A volume's faces turned away are hidden behind the ones turned towards the eye. A
+    // surface's cells show either side (an open surface's inside shows through its opening),
+    // the nearer ones drawn over the farther ones.
+    const bool back = !(normal.dot(eye - mid) > 0);
+    if (back && !surface) continue;
+    if (back) normal = -normal;
+    const double shade = (back ? kBackSideShade : 1.0) *
+                         (0.45 + 0.55 * std::max(0.0, normal.normalized().dot(light)));
     visible.push_back({(eye - mid).dot(e), shade, p.vertices.size(), std::size_t(f.size), f.cell});
     p.vertices.insert(p.vertices.end(), f.vertices.begin(), f.vertices.begin() + f.size);
   }
@@ -479,39 +507,46 @@ void draw_colour_bar(cairo_t* cr, const Layout& l, const Legend& g) {
 
 }  // namespace
 
-void render_mesh(const MeshArrays& mesh, std::span<const double> cell_values,
-                 const std::filesystem::path& out, const RenderOptions& options) {
+ColourBarRange render_mesh(const MeshArrays& mesh, std::span<const double> cell_values,
+                           const std::filesystem::path& out, const RenderOptions& options) {
   if (mesh.dim != 2 && mesh.dim != 3) fail("render: a mesh of dimension {}", mesh.dim);
-  if (mesh.dim == 3 && options.window)
-    fail("render: a window zooms into a 2D mesh; a 3D mesh is drawn whole (a cut shows inside)");
-  if (mesh.dim == 2 && options.cut) fail("render: a cut opens a 3D mesh; this mesh is 2D");
+  if (mesh.coordinate_dim != mesh.dim && !(mesh.dim == 2 && mesh.coordinate_dim == 3))
+    fail("render: {} coordinates per vertex for {}D cells", mesh.coordinate_dim, mesh.dim);
+  // A 3D mesh, or a surface mesh: in space, drawn in perspective.
+  const bool in_space = mesh.coordinate_dim == 3;
+  if (in_space && options.window)
+    fail(
+        "render: a window zooms into a 2D mesh; a mesh in space is drawn whole (a cut shows "
+        "inside)");
+  if (!in_space && options.cut) fail("render: a cut opens a mesh in space; this mesh is 2D");
   if (options.cut && (options.cut->axis < 0 || options.cut->axis > 2))
     fail("render: cut axis {} is not x, y or z", options.cut->axis);
   std::vector<Outline> cells;
   Projection projection;
-  if (mesh.dim == 2) {
+  if (!in_space) {
     cells = outlines(mesh);
   } else {
     projection = project(mesh, options);
     cells = projection.faces;
   }
   const std::span<const double> coords =
-      mesh.dim == 2 ? std::span<const double>(mesh.coordinates) : projection.coords;
-  if (mesh.coordinates.size() % mesh.dim != 0 || cell_values.size() != mesh.types.size())
+      in_space ? projection.coords : std::span<const double>(mesh.coordinates);
+  const auto d = static_cast<std::size_t>(mesh.coordinate_dim);
+  if (mesh.coordinates.size() % d != 0 || cell_values.size() != mesh.types.size())
     fail(
         "render: {} coordinates and {} cell values do not fit a mesh of {} vertices and {} "
         "cells",
-        mesh.coordinates.size(), cell_values.size(), mesh.coordinates.size() / mesh.dim,
+        mesh.coordinates.size(), cell_values.size(), mesh.coordinates.size() / d,
         mesh.types.size());
   picture_format(out);  // an unknown extension fails before any work
   const ColourScale scale = colour_scale(cell_values, options);
   const Legend g = legend(scale, options, cell_values);
   // Framed: what is drawn (a cut shows part of a 3D mesh).
   std::vector<double> framed;
-  if (mesh.dim == 3)
+  if (in_space)
     for (std::int64_t v : projection.vertices)
       framed.insert(framed.end(), {coords[2 * v], coords[2 * v + 1]});
-  const Layout l = layout(mesh.dim == 3 ? std::span<const double>(framed) : coords, options, g);
+  const Layout l = layout(in_space ? std::span<const double>(framed) : coords, options, g);
 
   Canvas canvas(out, l.width, l.height);
   cairo_t* cr = canvas.cr();
@@ -526,7 +561,7 @@ void render_mesh(const MeshArrays& mesh, std::span<const double> cell_values,
   cairo_clip(cr);
   const double cell_pixels = mean_cell_pixels(shown, l, coords);
   const bool edges = options.draw_edges && cell_pixels >= kMinCellPixelsForEdges;
-  if (mesh.dim == 3) {
+  if (in_space) {
     draw_faces(cr, shown, l, coords, cell_values, scale, cell_pixels, edges);
   } else {
     draw_cells(cr, shown, l, coords, cell_values, scale);
@@ -535,13 +570,17 @@ void render_mesh(const MeshArrays& mesh, std::span<const double> cell_values,
   cairo_restore(cr);
   draw_colour_bar(cr, l, g);
   canvas.finish();
+  return {scale.value_at(0), scale.value_at(1)};
 }
 
-void render_mesh(const Mesh& mesh, std::span<const double> cell_values,
-                 const std::filesystem::path& out, const RenderOptions& options) {
+ColourBarRange render_mesh(const Mesh& mesh, std::span<const double> cell_values,
+                           const std::filesystem::path& out, const RenderOptions& options) {
   picture_format(out);  // an unknown extension fails before the gather
   const MeshArrays whole = mesh.gather({{"value", {cell_values.begin(), cell_values.end()}}});
-  on_root(mesh.comm(), [&] { render_mesh(whole, whole.cell_fields.front().values, out, options); });
+  ColourBarRange range;
+  on_root(mesh.comm(),
+          [&] { range = render_mesh(whole, whole.cell_fields.front().values, out, options); });
+  return range;
 }
 
 }  // namespace neomesh

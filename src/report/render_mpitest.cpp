@@ -18,7 +18,7 @@ double value_of(std::int64_t cell) {
 // n × n squares of [0, n]², every other one split into two triangles: both cell types, mixed.
 MeshArrays mixed_grid(int n) {
   MeshArrays mesh;
-  mesh.dim = 2;
+  mesh.dim = mesh.coordinate_dim = 2;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i)
       mesh.coordinates.insert(mesh.coordinates.end(), {1.0 * i, 1.0 * j});

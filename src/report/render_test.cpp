@@ -1,5 +1,6 @@
 #include "report/render.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -19,7 +20,7 @@ namespace {
 // An n × n grid of unit-square quads on [0, n]², slightly sheared so that cells differ.
 MeshArrays quad_grid(int n) {
   MeshArrays mesh;
-  mesh.dim = 2;
+  mesh.dim = mesh.coordinate_dim = 2;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       mesh.coordinates.push_back(i + 0.15 * j * j / n);
@@ -37,7 +38,7 @@ MeshArrays quad_grid(int n) {
 // A 2:1 rectangle [0, 2] × [0, 1] of 2 × 3 × 3 counter-clockwise triangles.
 MeshArrays triangle_strip() {
   MeshArrays mesh;
-  mesh.dim = 2;
+  mesh.dim = mesh.coordinate_dim = 2;
   const int nx = 6, ny = 3;
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i <= nx; ++i) {
@@ -49,6 +50,38 @@ MeshArrays triangle_strip() {
       const std::int64_t v = j * (nx + 1) + i;
       mesh.cells.insert(mesh.cells.end(), {v, v + 1, v + nx + 2, v, v + nx + 2, v + nx + 1});
       mesh.types.insert(mesh.types.end(), 2, CellType::Triangle);
+    }
+  return mesh;
+}
+
+// The unit sphere as a surface mesh: the 6 faces of the cube [-1, 1]³, each n × n quads,
+// pushed out onto the sphere, every quad counter-clockwise seen from outside.
+MeshArrays cubed_sphere(int n) {
+  MeshArrays mesh;
+  mesh.dim = 2;
+  mesh.coordinate_dim = 3;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const double side : {-1.0, 1.0}) {
+      const auto first = static_cast<std::int64_t>(mesh.coordinates.size() / 3);
+      for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+          double p[3];
+          p[axis] = side;
+          p[(axis + 1) % 3] = -1.0 + 2.0 * i / n;
+          p[(axis + 2) % 3] = -1.0 + 2.0 * j / n;
+          const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+          mesh.coordinates.insert(mesh.coordinates.end(), {p[0] / r, p[1] / r, p[2] / r});
+        }
+      // (axis+1, axis+2, axis) is right-handed: the grid turns counter-clockwise about +axis.
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const std::int64_t v = first + j * (n + 1) + i;
+          if (side > 0)
+            mesh.cells.insert(mesh.cells.end(), {v, v + 1, v + n + 2, v + n + 1});
+          else
+            mesh.cells.insert(mesh.cells.end(), {v, v + n + 1, v + n + 2, v + 1});
+          mesh.types.push_back(CellType::Quadrilateral);
+        }
     }
   return mesh;
 }
@@ -207,6 +240,55 @@ TEST(RenderMesh, ThreeDimensionalMeshShowsItsBoundaryAndACutShowsInside) {
   EXPECT_LT(colour_ends(dir / "all.png").purple, 1e-3);
 }
 
+// A surface mesh is drawn as its cells in perspective: a sphere coloured by height (z) fills a
+// disc of the picture, the legend's range is the field's, and a cut shows the inside of the
+// far half, darker (its cells turn their back to the eye).
+TEST(RenderMesh, SurfaceSphereIsDrawnInPerspective) {
+  const auto dir = testing::scratch_dir("render_surface");
+  const MeshArrays sphere = cubed_sphere(8);
+  std::vector<double> height;
+  for (std::size_t c = 0; c < sphere.types.size(); ++c) {
+    double z = 0;
+    for (int i = 0; i < 4; ++i) z += sphere.coordinates[3 * sphere.cells[4 * c + i] + 2] / 4;
+    height.push_back(z);
+  }
+  RenderOptions options;
+  options.width = 600;
+  options.field_name = "z";
+  const ColourBarRange range = render_mesh(sphere, height, dir / "sphere.png", options);
+  EXPECT_DOUBLE_EQ(range.min, *std::min_element(height.begin(), height.end()));
+  EXPECT_DOUBLE_EQ(range.max, *std::max_element(height.begin(), height.end()));
+  const Png png = read_png(dir / "sphere.png");
+  EXPECT_EQ(png.width, 600);
+  EXPECT_GT(png.height, 300);
+  EXPECT_GT(png.non_white_fraction, 0.2);  // a disc of about half the map's width and more
+  EXPECT_LT(png.non_white_fraction, 0.8);
+  // Seen from above (elevation 25°) the top's yellow shows and the bottom's purple is hidden
+  // but for the colour bar's end; cut open, the far half's inside shows its purple bottom.
+  const Ends whole = colour_ends(dir / "sphere.png");
+  EXPECT_GT(whole.yellow, 0.02);
+  EXPECT_LT(whole.purple, 2e-3);
+  options.cut = RenderOptions::Cut{.axis = 0, .position = std::nullopt};
+  render_mesh(sphere, height, dir / "cut.png", options);
+  EXPECT_GT(colour_ends(dir / "cut.png").purple, 2 * whole.purple + 1e-3);
+}
+
+// The surface mesh of a Mesh (its gathered arrays have 3 coordinates per vertex) renders the
+// same picture as its arrays.
+TEST(RenderMesh, SurfaceMeshFromArrays) {
+  const auto dir = testing::scratch_dir("render_surface_mesh");
+  const MeshArrays sphere = cubed_sphere(4);
+  const Mesh mesh = Mesh::from_arrays(MPI_COMM_WORLD, 3, sphere.coordinates, sphere.cells,
+                                      sphere.types, "cubed sphere");
+  ASSERT_EQ(mesh.dim(), 2);
+  ASSERT_EQ(mesh.coordinate_dim(), 3);
+  std::vector<double> by_number = ramp(sphere.types.size()), local;
+  for (std::int64_t c : mesh.cell_numbers()) local.push_back(by_number[c]);
+  render_mesh(mesh, local, dir / "mesh.png");
+  render_mesh(sphere, by_number, dir / "arrays.png");
+  EXPECT_TRUE(testing::read_file(dir / "mesh.png") == testing::read_file(dir / "arrays.png"));
+}
+
 TEST(RenderMesh, OptionsOfTheOtherDimensionAreRefused) {
   const auto dir = testing::scratch_dir("render_dimension_options");
   const MeshArrays cube = Mesh::generate({.name = "box-hex", .size = 1}).gather();
@@ -217,10 +299,16 @@ TEST(RenderMesh, OptionsOfTheOtherDimensionAreRefused) {
   cut.cut = RenderOptions::Cut{.axis = 0, .position = std::nullopt};
   const MeshArrays square = quad_grid(2);
   EXPECT_THROW(render_mesh(square, ramp(4), dir / "never.png", cut), Error);
-  MeshArrays surface = quad_grid(2);  // 2D cells in a 3D mesh
-  surface.dim = 3;
-  surface.coordinates.resize(9 * 3, 0.0);
-  EXPECT_THROW(render_mesh(surface, ramp(4), dir / "never.png"), Error);
+  MeshArrays flat = quad_grid(2);  // 2D cells in a 3D mesh
+  flat.dim = flat.coordinate_dim = 3;
+  flat.coordinates.resize(9 * 3, 0.0);
+  EXPECT_THROW(render_mesh(flat, ramp(4), dir / "never.png"), Error);
+  MeshArrays three_for_two = quad_grid(2);  // 2 coordinates per vertex are read as 3
+  three_for_two.coordinate_dim = 3;
+  three_for_two.dim = 3;
+  EXPECT_THROW(render_mesh(three_for_two, ramp(4), dir / "never.png"), Error);
+  const MeshArrays sphere = cubed_sphere(2);  // a surface: drawn whole, like a 3D mesh
+  EXPECT_THROW(render_mesh(sphere, ramp(sphere.types.size()), dir / "never.png", window), Error);
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 

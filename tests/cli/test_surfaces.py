@@ -475,8 +475,37 @@ def test_what_surfaces_do_not_support_is_refused_in_one_line(tmp, poor_sphere):
     proc = neomesh("adapt", poor_sphere, "-o", out, "--metric", "1;0;0;1;0;1", expect=1)
     expect_one_error_line(proc, ["a surface mesh", "not to a metric"], unwritten=[out])
     picture = os.path.join(tmp, "out.png")
-    proc = neomesh("render", poor_sphere, "-o", picture, expect=1)
-    expect_one_error_line(proc, ["a surface mesh"], unwritten=[picture])
+    proc = neomesh("render", poor_sphere, "-o", picture, "--window", "0,1,0,1", expect=1)
+    expect_one_error_line(proc, ["window", "drawn whole"], unwritten=[picture])
+
+
+def png_size(path):
+    with open(path, "rb") as f:
+        header = f.read(24)
+    assert header[:8] == b"\x89PNG\r\n\x1a\n", f"{path} is not a PNG"
+    return int.from_bytes(header[16:20], "big"), int.from_bytes(header[20:24], "big")
+
+
+def test_render_and_smooth_draw_a_surface_in_perspective(tmp, poor_sphere):
+    """render draws a surface's cells in perspective (every one of the 580, back to front), by
+    any field (the energy needs the surface's own cell law); smooth draws the same before and
+    after; cut open, only the far half's cells are drawn."""
+    picture, energy = os.path.join(tmp, "sphere.png"), os.path.join(tmp, "energy.png")
+    proc = neomesh("render", poor_sphere, "-o", picture, "--width", "600")
+    assert "580 cells" in proc.stdout
+    assert png_size(picture)[0] == 600
+    neomesh("render", poor_sphere, "-o", energy, "--field", "energy")
+    assert png_size(energy)[0] == 1200
+    before, after = os.path.join(tmp, "before.svg"), os.path.join(tmp, "after.png")
+    neomesh("smooth", poor_sphere, "-o", os.path.join(tmp, "s.vtu"), "-q", "--picture-before",
+            before, "--picture", after)
+    assert png_size(after)[0] == 1200
+    whole, cut = os.path.join(tmp, "whole.svg"), os.path.join(tmp, "cut.svg")
+    neomesh("render", poor_sphere, "-o", whole)
+    neomesh("render", poor_sphere, "-o", cut, "--cut", "x")
+    paths = lambda f: open(f).read().count("<path")
+    assert min(paths(before), paths(whole)) > 580 and paths(cut) < paths(whole), \
+        (paths(before), paths(whole), paths(cut))
 
 
 @needs_mpi

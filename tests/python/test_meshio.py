@@ -104,8 +104,47 @@ def test_what_neomesh_cannot_use_is_refused_in_one_line():
         neomesh.Mesh.from_arrays(points, {"quad": [[0, 1, 2, 3]], "triangle6": [[0, 1, 2, 3, 3, 3]]})
     with pytest.raises(neomesh.Error, match="need 3 vertices"):
         neomesh.Mesh.from_arrays(points, {"triangle": [[0, 1, 2, 3]]})
-    with pytest.raises(neomesh.Error, match="plane z = constant"):
+    with pytest.raises(neomesh.Error, match="lie in one plane: give 2 coordinates per vertex"):
         neomesh.Mesh.from_arrays([[0, 0, 0], [1, 0, 1], [0, 1, 0]], {"triangle": [[0, 1, 2]]})
+
+
+def cubed_sphere(n):
+    """The unit sphere as n × n quads on each face of the cube [-1, 1]³, pushed out onto it,
+    counter-clockwise seen from outside: (points, quads)."""
+    points, quads = [], []
+    t = np.linspace(-1, 1, n + 1)
+    for axis in range(3):
+        for side in (-1.0, 1.0):
+            first = len(points)
+            for b in t:
+                for a in t:
+                    p = np.empty(3)
+                    p[axis], p[(axis + 1) % 3], p[(axis + 2) % 3] = side, a, b
+                    points.append(p / np.linalg.norm(p))
+            for j in range(n):
+                for i in range(n):
+                    v = first + j * (n + 1) + i
+                    q = [v, v + 1, v + n + 2, v + n + 1]
+                    quads.append(q if side > 0 else q[::-1])
+    return np.array(points), np.array(quads)
+
+
+def test_a_surface_mesh_has_three_coordinates_per_point_and_moves_with_them():
+    points, quads = cubed_sphere(4)
+    mesh = neomesh.Mesh.from_arrays(points, {"quad": quads})
+    assert (mesh.dim, mesh.coordinate_dim) == (2, 3)
+    np.testing.assert_array_equal(mesh.points, points)
+    assert mesh.local_points.shape == (mesh.num_vertices, 3)
+    neomesh.smooth(mesh)
+    smoothed = mesh.points
+    assert np.linalg.norm(smoothed, axis=1).max() <= 1 + 1e-12  # on the input's cells
+    # Assigned points that leave the surface move it: the sphere blown up to radius 2 is
+    # smoothed on its own cells, not pulled back.
+    mesh.points = 2 * smoothed
+    neomesh.smooth(mesh)
+    radius = np.linalg.norm(mesh.points, axis=1)
+    assert radius.min() > 1.8 and radius.max() <= 2 + 1e-12
+    np.testing.assert_array_equal(mesh.to_meshio().points, mesh.points)
 
 
 def test_write_and_read_back(tmp_path):
