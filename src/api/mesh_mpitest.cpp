@@ -89,7 +89,9 @@ TEST(SurfaceParallel, GathersAndMovesItsSurface) {
   EXPECT_GT(mesh.cell_numbers().size(), 0u);  // both processes have cells
   const MeshArrays out = mesh.gather();
   EXPECT_EQ(out.coordinate_dim, 3);
-  if (rank() == 0) EXPECT_EQ(out.coordinates, bent.coordinates);
+  if (rank() == 0) {
+    EXPECT_EQ(out.coordinates, bent.coordinates);
+  }
   std::vector<double> x = mesh.coordinates();
   for (std::size_t i = 2; i < x.size(); i += 3) x[i] += 1.0;
   mesh.set_coordinates(x);
