@@ -151,6 +151,9 @@ std::vector<PetscInt> orient_mirrored_cells(InputMesh& mesh) {
   // A surface cell faces the side it is listed towards: no orientation is wrong by itself
   // (find_fold finds neighbours that disagree).
   if (mesh.surface) return {};
+  // A curved cell's other nodes would have to be renumbered with its corners: it is measured as
+  // the file lists it (listed the other way round, its det J is negative: not valid).
+  if (mesh.curved()) return {};
   // Cell by cell on every thread (a mirror changes only its own cell); then the list in order.
   std::vector<std::uint8_t> flipped(mesh.num_cells(), 0);
 #pragma omp parallel for schedule(static)
