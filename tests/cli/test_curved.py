@@ -205,3 +205,33 @@ def test_vtk_finds_each_node_where_gmsh_numbers_it(tmp, name):
             where = np.array(cell.GetPoints().GetPoint(k))[:dim]
             t = np.array([pcoords[3 * k + j] for j in range(dim)])
             assert np.allclose(where, 2 * t - 1 if tensor else t), (ext, k)
+
+
+@needs_gmsh
+@pytest.mark.parametrize("case", ["tri6", "quad8", "hex27", "tet10"])
+def test_a_mirrored_curved_mesh_is_measured_as_its_mirror_image(tmp, case):
+    # Every cell listed the other way round (a coordinate negated): neomesh reorients it, its
+    # other nodes with its corners, and finds the cells valid and as good as before.
+    gmsh = pytest.importorskip("gmsh")
+    msh, mirrored = gmsh_mesh(tmp, case), os.path.join(tmp, "mirrored.msh")
+    axis = GMSH_CASES[case][1] - 1
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.open(msh)
+        tags, coords, _ = gmsh.model.mesh.getNodes()
+        for i, tag in enumerate(tags):
+            x = list(coords[3 * i:3 * i + 3])
+            x[axis] = -x[axis]
+            gmsh.model.mesh.setNode(tag, x, [])
+        gmsh.write(mirrored)
+    finally:
+        gmsh.finalize()
+    original, image = curved_quality(tmp, msh), curved_quality(tmp, mirrored)
+    assert image["not_certified_valid"] == 0
+    for key in ("min", "mean", "max"):
+        assert image["scaled_jacobian"][key] == pytest.approx(original["scaled_jacobian"][key],
+                                                              rel=1e-9)
+    out = os.path.join(tmp, "mirrored.vtu")
+    neomesh("convert", mirrored, "-o", out)
+    assert curved_quality(tmp, out) == image
