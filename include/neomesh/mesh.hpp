@@ -101,8 +101,15 @@ class Mesh {
   // (docs/user-guide.md, "Surface meshes").
   void set_coordinates(std::span<const double> coordinates);
 
-  // The quality of all cells (collective).
+  // The quality of all cells (collective); of a curved mesh also that of its curved cells.
   QualitySummary quality() const;
+
+  // True for a mesh of second-order (curved) cells (docs/user-guide.md, "Curved meshes"): read
+  // from .msh, .vtk and .vtu, its cells are the straight cells of their corners, which the
+  // vertices are, and keep their other nodes; quality() measures the curved cells too and
+  // write() writes them to .msh, .vtu and .vtk. They are not optimized yet: Optimizer refuses
+  // the mesh.
+  bool curved() const;
 
   // Writes .msh (Gmsh 4.1, with the input's physical groups and `facet_groups`), .mesh (Medit,
   // with the groups' numbers as references), .exo/.e/.ex2 (Exodus II, with element blocks and

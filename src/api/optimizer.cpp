@@ -548,7 +548,21 @@ void Optimizer::Impl::fit(const LevelSet& level_set, const SizeField& field,
                           .iterations = static_cast<int>(f.picard.run.history.size())};
 }
 
-Optimizer::Optimizer(Mesh& mesh) : impl_(std::make_unique<Impl>(mesh)) {}
+namespace {
+
+// A curved mesh is refused before anything is built for it: its energy is not written yet.
+Mesh& uncurved(Mesh& mesh) {
+  if (mesh.curved())
+    fail(
+        "{}: has second-order (curved) cells, which neomesh reads, measures (quality) and "
+        "converts but does not optimize yet",
+        mesh.name());
+  return mesh;
+}
+
+}  // namespace
+
+Optimizer::Optimizer(Mesh& mesh) : impl_(std::make_unique<Impl>(uncurved(mesh))) {}
 Optimizer::~Optimizer() = default;
 Optimizer::Optimizer(Optimizer&&) noexcept = default;
 Optimizer& Optimizer::operator=(Optimizer&&) noexcept = default;

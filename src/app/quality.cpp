@@ -75,7 +75,9 @@ Subcommand add_quality(CLI::App& app) {
       "quality",
       "Print the quality of a mesh: cells by type, min/mean/max of the cell volume, det J at "
       "corners and Gauss points, scaled Jacobian (1 = ideal, <= 0 = inverted), angles and edge "
-      "ratio, and the number of inverted and degenerate cells.");
+      "ratio, and the number of inverted and degenerate cells. Of a mesh of second-order\n"
+      "(curved) cells these are its straight cells' (on the corners), followed by the curved\n"
+      "cells' validity (certified det J > 0) and curved scaled Jacobian.");
   cmd->add_option("mesh", options->inputs, input_mesh_help("mesh file"))->required();
   cmd->add_option("--reference", options->reference,
                   "compare the boundary with this mesh's (e.g. the input of smooth): the largest "

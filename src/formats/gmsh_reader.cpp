@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "formats/input_file.hpp"
 #include "mesh/cell_order.hpp"
+#include "mesh/curved_type.hpp"
 
 namespace neomesh {
 
@@ -42,11 +43,13 @@ struct KnownType {
   ElementType type;
 };
 constexpr KnownType kKnownTypes[] = {
-    {15, {kPoint, 1, 1}},   {1, {kLine, 1, 2}},       {8, {kLine, 2, 3}},  {2, {kTriangle, 1, 3}},
-    {9, {kTriangle, 2, 6}}, {21, {kTriangle, 3, 10}}, {3, {kQuad, 1, 4}},  {10, {kQuad, 2, 9}},
-    {16, {kQuad, 2, 8}},    {4, {kTet, 1, 4}},        {11, {kTet, 2, 10}}, {5, {kHex, 1, 8}},
-    {12, {kHex, 2, 27}},    {17, {kHex, 2, 20}},      {6, {kPrism, 1, 6}}, {13, {kPrism, 2, 18}},
-    {7, {kPyramid, 1, 5}},  {14, {kPyramid, 2, 14}}};
+    {15, {kPoint, 1, 1}},    {1, {kLine, 1, 2}},     {8, {kLine, 2, 3}},
+    {2, {kTriangle, 1, 3}},  {9, {kTriangle, 2, 6}}, {21, {kTriangle, 3, 10}},
+    {3, {kQuad, 1, 4}},      {10, {kQuad, 2, 9}},    {16, {kQuad, 2, 8}},
+    {4, {kTet, 1, 4}},       {11, {kTet, 2, 10}},    {5, {kHex, 1, 8}},
+    {12, {kHex, 2, 27}},     {17, {kHex, 2, 20}},    {6, {kPrism, 1, 6}},
+    {13, {kPrism, 2, 18}},   {18, {kPrism, 2, 15}},  {7, {kPyramid, 1, 5}},
+    {14, {kPyramid, 2, 14}}, {19, {kPyramid, 2, 13}}};
 
 bool element_type(long long gmsh_type, ElementType& t) {
   for (const KnownType& k : kKnownTypes)
@@ -63,13 +66,15 @@ constexpr int kNoTag = std::numeric_limits<int>::min();
 // 2^32 and more were once silently wrapped).
 constexpr long long kMaxTag = std::min<long long>(PETSC_MAX_INT, (1LL << 32) - 1);
 
-// The elements of one polytope in file order: corner nodes (indices into $Nodes) and the
-// physical tag (the first one; kNoTag for none).
+// The elements of one polytope in file order: corner nodes (indices into $Nodes), the other
+// nodes of second-order elements and the physical tag (the first one; kNoTag for none).
 struct Elements {
   std::vector<PetscInt> corners;
+  std::vector<PetscInt> others;  // each element's nodes after its corners, in Gmsh order
+  std::vector<std::size_t> others_offsets = {0};
   std::vector<int> tags;
   std::vector<long long> numbers;  // element tags, for messages (InputMesh::element_tag)
-  int order = 1;
+  int min_order = 3, order = 1;
 };
 
 // A $NodeData or $ElementData section: its name, and per node or element its tag and
@@ -426,10 +431,13 @@ class GmshParser {
     return t;
   }
 
-  // One element's nodes (after its number and tags): keeps the corners.
+  // One element's nodes (after its number and tags).
   void add_element(const ElementType& t, int tag, const long long* nodes, long long number) {
     Elements& e = c_.elements[t.polytope];
     for (int i = 0; i < kPolytopeCorners[t.polytope]; ++i) e.corners.push_back(node(nodes[i]));
+    for (int i = kPolytopeCorners[t.polytope]; i < t.nodes; ++i) e.others.push_back(node(nodes[i]));
+    e.others_offsets.push_back(e.others.size());
+    e.min_order = std::min(e.min_order, t.order);
     e.tags.push_back(tag);
     e.numbers.push_back(number);
     e.order = std::max(e.order, t.order);
@@ -512,8 +520,29 @@ std::vector<PetscInt> number_vertices(const Contents& c, const std::string& file
   return vertex;
 }
 
+// The other nodes of the cells (second-order elements of the mesh's dimension), numbered in the
+// order of $Nodes into mesh.high_order.
+std::vector<PetscInt> number_high_order_nodes(const Contents& c, const std::string& file,
+                                              const std::vector<PetscInt>& vertex,
+                                              InputMesh& mesh) {
+  std::vector<PetscInt> node(c.node_tags.size(), -1);
+  for (int p = 0; p < kNumPolytopes; ++p)
+    if (kPolytopeDim[p] == mesh.dim)
+      for (PetscInt n : c.elements[p].others) node[n] = 0;
+  for (std::size_t n = 0; n < node.size(); ++n) {
+    if (node[n] < 0) continue;
+    if (vertex[n] >= 0)
+      fail("{}: node {} is a corner of one element and a mid-edge, face or centre node of another",
+           file, c.node_tags[n]);
+    node[n] = mesh.high_order.num_nodes();
+    mesh.high_order.xyz.insert(mesh.high_order.xyz.end(), c.xyz.begin() + 3 * n,
+                               c.xyz.begin() + 3 * n + 3);
+  }
+  return node;
+}
+
 void add_cells(const Contents& c, const std::string& file, const std::vector<PetscInt>& vertex,
-               InputMesh& mesh, std::set<int>& cell_tags) {
+               const std::vector<PetscInt>& node, InputMesh& mesh, std::set<int>& cell_tags) {
   PetscInt index = 0;
   for (int p = 0; p < kNumPolytopes; ++p) {
     const Elements& e = c.elements[p];
@@ -536,6 +565,12 @@ void add_cells(const Contents& c, const std::string& file, const std::vector<Pet
       const int tag = e.tags[k] > 0 ? e.tags[k] : 0;
       if (tag > 0) cell_tags.insert(tag);
       mesh.add_cell(type, canonical, tag);
+      if (e.order > 1) {
+        PetscInt others[kMaxCurvedNodes];
+        const std::size_t first = e.others_offsets[k], count = e.others_offsets[k + 1] - first;
+        for (std::size_t i = 0; i < count; ++i) others[i] = node[e.others[first + i]];
+        mesh.high_order.add(*curved_type(type, n + static_cast<int>(count)), others);
+      }
       mesh.element_tag.push_back(e.numbers[k]);
     }
   }
@@ -569,13 +604,30 @@ int cell_dimension(const Contents& c, const std::string& file) {
         "{}: has no 2D or 3D cells (only {}D elements); neomesh needs triangles, "
         "quadrilaterals, tetrahedra, hexahedra, wedges or pyramids",
         file, dim);
-  for (int p = 0; p < kNumPolytopes; ++p)
-    if (kPolytopeDim[p] == dim && !c.elements[p].tags.empty())
-      order = std::max(order, c.elements[p].order);
-  if (order > 1)
+  int min_order = 3;
+  for (int p = 0; p < kNumPolytopes; ++p) {
+    const Elements& e = c.elements[p];
+    if (kPolytopeDim[p] != dim || e.tags.empty()) continue;
+    order = std::max(order, e.order);
+    min_order = std::min(min_order, e.min_order);
+    if (e.order == 1) continue;
+    // Second-order elements: those of curved_type.hpp only, all of the same order.
+    for (std::size_t k = 0; k < e.tags.size(); ++k) {
+      const int nodes =
+          kPolytopeCorners[p] + static_cast<int>(e.others_offsets[k + 1] - e.others_offsets[k]);
+      if (e.others_offsets[k + 1] == e.others_offsets[k]) continue;
+      if (!kCellType[p] || !curved_type(*kCellType[p], nodes))
+        fail(
+            "{}: has a {} of {} nodes (element {}); of the curved cells neomesh reads triangles "
+            "(6 nodes), quadrilaterals (8, 9), tetrahedra (10) and hexahedra (20, 27), not yet "
+            "curved wedges or pyramids or cells of third order",
+            file, kPolytopeName[p], nodes, e.numbers[k]);
+    }
+  }
+  if (order > 1 && min_order == 1)
     fail(
-        "{}: has second-order (curved) elements; neomesh needs first-order elements "
-        "(Gmsh: Mesh.ElementOrder = 1)",
+        "{}: mixes first-order and second-order cells; neomesh reads meshes of one order "
+        "(Gmsh: Mesh.ElementOrder)",
         file);
   return dim;
 }
@@ -608,8 +660,10 @@ InputMesh read_gmsh(const std::filesystem::path& path) {
   InputMesh mesh;
   mesh.dim = cell_dimension(c, file);
   const std::vector<PetscInt> vertex = number_vertices(c, file, mesh);
+  const std::vector<PetscInt> node = number_high_order_nodes(c, file, vertex, mesh);
   std::set<int> cell_tags, facet_tags;
-  add_cells(c, file, vertex, mesh, cell_tags);
+  add_cells(c, file, vertex, node, mesh, cell_tags);
+  check_high_order_nodes(mesh, file);
   add_facets(c, vertex, mesh, facet_tags);
 
   auto add_groups = [&](int gdim, const std::set<int>& tags) {
@@ -624,7 +678,8 @@ InputMesh read_gmsh(const std::filesystem::path& path) {
   std::vector<long long> node_tags;
   for (std::size_t n = 0; n < vertex.size(); ++n)
     if (vertex[n] >= 0) node_tags.push_back(c.node_tags[n]);
-  mesh.point_data = data_by_tag(c.node_data, node_tags);
+  // (A curved mesh's node data would need its high-order nodes' values too: it is not carried.)
+  if (!mesh.curved()) mesh.point_data = data_by_tag(c.node_data, node_tags);
   mesh.cell_data = data_by_tag(c.element_data, {mesh.element_tag.begin(), mesh.element_tag.end()});
   return mesh;
 }

@@ -18,9 +18,12 @@
 
 namespace neomesh {
 
-// Not collective (call it on rank 0). Throws Error naming the file for anything that is not a
-// valid Gmsh file or that neomesh cannot use (lines only, second-order elements, element types it
-// does not read).
+// Not collective (call it on rank 0). Second-order cells (triangle6, quadrilateral8/9,
+// tetrahedron10, hexahedron20/27) are read as a curved mesh (InputMesh::high_order): their
+// corners are the vertices; second-order facets of groups keep their corners. Throws Error
+// naming the file for anything that is not a valid Gmsh file or that neomesh cannot use (lines
+// only, second-order wedges and pyramids, third-order cells, cells of both orders, element types
+// it does not read).
 InputMesh read_gmsh(const std::filesystem::path& path);
 
 }  // namespace neomesh

@@ -23,8 +23,10 @@ WrittenGroups physical_groups(const InputMesh& mesh);
 
 // The elements of a VTK file (.vtu, .vtk) of a mesh: its cells in input order, then the facets
 // of its facet groups (lines, triangles, quadrilaterals) and the points of its point groups
-// (vertices), as meshio writes Gmsh's groups. `tags`: each element's physical tag (0: none),
-// written as the cell data "physical" when `has_tags`.
+// (vertices), as meshio writes Gmsh's groups. The cells of a curved mesh list their points
+// (InputMesh::num_points) in VTK's order, as Lagrange cells (`lagrange`; the serendipity
+// quadrilateral8 and hexahedron20 have none: quadratic cells) or quadratic cells. `tags`: each
+// element's physical tag (0: none), written as the cell data "physical" when `has_tags`.
 struct VtkElements {
   std::vector<std::uint8_t> types;
   std::vector<std::int64_t> offsets;  // where each element's points end in `connectivity`
@@ -33,28 +35,31 @@ struct VtkElements {
   bool has_tags = false;
   std::size_t size() const { return types.size(); }
 };
-VtkElements vtk_elements(const GatheredMesh& mesh);
+VtkElements vtk_elements(const GatheredMesh& mesh, bool lagrange);
 
 // Cell data `values` (per cell) for every element: facets and points get `fill`.
 std::vector<double> per_element(const std::vector<double>& values, int components, double fill,
                                 std::size_t elements);
 
 // VTK XML UnstructuredGrid (.vtu), binary in a raw appended section (which ParaView and
-// meshio read; meshio converts to ASCII for reading by eye). Elements as VtkElements; point
+// meshio read; meshio converts to ASCII for reading by eye). Elements as VtkElements (curved
+// cells as Lagrange cells, which ParaView draws curved); point
 // data: the input's, then the vertex fields; cell data: the input's (in their types), then the
 // cell fields (NaN for facets and points, 0 in integer arrays), then "physical". Field data: an
 // Int32 array [tag, dimension] per named group, named by the group.
 void write_vtu(const GatheredMesh& mesh, std::ostream& out);
 
 // VTK legacy ASCII (.vtk, version 4.2, UNSTRUCTURED_GRID; what Mesquite and many codes read):
-// points, elements as VtkElements, the cell scalars "physical", the input's data and the fields
-// as FIELD data (0 for facets and points: VTK's legacy reader reads no NaN), the group names as
-// the dataset's FIELD data (as for .vtu). Values in their
-// shortest exact form, so that reading the file back gives the same coordinates and data. Names
-// with spaces or '%' are written as VTK does ("%20", "%25").
+// points, elements as VtkElements (curved cells as quadratic cells, which older readers know), the
+// cell scalars "physical", the input's data and the fields as FIELD data (0 for facets and points:
+// VTK's legacy reader reads no NaN), the group names as the dataset's FIELD data (as for .vtu).
+// Values in their shortest exact form, so that reading the file back gives the same coordinates and
+// data. Names with spaces or '%' are written as VTK does ("%20", "%25").
 void write_vtk(const GatheredMesh& mesh, std::ostream& out);
 
-// Gmsh 4.1 ASCII (.msh): cells and the boundary facets and points of physical groups, one
+// Gmsh 4.1 ASCII (.msh): cells (curved ones as Gmsh's second-order elements, their
+// high-order nodes after the vertices) and the boundary facets (their corners) and points of
+// physical groups, one
 // entity per physical group, so that reading the file back gives the same groups; the input's
 // point and cell data as $NodeData and $ElementData (time 0, values as doubles).
 void write_msh(const GatheredMesh& mesh, std::ostream& out);

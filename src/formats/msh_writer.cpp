@@ -69,10 +69,16 @@ std::vector<Block> element_blocks(const GatheredMesh& g, const WrittenGroups& gr
     const CellType t = mesh.cell_types[c];
     const int tag = mesh.cell_tags[c] != 0 ? mesh.cell_tags[c] : groups.untagged_cells;
     entities.add(mesh.dim, tag);
-    auto& block = blocks[{mesh.dim, tag, facts(t).gmsh}];
-    std::vector<PetscInt> vertices(num_vertices(t));
-    const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
-    for (int i = 0; i < num_vertices(t); ++i) vertices[i] = cell[gmsh_from_canonical(t)[i]];
+    std::vector<PetscInt> vertices(mesh.curved() ? kMaxCurvedNodes : num_vertices(t));
+    int type = facts(t).gmsh;
+    if (mesh.curved()) {  // the vertices, then the high-order nodes, in Gmsh's order
+      vertices.resize(curved_cell_points(mesh, c, vertices.data()));
+      type = facts(mesh.high_order.types[c]).gmsh;
+    } else {
+      const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
+      for (int i = 0; i < num_vertices(t); ++i) vertices[i] = cell[gmsh_from_canonical(t)[i]];
+    }
+    auto& block = blocks[{mesh.dim, tag, type}];
     block.elements.push_back(std::move(vertices));
     block.cells.push_back(c);
   }
@@ -174,11 +180,11 @@ void write_msh(const GatheredMesh& g, std::ostream& f) {
 
   Entities entities;
   const std::vector<Block> blocks = element_blocks(g, groups, entities);
-  const std::vector<double> xyz = coordinates_in_space(mesh);
+  const std::vector<double> xyz = points_in_space(mesh);
   write_entities(f, xyz, entities);
 
   // All nodes on the first cell entity; Gmsh and PETSc accept nodes classified there.
-  const PetscInt nv = mesh.num_vertices();
+  const PetscInt nv = mesh.num_points();
   fmt::print(f, "$Nodes\n1 {} 1 {}\n{} {} 0 {}\n", nv, nv, mesh.dim, blocks.front().entity, nv);
   const auto vertices = static_cast<std::size_t>(nv);
   write_lines(f, vertices,
@@ -209,6 +215,7 @@ void write_msh(const GatheredMesh& g, std::ostream& f) {
 
   std::vector<std::ptrdiff_t> node(nv);
   std::iota(node.begin(), node.end(), 0);
+  std::fill(node.begin() + mesh.num_vertices(), node.end(), -1);  // high-order nodes: NaN
   for (const DataArray& a : mesh.point_data) write_data(f, "NodeData", a, node);
   for (const DataArray& a : mesh.cell_data) write_data(f, "ElementData", a, cell_of);
 }

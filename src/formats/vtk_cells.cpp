@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "mesh/cell_order.hpp"
+#include "mesh/curved_type.hpp"
 
 namespace neomesh {
 
@@ -77,8 +78,31 @@ std::optional<CellType> cell_type(const VtkType& t, std::int64_t vertices) {
   return vertices == 3 ? CellType::Triangle : CellType::Quadrilateral;
 }
 
+// A second-order cell of the file as a curved type: a quadratic cell, or a Lagrange cell of
+// order 2 (known by its number of points); none for others.
+std::optional<CurvedType> curved_type(const VtkType& t, std::int64_t points) {
+  for (CurvedType type : kCurvedTypes) {
+    const CurvedFacts& f = facts(type);
+    if (t.vtk == f.vtk || (t.vtk == f.vtk_lagrange && points == f.nodes)) return type;
+  }
+  return std::nullopt;
+}
+
+// The number of corners of an element of the file that can be a facet (first order, or second
+// order with its corners first), or 0.
+int facet_corners(const VtkType& t, std::int64_t points) {
+  if (t.order == 1) {
+    if (t.vertices > 0) return t.vertices;
+    return t.vtk == kPolygon && (points == 3 || points == 4) ? static_cast<int>(points) : 0;
+  }
+  if (t.vtk == 21 || (t.vtk == 68 && points == 3)) return 2;  // quadratic edge
+  if (const auto type = curved_type(t, points); type && dimension(facts(*type).linear) == 2)
+    return num_vertices(facts(*type).linear);
+  return 0;
+}
+
 // The dimension of the cells of the highest dimension, which are the cells; throws Error unless
-// they are 2D or 3D cells neomesh reads.
+// they are 2D or 3D cells neomesh reads, all of first or all of second order.
 int cell_dimension(const VtkCells& c, const std::string& file) {
   if (c.types.empty()) fail("{}: has no cells", file);
   int dim = -1;
@@ -88,15 +112,25 @@ int cell_dimension(const VtkCells& c, const std::string& file) {
         "{}: has no 2D or 3D cells (only {}D elements); neomesh needs triangles, "
         "quadrilaterals, tetrahedra, hexahedra, wedges or pyramids",
         file, std::max(dim, 0));
+  std::optional<std::size_t> first_order, second_order;  // a cell of each
   for (std::size_t i = 0; i < c.types.size(); ++i) {
     const VtkType& t = *vtk_type(c.types[i]);
     if (t.dim != dim) continue;
     const std::int64_t vertices = c.offsets[i + 1] - c.offsets[i];
-    if (t.order > 1)
+    (t.order > 1 ? second_order : first_order) = i;
+    if (first_order && second_order)
       fail(
-          "{}: has second-order (curved) elements; neomesh needs first-order elements (cell {} "
-          "(0-based) is a {})",
-          file, i, t.name);
+          "{}: mixes first-order cells (cell {}) and second-order ones (cell {}); neomesh reads "
+          "meshes of one order",
+          file, *first_order, *second_order);
+    if (t.order > 1) {
+      if (!curved_type(t, vertices))
+        fail(
+            "{}: cell {} (0-based) is a {} of {} points; of the second-order cells neomesh reads "
+            "triangles (6 points), quadrilaterals (8, 9), tetrahedra (10) and hexahedra (20, 27)",
+            file, i, t.name, vertices);
+      continue;
+    }
     if (t.vtk == kPolygon && (vertices < 3 || vertices > 4))
       fail("{}: cell {} (0-based) is a polygon of {} vertices; neomesh reads polygons of 3 or 4",
            file, i, vertices);
@@ -109,25 +143,50 @@ int cell_dimension(const VtkCells& c, const std::string& file) {
   return dim;
 }
 
+// The number of corners of cell `i` of the file (all its points for a first-order cell).
+int num_corners(const VtkCells& c, std::size_t i) {
+  const VtkType& t = *vtk_type(c.types[i]);
+  const std::int64_t n = c.offsets[i + 1] - c.offsets[i];
+  if (t.order == 1) return static_cast<int>(n);
+  return num_vertices(facts(*curved_type(t, n)).linear);
+}
+
+// Cell `i`'s points after its corners into mesh.high_order, in Gmsh order.
+void add_high_order_nodes(const VtkCells& c, std::size_t i, const std::vector<PetscInt>& node,
+                          InputMesh& mesh) {
+  const std::int64_t* points = c.points.data() + c.offsets[i];
+  const int n = static_cast<int>(c.offsets[i + 1] - c.offsets[i]);
+  const CurvedType type = *curved_type(*vtk_type(c.types[i]), n);
+  const int corners = num_vertices(facts(type).linear);
+  const bool old = c.old_lagrange_hexahedra && c.types[i] == facts(type).vtk_lagrange &&
+                   type == CurvedType::Hexahedron27;
+  PetscInt gmsh[kMaxCurvedNodes];
+  for (int k = corners; k < n; ++k)
+    gmsh[facts(type).vtk_order[old ? old_lagrange_hexahedron_position(k) : k]] = node[points[k]];
+  mesh.high_order.add(type, gmsh + corners);
+}
+
 void add_cells(const VtkCells& c, const std::string& file, const std::vector<PetscInt>& vertex,
-               InputMesh& mesh) {
+               const std::vector<PetscInt>& node, InputMesh& mesh) {
   const bool skipped = std::any_of(c.types.begin(), c.types.end(),
                                    [&](int type) { return vtk_type(type)->dim != mesh.dim; });
   for (std::size_t i = 0; i < c.types.size(); ++i) {
     const VtkType& t = *vtk_type(c.types[i]);
     if (t.dim != mesh.dim) continue;
     const std::int64_t* points = c.points.data() + c.offsets[i];
-    const int n = static_cast<int>(c.offsets[i + 1] - c.offsets[i]);
-    const CellType type = *cell_type(t, n);
+    const int all = static_cast<int>(c.offsets[i + 1] - c.offsets[i]);
+    const int n = num_corners(c, i);
+    const CellType type = t.order == 1 ? *cell_type(t, n) : facts(*curved_type(t, all)).linear;
     const bool tensor = t.vtk == kPixel || t.vtk == kVoxel;
     PetscInt canonical[8];
-    for (int k = 0; k < n; ++k) {
-      canonical[tensor ? k : vtk_from_canonical(type)[k]] = vertex[points[k]];
+    for (int k = 0; k < all; ++k)
       if (std::find(points, points + k, points[k]) != points + k)
         fail("{}: cell {} (0-based) has a repeated vertex", file, i);
-    }
+    for (int k = 0; k < n; ++k)
+      canonical[tensor ? k : vtk_from_canonical(type)[k]] = vertex[points[k]];
     const int tag = c.tags.empty() ? 0 : std::max(c.tags[i], 0);
     mesh.add_cell(type, canonical, tag);
+    if (t.order > 1) add_high_order_nodes(c, i, node, mesh);
     // Cells are numbered without the file's lower-dimensional ones: messages give both.
     if (skipped) mesh.element_tag.push_back(static_cast<std::int64_t>(i));
   }
@@ -139,10 +198,8 @@ void add_tagged_elements(const VtkCells& c, const std::string& file,
   if (c.tags.empty()) return;
   for (std::size_t i = 0; i < c.types.size(); ++i) {
     const VtkType& t = *vtk_type(c.types[i]);
-    const int n = static_cast<int>(c.offsets[i + 1] - c.offsets[i]);
-    const bool facet = t.dim == mesh.dim - 1 && t.order == 1 &&
-                       (t.vertices > 0 || (t.vtk == kPolygon && (n == 3 || n == 4)));
-    if (c.tags[i] <= 0 || !facet) continue;
+    const int n = t.dim == mesh.dim - 1 ? facet_corners(t, c.offsets[i + 1] - c.offsets[i]) : 0;
+    if (c.tags[i] <= 0 || n == 0) continue;
     PetscInt v[4];
     for (int k = 0; k < n; ++k) {
       const std::int64_t p = c.points[c.offsets[i] + (t.vtk == kPixel && k >= 2 ? 5 - k : k)];
@@ -170,19 +227,36 @@ bool group_name_array(const std::vector<double>& values, PhysicalGroup& group) {
 InputMesh input_from_vtk_cells(const VtkCells& c, const std::string& file) {
   InputMesh mesh;
   mesh.dim = cell_dimension(c, file);
-  std::vector<PetscInt> vertex(c.xyz.size() / 3, -1);
+  // Vertices are the cells' corners; the other points of second-order cells are their nodes.
+  std::vector<PetscInt> vertex(c.xyz.size() / 3, -1), node(c.xyz.size() / 3, -1);
   std::vector<std::int64_t> kept_cells, kept_points;
   for (std::size_t i = 0; i < c.types.size(); ++i)
     if (vtk_type(c.types[i])->dim == mesh.dim) {
       kept_cells.push_back(static_cast<std::int64_t>(i));
-      for (std::int64_t k = c.offsets[i]; k < c.offsets[i + 1]; ++k) vertex[c.points[k]] = 0;
+      const std::int64_t corners_end = c.offsets[i] + num_corners(c, i);
+      for (std::int64_t k = c.offsets[i]; k < c.offsets[i + 1]; ++k)
+        (k < corners_end ? vertex : node)[c.points[k]] = 0;
     }
-  for (std::size_t p = 0; p < vertex.size(); ++p)
+  for (std::size_t p = 0; p < vertex.size(); ++p) {
     if (vertex[p] >= 0) kept_points.push_back(static_cast<std::int64_t>(p));
+    if (vertex[p] >= 0 && node[p] >= 0)
+      fail(
+          "{}: point {} (0-based) is a corner of one cell and a mid-edge, face or centre node of "
+          "another",
+          file, p);
+  }
   number_used_vertices(vertex, c.xyz, file, mesh);
-  add_cells(c, file, vertex, mesh);
+  for (std::size_t p = 0; p < node.size(); ++p)
+    if (node[p] >= 0) {
+      node[p] = mesh.high_order.num_nodes();
+      mesh.high_order.xyz.insert(mesh.high_order.xyz.end(), c.xyz.begin() + 3 * p,
+                                 c.xyz.begin() + 3 * p + 3);
+    }
+  add_cells(c, file, vertex, node, mesh);
+  check_high_order_nodes(mesh, file);
   add_tagged_elements(c, file, vertex, mesh);
-  mesh.point_data = select_data(c.point_data, vertex.size(), kept_points);
+  // (A curved mesh's point data would need its nodes' values too: it is not carried.)
+  if (!mesh.curved()) mesh.point_data = select_data(c.point_data, vertex.size(), kept_points);
   mesh.cell_data = select_data(c.cell_data, c.types.size(), kept_cells);
   std::set<std::pair<int, int>> groups;  // (dim, tag)
   for (int tag : mesh.cell_tags)

@@ -10,9 +10,14 @@
 // order, vertices are the points some cell uses, in file order. A 2D mesh gets coordinates in its
 // plane (plane_embedding.hpp).
 //
+// Second-order cells (VTK's quadratic cells 22-29 and its Lagrange cells of order 2, 69-72, of
+// the types of curved_type.hpp) make a curved mesh (InputMesh::high_order): their corners are
+// the vertices, their other points its high-order nodes, in file order; quadratic facets of
+// groups keep their corners.
+//
 // Point and cell data follow the vertices and cells (the data of skipped points and elements is
-// dropped). Group names come as meshio writes Gmsh's: a field data array per group, named by
-// the group, holding its tag and dimension.
+// dropped; a curved mesh's point data is not kept). Group names come as meshio writes Gmsh's: a
+// field data array per group, named by the group, holding its tag and dimension.
 #pragma once
 
 #include <cstdint>
@@ -53,6 +58,8 @@ struct VtkCells {
   std::vector<DataArray> cell_data;
   // Group names (from field data): name, tag and dimension.
   std::vector<PhysicalGroup> names;
+  // The file's version predates VTK 9.1's order of Lagrange hexahedra (curved_type.hpp).
+  bool old_lagrange_hexahedra = false;
 };
 
 // A name from field data that names a group: an array of two integers, tag (> 0) and
@@ -60,10 +67,10 @@ struct VtkCells {
 bool group_name_array(const std::vector<double>& values, PhysicalGroup& group);
 
 // The mesh of the cells of the highest dimension. Throws Error naming `file` unless they are
-// 2D or 3D cells neomesh reads (second-order cells, polyhedra, polygons of more than 4
-// vertices, 1D cells only) or if a cell repeats a vertex. The positive tags of the cells become
-// cell groups, those of facets facet groups, named by `names` where they match. Throws Error
-// if a facet of a group is not on the mesh's vertices.
+// 2D or 3D cells neomesh reads (second-order cells of other types, cells of both orders,
+// polyhedra, polygons of more than 4 vertices, 1D cells only) or if a cell repeats a vertex. The
+// positive tags of the cells become cell groups, those of facets facet groups, named by `names`
+// where they match. Throws Error if a facet of a group is not on the mesh's vertices.
 InputMesh input_from_vtk_cells(const VtkCells& cells, const std::string& file);
 
 }  // namespace neomesh

@@ -263,6 +263,16 @@ class VtkParser {
     const std::string_view first = line();
     if (!is(first.substr(0, 14), "# vtk DataFile"))
       invalid("it does not start with '# vtk DataFile Version'");
+    // Before 5.1, Lagrange hexahedra come in VTK's order before 9.1 (curved_type.hpp).
+    const auto digit = first.find_first_of("0123456789");
+    int major = 0, minor = 0;
+    if (digit != std::string_view::npos) {
+      const auto [next, ec] =
+          std::from_chars(first.data() + digit, first.data() + first.size(), major);
+      if (ec == std::errc() && next < first.data() + first.size() && *next == '.')
+        std::from_chars(next + 1, first.data() + first.size(), minor);
+    }
+    c_.old_lagrange_hexahedra = major < 5 || (major == 5 && minor < 1);
     line();  // the title
     const std::vector<std::string_view> format = header();
     if (format.size() == 1 && is(format[0], "BINARY"))

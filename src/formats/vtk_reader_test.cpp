@@ -148,11 +148,29 @@ TEST(ReadVtk, NamesTheByteOffsetOfABinaryError) {
                   "refers to point 16777216, which is out of range (0..0)"));
 }
 
+TEST(ReadVtk, AQuadraticTriangleIsACurvedMeshOfThreeVerticesAndThreeNodes) {
+  const std::string path = ::testing::TempDir() + "tri6.vtk";
+  std::ofstream(path) << kHead << "POINTS 6 float\n0 0 0 1 0 0 0 1 0 .5 -.1 0 .5 .5 0 0 .5 0\n"
+                      << "CELLS 1 7\n6 0 1 2 3 4 5\nCELL_TYPES 1\n22\n";
+  const InputMesh mesh = read_vtk(path);
+  ASSERT_TRUE(mesh.curved());
+  EXPECT_EQ(mesh.num_vertices(), 3);
+  EXPECT_EQ(mesh.high_order.num_nodes(), 3);
+  EXPECT_EQ(mesh.high_order.types, std::vector{CurvedType::Triangle6});
+  PetscInt points[kMaxCurvedNodes];
+  ASSERT_EQ(curved_cell_points(mesh, 0, points), 6);
+  EXPECT_EQ(std::vector(points, points + 6), (std::vector<PetscInt>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(mesh.high_order.xyz[1], -0.1);
+}
+
 TEST(ReadVtk, RefusesWhatNeomeshDoesNotOptimizeInOneLine) {
   const std::string six = "POINTS 6 float\n0 0 0 1 0 0 0 1 0 .5 0 0 .5 .5 0 0 .5 0\n";
-  EXPECT_TRUE(has(error_reading(kHead + six + "CELLS 1 7\n6 0 1 2 3 4 5\nCELL_TYPES 1\n22\n"),
-                  "in.vtk: has second-order (curved) elements; neomesh needs first-order "
-                  "elements (cell 0 (0-based) is a quadratic triangle)"));
+  EXPECT_TRUE(has(error_reading(kHead + six + "CELLS 1 7\n6 0 1 2 3 4 5\nCELL_TYPES 1\n30\n"),
+                  "in.vtk: cell 0 (0-based) is a quadratic-linear quadrilateral of 6 points; of "
+                  "the second-order cells neomesh reads"));
+  EXPECT_TRUE(
+      has(error_reading(kHead + six + "CELLS 2 11\n6 0 1 2 3 4 5\n3 0 1 2\nCELL_TYPES 2\n22 5\n"),
+          "in.vtk: mixes first-order cells (cell 1) and second-order ones (cell 0)"));
   EXPECT_TRUE(has(error_reading(kHead + six + "CELLS 1 6\n5 0 1 4 2 5\nCELL_TYPES 1\n7\n"),
                   "in.vtk: cell 0 (0-based) is a polygon of 5 vertices"));
   EXPECT_TRUE(has(error_reading("# vtk DataFile Version 2.0\nt\nASCII\nDATASET POLYDATA\n" + six +

@@ -72,8 +72,8 @@ void write_field_data(std::ostream& f, const std::vector<DataArray>& data,
 
 void write_vtk(const GatheredMesh& gathered, std::ostream& f) {
   const InputMesh& mesh = gathered.mesh;
-  const VtkElements e = vtk_elements(gathered);
-  const PetscInt nv = mesh.num_vertices();
+  const VtkElements e = vtk_elements(gathered, false);
+  const PetscInt nv = mesh.num_points();
   const auto nc = static_cast<PetscInt>(e.size());
   fmt::print(f, "# vtk DataFile Version 4.2\nneomesh\nASCII\nDATASET UNSTRUCTURED_GRID\n");
   const auto named = std::count_if(mesh.groups.begin(), mesh.groups.end(),
@@ -84,7 +84,7 @@ void write_vtk(const GatheredMesh& gathered, std::ostream& f) {
       if (!g.name.empty()) fmt::print(f, "{} 1 2 int\n{} {}\n", encoded(g.name), g.tag, g.dim);
   }
   fmt::print(f, "POINTS {} double\n", nv);
-  const std::vector<double> points = coordinates_in_space(mesh);
+  const std::vector<double> points = points_in_space(mesh);
   for (PetscInt v = 0; v < nv; ++v)
     fmt::print(f, "{} {} {}\n", points[3 * v], points[3 * v + 1], points[3 * v + 2]);
 

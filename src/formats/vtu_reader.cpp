@@ -242,6 +242,18 @@ class VtuReader {
     read_layout();
   }
 
+  // True if the file's version (major.minor, none: 0.1) is before 2.2, which VTK 9.1's Lagrange
+  // hexahedra came with (curved_type.hpp).
+  bool old_lagrange_hexahedra() const {
+    const std::string_view version = root_.attribute("version").value();
+    int major = 0, minor = 1;
+    const auto dot = version.find('.');
+    std::from_chars(version.data(), version.data() + version.size(), major);
+    if (dot != std::string_view::npos)
+      std::from_chars(version.data() + dot + 1, version.data() + version.size(), minor);
+    return major < 2 || (major == 2 && minor < 2);
+  }
+
   // The grid's type ("UnstructuredGrid", "PUnstructuredGrid"); throws Error for structured
   // grids and polydata.
   std::string_view grid_type() const {
@@ -664,6 +676,7 @@ InputMesh read_vtu(const std::filesystem::path& path) {
   std::vector<Piece> pieces = read_pieces(reader, names);
   VtkCells cells = join_pieces(pieces);
   cells.names = std::move(names);
+  cells.old_lagrange_hexahedra = reader.old_lagrange_hexahedra();
   return input_from_vtk_cells(cells, reader.file());
 }
 
@@ -684,6 +697,7 @@ InputMesh read_pvtu(const std::filesystem::path& path) {
   if (pieces.empty()) reader.invalid("it has no <Piece>");
   VtkCells cells = join_pieces(pieces);
   cells.names = std::move(names);
+  cells.old_lagrange_hexahedra = reader.old_lagrange_hexahedra();
   return input_from_vtk_cells(cells, reader.file());
 }
 

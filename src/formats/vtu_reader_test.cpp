@@ -136,8 +136,9 @@ TEST(ReadVtu, RefusesWhatNeomeshDoesNotReadInOneLine) {
   EXPECT_TRUE(has(error_reading("<VTKFile type=\"UnstructuredGrid\" "
                                 "compressor=\"vtkLZ4DataCompressor\"/>"),
                   "in.vtu: is compressed with vtkLZ4DataCompressor; neomesh reads"));
-  EXPECT_TRUE(has(error_reading(ascii_vtu(kTriangle, 3, "0 1 2 0 1 2", "6", "22", 1)),
-                  "in.vtu: has second-order (curved) elements"));
+  EXPECT_TRUE(has(error_reading(ascii_vtu(kTriangle, 3, "0 1 2 0 1 2 0", "7", "34", 1)),
+                  "in.vtu: cell 0 (0-based) is a biquadratic triangle of 7 points; of the "
+                  "second-order cells neomesh reads triangles (6 points)"));
   EXPECT_TRUE(has(error_reading(ascii_vtu(kTriangle, 3, "0 1 2", "3", "42", 1)),
                   "in.vtu: cell 0 (0-based) is a polyhedron; neomesh supports"));
   EXPECT_TRUE(has(error_reading(ascii_vtu(kTriangle, 3, "0 1 1 2", "2 4", "3 3", 2)),

@@ -181,18 +181,34 @@ std::uint8_t vtk_facet_type(PetscInt n) {
 
 }  // namespace
 
-VtkElements vtk_elements(const GatheredMesh& gathered) {
+VtkElements vtk_elements(const GatheredMesh& gathered, bool lagrange) {
   const InputMesh& mesh = gathered.mesh;
   VtkElements e;
   const PetscInt nc = mesh.num_cells();
-  e.connectivity.resize(mesh.cell_vertices.size());
-  for (PetscInt c = 0; c < nc; ++c) {
-    const CellType t = mesh.cell_types[c];
-    const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
-    for (int i = 0; i < num_vertices(t); ++i)
-      e.connectivity[mesh.cell_offsets[c] + i] = cell[vtk_from_canonical(t)[i]];
-    e.types.push_back(static_cast<std::uint8_t>(facts(t).vtk));
-    e.offsets.push_back(mesh.cell_offsets[c + 1]);
+  if (mesh.curved()) {
+    for (PetscInt c = 0; c < nc; ++c) {
+      const CurvedFacts& f = facts(mesh.high_order.types[c]);
+      PetscInt points[kMaxCurvedNodes];
+      curved_cell_points(mesh, c, points);
+      // .vtu files are written as version 1.0: Lagrange hexahedra in VTK's order before 9.1.
+      const bool old = lagrange && mesh.high_order.types[c] == CurvedType::Hexahedron27;
+      for (int i = 0; i < f.nodes; ++i)
+        e.connectivity.push_back(
+            points[f.vtk_order[old ? old_lagrange_hexahedron_position(i) : i]]);
+      e.types.push_back(
+          static_cast<std::uint8_t>(lagrange && f.vtk_lagrange > 0 ? f.vtk_lagrange : f.vtk));
+      e.offsets.push_back(static_cast<std::int64_t>(e.connectivity.size()));
+    }
+  } else {
+    e.connectivity.resize(mesh.cell_vertices.size());
+    for (PetscInt c = 0; c < nc; ++c) {
+      const CellType t = mesh.cell_types[c];
+      const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
+      for (int i = 0; i < num_vertices(t); ++i)
+        e.connectivity[mesh.cell_offsets[c] + i] = cell[vtk_from_canonical(t)[i]];
+      e.types.push_back(static_cast<std::uint8_t>(facts(t).vtk));
+      e.offsets.push_back(mesh.cell_offsets[c + 1]);
+    }
   }
   e.tags.assign(mesh.cell_tags.begin(), mesh.cell_tags.end());
   e.has_tags = gathered.has_cell_groups;
@@ -218,8 +234,8 @@ std::vector<double> per_element(const std::vector<double>& values, int component
 
 void write_vtu(const GatheredMesh& gathered, std::ostream& f) {
   const InputMesh& mesh = gathered.mesh;
-  const VtkElements elements = vtk_elements(gathered);
-  const PetscInt nv = mesh.num_vertices();
+  const VtkElements elements = vtk_elements(gathered, true);
+  const PetscInt nv = mesh.num_points();
   const auto nc = static_cast<PetscInt>(elements.size());
   VtuDocument doc;
   doc.text(
@@ -241,8 +257,11 @@ void write_vtu(const GatheredMesh& gathered, std::ostream& f) {
   doc.text("<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", nv, nc);
 
   doc.text("<PointData>\n");
-  for (const DataArray& a : mesh.point_data) add_data(doc, a, a.values);
-  for (const Field& field : gathered.fields.vertex) add_field(doc, field, field.values);
+  // (A curved mesh's high-order nodes have no values: NaN.)
+  for (const DataArray& a : mesh.point_data)
+    add_data(doc, a, per_element(a.values, a.components, real(a.type) ? kNaN : 0.0, nv));
+  for (const Field& field : gathered.fields.vertex)
+    add_field(doc, field, per_element(field.values, field.components, kNaN, nv));
   doc.text("</PointData>\n<CellData>\n");
   for (const DataArray& a : mesh.cell_data)
     add_data(doc, a,
@@ -252,7 +271,7 @@ void write_vtu(const GatheredMesh& gathered, std::ostream& f) {
   if (elements.has_tags) doc.array("Int32", " Name=\"physical\"", elements.tags);
   doc.text("</CellData>\n<Points>\n");
 
-  doc.array("Float64", " NumberOfComponents=\"3\"", coordinates_in_space(mesh));
+  doc.array("Float64", " NumberOfComponents=\"3\"", points_in_space(mesh));
   doc.text("</Points>\n<Cells>\n");
   doc.array("Int64", " Name=\"connectivity\"", elements.connectivity);
   doc.array("Int64", " Name=\"offsets\"", elements.offsets);

@@ -497,13 +497,6 @@ std::pair<double, double> sine_bounds(const typename CurvedTraits<Type>::Nodes& 
 
 }  // namespace
 
-std::string_view name(CurvedType type) {
-  static constexpr std::array<std::string_view, kCurvedTypes.size()> names = {
-      "triangle6",     "quadrilateral8", "quadrilateral9",
-      "tetrahedron10", "hexahedron20",   "hexahedron27"};
-  return names[static_cast<int>(type)];
-}
-
 std::string_view name(Validity validity) {
   static constexpr std::array<std::string_view, 3> names = {"valid", "invalid", "undecided"};
   return names[static_cast<int>(validity)];

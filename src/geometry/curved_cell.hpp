@@ -26,21 +26,9 @@
 
 #include "geometry/reference_cell.hpp"
 #include "mesh/cell_type.hpp"
+#include "mesh/curved_type.hpp"
 
 namespace neomesh {
-
-enum class CurvedType {
-  Triangle6,
-  Quadrilateral8,
-  Quadrilateral9,
-  Tetrahedron10,
-  Hexahedron20,
-  Hexahedron27
-};
-
-inline constexpr std::array<CurvedType, 6> kCurvedTypes = {
-    CurvedType::Triangle6,     CurvedType::Quadrilateral8, CurvedType::Quadrilateral9,
-    CurvedType::Tetrahedron10, CurvedType::Hexahedron20,   CurvedType::Hexahedron27};
 
 // Compile-time facts of a second-order type. `det_degree` is the degree of det J as a
 // polynomial: total degree d(p − 1) = 2 (triangle) or 3 (tetrahedron) for simplices, degree per
@@ -48,29 +36,15 @@ inline constexpr std::array<CurvedType, 6> kCurvedTypes = {
 // share their Lagrange sibling's bound.
 template <CurvedType Type>
 struct CurvedTraits {
-  static constexpr int dim = (Type == CurvedType::Triangle6 || Type == CurvedType::Quadrilateral8 ||
-                              Type == CurvedType::Quadrilateral9)
-                                 ? 2
-                                 : 3;
-  static constexpr bool simplex =
-      Type == CurvedType::Triangle6 || Type == CurvedType::Tetrahedron10;
-  static constexpr int nodes = Type == CurvedType::Triangle6        ? 6
-                               : Type == CurvedType::Quadrilateral8 ? 8
-                               : Type == CurvedType::Quadrilateral9 ? 9
-                               : Type == CurvedType::Tetrahedron10  ? 10
-                               : Type == CurvedType::Hexahedron20   ? 20
-                                                                    : 27;
+  static constexpr CellType linear = facts(Type).linear;  // the straight cell
+  static constexpr int dim = dimension(linear);
+  static constexpr bool simplex = is_simplex(linear);
+  static constexpr int nodes = facts(Type).nodes;
   static constexpr int corners = simplex ? dim + 1 : (1 << dim);
   static constexpr int det_degree = simplex ? dim : 2 * dim - 1;
-  // The straight cell of the same shape.
-  static constexpr CellType linear =
-      simplex ? (dim == 2 ? CellType::Triangle : CellType::Tetrahedron)
-              : (dim == 2 ? CellType::Quadrilateral : CellType::Hexahedron);
   using Nodes = Eigen::Matrix<double, dim, nodes>;  // one column per node
   using Point = Vector<dim>;
 };
-
-std::string_view name(CurvedType type);
 
 // Reference position of node i.
 template <CurvedType Type>

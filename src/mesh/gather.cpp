@@ -192,6 +192,7 @@ GatheredMesh gather_mesh(const PlexMesh& mesh, const MeshFields& fields) {
   out.mesh.point_data = m.point_data;
   out.mesh.cell_data = m.cell_data;
   out.mesh.steps = m.steps;
+  out.mesh.high_order = m.high_order;
   return out;
 }
 

@@ -1,8 +1,11 @@
 #include "mesh/input_mesh.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
+
+#include "core/error.hpp"
 
 namespace neomesh {
 
@@ -77,6 +80,72 @@ std::vector<double> coordinates_in_space(const InputMesh& mesh) {
   for (PetscInt v = 0; v < mesh.num_vertices(); ++v)
     std::copy_n(mesh.coords.begin() + v * mesh.dim, mesh.dim, xyz.begin() + 3 * v);
   return xyz;
+}
+
+int curved_cell_points(const InputMesh& mesh, PetscInt c, PetscInt* points) {
+  const HighOrderNodes& h = mesh.high_order;
+  const CellType linear = mesh.cell_types[c];
+  const int corners = num_vertices(linear);
+  const PetscInt* v = mesh.cell_vertices.data() + mesh.cell_offsets[c];
+  for (int i = 0; i < corners; ++i) points[i] = v[facts(linear).gmsh_order[i]];
+  int n = corners;
+  for (PetscInt k = h.offsets[c]; k < h.offsets[c + 1]; ++k)
+    points[n++] = mesh.num_vertices() + h.nodes[k];
+  return n;
+}
+
+std::vector<double> curved_point_coordinates(const InputMesh& mesh) {
+  std::vector<double> x = mesh.coords;
+  const int d = mesh.coord_dim();
+  x.reserve(x.size() + d * mesh.high_order.num_nodes());
+  for (PetscInt n = 0; n < mesh.high_order.num_nodes(); ++n) {
+    const double* xyz = mesh.high_order.xyz.data() + 3 * n;
+    if (d == 3) {
+      x.insert(x.end(), xyz, xyz + 3);
+    } else {
+      const auto uv = mesh.plane ? mesh.plane->to_plane(xyz) : std::array{xyz[0], xyz[1]};
+      x.insert(x.end(), uv.begin(), uv.end());
+    }
+  }
+  return x;
+}
+
+std::vector<double> points_in_space(const InputMesh& mesh) {
+  std::vector<double> xyz = coordinates_in_space(mesh);
+  xyz.insert(xyz.end(), mesh.high_order.xyz.begin(), mesh.high_order.xyz.end());
+  return xyz;
+}
+
+void check_high_order_nodes(const InputMesh& mesh, const std::string& file) {
+  if (!mesh.curved()) return;
+  for (double x : mesh.high_order.xyz)
+    if (!std::isfinite(x))
+      fail("{}: a node of a second-order cell has a non-finite coordinate ({})", file, x);
+  if (mesh.surface)
+    fail(
+        "{}: is a curved surface mesh (second-order 2D cells off one plane); neomesh reads curved "
+        "cells in a plane or in 3D only",
+        file);
+  if (mesh.dim == 3) return;
+  const std::vector<double> space = coordinates_in_space(mesh);
+  double size = 0;  // the vertices' extent
+  for (int k = 0; k < 3; ++k) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (std::size_t i = k; i < space.size(); i += 3) {
+      lo = std::min(lo, space[i]);
+      hi = std::max(hi, space[i]);
+    }
+    size = std::max(size, hi - lo);
+  }
+  const PlaneEmbedding xy;
+  const PlaneEmbedding& plane = mesh.plane ? *mesh.plane : xy;
+  for (PetscInt n = 0; n < mesh.high_order.num_nodes(); ++n)
+    if (plane.distance(mesh.high_order.xyz.data() + 3 * n) >
+        PlaneEmbedding::kPlanarTolerance * size)
+      fail(
+          "{}: is a curved surface mesh (a node of a second-order cell lies off the plane {} of "
+          "the vertices); neomesh reads curved cells in a plane or in 3D only",
+          file, plane.describe());
 }
 
 std::string describe_cell(const InputMesh& mesh, PetscInt c) {

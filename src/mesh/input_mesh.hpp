@@ -12,6 +12,7 @@
 #include <petscsys.h>
 
 #include "mesh/cell_type.hpp"
+#include "mesh/curved_type.hpp"
 #include "mesh/mesh_data.hpp"
 #include "mesh/plane_embedding.hpp"
 
@@ -82,6 +83,28 @@ struct TimeSteps {
   std::vector<std::vector<DataArray>> point_data, cell_data;  // per step before the last
 };
 
+// The nodes of second-order (curved) cells beyond their corners. A curved mesh has only
+// second-order cells: their corners are the mesh's vertices (InputMesh::cell_vertices, from which
+// the DMPlex is built) and their other nodes (mid-edge, mid-face, centre) are numbered apart, in
+// the order the file lists them; a node shared by cells is one node. Nothing moves them (curved
+// cells are read, measured and written, not optimized), so they keep the file's 3D coordinates
+// and are written back as they were read.
+struct HighOrderNodes {
+  std::vector<CurvedType> types;        // per cell; empty for a straight mesh
+  std::vector<PetscInt> offsets = {0};  // per cell, into `nodes`
+  std::vector<PetscInt> nodes;          // per cell: its nodes after the corners, in Gmsh order
+  std::vector<double> xyz;              // 3 per node
+
+  bool empty() const { return types.empty(); }
+  PetscInt num_nodes() const { return static_cast<PetscInt>(xyz.size() / 3); }
+  void add(CurvedType t, const PetscInt* n) {
+    types.push_back(t);
+    const int count = facts(t).nodes - num_vertices(facts(t).linear);
+    nodes.insert(nodes.end(), n, n + count);
+    offsets.push_back(static_cast<PetscInt>(nodes.size()));
+  }
+};
+
 struct InputMesh {
   int dim = 2;  // of the cells
   // 2D cells whose vertices do not lie in one plane: a surface mesh, with 3 coordinates per
@@ -106,10 +129,14 @@ struct InputMesh {
   std::vector<DataArray> point_data;
   std::vector<DataArray> cell_data;
   TimeSteps steps;
+  HighOrderNodes high_order;  // second-order cells' further nodes; empty for a straight mesh
 
+  bool curved() const { return !high_order.empty(); }
   int coord_dim() const { return surface ? 3 : dim; }
   PetscInt num_vertices() const { return static_cast<PetscInt>(coords.size()) / coord_dim(); }
   PetscInt num_cells() const { return static_cast<PetscInt>(cell_types.size()); }
+  // The points files list: the vertices, then the high-order nodes (none for a straight mesh).
+  PetscInt num_points() const { return num_vertices() + high_order.num_nodes(); }
   void add_cell(CellType t, const PetscInt* v, int tag) {
     cell_types.push_back(t);
     cell_vertices.insert(cell_vertices.end(), v, v + num_vertices_of(t));
@@ -133,6 +160,17 @@ void number_used_vertices(std::vector<PetscInt>& vertex, std::span<const double>
 
 // The vertices' coordinates in 3D space, 3 per vertex: a 2D mesh's put back in its plane.
 std::vector<double> coordinates_in_space(const InputMesh& mesh);
+
+// A curved mesh's points, as files list them: its vertices, then its high-order nodes. Cell
+// `c`'s points in Gmsh order (facts(type).nodes of them) go into `points`; returns how many.
+int curved_cell_points(const InputMesh& mesh, PetscInt c, PetscInt* points);
+// Their coordinates, coord_dim() values per point: a 2D mesh's in its plane; and in space (3 per
+// point, as coordinates_in_space() and the nodes' as read) for the writers.
+std::vector<double> points_in_space(const InputMesh& mesh);
+std::vector<double> curved_point_coordinates(const InputMesh& mesh);
+// For the readers, after number_used_vertices: throws Error naming `file` unless the high-order
+// nodes of a 2D mesh lie in the plane of its vertices (a curved surface mesh is not read).
+void check_high_order_nodes(const InputMesh& mesh, const std::string& file);
 
 // How messages name cell `c`: "cell 12 (0-based; element 40 of the file)", or "cell 12
 // (0-based)" without element numbers. Users find the element number in Gmsh.

@@ -30,6 +30,10 @@ struct PlexMesh::Impl {
   std::vector<DataArray> point_data, cell_data;
   TimeSteps steps;                              // rank 0 only, as the data
   std::shared_ptr<const PlaneEmbedding> plane;  // 2D off z = 0 (input_mesh.hpp)
+  // Second-order cells (on every rank) and, on rank 0 only, their nodes beyond the corners in
+  // input numbering (input_mesh.hpp).
+  bool curved = false;
+  HighOrderNodes high_order;
   // The coordinates' one owner is view->coords; the DMPlex's are brought up to date only when
   // someone asks for the DM (PlexMesh::dm()), not at every move.
   std::unique_ptr<MeshView> view;

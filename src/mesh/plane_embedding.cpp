@@ -120,6 +120,23 @@ std::vector<double> PlaneEmbedding::to_space(std::span<const double> uv) const {
   return xyz;
 }
 
+std::array<double, 2> PlaneEmbedding::to_plane(const double* xyz) const {
+  for (int k = 0; k < 3; ++k)
+    if (normal_[k] == 1) return {xyz[(k + 1) % 3], xyz[(k + 2) % 3]};
+  std::array<double, 2> uv{0, 0};
+  for (int d = 0; d < 3; ++d) {
+    uv[0] += (xyz[d] - origin_[d]) * a_[d];
+    uv[1] += (xyz[d] - origin_[d]) * b_[d];
+  }
+  return uv;
+}
+
+double PlaneEmbedding::distance(const double* xyz) const {
+  double off = 0;
+  for (int d = 0; d < 3; ++d) off += (xyz[d] - origin_[d]) * normal_[d];
+  return std::abs(off);
+}
+
 std::string PlaneEmbedding::describe() const {
   for (int k = 0; k < 3; ++k)
     if (normal_[k] == 1) return fmt::format("{} = {:g}", "xyz"[k], origin_[k]);

@@ -42,6 +42,12 @@ class PlaneEmbedding {
   // they were fitted).
   std::vector<double> to_space(std::span<const double> uv) const;
 
+  // The in-plane coordinates of the point `xyz` (3 values) projected onto the plane: for a
+  // plane normal to an axis, the other two coordinates as they are (as fit() gives them).
+  std::array<double, 2> to_plane(const double* xyz) const;
+  // The distance of the point `xyz` from the plane.
+  double distance(const double* xyz) const;
+
   // "z = 5", "y = -5" or "through (1, 2, 3) with normal (0.6, 0, 0.8)", for messages.
   std::string describe() const;
 

@@ -253,6 +253,10 @@ PlexMesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
   m->point_data = std::move(input.point_data);
   m->cell_data = std::move(input.cell_data);
   m->steps = std::move(input.steps);
+  int is_curved = input.curved();
+  MPI_Bcast(&is_curved, 1, MPI_INT, 0, comm);
+  m->curved = is_curved != 0;
+  m->high_order = std::move(input.high_order);
 
   const auto original = distribute(*m, graph);
   build_view(*m, original, counts[2], root, std::move(surface));
@@ -296,6 +300,9 @@ DM PlexMesh::dm() const {
     m.dm_coordinates_stale = false;
   }
   return m.dm;
+}
+bool PlexMesh::curved() const {
+  return impl_->curved;
 }
 int PlexMesh::dim() const {
   return impl_->dim;

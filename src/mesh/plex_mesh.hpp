@@ -43,6 +43,9 @@ class PlexMesh {
   const std::string& source() const;  // file name or generator name, for messages
   PetscInt global_num_cells() const;
   PetscInt global_num_vertices() const;
+  // True for a mesh of second-order cells (InputMesh::high_order): the DMPlex and the view hold
+  // their corners, the writers their other nodes too.
+  bool curved() const;
 
   // This rank's cells and vertices as flat arrays (built once, cached).
   const MeshView& view() const;

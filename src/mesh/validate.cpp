@@ -120,6 +120,56 @@ void mirror(CellType type, PetscInt* cell) {
   for (int i = 0; i < num_vertices(type); ++i) cell[i] = in[facts(type).mirror[i]];
 }
 
+// The corners (bit i: Gmsh's corner i) that each node of a curved cell after its corners lies
+// between, in Gmsh's order (curved_cell.hpp): its edge, its quadrilateral face or, for the
+// centre, all.
+constexpr std::uint8_t kTriangleNodes[] = {0x3, 0x6, 0x5};
+constexpr std::uint8_t kQuadrilateralNodes[] = {0x3, 0x6, 0xC, 0x9, 0xF};
+constexpr std::uint8_t kTetrahedronNodes[] = {0x3, 0x6, 0x5, 0x9, 0xC, 0xA};
+constexpr std::uint8_t kHexahedronNodes[] = {0x03, 0x09, 0x11, 0x06, 0x22, 0x0C, 0x44,
+                                             0x88, 0x30, 0x90, 0x60, 0xC0, 0x0F, 0x33,
+                                             0x99, 0x66, 0xCC, 0xF0, 0xFF};
+constexpr const std::uint8_t* node_corners(CellType linear) {
+  return linear == CellType::Triangle        ? kTriangleNodes
+         : linear == CellType::Quadrilateral ? kQuadrilateralNodes
+         : linear == CellType::Tetrahedron   ? kTetrahedronNodes
+                                             : kHexahedronNodes;
+}
+
+// The vertices a node lies between, sorted (then -1), from the cell's corners in Gmsh's order.
+std::array<PetscInt, 8> node_key(std::uint8_t corners, const PetscInt* gmsh) {
+  std::array<PetscInt, 8> key;
+  key.fill(-1);
+  int n = 0;
+  for (int i = 0; i < 8; ++i) {  // by insertion (GCC 12 warns wrongly about std::sort here)
+    if (!(corners >> i & 1)) continue;
+    int j = n++;
+    for (; j > 0 && key[j - 1] > gmsh[i]; --j) key[j] = key[j - 1];
+    key[j] = gmsh[i];
+  }
+  return key;
+}
+
+// Mirrors cell `c` (mirror()), and a curved cell's other nodes with it: each goes where the
+// vertices it lies between are in the mirrored cell.
+void mirror_cell(InputMesh& mesh, PetscInt c) {
+  const CellType type = mesh.cell_types[c];
+  PetscInt* v = mesh.cell_vertices.data() + mesh.cell_offsets[c];
+  PetscInt before[8], after[8];  // the corners in Gmsh's order
+  for (int i = 0; i < num_vertices(type); ++i) before[i] = v[facts(type).gmsh_order[i]];
+  mirror(type, v);
+  if (!mesh.curved()) return;
+  for (int i = 0; i < num_vertices(type); ++i) after[i] = v[facts(type).gmsh_order[i]];
+  PetscInt* nodes = mesh.high_order.nodes.data() + mesh.high_order.offsets[c];
+  const int n = static_cast<int>(mesh.high_order.offsets[c + 1] - mesh.high_order.offsets[c]);
+  const std::uint8_t* corners = node_corners(type);
+  PetscInt old[kMaxCurvedNodes];
+  std::copy_n(nodes, n, old);
+  for (int p = 0; p < n; ++p)
+    for (int q = 0; q < n; ++q)
+      if (node_key(corners[p], after) == node_key(corners[q], before)) nodes[p] = old[q];
+}
+
 // One facet of a cell: its sorted vertices (then -1), the cell, and which way the cell runs
 // around it (the facet's vertex cycle as seen from the cell, relative to the sorted order).
 struct FacetSide {
@@ -159,7 +209,7 @@ std::vector<PetscInt> orient_mirrored_cells(InputMesh& mesh) {
     double x[8 * 3];
     if (!cell_coordinates(mesh, c, x)) continue;  // find_defect names it
     if (scaled_corner_jacobians(mesh.cell_types[c], x).second >= -kDegenerateJacobian) continue;
-    mirror(mesh.cell_types[c], mesh.cell_vertices.data() + mesh.cell_offsets[c]);
+    mirror_cell(mesh, c);
     flipped[c] = 1;
   }
   std::vector<PetscInt> mirrored;
@@ -253,6 +303,8 @@ void validate(InputMesh& mesh, const std::string& source, MPI_Comm comm, bool ke
   if (rank == 0) {
     const std::vector<PetscInt> input_order =
         keep_inverted ? mesh.cell_vertices : std::vector<PetscInt>{};
+    const std::vector<PetscInt> input_nodes =
+        keep_inverted ? mesh.high_order.nodes : std::vector<PetscInt>{};
     const std::vector<PetscInt> mirrored = orient_mirrored_cells(mesh);
     defect = find_defect(mesh, keep_inverted);
     if (defect.empty() && mesh.surface) defect = find_surface_edge_defect(mesh);
@@ -266,9 +318,9 @@ void validate(InputMesh& mesh, const std::string& source, MPI_Comm comm, bool ke
         // The folded cells stay inverted, to be counted or untangled; the orientation of the
         // majority is the mesh's (a mirrored mesh with a few folds is mirrored as a whole).
         mesh.cell_vertices = input_order;
+        mesh.high_order.nodes = input_nodes;
         if (2 * static_cast<PetscInt>(mirrored.size()) > mesh.num_cells())
-          for (PetscInt c = 0; c < mesh.num_cells(); ++c)
-            mirror(mesh.cell_types[c], mesh.cell_vertices.data() + mesh.cell_offsets[c]);
+          for (PetscInt c = 0; c < mesh.num_cells(); ++c) mirror_cell(mesh, c);
       }
     }
   }

@@ -6,7 +6,8 @@
 // Mirrored cells: a cell whose corner Jacobians are all negative is not inverted but listed in
 // the other orientation (FEAT3 meshes with clockwise quads, mirrored hexahedra, Gmsh surfaces
 // meshed with the normal along -z). validate() reorients it (its local vertex order is
-// mirrored) and every output keeps the new, positive order. Only a cell with corner Jacobians
+// mirrored; a curved cell's other nodes follow its corners) and every output keeps the new,
+// positive order. Only a cell with corner Jacobians
 // of mixed sign or zero is inverted or degenerate, or a mirrored cell that folds over a
 // neighbour (the two run around their common facet the same way).
 //

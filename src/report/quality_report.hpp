@@ -10,7 +10,8 @@
 
 namespace neomesh {
 
-// Cell counts, min/mean/max of each metric, inverted and degenerate cells.
+// Cell counts, min/mean/max of each metric, inverted and degenerate cells; for a curved mesh
+// also its curved cells' counts, validity and curved scaled Jacobian.
 std::string format_table(const QualitySummary& summary);
 nlohmann::json to_json(const QualitySummary& summary);
 nlohmann::json to_json(const VolumeRatioStats& stats);

@@ -15,16 +15,10 @@ MESQUITE = os.path.join(CORPUS, "mesquite")
 # Why neomesh may refuse a real file: cells it does not optimize, or 2D cells off one plane.
 HONEST = ("second-order", "polygon", "only 1D", "no 2D or 3D", "structured grid",
           "a surface mesh")
-# Files meshio cannot read (it fails on them with an IndexError). neomesh reads the triPatch
-# files, which list more CELL_TYPES than CELLS (VTK's reader takes the first ones), and refuses
-# them for their quadratic triangles; the other two are malformed, refused naming the line.
+# Files meshio cannot read (it fails on them with an IndexError) that neomesh refuses: two are
+# malformed, refused naming the line. (neomesh reads the triPatch files, which list more
+# CELL_TYPES than CELLS, as VTK's reader does, taking the first ones: test_curved.py.)
 MESHIO_CANNOT_READ = {
-    "2D/vtk/quadratic/triPatch_0_0.vtk": "second-order",
-    "2D/vtk/quadratic/triPatch_0_7.vtk": "second-order",
-    "2D/vtk/quadratic/triPatch_0_8.vtk": "second-order",
-    "2D/vtk/quadratic/triPatch_1_0.vtk": "second-order",
-    "2D/vtk/quadratic/triPatch_1_1.vtk": "second-order",
-    "2D/vtk/quadratic/triPatch_1_2.vtk": "second-order",
     # "3 a b c d" per cell: quadrilaterals that announce 3 points, 8192 CELL_TYPES for 4096 CELLS.
     "2D/vtk/quads/untangled/shashkov_quad_opt.vtk": "shashkov_quad_opt.vtk:7768: not a valid VTK",
     # CELLS 30 80 for 30 quadrilaterals (150 numbers).

@@ -1,0 +1,81 @@
+// The second-order (curved) cell types and how files number their nodes: one table of facts.
+// Their geometry (basis, Jacobian, validity certificate) is geometry/curved_cell.hpp's.
+//
+// Node order: Gmsh's (curved_cell.hpp states it): the corners as Gmsh lists them, then one node
+// per edge, per quadrilateral face and the centre. VTK lists the same nodes in another order
+// for the tetrahedron (the last three edges) and the hexahedra (edges and faces); its quadratic
+// cells (types 22-29) and its Lagrange cells of order 2 (types 69-72) agree with each other.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "mesh/cell_type.hpp"
+
+namespace neomesh {
+
+enum class CurvedType : std::uint8_t {
+  Triangle6,
+  Quadrilateral8,
+  Quadrilateral9,
+  Tetrahedron10,
+  Hexahedron20,
+  Hexahedron27
+};
+
+inline constexpr std::array<CurvedType, 6> kCurvedTypes = {
+    CurvedType::Triangle6,     CurvedType::Quadrilateral8, CurvedType::Quadrilateral9,
+    CurvedType::Tetrahedron10, CurvedType::Hexahedron20,   CurvedType::Hexahedron27};
+
+inline constexpr int kMaxCurvedNodes = 27;
+
+struct CurvedFacts {
+  std::string_view name;  // "hexahedron27"
+  CellType linear;        // the straight cell of the same shape: its corners are the vertices
+  int nodes;              // corners included
+  int gmsh;               // Gmsh element type (.msh 2.2 and 4.1)
+  int vtk;                // VTK's quadratic cell type
+  int vtk_lagrange;       // VTK's Lagrange cell type (order 2 with `nodes` points)
+  // Position i of VTK's list holds Gmsh node vtk_order[i] (the corners agree).
+  std::array<std::uint8_t, kMaxCurvedNodes> vtk_order;
+};
+
+inline constexpr std::array<CurvedFacts, kCurvedTypes.size()> kCurvedFacts = {{
+    {"triangle6", CellType::Triangle, 6, 9, 22, 69, {0, 1, 2, 3, 4, 5}},
+    {"quadrilateral8", CellType::Quadrilateral, 8, 16, 23, -1, {0, 1, 2, 3, 4, 5, 6, 7}},
+    {"quadrilateral9", CellType::Quadrilateral, 9, 10, 28, 70, {0, 1, 2, 3, 4, 5, 6, 7, 8}},
+    // VTK's edges (0,1) (1,2) (2,0) (0,3) (1,3) (2,3); Gmsh's end (3,0) (3,2) (3,1).
+    {"tetrahedron10", CellType::Tetrahedron, 10, 11, 24, 71, {0, 1, 2, 3, 4, 5, 6, 7, 9, 8}},
+    // VTK's edges: the bottom and the top face's cycles, then the vertical ones.
+    {"hexahedron20", CellType::Hexahedron, 20, 17, 25, -1, {0,  1, 2,  3,  4,  5,  6,  7,  8,  11,
+                                                            13, 9, 16, 18, 19, 17, 10, 12, 14, 15}},
+    // As hexahedron20, then VTK's faces x = −1, x = +1, y = −1, y = +1, z = −1, z = +1.
+    {"hexahedron27", CellType::Hexahedron, 27, 12, 29, 72, {0,  1,  2,  3,  4,  5,  6,  7,  8,
+                                                            11, 13, 9,  16, 18, 19, 17, 10, 12,
+                                                            14, 15, 22, 23, 21, 24, 20, 25, 26}},
+}};
+
+constexpr const CurvedFacts& facts(CurvedType t) {
+  return kCurvedFacts[static_cast<int>(t)];
+}
+constexpr std::string_view name(CurvedType t) {
+  return facts(t).name;
+}
+
+// VTK before 9.1 numbered the quadratic Lagrange hexahedron's (type 72) vertical edges at y = 1
+// the other way round: positions 18 and 19 swapped. VTK converts files of older versions on
+// reading (XML before 2.2, legacy before 5.1), so such files hold the old order.
+constexpr int old_lagrange_hexahedron_position(int i) {
+  return i == 18 ? 19 : i == 19 ? 18 : i;
+}
+
+// The type with `nodes` nodes whose straight cell is `linear`, or none.
+constexpr std::optional<CurvedType> curved_type(CellType linear, int nodes) {
+  for (CurvedType t : kCurvedTypes)
+    if (facts(t).linear == linear && facts(t).nodes == nodes) return t;
+  return std::nullopt;
+}
+
+}  // namespace neomesh
