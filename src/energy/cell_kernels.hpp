@@ -84,6 +84,23 @@ struct OptimalCellQuadrature {
           unit_weights[q] * unit_gradients[q].transpose() * unit_gradients[q];
   }
 
+  // Whether the map is orientation-preserving at every corner frame of the cell-type table
+  // (simplices: always true here; their single det G is checked at the quadrature point).
+  // Gauss points alone miss a non-convex quad: with vertex 3 of the unit square at
+  // (0.45, 0.45), det J > 0 at all 3×3 Gauss points but < 0 at that corner. In 2D det J is
+  // bilinear, so positive corners mean positive everywhere; in 3D they are necessary, and the
+  // Gauss points add to them. A pyramid's det J is (1 − ξ2)² f(ξ0, ξ1): its base corners
+  // check f at the corners of the base, and so the whole edge up to the apex.
+  static bool corners_admissible(const Gradients& x) {
+    if constexpr (CellTraits<Type>::simplex) {
+      return true;
+    } else {
+      for (int k = 0; k < facts(Type).num_corners; ++k)
+        if (!(corner_jacobian<Type>(x, k).determinant() > 0.0)) return false;
+      return true;
+    }
+  }
+
  private:
   void add_corners(double weight) {
     const Gradients optimal = unit_optimal_cell<Type>();
@@ -168,7 +185,14 @@ struct CellMeasure {
   double min_det;
 };
 
-// The skeleton. `Law` gives, per sample point (neo_hooke.hpp, regularized_neo_hooke.hpp):
+// The skeleton: the energy and its derivatives as sums over the sample points of a `Rule`, for
+// straight cells (OptimalCellQuadrature) and second-order ones (CurvedCellQuadrature,
+// curved_kernels.hpp) alike. `Rule` gives
+//   dim, vertices, Gradients                the cell's nodes: X is Dim × vertices
+//   size, unit_gradients[q], unit_weights[q]   D̂_q and ŵ_q on the optimal cell of unit volume
+//   unit_laplacian                          Σ_q ŵ_q D̂_qᵀ D̂_q
+//   static corners_admissible(X)            the orientation checks beyond the sample points
+// `Law` gives, per sample point (neo_hooke.hpp, regularized_neo_hooke.hpp):
 //   Point point(G)                          the quantities of W at G, computed once
 //   static bool admissible(Point)           whether W is finite there
 //   double energy(Point), Matrix stress(Point)    W and P = ∂W/∂G
@@ -176,38 +200,21 @@ struct CellMeasure {
 //                                           gradients D: .block(i, j) is the (i, j) block
 //   mu                                      B3 = μ H, the same for every G
 //   static constexpr bool barrier           W = +∞ where det G ≤ 0 (checked at the corners too)
-template <CellType Type, typename Law>
-class CellKernel {
+template <typename Rule, typename Law>
+class SampleKernel {
  public:
-  static constexpr CellType type = Type;
-  static constexpr int dim = CellTraits<Type>::dim;
-  static constexpr int vertices = CellTraits<Type>::vertices;
+  static constexpr int dim = Rule::dim;
+  static constexpr int vertices = Rule::vertices;
   static constexpr int dofs = dim * vertices;
-  using Coordinates = typename CellTraits<Type>::Coordinates;  // X, one column per vertex
-  using Gradient = Coordinates;                                // ∂(cell energy)/∂X
-  using Block = Eigen::Matrix<double, dofs, dofs>;             // (dof, dof) in local order
+  using Coordinates = typename Rule::Gradients;     // X, one column per node
+  using Gradient = Coordinates;                     // ∂(cell energy)/∂X
+  using Block = Eigen::Matrix<double, dofs, dofs>;  // (dof, dof) in local order
   using Target = CellTarget<dim>;
 
-  // `corner_weight`: the share of the corner samples (OptimalCellQuadrature; 0: the thesis').
-  CellKernel(const Law& law, int gauss_points, double corner_weight = 0.0)
-      : law_(law), rule_(gauss_points, corner_weight) {}
+  SampleKernel(const Law& law, const Rule& rule) : law_(law), rule_(rule) {}
 
-  // Whether the map is orientation-preserving at every corner frame of the cell-type table
-  // (simplices: always true here; their single det G is checked at the quadrature point).
-  // Gauss points alone miss a non-convex quad: with vertex 3 of the unit square at
-  // (0.45, 0.45), det J > 0 at all 3×3 Gauss points but < 0 at that corner. In 2D det J is
-  // bilinear, so positive corners mean positive everywhere; in 3D they are necessary, and the
-  // Gauss points add to them. A pyramid's det J is (1 − ξ2)² f(ξ0, ξ1): its base corners
-  // check f at the corners of the base, and so the whole edge up to the apex.
-  static bool corners_admissible(const Coordinates& x) {
-    if constexpr (CellTraits<Type>::simplex) {
-      return true;
-    } else {
-      for (int k = 0; k < facts(Type).num_corners; ++k)
-        if (!(corner_jacobian<Type>(x, k).determinant() > 0.0)) return false;
-      return true;
-    }
-  }
+  // The rule's orientation checks (OptimalCellQuadrature::corners_admissible).
+  static bool corners_admissible(const Coordinates& x) { return Rule::corners_admissible(x); }
 
   // ∫_{target cell} W(G) dx = Σ_q v ŵ_q W(G_q); for a barrier law +∞ if det G ≤ 0 at some
   // point or corner.
@@ -336,7 +343,20 @@ class CellKernel {
   }
 
   Law law_;
-  OptimalCellQuadrature<Type> rule_;
+  Rule rule_;
+};
+
+// The kernel of a straight cell: the skeleton on the optimal cell's Gauss points (and corner
+// samples).
+template <CellType Type, typename Law>
+class CellKernel : public SampleKernel<OptimalCellQuadrature<Type>, Law> {
+ public:
+  static constexpr CellType type = Type;
+
+  // `corner_weight`: the share of the corner samples (OptimalCellQuadrature; 0: the thesis').
+  CellKernel(const Law& law, int gauss_points, double corner_weight = 0.0)
+      : SampleKernel<OptimalCellQuadrature<Type>, Law>(
+            law, OptimalCellQuadrature<Type>(gauss_points, corner_weight)) {}
 };
 
 // The thesis' energy: the Neo-Hookean law at the Gauss points (and, in the worst-cell phase,
