@@ -39,6 +39,14 @@ BoundaryMode parse_boundary_mode(std::string_view name);
 template <typename E>
 std::vector<std::string> choice_names();
 
+// What the vertices of a surface mesh slide on, where no shape is given for their cells
+// (docs/user-guide.md, "Surface meshes"): the input's flat cells, or a Phong tessellation
+// through their vertices, flat where it could fold (boundary/discrete_geometry.hpp). A volume
+// mesh's boundary vertices slide on its flat facets either way.
+enum class SurfaceGeometry { Cells, Phong };
+std::string_view name(SurfaceGeometry geometry);  // "cells", "phong"
+SurfaceGeometry parse_surface_geometry(std::string_view name);
+
 struct BoundaryOptions {
   BoundaryOptions() = default;
   explicit BoundaryOptions(BoundaryMode m) : mode(m) {}
@@ -51,6 +59,7 @@ struct BoundaryOptions {
   // (part name, shape spec) pairs: boundary part `name` lies on the shape, e.g. ("hole",
   // "circle:0,0,0.5"); docs/boundary.md lists the shapes.
   std::vector<std::pair<std::string, std::string>> shapes;
+  SurfaceGeometry surface_geometry = SurfaceGeometry::Cells;
 
   void validate() const;
 };

@@ -148,6 +148,13 @@ const OptionTable<BoundaryOptions>& boundary_option_table() {
        .group = kBoundaryGroup,
        .field = member(&O::feature_angle),
        .range = {"in (0, 180) degrees", [](double x) { return x > 0 && x < 180; }}},
+      {.path = "boundary.surface_geometry",
+       .flag = "--surface-geometry",
+       .help = "what a surface mesh's vertices slide on: cells (the input's flat cells) or phong "
+               "(a curved Phong tessellation through their vertices, flat where it could fold); "
+               "a volume mesh's boundary vertices slide on its flat facets either way",
+       .group = kBoundaryGroup,
+       .field = member(&O::surface_geometry)},
   };
   return table;
 }
@@ -561,6 +568,7 @@ template std::string to_text(const bool&, std::string_view);
 template std::string to_text(const std::optional<double>&, std::string_view);
 template std::string to_text(const Shapes&, std::string_view);
 template std::string to_text(const BoundaryMode&, std::string_view);
+template std::string to_text(const SurfaceGeometry&, std::string_view);
 template std::string to_text(const LinearSolverKind&, std::string_view);
 template std::string to_text(const RieszLaplacian&, std::string_view);
 template std::string to_text(const HessianPreconditioner&, std::string_view);

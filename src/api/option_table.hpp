@@ -36,7 +36,7 @@ template <typename S>
 using FieldRef =
     std::variant<Access<S, double>, Access<S, int>, Access<S, bool>,
                  Access<S, std::optional<double>>, Access<S, BoundaryMode>,
-                 Access<S, LinearSolverKind>, Access<S, RieszLaplacian>,
+                 Access<S, SurfaceGeometry>, Access<S, LinearSolverKind>, Access<S, RieszLaplacian>,
                  Access<S, HessianPreconditioner>, Access<S, RejectedDirection>,
                  Access<S, SizeMode>, Access<S, TargetMode>, Access<S, Shapes>, Preset>;
 

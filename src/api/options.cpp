@@ -31,6 +31,8 @@ struct Choices {
 
 constexpr Choices<BoundaryMode, 2> kBoundaryModes{
     "boundary mode", {{{BoundaryMode::Fixed, "fixed"}, {BoundaryMode::Slide, "slide"}}}};
+constexpr Choices<SurfaceGeometry, 2> kSurfaceGeometries{
+    "surface geometry", {{{SurfaceGeometry::Cells, "cells"}, {SurfaceGeometry::Phong, "phong"}}}};
 constexpr Choices<LinearSolverKind, 3> kLinearSolvers{"linear solver",
                                                       {{{LinearSolverKind::Amg, "amg"},
                                                         {LinearSolverKind::Jacobi, "jacobi"},
@@ -57,6 +59,9 @@ constexpr Choices<TargetMode, 3> kTargetModes{"target mode",
 // The table of an enum, found by overload.
 constexpr const auto& choices(BoundaryMode) {
   return kBoundaryModes;
+}
+constexpr const auto& choices(SurfaceGeometry) {
+  return kSurfaceGeometries;
 }
 constexpr const auto& choices(LinearSolverKind) {
   return kLinearSolvers;
@@ -109,6 +114,7 @@ std::vector<std::string> choice_names() {
   return names;
 }
 template std::vector<std::string> choice_names<BoundaryMode>();
+template std::vector<std::string> choice_names<SurfaceGeometry>();
 template std::vector<std::string> choice_names<LinearSolverKind>();
 template std::vector<std::string> choice_names<RieszLaplacian>();
 template std::vector<std::string> choice_names<HessianPreconditioner>();
@@ -121,6 +127,12 @@ std::string_view name(BoundaryMode mode) {
 }
 BoundaryMode parse_boundary_mode(std::string_view name) {
   return parse_as<BoundaryMode>(name);
+}
+std::string_view name(SurfaceGeometry geometry) {
+  return name_of(geometry);
+}
+SurfaceGeometry parse_surface_geometry(std::string_view name) {
+  return parse_as<SurfaceGeometry>(name);
 }
 std::string_view name(LinearSolverKind kind) {
   return name_of(kind);
@@ -164,6 +176,7 @@ E parse_choice(std::string_view name) {
   return parse_as<E>(name);
 }
 template BoundaryMode parse_choice(std::string_view);
+template SurfaceGeometry parse_choice(std::string_view);
 template LinearSolverKind parse_choice(std::string_view);
 template RieszLaplacian parse_choice(std::string_view);
 template HessianPreconditioner parse_choice(std::string_view);

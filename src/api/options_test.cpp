@@ -30,6 +30,7 @@ void expect_names_round_trip(E (*parse)(std::string_view), E default_value) {
 
 TEST(OptionChoices, EveryNameParsesBackAndTheDefaultComesFirst) {
   expect_names_round_trip(parse_boundary_mode, BoundaryOptions().mode);
+  expect_names_round_trip(parse_surface_geometry, BoundaryOptions().surface_geometry);
   expect_names_round_trip(parse_linear_solver, SolverOptions().linear_solver);
   expect_names_round_trip(parse_riesz_laplacian, SolverOptions().advanced.riesz);
   expect_names_round_trip(parse_hessian_preconditioner, SolverOptions().advanced.hessian_pc);

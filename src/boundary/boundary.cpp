@@ -305,8 +305,12 @@ struct Boundary::Impl {
         patch_analytic[p] = 1;
       } else {
         FacetSimplices s = facet_simplices(surface, facets[p]);
-        patch_surface[p] = std::make_unique<DiscreteSurface>(std::move(s.points),
-                                                             std::move(s.simplices), surface.dim);
+        if (view.surface && options.surface_geometry == SurfaceGeometry::Phong)
+          patch_surface[p] =
+              std::make_unique<PhongSurface>(std::move(s.points), std::move(s.simplices));
+        else
+          patch_surface[p] = std::make_unique<DiscreteSurface>(std::move(s.points),
+                                                               std::move(s.simplices), surface.dim);
       }
       summary.patch_geometry.push_back(fmt::format("{}: {}", label, patch_surface[p]->describe()));
     }

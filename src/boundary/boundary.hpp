@@ -8,7 +8,8 @@
 //   1. a shape named for its boundary part (`--shape part=circle:0,0,0.5`, shape.hpp);
 //   2. the FEAT3 chart its mesh part is attached to;
 //   3. the plane it lies in, if it is flat;
-//   4. otherwise the input's own facets (discrete_geometry.hpp).
+//   4. otherwise the input's own facets (discrete_geometry.hpp); a surface mesh's patch, a
+//      Phong tessellation through their vertices (BoundaryOptions::surface_geometry).
 // A ridge between two patches with analytic geometry follows their exact intersection,
 // otherwise the input's ridge edges. Coordinates that stay exact by themselves — all of a
 // corner's, the normal one of a vertex in an axis-aligned plane, the two others of one on an

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
+#include <fmt/format.h>
 #include <Eigen/Geometry>
 
 #include "boundary/features.hpp"
@@ -284,6 +286,255 @@ Point DiscreteCurve::tangent(const Point& q) const {
   const auto& v = set_.simplices()[h.simplex];
   return blend(h.weights, {point_tangent_[v[0]], point_tangent_[v[1]], Point::Zero()}, 2,
                segment_tangent(h.simplex));
+}
+
+}  // namespace neomesh
+
+namespace neomesh {
+
+namespace {
+
+// Phong tessellation's shape factor that makes a patch through points of a smooth surface, with
+// its normals, agree with it to second order (discrete_geometry.hpp).
+constexpr double kPhongAlpha = 0.5;
+// Sample points per edge of a triangle at which its patch's area element is checked.
+constexpr int kPhongFoldSamples = 8;
+// Newton's method for the closest point: at most this many steps, crossings into a neighbouring
+// triangle before an edge is held (a closest point on an edge, the patches on both sides
+// pointing across it), and the parameter step (barycentric, relative to 1) that ends it.
+constexpr int kPhongNewtonSteps = 60;
+constexpr int kPhongCrossings = 8;
+constexpr double kPhongStepTolerance = 1e-15;
+
+// Per point, Max's normal: Σ over its triangles of e₁ × e₂ / (|e₁|² |e₂|²), the two edges from
+// the point, signs aligned with the sum so far; exact for points on a sphere whose triangles
+// close around the point.
+std::vector<Point> max_normals(const SimplexSet& set) {
+  std::vector<Point> sum(set.points().size(), Point::Zero());
+  for (const auto& t : set.simplices())
+    for (int k = 0; k < 3; ++k) {
+      const Point& x = set.points()[t[k]];
+      const Point e1 = set.points()[t[(k + 1) % 3]] - x, e2 = set.points()[t[(k + 2) % 3]] - x;
+      const Point term = e1.cross(e2) / (e1.squaredNorm() * e2.squaredNorm());
+      Point& at = sum[t[k]];
+      at += at.dot(term) < 0 ? -term : term;
+    }
+  for (Point& n : sum)
+    if (n.norm() > 0) n.normalize();
+  return sum;
+}
+
+// Per triangle, the triangle across the edge opposite each corner (-1: none, or more than one).
+std::vector<std::array<int, 3>> triangle_neighbours(const SimplexSet& set) {
+  const auto& t = set.simplices();
+  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> by_edge;  // (triangle, corner)
+  for (int s = 0; s < static_cast<int>(t.size()); ++s)
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[s][(k + 1) % 3], b = t[s][(k + 2) % 3];
+      by_edge[{std::min(a, b), std::max(a, b)}].emplace_back(s, k);
+    }
+  std::vector<std::array<int, 3>> out(t.size(), {-1, -1, -1});
+  for (const auto& [edge, sides] : by_edge)
+    if (sides.size() == 2) {
+      out[sides[0].first][sides[0].second] = sides[1].first;
+      out[sides[1].first][sides[1].second] = sides[0].first;
+    }
+  return out;
+}
+
+// d(b)/du, d(b)/dv for b = (1 − u − v, u, v); and the direction in (u, v) along the edge
+// opposite corner k.
+constexpr std::array<double, 3> kBu{-1, 1, 0}, kBv{-1, 0, 1};
+constexpr std::array<std::array<double, 2>, 3> kEdgeDirection{{{1, -1}, {0, 1}, {1, 0}}};
+
+std::array<double, 3> barycentric(double u, double v) {
+  return {1 - u - v, u, v};
+}
+
+}  // namespace
+
+PhongSurface::PhongSurface(std::vector<Point> points, std::vector<std::array<int, 3>> triangles,
+                           double min_area_ratio)
+    : set_(std::move(points), std::move(triangles), 3),
+      normal_(max_normals(set_)),
+      alpha_(set_.points().size(), kPhongAlpha),
+      neighbour_(triangle_neighbours(set_)) {
+  for (std::size_t i = 0; i < normal_.size(); ++i)
+    if (normal_[i].norm() == 0) alpha_[i] = 0;
+  // Flattening a triangle's points can shrink a neighbour's area element: again until none is
+  // below the bound (each round flattens a point, or ends).
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int s = 0; s < static_cast<int>(set_.simplices().size()); ++s) {
+      const auto& t = set_.simplices()[s];
+      if (alpha_[t[0]] == 0 && alpha_[t[1]] == 0 && alpha_[t[2]] == 0) continue;
+      if (area_ratio(s) >= min_area_ratio) continue;
+      for (int k = 0; k < 3; ++k) alpha_[t[k]] = 0;
+      changed = true;
+    }
+  }
+}
+
+double PhongSurface::area_ratio(int triangle) const {
+  const auto& t = set_.simplices()[triangle];
+  const Point& x = set_.points()[t[0]];
+  const Point flat = (set_.points()[t[1]] - x).cross(set_.points()[t[2]] - x);
+  double least = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= kPhongFoldSamples; ++i)
+    for (int j = 0; i + j <= kPhongFoldSamples; ++j) {
+      const Patch at =
+          evaluate(triangle, double(i) / kPhongFoldSamples, double(j) / kPhongFoldSamples);
+      least = std::min(least, at.qu.cross(at.qv).dot(flat) / flat.squaredNorm());
+    }
+  return least;
+}
+
+std::string PhongSurface::describe() const {
+  const int flat = flat_points();
+  return flat == 0 ? std::string("Phong tessellation of the input's boundary")
+                   : fmt::format(
+                         "Phong tessellation of the input's boundary, flat at {} of its {} "
+                         "points (where it could fold)",
+                         flat, alpha_.size());
+}
+
+int PhongSurface::flat_points() const {
+  return static_cast<int>(std::count(alpha_.begin(), alpha_.end(), 0.0));
+}
+
+PhongSurface::Patch PhongSurface::evaluate(int triangle, double u, double v) const {
+  const auto& t = set_.simplices()[triangle];
+  const Point &x0 = set_.points()[t[0]], &x1 = set_.points()[t[1]], &x2 = set_.points()[t[2]];
+  const Point e1 = x1 - x0, e2 = x2 - x0;
+  const std::array<double, 3> b = barycentric(u, v);
+  const Point p = x0 + u * e1 + v * e2;
+  Patch out{triangle, u, v, p, e1, e2, Point::Zero(), Point::Zero(), Point::Zero()};
+  for (int i = 0; i < 3; ++i) {
+    const double a = alpha_[t[i]];
+    if (a == 0) continue;
+    // f = bᵢ ((p − xᵢ)·nᵢ) and its derivatives; q = p − Σ αᵢ f nᵢ.
+    const Point& n = normal_[t[i]];
+    const double h = (p - set_.points()[t[i]]).dot(n), hu = e1.dot(n), hv = e2.dot(n);
+    out.q -= a * b[i] * h * n;
+    out.qu -= a * (kBu[i] * h + b[i] * hu) * n;
+    out.qv -= a * (kBv[i] * h + b[i] * hv) * n;
+    out.quu -= a * 2 * kBu[i] * hu * n;
+    out.quv -= a * (kBu[i] * hv + kBv[i] * hu) * n;
+    out.qvv -= a * 2 * kBv[i] * hv * n;
+  }
+  return out;
+}
+
+// Newton's method on ½|q(u, v) − p|² in the parameters of one triangle at a time (Gauss-Newton
+// where the Hessian is not positive definite). A step leaving the triangle stops at its edge and
+// goes on in the neighbour there (the edge's curve is the same on both sides); at a border, or
+// after kPhongCrossings crossings, the edge is held and the step taken along it.
+PhongSurface::Patch PhongSurface::locate(const Point& p) const {
+  const SimplexSet::Hit hit = set_.closest(p);
+  int t = hit.simplex, crossings = 0, held = -1;
+  double u = hit.weights[1], v = hit.weights[2];
+  for (int step = 0; step < kPhongNewtonSteps; ++step) {
+    const Patch at = evaluate(t, u, v);
+    const Point r = at.q - p;
+    const Eigen::Vector2d g(at.qu.dot(r), at.qv.dot(r));
+    Eigen::Matrix2d H;
+    H << at.qu.dot(at.qu) + at.quu.dot(r), at.qu.dot(at.qv) + at.quv.dot(r),
+        at.qu.dot(at.qv) + at.quv.dot(r), at.qv.dot(at.qv) + at.qvv.dot(r);
+    if (!(H(0, 0) > 0 && H.determinant() > 0))
+      H << at.qu.dot(at.qu), at.qu.dot(at.qv), at.qu.dot(at.qv), at.qv.dot(at.qv);
+    Eigen::Vector2d d = -H.ldlt().solve(g);
+    if (held >= 0 && kBu[held] * d[0] + kBv[held] * d[1] < 0) {  // would leave across `held`
+      const Eigen::Vector2d e(kEdgeDirection[held][0], kEdgeDirection[held][1]);
+      const double curvature = e.dot(H * e);
+      d = curvature > 0 ? Eigen::Vector2d(-e.dot(g) / curvature * e) : Eigen::Vector2d::Zero();
+    } else {
+      held = -1;
+    }
+    // The largest fraction of the step that keeps every weight ≥ 0, and the weight that ends it.
+    const std::array<double, 3> b = barycentric(u, v);
+    double fraction = 1;
+    int leaves = -1;
+    for (int k = 0; k < 3; ++k) {
+      const double db = kBu[k] * d[0] + kBv[k] * d[1];
+      if (k != held && db < 0 && b[k] + db < 0 && -b[k] / db < fraction) {
+        fraction = std::max(0.0, -b[k] / db);
+        leaves = k;
+      }
+    }
+    u += fraction * d[0];
+    v += fraction * d[1];
+    if (held >= 0 || leaves >= 0) {  // onto the edge exactly
+      std::array<double, 3> w = barycentric(u, v);
+      for (double& x : w) x = std::max(x, 0.0);
+      if (leaves >= 0) w[leaves] = 0;
+      if (held >= 0) w[held] = 0;
+      const double sum = w[0] + w[1] + w[2];
+      u = w[1] / sum;
+      v = w[2] / sum;
+    }
+    if (leaves < 0) {
+      if (fraction * d.norm() <= kPhongStepTolerance) break;
+      continue;
+    }
+    const int next = neighbour_[t][leaves];
+    if (next < 0 || crossings >= kPhongCrossings) {
+      held = leaves;
+      continue;
+    }
+    // The same point in the neighbour's weights: by vertex, 0 for the corner across the edge.
+    const std::array<double, 3> w = barycentric(u, v);
+    std::array<double, 3> to{0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+      for (int j = 0; j < 3; ++j)
+        if (set_.simplices()[next][j] == set_.simplices()[t][k]) to[j] = w[k];
+    t = next;
+    u = to[1];
+    v = to[2];
+    held = -1;
+    ++crossings;
+  }
+  return evaluate(t, u, v);
+}
+
+Point PhongSurface::closest_point(const Point& p) const {
+  return locate(p).q;
+}
+
+// The vertex normals interpolated, Phong shading's normal, signed as the patch's: continuous
+// across edges and vertices, where the patches' own normals turn (C0, discrete_geometry.hpp). A
+// vertex moving in the plane it gives leaves the patch by the angle between the two normals, to
+// first order; the projection takes it back.
+Point PhongSurface::normal_at(const Patch& at) const {
+  const auto& t = set_.simplices()[at.triangle];
+  return blend(barycentric(at.u, at.v), {normal_[t[0]], normal_[t[1]], normal_[t[2]]}, 3,
+               at.qu.cross(at.qv).normalized());
+}
+
+Point PhongSurface::normal(const Point& q) const {
+  return normal_at(locate(q));
+}
+
+// ∇n of normal() on the tangent plane, symmetrized (only uᵀ S u bends a step): with
+// m = Σ bᵢ nᵢ and n = m/|m|, n_u = (I − n nᵀ) m_u / |m|; a tangent vector e has parameters
+// I⁻¹ Jᵀ e (J = [q_u q_v], I = JᵀJ), so ∇n = [n_u n_v] I⁻¹ Jᵀ.
+Matrix3 PhongSurface::shape_operator(const Point& q) const {
+  const Patch at = locate(q);
+  const auto& t = set_.simplices()[at.triangle];
+  const Point n = normal_at(at);
+  const std::array<double, 3> b = barycentric(at.u, at.v);
+  Point m = Point::Zero(), mu = Point::Zero(), mv = Point::Zero();
+  for (int i = 0; i < 3; ++i) {
+    const Point ni = normal_[t[i]].dot(n) < 0 ? Point(-normal_[t[i]]) : normal_[t[i]];
+    m += b[i] * ni;
+    mu += kBu[i] * ni;
+    mv += kBv[i] * ni;
+  }
+  const Matrix3 P = Matrix3::Identity() - n * n.transpose();
+  Eigen::Matrix<double, 3, 2> J, dn;
+  J << at.qu, at.qv;
+  dn << P * mu / m.norm(), P * mv / m.norm();
+  const Matrix3 gradient = dn * (J.transpose() * J).inverse() * J.transpose();
+  return P * (0.5 * (gradient + gradient.transpose())) * P;
 }
 
 }  // namespace neomesh

@@ -618,3 +618,58 @@ def test_open_surfaces_in_several_pieces_are_smoothed(tmp):
     write_vtk(path, a + b + cap_points, cells_a + cells_b + cap)
     out, r = smooth(tmp, path)
     expect_smoothed_on_the_surface(path, out, r, None)
+
+
+def total_area(mesh):
+    return cell_areas_and_centres(mesh)[0].sum()
+
+
+def farthest_from_sphere(mesh, sphere):
+    c, radius = np.array(sphere[0], float), sphere[1]
+    return np.abs(np.linalg.norm(mesh.points - c, axis=1) - radius).max()
+
+
+def test_on_a_phong_tessellation_the_poor_sphere_stops_and_keeps_its_area(tmp, poor_sphere):
+    # --surface-geometry phong: the vertices slide on a curved reconstruction through the input's
+    # vertices. On the Gmsh sphere (edges turning by 14 degrees) the run stops by the practical
+    # criterion (on the flat cells it creeps to --max-iter), the vertices stay far closer to the
+    # sphere than the cells' sagitta, and the area is kept.
+    out, r = smooth(tmp, poor_sphere, "--surface-geometry", "phong")
+    a, b = read_mesh(poor_sphere), read_mesh(out)
+    assert len(a.points) == len(b.points) and cells_of(a) == cells_of(b)
+    assert r["boundary_options"]["surface_geometry"] == "phong"
+    assert r["result"]["stop_reason"] != "maximum number of iterations reached"
+    (min_before, mean_before), (min_after, mean_after) = quality(r, "quality_before"), quality(
+        r, "quality_after")
+    assert r["quality_after"]["inverted"] == 0
+    assert min_after > min_before + 0.1 and mean_after > mean_before
+    sagitta = 1 - sphere_bounds(a, np.zeros(3))[0]
+    far = farthest_from_sphere(b, ((0, 0, 0), 1.0))
+    assert far < sagitta / 20
+    # Off the input's cells by at most their sagitta (the reconstruction bulges out of them).
+    assert r["boundary_change"]["max_distance_from_input_boundary"] <= sagitta
+    area = total_area(b) / total_area(a) - 1
+    assert abs(area) < 1e-3
+    print(f"Gmsh sphere, phong: {min_before:.4f}/{mean_before:.4f} -> {min_after:.4f}/"
+          f"{mean_after:.4f}, farthest from the sphere {far:.3g} (sagitta {sagitta:.3g}), area "
+          f"{100 * area:+.3f} %, {r['result']['iterations']} iterations, {r['seconds']:.2f} s")
+
+
+@needs_corpus
+@pytest.mark.parametrize("name", [n for n, s in MESQUITE.items() if s is not None])
+def test_mesquites_spheres_on_a_phong_tessellation_stay_closer_to_the_sphere(tmp, name):
+    path = os.path.join(CORPUS, "mesquite", name + ".vtk")
+    figures = {}
+    for geometry in ("cells", "phong"):
+        out, r = smooth(tmp, path, "--surface-geometry", geometry)
+        b = read_mesh(out)
+        assert r["quality_after"]["inverted"] == 0
+        assert quality(r, "quality_after")[0] >= quality(r, "quality_before")[0]
+        figures[geometry] = (farthest_from_sphere(b, MESQUITE[name]),
+                             total_area(b) / total_area(read_mesh(path)) - 1,
+                             *quality(r, "quality_after"), r["result"]["iterations"], r["seconds"])
+    assert figures["phong"][0] < figures["cells"][0] / 3
+    for geometry, (far, area, worst, mean, iterations, seconds) in figures.items():
+        print(f"{os.path.basename(name)}, {geometry}: farthest from the sphere {far:.3g}, area "
+              f"{100 * area:+.3f} %, min/mean scaled Jacobian {worst:.4f}/{mean:.4f}, "
+              f"{iterations} iterations, {seconds:.2f} s")
