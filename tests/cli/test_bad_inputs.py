@@ -123,7 +123,7 @@ CASES = [
     ("generate without a size", ["generate", "box-quad", "-o", "out.msh"],
      ["--level", "--cells"]),
     ("render --window of a 3D mesh", ["render", CUBE, "-o", "out.png", "--window", "0,1,0,1"],
-     ["window", "3D", "cut"]),
+     ["window", "2D mesh", "in space", "cut"]),
     ("render --cut of a 2D mesh", ["render", GOOD, "-o", "out.png", "--cut", "x"], ["cut", "2D"]),
     ("render --cut on no axis", ["render", CUBE, "-o", "out.png", "--cut", "w=1"],
      ["--cut", "x, y or z"]),
