@@ -479,6 +479,14 @@ def test_what_surfaces_do_not_support_is_refused_in_one_line(tmp, poor_sphere):
     picture = os.path.join(tmp, "out.png")
     proc = neomesh("render", poor_sphere, "-o", picture, "--window", "0,1,0,1", expect=1)
     expect_one_error_line(proc, ["window", "drawn whole"], unwritten=[picture])
+    # A cell without area (a vertex on the edge between two others) has no tangent plane.
+    points, cells = uv_sphere(6, 10)
+    points[1] = list(0.5 * (np.array(points[0]) + np.array(points[2])))
+    flat = os.path.join(tmp, "flat.vtk")
+    write_vtk(flat, points, cells)
+    proc = neomesh("smooth", flat, "-o", out, expect=1)
+    expect_one_error_line(proc, ["flat.vtk", "1 degenerate cells", "no tangent plane"],
+                          unwritten=[out])
 
 
 def png_size(path):
