@@ -30,6 +30,7 @@ OwnNormals own_normals(std::span<const PetscInt> offsets, std::span<const PetscI
   const std::size_t polygons = offsets.size() - 1;
   OwnNormals own{std::vector<Vector<3>>(polygons, Vector<3>::Zero()),
                  std::vector<double>(vertices.size())};
+#pragma omp parallel for schedule(static)
   for (std::size_t p = 0; p < polygons; ++p) {
     const PetscInt first = offsets[p], n = offsets[p + 1] - first;
     Vector<3> newell = Vector<3>::Zero();
@@ -74,6 +75,7 @@ std::vector<std::uint8_t> folded_polygons(std::span<const PetscInt> offsets,
     const std::vector<double> vertex_normal =
         vertex_normals(offsets, vertices, coords.size() / 3, own, folded, dofs);
     int changed = 0;
+#pragma omp parallel for schedule(static) reduction(| : changed)
     for (std::size_t p = 0; p < folded.size(); ++p) {
       Vector<3> around = Vector<3>::Zero();
       for (PetscInt s = offsets[p]; s < offsets[p + 1]; ++s)
