@@ -21,7 +21,7 @@ bool valid(const Functional& functional, const MeshView& view, const DofMap& dof
   std::vector<double> local(static_cast<std::size_t>(dofs.num_local_dofs()));
   dofs.global_to_local(x, local);
   // A corner's scaled Jacobian has its det J's sign (0 at a zero-length edge).
-  for (double sj : cell_scaled_jacobians(view, local))
+  for (double sj : cell_scaled_jacobians(view, local, &dofs))
     if (!(sj > 0.0)) ok = 0;
   MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, dofs.comm());
   return ok == 1;

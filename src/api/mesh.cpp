@@ -261,7 +261,7 @@ const CellQuality& Mesh::cell_quality() const {
   if (!quality_cache_ || quality_cache_->coordinates_version != version) {
     const MeshView& view = plex_->view();
     quality_cache_ = std::make_unique<QualityCache>(
-        QualityCache{version, neomesh::cell_quality(view, view.coords)});
+        QualityCache{version, neomesh::cell_quality(view, view.coords, &plex_->dofs())});
   }
   return quality_cache_->quality;
 }
@@ -314,7 +314,7 @@ std::vector<Field> Mesh::quality_by_cell() const {
 
 double Mesh::volume() const {
   const MeshView& view = plex_->view();
-  const std::vector<double> volumes = neomesh::cell_volumes(view, view.coords);
+  const std::vector<double> volumes = neomesh::cell_volumes(view, view.coords, &plex_->dofs());
   double sum = std::accumulate(volumes.begin(), volumes.end(), 0.0);
   MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, comm());
   return sum;

@@ -246,7 +246,7 @@ const Optimizer::Impl::InputCells* Optimizer::Impl::current_input_cells() const 
 
 std::vector<double> Optimizer::Impl::cell_volumes() const {
   if (const InputCells* kept = current_input_cells()) return kept->volumes;
-  return neomesh::cell_volumes(view(), view().coords);
+  return neomesh::cell_volumes(view(), view().coords, &dofs());
 }
 
 std::vector<double> Optimizer::Impl::cell_edge_ratios() const {
@@ -271,11 +271,11 @@ QualitySummary Optimizer::Impl::input_quality(bool untangle) const {
 }
 
 void Optimizer::Impl::refuse_surface(const QualitySummary& input) const {
-  if (view().surface && (input.inverted > 0 || input.degenerate > 0))
-    fail(
-        "{}: a surface mesh with {} inverted and {} degenerate cells: surface meshes are not "
-        "untangled",
-        mesh.name(), input.inverted, input.degenerate);
+  // A folded cell is inverted, and untangled as a volume mesh's is; a cell without area has no
+  // tangent plane to be seen in.
+  if (view().surface && input.degenerate > 0)
+    fail("{}: a surface mesh with {} degenerate cells (without area): they have no tangent plane",
+         mesh.name(), input.degenerate);
 }
 
 void Optimizer::Impl::refuse_surface(const SizeField& field) const {
@@ -456,11 +456,15 @@ RepairFreedom Optimizer::Impl::repair_freedom() const {
   // quadrilateral, hexahedron or pyramid aims at a right-angled cell: its design is held where
   // the input and the optimum are near right-angled; a graded block's skewed bricks and the
   // cells the optimum distorted (FEAT3's rotor, in the gap between the screws) are free.
-  if (!input_share.empty()) {
-    const std::vector<double> input_sj = cell_scaled_jacobians(view(), view().coords);
+  // Collective (a surface's reference normals are summed over ranks): a rank without cells
+  // takes part too.
+  int design = !input_share.empty();
+  MPI_Allreduce(MPI_IN_PLACE, &design, 1, MPI_INT, MPI_MAX, mesh.comm());
+  if (design) {
+    const std::vector<double> input_sj = cell_scaled_jacobians(view(), view().coords, &dofs());
     std::vector<double> local(dofs().num_local_dofs());
     dofs().global_to_local(x, local);
-    const std::vector<double> sj = cell_scaled_jacobians(view(), local);
+    const std::vector<double> sj = cell_scaled_jacobians(view(), local, &dofs());
     for (const CellBlock& block : view().blocks) {
       const bool right_angled = right_angled_target(block.type);
       for (PetscInt c = block.first_cell; c < block.first_cell + block.size(); ++c) {

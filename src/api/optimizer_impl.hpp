@@ -36,8 +36,8 @@ struct Optimizer::Impl {
   // The mesh's quality where a call starts; throws Error if cells are inverted or degenerate
   // and `untangle` is false.
   QualitySummary input_quality(bool untangle) const;
-  // On a surface mesh, throws Error for what it does not support: untangling (inverted cells in
-  // `input`); in adapt, a metric `field` (a fit to a level set: find_interface).
+  // On a surface mesh, throws Error for what it does not support: degenerate cells in `input`;
+  // in adapt, a metric `field` (a fit to a level set: find_interface).
   void refuse_surface(const QualitySummary& input) const;
   void refuse_surface(const SizeField& field) const;
   // What smooth() and adapt() do first: checks `options` and the input (input_quality), takes

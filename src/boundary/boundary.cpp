@@ -158,7 +158,7 @@ struct Boundary::Impl {
         if (view.on_boundary[u]) std::fill_n(fixed.begin() + u * view.dim, view.dim, 1);
       return;
     }
-    features = find_features(surface, options.feature_angle, smooth_parts());
+    features = find_features(surface, options.feature_angle, smooth_parts(), view.surface);
     build_patches();
     place_on_charts();
     build_ridges();

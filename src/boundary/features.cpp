@@ -10,6 +10,7 @@
 
 #include "boundary/shape.hpp"
 #include "core/union_find.hpp"
+#include "geometry/surface_orientation.hpp"
 
 namespace neomesh {
 
@@ -80,7 +81,7 @@ void features_2d(const BoundarySurface& s, double angle, const SmoothParts& part
   }
 }
 
-void features_3d(const BoundarySurface& s, double angle, const SmoothParts& parts,
+void features_3d(const BoundarySurface& s, double angle, const SmoothParts& parts, bool folds,
                  BoundaryFeatures& out) {
   const PetscInt nv = s.num_vertices();
   // Every facet's edges as (smaller vertex, larger vertex, facet, 1 if the facet runs from the
@@ -102,6 +103,12 @@ void features_3d(const BoundarySurface& s, double angle, const SmoothParts& part
   });
   std::vector<Point> normal(s.num_facets());
   for (PetscInt f = 0; f < s.num_facets(); ++f) normal[f] = facet_area_normal(s, f).normalized();
+  if (folds) {
+    const std::vector<std::uint8_t> folded =
+        folded_polygons(s.facet_offsets, s.facet_vertices, s.coords, nullptr);
+    for (PetscInt f = 0; f < s.num_facets(); ++f)
+      if (folded[f]) normal[f] = -normal[f];
+  }
 
   struct Edge {
     PetscInt a, b, first, last;  // uses[first, last)
@@ -198,7 +205,7 @@ PetscInt BoundaryFeatures::count(VertexFeature k) const {
 }
 
 BoundaryFeatures find_features(const BoundarySurface& surface, double feature_angle_degrees,
-                               std::span<const std::uint8_t> smooth_part) {
+                               std::span<const std::uint8_t> smooth_part, bool folds) {
   const SmoothParts parts{surface, smooth_part};
   BoundaryFeatures out;
   const PetscInt nv = surface.num_vertices();
@@ -208,7 +215,7 @@ BoundaryFeatures find_features(const BoundarySurface& surface, double feature_an
   if (surface.dim == 2)
     features_2d(surface, feature_angle_degrees, parts, out);
   else
-    features_3d(surface, feature_angle_degrees, parts, out);
+    features_3d(surface, feature_angle_degrees, parts, folds, out);
   out.patch_part.assign(out.num_patches, -1);
   for (PetscInt f = 0; f < surface.num_facets(); ++f)
     out.patch_part[out.facet_patch[f]] = surface.facet_part[f];

@@ -57,8 +57,10 @@ struct BoundaryFeatures {
 // `smooth_part` (per MeshView::parts entry, may be empty): 1 for a part on one smooth shape or
 // chart (circle, sphere, plane, ...). Such a part is one patch: its facets are never split by
 // the feature angle (the coarse facets of a sphere meet at large angles, but there is no ridge
-// between a surface and itself).
+// between a surface and itself). With `folds` (a surface mesh's cells), a facet folded over the
+// surface around it (geometry/surface_orientation.hpp) is seen with its normal reversed, so that
+// the edges of a fold are no ridges.
 BoundaryFeatures find_features(const BoundarySurface& surface, double feature_angle_degrees,
-                               std::span<const std::uint8_t> smooth_part = {});
+                               std::span<const std::uint8_t> smooth_part = {}, bool folds = false);
 
 }  // namespace neomesh

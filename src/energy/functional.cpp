@@ -212,7 +212,7 @@ struct Functional::Impl {
         sliding(c.sliding),
         projector_of(c.projector_of),
         targets(problem.targets.get()),
-        frames(targets ? surface_frames(view, view.coords) : std::vector<double>{}) {}
+        frames(targets ? surface_frames(view, dofs, view.coords) : std::vector<double>{}) {}
 
   template <CellType Type, bool Framed = false>
   const EnergyKernel<Type, Framed>& kernel() const {
@@ -678,7 +678,7 @@ Inversion Functional::inversion(Vec x, int listed, double below) const {
 bool Functional::refresh_frames(Vec x) const {
   if (!impl_->view.surface) return false;
   impl_->load_coordinates(x);
-  impl_->frames = surface_frames(impl_->view, impl_->local_x);
+  impl_->frames = surface_frames(impl_->view, impl_->dofs, impl_->local_x);
   return true;
 }
 

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "geometry/surface_frame.hpp"
+#include "geometry/surface_orientation.hpp"
 
 namespace neomesh {
 
@@ -64,26 +65,26 @@ void set_volumes(const MeshView& view, std::span<const double> volumes, Targets&
 
 }  // namespace
 
-std::vector<double> surface_frames(const MeshView& view, std::span<const double> coords) {
+std::vector<double> surface_frames(const MeshView& view, const DofMap& dofs,
+                                   std::span<const double> coords) {
   if (!view.surface) return {};
+  const std::vector<double> normals = surface_reference_normals(view, coords, &dofs);
   std::vector<double> frames(static_cast<std::size_t>(6 * view.num_cells));
   for (const CellBlock& block : view.blocks)
-    visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
-      if constexpr (CellTraits<Type>::dim == 2) {
-        constexpr int n = CellTraits<Type>::vertices;
-        for (PetscInt c = 0; c < block.size(); ++c) {
-          Eigen::Matrix<double, 3, n> x;
-          for (int i = 0; i < n; ++i)
-            x.col(i) = Eigen::Map<const Vector<3>>(coords.data() + 3 * block.cell(c)[i]);
-          const std::optional<SurfaceFrame> frame = surface_cell_frame<Type>(x);
-          const PetscInt cell = block.first_cell + c;
-          if (!frame)
-            fail("surface cell {} has no area: it has no tangent plane",
-                 view.global_cell.empty() ? cell : view.global_cell[cell]);
-          Eigen::Map<SurfaceFrame>(frames.data() + 6 * cell) = *frame;
-        }
-      }
-    });
+    for (PetscInt c = 0; c < block.size(); ++c) {
+      const PetscInt cell = block.first_cell + c;
+      const auto point = [&](int i) {
+        return Eigen::Map<const Vector<3>>(coords.data() + 3 * block.cell(c)[i]);
+      };
+      const Vector<3> normal = Eigen::Map<const Vector<3>>(normals.data() + 3 * cell);
+      // t1 along the first edge, as surface_cell_frame takes it.
+      const std::optional<SurfaceFrame> frame =
+          normal.isZero(0.0) ? std::nullopt : tangent_frame(normal, point(1) - point(0));
+      if (!frame)
+        fail("surface cell {} has no area: it has no tangent plane",
+             view.global_cell.empty() ? cell : view.global_cell[cell]);
+      Eigen::Map<SurfaceFrame>(frames.data() + 6 * cell) = *frame;
+    }
   return frames;
 }
 

@@ -75,10 +75,12 @@ struct Targets {
 };
 
 // Per local cell of a surface mesh its tangent frame Q at `coords` (view.coords' layout;
-// surface_frame.hpp): 6 numbers, column-major; empty for other meshes. Throws Error for a cell
-// without area. The Functional takes them where a call starts and again where each step starts
-// (docs/method.md, "Surface cells").
-std::vector<double> surface_frames(const MeshView& view, std::span<const double> coords);
+// surface_frame.hpp): 6 numbers, column-major, about the cell's reference normal
+// (surface_orientation.hpp, summed over the ranks of `dofs`), so that a folded cell sees its
+// mirror image; empty for other meshes. Throws Error for a cell without area. The Functional takes
+// them where a call starts and again where each step starts (docs/method.md, "Surface cells").
+std::vector<double> surface_frames(const MeshView& view, const DofMap& dofs,
+                                   std::span<const double> coords);
 
 struct Problem {
   // Untangling (docs/untangling.md): with ε > 0 the functional's value, gradient and H(α) are

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "geometry/reference_cell.hpp"
 #include "geometry/surface_frame.hpp"
+#include "geometry/surface_orientation.hpp"
 
 namespace neomesh {
 
@@ -308,12 +309,20 @@ double inverse_mean_ratio(const X& x, Det det = {}) {
   return sum / corners;
 }
 
+// The reference normals of a surface mesh's cells (surface_orientation.hpp); none for others.
+std::vector<double> reference_normals(const MeshView& view, std::span<const double> coords,
+                                      const DofMap* dofs) {
+  return view.surface ? surface_reference_normals(view, coords, dofs) : std::vector<double>{};
+}
+
 // Calls per_cell.template operator()<Type>(i, x, det) with the coordinates x of every cell i (the
-// view's cell order) and how its determinants are taken (a surface cell's: seen along its own
-// reference normal, surface_frame.hpp), in parallel: cells are independent, and a run takes
-// their quality several times (before, for the guard, after).
+// view's cell order) and how its determinants are taken (a surface cell's: seen along its
+// reference normal in `normals`, 3 per cell, or a zero normal where `normals` is empty, for
+// measures that need none), in parallel: cells are independent, and a run takes their quality
+// several times (before, for the guard, after).
 template <typename PerCell>
-void for_each_cell(const MeshView& view, std::span<const double> coords, PerCell&& per_cell) {
+void for_each_cell(const MeshView& view, std::span<const double> coords,
+                   std::span<const double> normals, PerCell&& per_cell) {
   if (coords.size() != static_cast<std::size_t>(view.num_vertices) * view.dim)
     fail("cell quality: {} coordinates given for {} vertices in {}D", coords.size(),
          view.num_vertices, view.dim);
@@ -328,9 +337,11 @@ void for_each_cell(const MeshView& view, std::span<const double> coords, PerCell
             const PetscInt* cell = block.cell(c);
             for (int i = 0; i < Traits::vertices; ++i)
               x.col(i) = Eigen::Map<const Vector<3>>(coords.data() + 3 * cell[i]);
-            const NormalArea area{surface_cell_normal<Type>(x).value_or(Vector<3>::Zero())};
-            per_cell.template operator()<Type>(static_cast<std::size_t>(block.first_cell + c), x,
-                                               area);
+            const std::size_t i = static_cast<std::size_t>(block.first_cell + c);
+            const NormalArea area{normals.empty()
+                                      ? Vector<3>::Zero()
+                                      : Vector<3>(Eigen::Map<const Vector<3>>(&normals[3 * i]))};
+            per_cell.template operator()<Type>(i, x, area);
           }
           return;
         }
@@ -434,40 +445,45 @@ double surface_cell_edge_ratio(CellType type, const double* coords) {
       []<CellType Type>(const auto& x, const NormalArea&) { return edge_ratio<Type>(x); });
 }
 
-CellQuality cell_quality(const MeshView& view, std::span<const double> coords) {
+CellQuality cell_quality(const MeshView& view, std::span<const double> coords, const DofMap* dofs) {
   CellQuality q;
   for (auto* field : {&q.volume, &q.min_corner_det, &q.min_gauss_det, &q.scaled_jacobian,
                       &q.min_angle, &q.max_angle, &q.edge_ratio, &q.inverse_mean_ratio})
     field->resize(view.num_cells);
   q.type.resize(view.num_cells);
-  for_each_cell(view, coords, [&q]<CellType Type>(std::size_t i, const auto& x, auto det) {
-    const Measures m = measure<Type>(x, det);
-    q.type[i] = Type;
-    q.volume[i] = m.volume;
-    q.min_corner_det[i] = m.min_corner_det;
-    q.min_gauss_det[i] = m.min_gauss_det;
-    q.scaled_jacobian[i] = m.scaled_jacobian;
-    q.min_angle[i] = m.min_angle;
-    q.max_angle[i] = m.max_angle;
-    q.edge_ratio[i] = m.edge_ratio;
-    q.inverse_mean_ratio[i] = inverse_mean_ratio<Type>(x, det);
-  });
+  for_each_cell(view, coords, reference_normals(view, coords, dofs),
+                [&q]<CellType Type>(std::size_t i, const auto& x, auto det) {
+                  const Measures m = measure<Type>(x, det);
+                  q.type[i] = Type;
+                  q.volume[i] = m.volume;
+                  q.min_corner_det[i] = m.min_corner_det;
+                  q.min_gauss_det[i] = m.min_gauss_det;
+                  q.scaled_jacobian[i] = m.scaled_jacobian;
+                  q.min_angle[i] = m.min_angle;
+                  q.max_angle[i] = m.max_angle;
+                  q.edge_ratio[i] = m.edge_ratio;
+                  q.inverse_mean_ratio[i] = inverse_mean_ratio<Type>(x, det);
+                });
   return q;
 }
 
-std::vector<double> cell_volumes(const MeshView& view, std::span<const double> coords) {
+std::vector<double> cell_volumes(const MeshView& view, std::span<const double> coords,
+                                 const DofMap* dofs) {
   std::vector<double> volume(view.num_cells);
-  for_each_cell(view, coords, [&volume]<CellType Type>(std::size_t i, const auto& x, auto det) {
-    volume[i] = signed_volume<Type>(x, det);
-  });
+  for_each_cell(view, coords, reference_normals(view, coords, dofs),
+                [&volume]<CellType Type>(std::size_t i, const auto& x, auto det) {
+                  volume[i] = signed_volume<Type>(x, det);
+                });
   return volume;
 }
 
-std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const double> coords) {
+std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const double> coords,
+                                          const DofMap* dofs) {
   std::vector<double> sj(view.num_cells);
-  for_each_cell(view, coords, [&sj]<CellType Type>(std::size_t i, const auto& x, auto det) {
-    sj[i] = scaled_jacobian<Type>(x, det);
-  });
+  for_each_cell(view, coords, reference_normals(view, coords, dofs),
+                [&sj]<CellType Type>(std::size_t i, const auto& x, auto det) {
+                  sj[i] = scaled_jacobian<Type>(x, det);
+                });
   return sj;
 }
 
@@ -483,7 +499,7 @@ double cell_edge_ratio(CellType type, const double* coords) {
 
 std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const double> coords) {
   std::vector<double> ratio(view.num_cells);
-  for_each_cell(view, coords, [&ratio]<CellType Type>(std::size_t i, const auto& x, auto) {
+  for_each_cell(view, coords, {}, [&ratio]<CellType Type>(std::size_t i, const auto& x, auto) {
     ratio[i] = edge_ratio<Type>(x);
   });
   return ratio;

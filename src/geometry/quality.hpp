@@ -36,6 +36,7 @@
 #include <neomesh/quality.hpp>
 
 #include "mesh/cell_type.hpp"
+#include "mesh/dof_map.hpp"
 #include "mesh/mesh_view.hpp"
 
 namespace neomesh {
@@ -55,12 +56,17 @@ struct CellQuality {
 };
 
 // `coords` holds view.num_vertices × view.dim values in the view's local vertex order (e.g.
-// view.coords, or the current coordinates of a run).
-CellQuality cell_quality(const MeshView& view, std::span<const double> coords);
+// view.coords, or the current coordinates of a run). A surface mesh's cells are measured along
+// their reference normals (surface_orientation.hpp), for which `dofs` sums over ranks (null: a
+// whole mesh on one process); other meshes need no `dofs`.
+CellQuality cell_quality(const MeshView& view, std::span<const double> coords,
+                         const DofMap* dofs = nullptr);
 // One metric of cell_quality alone, at a fraction of its cost (no angles, edge ratios or
 // inverse mean ratios): for the desired volumes and the quality guard, which need no more.
-std::vector<double> cell_volumes(const MeshView& view, std::span<const double> coords);
-std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const double> coords);
+std::vector<double> cell_volumes(const MeshView& view, std::span<const double> coords,
+                                 const DofMap* dofs = nullptr);
+std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const double> coords,
+                                          const DofMap* dofs = nullptr);
 std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const double> coords);
 // The scaled Jacobian of one cell of `type` with vertex coordinates `coords` (dim values per
 // vertex, in the cell's canonical order).
@@ -69,11 +75,11 @@ double cell_scaled_jacobian(CellType type, const double* coords);
 double cell_edge_ratio(CellType type, const double* coords);
 
 // A surface cell: a triangle or quadrilateral whose vertices lie in space (a surface mesh),
-// with its reference unit normal n, the side the cell faces (surface_frame.hpp computes one
-// from the cell's vertices: surface_cell_normal). Its measures are those above, taken in
-// 3D: edge lengths and angles as they are in space, and every determinant the signed area
-// seen along n, (j0 × j1) · n for a Jacobian with columns j0, j1. So a cell folded against n
-// has a negative scaled Jacobian and counts as inverted; a cell in a plane normal to n
+// with its reference unit normal n, the side the cell faces (surface_orientation.hpp: the
+// cell's own normal, reversed for a cell folded over the surface around it). Its measures are those
+// above, taken in 3D: edge lengths and angles as they are in space, and every determinant the
+// signed area seen along n, (j0 × j1) · n for a Jacobian with columns j0, j1. So a cell folded
+// against n has a negative scaled Jacobian and counts as inverted; a cell in a plane normal to n
 // measures exactly as its 2D image in that plane; and a cell tilted by θ against that plane
 // has its determinants scaled by cos θ — one standing across the surface scores 0, as a
 // flattened 2D cell does. This is the determinant the surface kernel's energy sees.

@@ -28,7 +28,7 @@ double global_min(const std::vector<double>& values, MPI_Comm comm) {
 std::vector<double> scaled_jacobians(const MeshView& view, const DofMap& dofs, Vec x) {
   std::vector<double> local(dofs.num_local_dofs());
   dofs.global_to_local(x, local);
-  return cell_scaled_jacobians(view, local);
+  return cell_scaled_jacobians(view, local, &dofs);
 }
 
 }  // namespace

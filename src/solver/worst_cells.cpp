@@ -15,7 +15,7 @@ namespace {
 double min_non_simplex_jacobian(const MeshView& view, const DofMap& dofs, Vec x) {
   std::vector<double> local(dofs.num_local_dofs());
   dofs.global_to_local(x, local);
-  const std::vector<double> sj = cell_scaled_jacobians(view, local);
+  const std::vector<double> sj = cell_scaled_jacobians(view, local, &dofs);
   double m = std::numeric_limits<double>::infinity();
   for (const CellBlock& block : view.blocks)
     if (!is_simplex(block.type))
@@ -29,7 +29,7 @@ double min_non_simplex_jacobian(const MeshView& view, const DofMap& dofs, Vec x)
 bool flat_cap(const MeshView& view, const DofMap& dofs, Vec x) {
   std::vector<double> local(dofs.num_local_dofs());
   dofs.global_to_local(x, local);
-  const std::vector<double> sj = cell_scaled_jacobians(view, local);
+  const std::vector<double> sj = cell_scaled_jacobians(view, local, &dofs);
   const std::vector<double> ratio = cell_edge_ratios(view, local);
   int cap = 0;
   for (std::size_t c = 0; c < sj.size() && !cap; ++c)

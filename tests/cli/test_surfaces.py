@@ -354,6 +354,7 @@ def cell_group_names(mesh):
 
 def test_a_cylinder_with_caps_keeps_its_rims_on_the_input_rims(tmp, capped_cylinder):
     out, r = smooth(tmp, capped_cylinder)
+    assert r["quality_before"]["inverted"] == 0  # its rims are no folds
     expect_smoothed_on_the_surface(capped_cylinder, out, r, None)
     far, sagitta, _ = expect_within_sagitta(capped_cylinder, out, r, cylinder_distance,
                                                  CYLINDER_r)
@@ -408,6 +409,7 @@ def ridges(mesh, feature_angle=40):
 
 def test_a_rounded_box_keeps_its_ridge_vertices_on_their_ridges(tmp, rounded_box):
     out, r = smooth(tmp, rounded_box)
+    assert r["quality_before"]["inverted"] == 0  # its 90° ridges are no folds
     expect_smoothed_on_the_surface(rounded_box, out, r, None)
     a, b = read_mesh(rounded_box), read_mesh(out)
     ridge = ridges(a)
@@ -477,6 +479,14 @@ def test_what_surfaces_do_not_support_is_refused_in_one_line(tmp, poor_sphere):
     picture = os.path.join(tmp, "out.png")
     proc = neomesh("render", poor_sphere, "-o", picture, "--window", "0,1,0,1", expect=1)
     expect_one_error_line(proc, ["window", "drawn whole"], unwritten=[picture])
+    # A cell without area (a vertex on the edge between two others) has no tangent plane.
+    points, cells = uv_sphere(6, 10)
+    points[1] = list(0.5 * (np.array(points[0]) + np.array(points[2])))
+    flat = os.path.join(tmp, "flat.vtk")
+    write_vtk(flat, points, cells)
+    proc = neomesh("smooth", flat, "-o", out, expect=1)
+    expect_one_error_line(proc, ["flat.vtk", "1 degenerate cells", "no tangent plane"],
+                          unwritten=[out])
 
 
 def png_size(path):
@@ -673,3 +683,141 @@ def test_mesquites_spheres_on_a_phong_tessellation_stay_closer_to_the_sphere(tmp
         print(f"{os.path.basename(name)}, {geometry}: farthest from the sphere {far:.3g}, area "
               f"{100 * area:+.3f} %, min/mean scaled Jacobian {worst:.4f}/{mean:.4f}, "
               f"{iterations} iterations, {seconds:.2f} s")
+
+
+def pushed_sphere(path, pushes):
+    """uv_sphere(12, 24) in triangles (each quadrilateral split along a diagonal) with ring
+    vertices moved along the sphere: per push (ring, segment, rings down, segments over). Writes
+    `path`; returns the points and cells."""
+    points, cells = uv_sphere(12, 24)
+    points = np.array(points)
+    tris = [t for c in cells for t in ([c] if len(c) == 3 else [c[:3], [c[0], c[2], c[3]]])]
+    for ring, segment, down, over in pushes:
+        theta, phi = np.pi * (ring + down) / 13, 2 * np.pi * (segment + over) / 24
+        points[1 + (ring - 1) * 24 + segment] = [np.sin(theta) * np.cos(phi),
+                                                 np.sin(theta) * np.sin(phi), np.cos(theta)]
+    write_vtk(path, points.tolist(), tris)
+    return points, np.array(tris)
+
+
+def folded_on_sphere(points, cells):
+    """The cells facing the sphere's centre: an independent count of the folded ones."""
+    x = points[cells]
+    return int((np.einsum("cd,cd->c", np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]),
+                          x.mean(1)) < 0).sum())
+
+
+def distance_to_triangles(points, corners):
+    """The distance of each point from the nearest of the triangles `corners` (n × 3 × 3): the
+    nearest of their planes where the point's foot lies inside, else of their edges."""
+    a, b, c = corners[:, 0], corners[:, 1], corners[:, 2]
+    n = np.cross(b - a, c - a)
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    height = np.einsum("pid,id->pi", points[:, None] - a[None], n)
+    foot = points[:, None] - height[..., None] * n[None]
+    inside = np.ones(height.shape, bool)
+    for p, q in ((a, b), (b, c), (c, a)):
+        inside &= np.einsum("pid,id->pi", np.cross(q - p, foot - p[None]), n) >= -1e-15
+    best = np.where(inside, np.abs(height), np.inf).min(1)
+    edges = [distance_to_segments(points, p, q) for p, q in ((a, b), (b, c), (c, a))]
+    return np.minimum(best, np.min(edges, axis=0))
+
+
+@pytest.mark.parametrize("case, pushes, folded", [
+    ("one vertex past a link edge", [(6, 0, 0.5, 1.03)], 1),
+    ("three vertices apart", [(6, 0, 0.5, 1.03), (6, 8, 0.5, 1.03), (8, 16, 0.5, 1.03)], 3),
+])
+def test_a_folded_surface_is_untangled_on_its_input_cells(tmp, case, pushes, folded):
+    path = os.path.join(tmp, "folded.vtk")
+    points, cells = pushed_sphere(path, pushes)
+    assert folded_on_sphere(points, cells) == folded
+    # The folded cells are seen as inverted, by `quality` and by smooth's report.
+    summary_json = os.path.join(tmp, "quality.json")
+    neomesh("quality", path, "--json", summary_json)
+    with open(summary_json) as f:
+        assert json.load(f)["inverted"] == folded
+    out, r = smooth(tmp, path)
+    assert r["quality_before"]["inverted"] == folded
+    expect_smoothed_on_the_surface(path, out, r, None)
+    b = read_mesh(out)
+    assert folded_on_sphere(b.points, cells) == 0
+    # Every vertex on the input's cells, measured here.
+    assert distance_to_triangles(b.points, points[cells]).max() < 1e-12
+    assert r["quality_after"]["metrics"]["scaled_jacobian"]["min"] > 0.2
+    print(f"{case}: {folded} folded cells, min scaled Jacobian "
+          f"{quality(r, 'quality_before')[0]:.3f} -> {quality(r, 'quality_after')[0]:.3f}")
+
+
+def wedge(tmp, fine, coarse, along=4):
+    """A closed wedge: two 1 x 1 faces meeting at a 10° knife edge along x, closed by a back
+    face and two end caps; the upper face has `fine` rows of cells across, the lower `coarse`
+    rows (the cells beside the edge differ in size by coarse / fine), each `along` cells
+    along x; every cell facing outwards. Writes wedge.vtk; returns its path."""
+    half = np.radians(5)
+    x = np.eye(3)[0]
+    up, down = np.array([0, np.cos(half), np.sin(half)]), np.array([0, np.cos(half), -np.sin(half)])
+    points, cells, index = [], [], {}
+
+    def at(p):
+        key = tuple(np.round(p, 12))
+        if key not in index:
+            index[key] = len(points)
+            points.append(list(p))
+        return index[key]
+
+    def face(origin, u, v, nu, nv):  # nu x nv squares of two triangles each, facing u x v
+        for j in range(nv):
+            for i in range(nu):
+                c = [at(origin + (i + di) / nu * u + (j + dj) / nv * v)
+                     for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1))]
+                cells.extend([[c[0], c[1], c[2]], [c[0], c[2], c[3]]])
+
+    def cap(offset, outward):  # a fan from the centroid of the end's outline
+        outline = ([offset + k / fine * up for k in range(fine + 1)] +
+                   [offset + k / coarse * down for k in range(coarse, 0, -1)])
+        centre = np.mean(outline, axis=0)
+        turn = np.cross(outline[0] - centre, outline[1] - centre) @ outward
+        ring = [at(p) for p in (outline if turn > 0 else outline[::-1])]
+        middle = at(centre)
+        cells.extend([[middle, ring[k], ring[(k + 1) % len(ring)]] for k in range(len(ring))])
+
+    o = np.zeros(3)
+    face(o, x, up, along, fine)
+    face(o, down, x, coarse, along)
+    face(up, x, down - up, along, 1)
+    cap(o, -x)
+    cap(x, x)
+    path = os.path.join(tmp, "wedge.vtk")
+    write_vtk(path, points, cells)
+    return path
+
+
+@pytest.mark.parametrize("fine, coarse", [(1, 1), (12, 1), (1, 12)])
+def test_a_knife_edge_is_no_fold(tmp, fine, coarse):
+    # A 10° edge between faces of cells of very different sizes: the cells beside it face as
+    # they are, none inverted, and smoothing keeps the edge.
+    path = wedge(tmp, fine, coarse)
+    out, r = smooth(tmp, path)
+    assert r["quality_before"]["inverted"] == 0 and r["quality_before"]["degenerate"] == 0
+    assert not edges_with_one_face(read_mesh(path))
+    expect_smoothed_on_the_surface(path, out, r, None)
+
+
+def edges_with_one_face(mesh):
+    """The edges of `mesh`'s triangles that bound one of them: none on a closed surface."""
+    return [e for e, f in edges_with_faces(triangles(mesh)).items() if len(f) == 1]
+
+
+@needs_mpi
+def test_a_fold_on_two_processes_is_seen_and_untangled_as_in_serial(tmp):
+    # A vertex's normal sums its cells over the processes: the fold is found wherever the
+    # partition cuts the sphere.
+    path = os.path.join(tmp, "folded.vtk")
+    points, cells = pushed_sphere(path, [(6, 0, 0.5, 1.03), (6, 12, 0.5, 1.03)])
+    out, report = os.path.join(tmp, "out.vtu"), os.path.join(tmp, "r.json")
+    neomesh("smooth", path, "-o", out, "--quiet", "--report", report, ranks=2)
+    with open(report) as f:
+        r = json.load(f)
+    assert r["quality_before"]["inverted"] == 2
+    expect_smoothed_on_the_surface(path, out, r, None)
+    assert folded_on_sphere(read_mesh(out).points, cells) == 0
