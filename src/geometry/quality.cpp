@@ -149,11 +149,16 @@ double corner_sine(const X& x, Det det) {
 }
 
 // The minimum over the corners of det / (product of the corner's edge lengths), over its value
-// on the optimal cell (see quality.hpp); 0 at a corner with a zero-length edge.
+// on the optimal cell (see quality.hpp); 0 at a corner with a zero-length edge. With a `bar`, it
+// stops at the first corner that takes the value to `bar` or below and returns that value (at
+// most `bar`, not the cell's): the worst-cell repair's trial points mostly fail at one corner.
+// Above the bar the value is the same: the minimum ignores NaN corners in any order, and the
+// division by a positive constant keeps the order of the values.
 template <CellType Type, typename X, typename Det = Determinant>
-double scaled_jacobian(const X& x, Det det = {}) {
+double scaled_jacobian(const X& x, Det det = {}, double bar = -kInfinity) {
   using Traits = CellTraits<Type>;
   constexpr int d = Traits::dim;
+  constexpr double ideal = facts(Type).ideal_corner_sine;
   double lowest = kInfinity;
   if constexpr (Traits::shape == CellShape::Simplex) {
     Jacobian<X, d> edges;
@@ -164,17 +169,19 @@ double scaled_jacobian(const X& x, Det det = {}) {
       for (int j = 0; j <= d; ++j)
         if (j != i) product *= (x.col(j) - x.col(i)).norm();
       lowest = std::min(lowest, product > 0.0 ? volume / product : 0.0);
+      if (lowest / ideal <= bar) break;
     }
   } else {
     // The corners unrolled, their frames known at compile time: the worst-cell repair evaluates
     // millions of cells (quarter annulus of 8,000 hexahedra: 2.2 million), and the loop over
     // frames read at run time cost twice the arithmetic. The same operations in the same order.
     [&]<int... K>(std::integer_sequence<int, K...>) {
-      ((lowest = std::min(lowest, corner_sine<Type, K>(x, det))), ...);
+      (void)(((lowest = std::min(lowest, corner_sine<Type, K>(x, det))), lowest / ideal <= bar) ||
+             ...);
     }
     (std::make_integer_sequence<int, facts(Type).num_corners>{});
   }
-  return lowest / facts(Type).ideal_corner_sine;
+  return lowest / ideal;
 }
 
 template <CellType Type, typename X, typename Det = Determinant>
@@ -427,6 +434,14 @@ double surface_cell_scaled_jacobian(CellType type, const double* coords, const d
                                      });
 }
 
+double surface_cell_scaled_jacobian_above(CellType type, const double* coords, const double* normal,
+                                          double bar) {
+  return of_one_surface_cell<double>(type, coords, normal,
+                                     [bar]<CellType Type>(const auto& x, const NormalArea& area) {
+                                       return scaled_jacobian<Type>(x, area, bar);
+                                     });
+}
+
 double surface_cell_edge_ratio(CellType type, const double* coords) {
   const double any_normal[3] = {0.0, 0.0, 1.0};  // edge lengths do not depend on it
   return of_one_surface_cell<double>(
@@ -474,6 +489,12 @@ std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const 
 double cell_scaled_jacobian(CellType type, const double* coords) {
   return of_one_cell(type, coords,
                      []<CellType Type>(const auto& x) { return scaled_jacobian<Type>(x); });
+}
+
+double cell_scaled_jacobian_above(CellType type, const double* coords, double bar) {
+  return of_one_cell(type, coords, [bar]<CellType Type>(const auto& x) {
+    return scaled_jacobian<Type>(x, Determinant{}, bar);
+  });
 }
 
 double cell_edge_ratio(CellType type, const double* coords) {

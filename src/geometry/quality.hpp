@@ -65,6 +65,9 @@ std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const doubl
 // The scaled Jacobian of one cell of `type` with vertex coordinates `coords` (dim values per
 // vertex, in the cell's canonical order).
 double cell_scaled_jacobian(CellType type, const double* coords);
+// The same if it is above `bar`; otherwise some value at most `bar` (not the cell's), from the
+// first corner that shows it is not above: for a search that only asks whether a cell beats a bar.
+double cell_scaled_jacobian_above(CellType type, const double* coords, double bar);
 // Its longest over its shortest edge, likewise.
 double cell_edge_ratio(CellType type, const double* coords);
 
@@ -92,6 +95,8 @@ SurfaceCellMeasures surface_cell_measures(CellType type, const double* coords,
 // Its scaled Jacobian alone, at a fraction of the cost; its edge ratio alone, which no normal
 // changes.
 double surface_cell_scaled_jacobian(CellType type, const double* coords, const double* normal);
+double surface_cell_scaled_jacobian_above(CellType type, const double* coords, const double* normal,
+                                          double bar);
 double surface_cell_edge_ratio(CellType type, const double* coords);
 
 // The metrics of `quality` as the per-cell fields of an output (.vtu), by the names the

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "core/error.hpp"
@@ -284,6 +285,47 @@ void expect_close(double a, double b, const char* what) {
 }
 
 }  // namespace
+
+// Above its bar, cell_scaled_jacobian_above gives the scaled Jacobian bit for bit; at or
+// below it, some value at most the bar: on jittered cells of every type, with bars below, at and
+// above each cell's value, and on planar cells turned into space for the surface variant.
+TEST(CellQuality, ScaledJacobianAboveABarIsTheScaledJacobian) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.45, 0.45);
+  const double inf = std::numeric_limits<double>::infinity();
+  auto check = [](double sj, double above, double bar, const std::string& what) {
+    if (sj > bar)
+      EXPECT_EQ(above, sj) << what << " bar " << bar;
+    else
+      EXPECT_LE(above, bar) << what << " bar " << bar << " scaled Jacobian " << sj;
+  };
+  int below = 0;
+  for (CellType type : {CellType::Triangle, CellType::Quadrilateral, CellType::Tetrahedron,
+                        CellType::Hexahedron, CellType::Wedge, CellType::Pyramid}) {
+    MeshData mesh = box(type, 2);
+    for (double& x : mesh.coords) x = 2.0 * x + jitter(rng);  // some cells inverted
+    const int d = mesh.dim, n = num_vertices(type);
+    for (std::int64_t c = 0; c < mesh.num_cells(); ++c) {
+      std::vector<double> x;
+      for (int i = 0; i < n; ++i)
+        for (int a = 0; a < d; ++a) x.push_back(mesh.coords[d * mesh.cells[n * c + i] + a]);
+      const double sj = cell_scaled_jacobian(type, x.data());
+      for (double bar : {-inf, -0.5, sj - 0.1, std::nextafter(sj, -inf), sj, 0.0, sj + 0.1, 0.9}) {
+        check(sj, cell_scaled_jacobian_above(type, x.data(), bar), bar, std::string(name(type)));
+        below += !(sj > bar);
+      }
+    }
+  }
+  for (const auto& [type, xy] : planar_cells()) {
+    const std::vector<double> x = into_space(xy, Eigen::Matrix3d::Identity());
+    const double up[3] = {0.0, 0.0, 1.0};
+    const double sj = surface_cell_scaled_jacobian(type, x.data(), up);
+    for (double bar : {-0.5, sj - 0.1, sj, sj + 0.1})
+      check(sj, surface_cell_scaled_jacobian_above(type, x.data(), up, bar), bar,
+            "surface " + std::string(name(type)));
+  }
+  EXPECT_GT(below, 100);  // the early exits were taken
+}
 
 // A triangle or quadrilateral in the xy plane with normal +z, and the same cell turned anywhere
 // in space with its normal, measures as the 2D cell: the same area, determinants, scaled
