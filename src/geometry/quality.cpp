@@ -153,9 +153,12 @@ double corner_sine(const X& x, Det det) {
 // stops at the first corner that takes the value to `bar` or below and returns that value (at
 // most `bar`, not the cell's): the worst-cell repair's trial points mostly fail at one corner.
 // Above the bar the value is the same: the minimum ignores NaN corners in any order, and the
-// division by a positive constant keeps the order of the values.
+// division by a positive constant keeps the order of the values — which also makes the minimum
+// of the values over two sets of `corners` (bit K: corner K; a simplex's corner K is at its
+// vertex K) the value over all.
 template <CellType Type, typename X, typename Det = Determinant>
-double scaled_jacobian(const X& x, Det det = {}, double bar = -kInfinity) {
+double scaled_jacobian(const X& x, Det det = {}, double bar = -kInfinity,
+                       std::uint32_t corners = kAllCorners) {
   using Traits = CellTraits<Type>;
   constexpr int d = Traits::dim;
   constexpr double ideal = facts(Type).ideal_corner_sine;
@@ -165,6 +168,7 @@ double scaled_jacobian(const X& x, Det det = {}, double bar = -kInfinity) {
     for (int j = 0; j < d; ++j) edges.col(j) = x.col(j + 1) - x.col(0);
     const double volume = det(edges);
     for (int i = 0; i <= d; ++i) {
+      if (!((corners >> i) & 1)) continue;
       double product = 1.0;
       for (int j = 0; j <= d; ++j)
         if (j != i) product *= (x.col(j) - x.col(i)).norm();
@@ -176,7 +180,8 @@ double scaled_jacobian(const X& x, Det det = {}, double bar = -kInfinity) {
     // millions of cells (quarter annulus of 8,000 hexahedra: 2.2 million), and the loop over
     // frames read at run time cost twice the arithmetic. The same operations in the same order.
     [&]<int... K>(std::integer_sequence<int, K...>) {
-      (void)(((lowest = std::min(lowest, corner_sine<Type, K>(x, det))), lowest / ideal <= bar) ||
+      (void)((((corners >> K) & 1) &&
+              ((lowest = std::min(lowest, corner_sine<Type, K>(x, det))), lowest / ideal <= bar)) ||
              ...);
     }
     (std::make_integer_sequence<int, facts(Type).num_corners>{});
@@ -435,11 +440,11 @@ double surface_cell_scaled_jacobian(CellType type, const double* coords, const d
 }
 
 double surface_cell_scaled_jacobian_above(CellType type, const double* coords, const double* normal,
-                                          double bar) {
-  return of_one_surface_cell<double>(type, coords, normal,
-                                     [bar]<CellType Type>(const auto& x, const NormalArea& area) {
-                                       return scaled_jacobian<Type>(x, area, bar);
-                                     });
+                                          double bar, std::uint32_t corners) {
+  return of_one_surface_cell<double>(
+      type, coords, normal, [bar, corners]<CellType Type>(const auto& x, const NormalArea& area) {
+        return scaled_jacobian<Type>(x, area, bar, corners);
+      });
 }
 
 double surface_cell_edge_ratio(CellType type, const double* coords) {
@@ -491,10 +496,24 @@ double cell_scaled_jacobian(CellType type, const double* coords) {
                      []<CellType Type>(const auto& x) { return scaled_jacobian<Type>(x); });
 }
 
-double cell_scaled_jacobian_above(CellType type, const double* coords, double bar) {
-  return of_one_cell(type, coords, [bar]<CellType Type>(const auto& x) {
-    return scaled_jacobian<Type>(x, Determinant{}, bar);
+double cell_scaled_jacobian_above(CellType type, const double* coords, double bar,
+                                  std::uint32_t corners) {
+  return of_one_cell(type, coords, [bar, corners]<CellType Type>(const auto& x) {
+    return scaled_jacobian<Type>(x, Determinant{}, bar, corners);
   });
+}
+
+std::uint32_t scaled_jacobian_corners_at(CellType type, int vertex) {
+  const CellFacts& cell = facts(type);
+  if (cell.shape == CellShape::Simplex) return kAllCorners;  // every edge ends at every corner
+  std::uint32_t corners = 0;
+  for (int k = 0; k < cell.num_corners; ++k) {
+    const CornerFrame& frame = cell.corners[k];
+    bool at = frame.vertex == vertex;
+    for (int j = 0; j < cell.dim; ++j) at = at || frame.ends[j] == vertex;
+    if (at) corners |= 1u << k;
+  }
+  return corners;
 }
 
 double cell_edge_ratio(CellType type, const double* coords) {

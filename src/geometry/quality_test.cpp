@@ -327,6 +327,39 @@ TEST(CellQuality, ScaledJacobianAboveABarIsTheScaledJacobian) {
   EXPECT_GT(below, 100);  // the early exits were taken
 }
 
+// The corners a vertex moves and the others split the scaled Jacobian: the minimum of the two
+// parts is the whole bit for bit, and moving the vertex leaves the other corners' part as it is.
+TEST(CellQuality, ScaledJacobianSplitsIntoTheCornersAVertexMovesAndTheOthers) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  const double inf = std::numeric_limits<double>::infinity();
+  int fixed_parts = 0;
+  for (CellType type : {CellType::Triangle, CellType::Quadrilateral, CellType::Tetrahedron,
+                        CellType::Hexahedron, CellType::Wedge, CellType::Pyramid}) {
+    MeshData mesh = box(type, 2);
+    for (double& x : mesh.coords) x = 2.0 * x + jitter(rng);
+    const int d = mesh.dim, n = num_vertices(type);
+    for (std::int64_t c = 0; c < mesh.num_cells(); ++c) {
+      std::vector<double> x;
+      for (int i = 0; i < n; ++i)
+        for (int a = 0; a < d; ++a) x.push_back(mesh.coords[d * mesh.cells[n * c + i] + a]);
+      const double whole = cell_scaled_jacobian(type, x.data());
+      for (int k = 0; k < n; ++k) {
+        const std::uint32_t moved = scaled_jacobian_corners_at(type, k);
+        const double others = cell_scaled_jacobian_above(type, x.data(), -inf, ~moved);
+        EXPECT_EQ(std::min(others, cell_scaled_jacobian_above(type, x.data(), -inf, moved)), whole)
+            << name(type) << " vertex " << k;
+        std::vector<double> y = x;
+        for (int a = 0; a < d; ++a) y[d * k + a] += jitter(rng);
+        EXPECT_EQ(cell_scaled_jacobian_above(type, y.data(), -inf, ~moved), others)
+            << name(type) << " vertex " << k;
+        fixed_parts += others < inf;
+      }
+    }
+  }
+  EXPECT_GT(fixed_parts, 100);  // Q1 cells, wedges and pyramids have corners a vertex leaves be
+}
+
 // A triangle or quadrilateral in the xy plane with normal +z, and the same cell turned anywhere
 // in space with its normal, measures as the 2D cell: the same area, determinants, scaled
 // Jacobian, angles, edge ratio and inverse mean ratio, to rounding.
