@@ -264,17 +264,22 @@ class Repair {
 
   // What improve(v) keeps of v's cells (per position in star(v)) while v alone moves: their
   // vertices' coordinates, gathered once rather than per trial point, with v's own written in by
-  // place() when the cell is judged; the positions of v in each; and the shortest distance each
-  // other vertex allows.
+  // place() when the cell is judged; the positions of v in each; the corners of its scaled
+  // Jacobian that v moves, and the value over the others, which it does not; and the shortest
+  // distance each other vertex allows.
   struct StarCache {
     std::vector<std::array<double, 3 * 8>> coords;
     std::vector<std::array<std::int8_t, 8>> v_at;     // v's positions in the cell, then -1
+    std::vector<std::uint32_t> corners;               // scaled_jacobian_corners_at v
+    std::vector<double> others;                       // the scaled Jacobian over the other corners
     std::vector<std::array<double, 8>> min_distance;  // kMinDistanceFraction × at the start
   };
   void gather_star(std::int64_t v) {
     const std::span<const std::int64_t> cells = star(v);
     cache_.coords.resize(cells.size());
     cache_.v_at.resize(cells.size());
+    cache_.corners.assign(cells.size(), 0);
+    cache_.others.resize(cells.size());
     cache_.min_distance.resize(cells.size());
     for (std::size_t i = 0; i < cells.size(); ++i) {
       cache_.coords[i] = cell_coords(cells[i]);
@@ -282,11 +287,24 @@ class Repair {
       int n = 0;
       int k = 0;
       for (std::int64_t u : cell_vertices(cells[i])) {
-        if (u == v) cache_.v_at[i][n++] = static_cast<std::int8_t>(k);
+        if (u == v) {
+          cache_.v_at[i][n++] = static_cast<std::int8_t>(k);
+          cache_.corners[i] |= scaled_jacobian_corners_at(m_.types[cells[i]], k);
+        }
         cache_.min_distance[i][k] = u == v ? 0.0 : kMinDistanceFraction * distance(start_, u, v);
         ++k;
       }
+      cache_.others[i] = scaled_jacobian_above(i, cells[i], -kInfinity, ~cache_.corners[i]);
     }
+  }
+  // The scaled Jacobian of cell c at position i in star(v) from its gathered coordinates, over
+  // `corners`, if above `bar` (cell_scaled_jacobian_above).
+  double scaled_jacobian_above(std::size_t i, std::int64_t c, double bar,
+                               std::uint32_t corners) const {
+    const double* x = cache_.coords[i].data();
+    return m_.surface ? surface_cell_scaled_jacobian_above(m_.types[c], x, normals_[c].data(), bar,
+                                                           corners)
+                      : cell_scaled_jacobian_above(m_.types[c], x, bar, corners);
   }
   // Writes v's coordinates into the gathered ones of its cell at position i in star(v).
   void place(std::int64_t v, std::size_t i) {
@@ -299,7 +317,8 @@ class Repair {
   }
 
   // The worst scaled Jacobian of v's cells and their sum; nothing as soon as one of them is at
-  // most `beat` (the search's inner loop), and that cell's corners only until one shows it. The
+  // most `beat` (the search's inner loop); of each cell only the corners v moves, and those
+  // only until one shows it is at most `beat`. The
   // cells are judged in the order `worst_first` gives (positions in star(v), the worst cell
   // where v is first): a trial point mostly fails on the cell that was worst, so this is the
   // test that fails most, first (the annulus hexes of bench/peers.py: the repair's instructions
@@ -312,12 +331,10 @@ class Repair {
     const std::span<const std::int64_t> cells = star(v);
     star_sj_.resize(cells.size());
     for (std::uint32_t i : worst_first) {
-      const std::int64_t c = cells[i];
+      if (!(cache_.others[i] > beat)) return std::nullopt;
       place(v, i);
-      const double* x = cache_.coords[i].data();
       star_sj_[i] =
-          m_.surface ? surface_cell_scaled_jacobian_above(m_.types[c], x, normals_[c].data(), beat)
-                     : cell_scaled_jacobian_above(m_.types[c], x, beat);
+          std::min(cache_.others[i], scaled_jacobian_above(i, cells[i], beat, cache_.corners[i]));
       if (!(star_sj_[i] > beat)) return std::nullopt;
     }
     Star q;
