@@ -163,7 +163,10 @@ double scaled_jacobian(const X& x, Det det = {}, double bar = -kInfinity,
   constexpr int d = Traits::dim;
   constexpr double ideal = facts(Type).ideal_corner_sine;
   double lowest = kInfinity;
+  // Without a bar, no division per corner (an exit there would return the value anyway).
+  const bool early_exit = bar > -kInfinity;
   if constexpr (Traits::shape == CellShape::Simplex) {
+    if ((corners & ((1u << (d + 1)) - 1)) == 0) return lowest / ideal;  // no corner asked for
     Jacobian<X, d> edges;
     for (int j = 0; j < d; ++j) edges.col(j) = x.col(j + 1) - x.col(0);
     const double volume = det(edges);
@@ -173,15 +176,15 @@ double scaled_jacobian(const X& x, Det det = {}, double bar = -kInfinity,
       for (int j = 0; j <= d; ++j)
         if (j != i) product *= (x.col(j) - x.col(i)).norm();
       lowest = std::min(lowest, product > 0.0 ? volume / product : 0.0);
-      if (lowest / ideal <= bar) break;
+      if (early_exit && lowest / ideal <= bar) break;
     }
   } else {
     // The corners unrolled, their frames known at compile time: the worst-cell repair evaluates
     // millions of cells (quarter annulus of 8,000 hexahedra: 2.2 million), and the loop over
     // frames read at run time cost twice the arithmetic. The same operations in the same order.
     [&]<int... K>(std::integer_sequence<int, K...>) {
-      (void)((((corners >> K) & 1) &&
-              ((lowest = std::min(lowest, corner_sine<Type, K>(x, det))), lowest / ideal <= bar)) ||
+      (void)((((corners >> K) & 1) && ((lowest = std::min(lowest, corner_sine<Type, K>(x, det))),
+                                       early_exit && lowest / ideal <= bar)) ||
              ...);
     }
     (std::make_integer_sequence<int, facts(Type).num_corners>{});
