@@ -143,6 +143,9 @@ class Repair {
         sj_(m.types.size()),
         start_(m.coords) {
     min_sum_ = min_mean * static_cast<double>(m.types.size());
+    for (CellType type : kAllCellTypes)
+      for (int k = 0; k < facts(type).vertices; ++k)
+        corners_at_[static_cast<int>(type)][k] = scaled_jacobian_corners_at(type, k);
     for (std::int64_t v : m.vertices) ++star_first_[v + 1];
     std::partial_sum(star_first_.begin(), star_first_.end(), star_first_.begin());
     std::vector<std::int64_t> next(star_first_.begin(), star_first_.end() - 1);
@@ -289,7 +292,7 @@ class Repair {
       for (std::int64_t u : cell_vertices(cells[i])) {
         if (u == v) {
           cache_.v_at[i][n++] = static_cast<std::int8_t>(k);
-          cache_.corners[i] |= scaled_jacobian_corners_at(m_.types[cells[i]], k);
+          cache_.corners[i] |= corners_at_[static_cast<int>(m_.types[cells[i]])][k];
         }
         cache_.min_distance[i][k] = u == v ? 0.0 : kMinDistanceFraction * distance(start_, u, v);
         ++k;
@@ -428,10 +431,12 @@ class Repair {
   StarCache cache_;                             // improve()'s: of the vertex it moves
   std::vector<std::uint32_t> worst_first_;      // improve()'s: its star's cells, worst first
   std::vector<std::int64_t> candidates_;        // sweep()'s: the vertices it tries
-  double sum_ = 0.0;                            // of sj_
-  double min_sum_ = 0.0;                        // the floor of sum_ for a move that lowers it
-  double max_edge_ratio_ = 0.0;                 // the mesh's largest at the repair's start
-  const std::vector<double> start_;             // the coordinates at the repair's start
+  // scaled_jacobian_corners_at per cell type and vertex, taken once.
+  std::array<std::array<std::uint32_t, 8>, kNumCellTypes> corners_at_{};
+  double sum_ = 0.0;                 // of sj_
+  double min_sum_ = 0.0;             // the floor of sum_ for a move that lowers it
+  double max_edge_ratio_ = 0.0;      // the mesh's largest at the repair's start
+  const std::vector<double> start_;  // the coordinates at the repair's start
   std::vector<std::vector<double>> dirs_ = directions(m_.dim);
 };
 
