@@ -180,7 +180,7 @@ double scaled_jacobian(const X& x, Det det = {}, double bar = -kInfinity,
     }
   } else {
     // The corners unrolled, their frames known at compile time: the worst-cell repair evaluates
-    // millions of cells (quarter annulus of 8,000 hexahedra: 2.2 million), and the loop over
+    // many cells (quarter annulus of 8,000 hexahedra: half a million), and the loop over
     // frames read at run time cost twice the arithmetic. The same operations in the same order.
     [&]<int... K>(std::integer_sequence<int, K...>) {
       (void)((((corners >> K) & 1) && ((lowest = std::min(lowest, corner_sine<Type, K>(x, det))),
