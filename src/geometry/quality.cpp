@@ -150,32 +150,47 @@ double corner_sine(const X& x, Det det) {
 }
 
 // The minimum over the corners of det / (product of the corner's edge lengths), over its value
-// on the optimal cell (see quality.hpp); 0 at a corner with a zero-length edge.
+// on the optimal cell (see quality.hpp); 0 at a corner with a zero-length edge. With a `bar`, it
+// stops at the first corner that takes the value to `bar` or below and returns that value (at
+// most `bar`, not the cell's): the worst-cell repair's trial points mostly fail at one corner.
+// Above the bar the value is the same: the minimum ignores NaN corners in any order, and the
+// division by a positive constant keeps the order of the values — which also makes the minimum
+// of the values over two sets of `corners` (bit K: corner K; a simplex's corner K is at its
+// vertex K) the value over all.
 template <CellType Type, typename X, typename Det = Determinant>
-double scaled_jacobian(const X& x, Det det = {}) {
+double scaled_jacobian(const X& x, Det det = {}, double bar = -kInfinity,
+                       std::uint32_t corners = kAllCorners) {
   using Traits = CellTraits<Type>;
   constexpr int d = Traits::dim;
+  constexpr double ideal = facts(Type).ideal_corner_sine;
   double lowest = kInfinity;
+  // Without a bar, no division per corner (an exit there would return the value anyway).
+  const bool early_exit = bar > -kInfinity;
   if constexpr (Traits::shape == CellShape::Simplex) {
+    if ((corners & ((1u << (d + 1)) - 1)) == 0) return lowest / ideal;  // no corner asked for
     Jacobian<X, d> edges;
     for (int j = 0; j < d; ++j) edges.col(j) = x.col(j + 1) - x.col(0);
     const double volume = det(edges);
     for (int i = 0; i <= d; ++i) {
+      if (!((corners >> i) & 1)) continue;
       double product = 1.0;
       for (int j = 0; j <= d; ++j)
         if (j != i) product *= (x.col(j) - x.col(i)).norm();
       lowest = std::min(lowest, product > 0.0 ? volume / product : 0.0);
+      if (early_exit && lowest / ideal <= bar) break;
     }
   } else {
     // The corners unrolled, their frames known at compile time: the worst-cell repair evaluates
-    // millions of cells (quarter annulus of 8,000 hexahedra: 2.2 million), and the loop over
+    // many cells (quarter annulus of 8,000 hexahedra: half a million), and the loop over
     // frames read at run time cost twice the arithmetic. The same operations in the same order.
     [&]<int... K>(std::integer_sequence<int, K...>) {
-      ((lowest = std::min(lowest, corner_sine<Type, K>(x, det))), ...);
+      (void)((((corners >> K) & 1) && ((lowest = std::min(lowest, corner_sine<Type, K>(x, det))),
+                                       early_exit && lowest / ideal <= bar)) ||
+             ...);
     }
     (std::make_integer_sequence<int, facts(Type).num_corners>{});
   }
-  return lowest / facts(Type).ideal_corner_sine;
+  return lowest / ideal;
 }
 
 template <CellType Type, typename X, typename Det = Determinant>
@@ -438,6 +453,14 @@ double surface_cell_scaled_jacobian(CellType type, const double* coords, const d
                                      });
 }
 
+double surface_cell_scaled_jacobian_above(CellType type, const double* coords, const double* normal,
+                                          double bar, std::uint32_t corners) {
+  return of_one_surface_cell<double>(
+      type, coords, normal, [bar, corners]<CellType Type>(const auto& x, const NormalArea& area) {
+        return scaled_jacobian<Type>(x, area, bar, corners);
+      });
+}
+
 double surface_cell_edge_ratio(CellType type, const double* coords) {
   const double any_normal[3] = {0.0, 0.0, 1.0};  // edge lengths do not depend on it
   return of_one_surface_cell<double>(
@@ -490,6 +513,26 @@ std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const 
 double cell_scaled_jacobian(CellType type, const double* coords) {
   return of_one_cell(type, coords,
                      []<CellType Type>(const auto& x) { return scaled_jacobian<Type>(x); });
+}
+
+double cell_scaled_jacobian_above(CellType type, const double* coords, double bar,
+                                  std::uint32_t corners) {
+  return of_one_cell(type, coords, [bar, corners]<CellType Type>(const auto& x) {
+    return scaled_jacobian<Type>(x, Determinant{}, bar, corners);
+  });
+}
+
+std::uint32_t scaled_jacobian_corners_at(CellType type, int vertex) {
+  const CellFacts& cell = facts(type);
+  if (cell.shape == CellShape::Simplex) return kAllCorners;  // every edge ends at every corner
+  std::uint32_t corners = 0;
+  for (int k = 0; k < cell.num_corners; ++k) {
+    const CornerFrame& frame = cell.corners[k];
+    bool at = frame.vertex == vertex;
+    for (int j = 0; j < cell.dim; ++j) at = at || frame.ends[j] == vertex;
+    if (at) corners |= 1u << k;
+  }
+  return corners;
 }
 
 double cell_edge_ratio(CellType type, const double* coords) {

@@ -71,6 +71,17 @@ std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const doubl
 // The scaled Jacobian of one cell of `type` with vertex coordinates `coords` (dim values per
 // vertex, in the cell's canonical order).
 double cell_scaled_jacobian(CellType type, const double* coords);
+// The same if it is above `bar`; otherwise some value at most `bar` (not the cell's), from the
+// first corner that shows it is not above: for a search that only asks whether a cell beats a bar.
+// With `corners` (bit K: corner K of the cell-type table; a simplex's corner K at its vertex K),
+// the value over those corners alone (+∞ for none); the minimum over two sets is the value over
+// their union, bit for bit.
+inline constexpr std::uint32_t kAllCorners = ~std::uint32_t{0};
+double cell_scaled_jacobian_above(CellType type, const double* coords, double bar,
+                                  std::uint32_t corners = kAllCorners);
+// The corners whose value depends on the cell's vertex `vertex` (canonical index): its own and
+// those with an edge to it (a simplex: all).
+std::uint32_t scaled_jacobian_corners_at(CellType type, int vertex);
 // Its longest over its shortest edge, likewise.
 double cell_edge_ratio(CellType type, const double* coords);
 
@@ -98,6 +109,8 @@ SurfaceCellMeasures surface_cell_measures(CellType type, const double* coords,
 // Its scaled Jacobian alone, at a fraction of the cost; its edge ratio alone, which no normal
 // changes.
 double surface_cell_scaled_jacobian(CellType type, const double* coords, const double* normal);
+double surface_cell_scaled_jacobian_above(CellType type, const double* coords, const double* normal,
+                                          double bar, std::uint32_t corners = kAllCorners);
 double surface_cell_edge_ratio(CellType type, const double* coords);
 
 // The metrics of `quality` as the per-cell fields of an output (.vtu), by the names the

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "core/error.hpp"
@@ -284,6 +285,87 @@ void expect_close(double a, double b, const char* what) {
 }
 
 }  // namespace
+
+namespace {
+
+// The cells of box(type, 2) scaled by 2 with every coordinate moved by up to ±amplitude, each
+// as its vertices' coordinates (canonical order).
+std::vector<std::vector<double>> jittered_cells(CellType type, double amplitude, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-amplitude, amplitude);
+  MeshData mesh = box(type, 2);
+  for (double& x : mesh.coords) x = 2.0 * x + jitter(rng);
+  const int d = mesh.dim, n = num_vertices(type);
+  std::vector<std::vector<double>> cells(static_cast<std::size_t>(mesh.num_cells()));
+  for (std::int64_t c = 0; c < mesh.num_cells(); ++c)
+    for (int i = 0; i < n; ++i)
+      for (int a = 0; a < d; ++a) cells[c].push_back(mesh.coords[d * mesh.cells[n * c + i] + a]);
+  return cells;
+}
+
+constexpr CellType kEveryType[] = {CellType::Triangle,    CellType::Quadrilateral,
+                                   CellType::Tetrahedron, CellType::Hexahedron,
+                                   CellType::Wedge,       CellType::Pyramid};
+
+}  // namespace
+
+// Above its bar, cell_scaled_jacobian_above gives the scaled Jacobian bit for bit; at or
+// below it, some value at most the bar: on jittered cells of every type, with bars below, at and
+// above each cell's value, and on planar cells turned into space for the surface variant.
+TEST(CellQuality, ScaledJacobianAboveABarIsTheScaledJacobian) {
+  const double inf = std::numeric_limits<double>::infinity();
+  auto check = [](double sj, double above, double bar, const std::string& what) {
+    if (sj > bar)
+      EXPECT_EQ(above, sj) << what << " bar " << bar;
+    else
+      EXPECT_LE(above, bar) << what << " bar " << bar << " scaled Jacobian " << sj;
+  };
+  int below = 0;
+  for (CellType type : kEveryType)
+    for (const std::vector<double>& x : jittered_cells(type, 0.45, 7)) {  // some inverted
+      const double sj = cell_scaled_jacobian(type, x.data());
+      for (double bar : {-inf, -0.5, sj - 0.1, std::nextafter(sj, -inf), sj, 0.0, sj + 0.1, 0.9}) {
+        check(sj, cell_scaled_jacobian_above(type, x.data(), bar), bar, std::string(name(type)));
+        below += !(sj > bar);
+      }
+    }
+  for (const auto& [type, xy] : planar_cells()) {
+    const std::vector<double> x = into_space(xy, Eigen::Matrix3d::Identity());
+    const double up[3] = {0.0, 0.0, 1.0};
+    const double sj = surface_cell_scaled_jacobian(type, x.data(), up);
+    for (double bar : {-0.5, sj - 0.1, sj, sj + 0.1})
+      check(sj, surface_cell_scaled_jacobian_above(type, x.data(), up, bar), bar,
+            "surface " + std::string(name(type)));
+  }
+  EXPECT_GT(below, 100);  // the early exits were taken
+}
+
+// The corners a vertex moves and the others split the scaled Jacobian: the minimum of the two
+// parts is the whole bit for bit, and moving the vertex leaves the other corners' part as it is.
+TEST(CellQuality, ScaledJacobianSplitsIntoTheCornersAVertexMovesAndTheOthers) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  const double inf = std::numeric_limits<double>::infinity();
+  int fixed_parts = 0;
+  for (CellType type : kEveryType) {
+    const int d = dimension(type), n = num_vertices(type);
+    for (const std::vector<double>& x : jittered_cells(type, 0.3, 11)) {
+      const double whole = cell_scaled_jacobian(type, x.data());
+      for (int k = 0; k < n; ++k) {
+        const std::uint32_t moved = scaled_jacobian_corners_at(type, k);
+        const double others = cell_scaled_jacobian_above(type, x.data(), -inf, ~moved);
+        EXPECT_EQ(std::min(others, cell_scaled_jacobian_above(type, x.data(), -inf, moved)), whole)
+            << name(type) << " vertex " << k;
+        std::vector<double> y = x;
+        for (int a = 0; a < d; ++a) y[d * k + a] += jitter(rng);
+        EXPECT_EQ(cell_scaled_jacobian_above(type, y.data(), -inf, ~moved), others)
+            << name(type) << " vertex " << k;
+        fixed_parts += others < inf;
+      }
+    }
+  }
+  EXPECT_GT(fixed_parts, 100);  // Q1 cells, wedges and pyramids have corners a vertex leaves be
+}
 
 // A triangle or quadrilateral in the xy plane with normal +z, and the same cell turned anywhere
 // in space with its normal, measures as the 2D cell: the same area, determinants, scaled
