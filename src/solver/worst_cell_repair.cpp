@@ -236,16 +236,19 @@ class Repair {
   // A surface cell is judged along its normal at the repair's start, so that a move that
   // folds it (turns it against that normal) makes it inverted, not as good as it was; where
   // it tilts, the measure is below the one along its own normal that the quality tables take.
-  double scaled_jacobian(std::int64_t c) const {
-    const auto x = cell_coords(c);
-    return m_.surface ? surface_cell_scaled_jacobian(m_.types[c], x.data(), normals_[c].data())
-                      : cell_scaled_jacobian(m_.types[c], x.data());
+  // Cell c's scaled Jacobian at coordinates x (dim per vertex, in its vertex order: cell_coords or the star's
+  // gathered ones), over `corners`, if above `bar` (cell_scaled_jacobian_above).
+  double scaled_jacobian(std::int64_t c, const double* x, double bar = -kInfinity,
+                         std::uint32_t corners = kAllCorners) const {
+    return m_.surface ? surface_cell_scaled_jacobian_above(m_.types[c], x, normals_[c].data(), bar,
+                                                           corners)
+                      : cell_scaled_jacobian_above(m_.types[c], x, bar, corners);
   }
-  double edge_ratio(std::int64_t c) const {
-    const auto x = cell_coords(c);
-    return m_.surface ? surface_cell_edge_ratio(m_.types[c], x.data())
-                      : cell_edge_ratio(m_.types[c], x.data());
+  double scaled_jacobian(std::int64_t c) const { return scaled_jacobian(c, cell_coords(c).data()); }
+  double edge_ratio(std::int64_t c, const double* x) const {
+    return m_.surface ? surface_cell_edge_ratio(m_.types[c], x) : cell_edge_ratio(m_.types[c], x);
   }
+  double edge_ratio(std::int64_t c) const { return edge_ratio(c, cell_coords(c).data()); }
   // The unit normal of a surface cell from its vertex coordinates (surface_frame.hpp); zero for
   // one without area, which then measures as flat.
   static std::array<double, 3> start_normal(CellType type, const double* coords) {
@@ -259,10 +262,14 @@ class Repair {
       return n;
     });
   }
-  double distance(std::span<const double> x, std::int64_t u, std::int64_t v) const {
+  // Between points a and b of d coordinates.
+  static double distance(const double* a, const double* b, int d) {
     double s = 0.0;
-    for (int a = 0; a < m_.dim; ++a) s += std::pow(x[m_.dim * u + a] - x[m_.dim * v + a], 2);
+    for (int k = 0; k < d; ++k) s += std::pow(a[k] - b[k], 2);
     return std::sqrt(s);
+  }
+  double distance(std::span<const double> x, std::int64_t u, std::int64_t v) const {
+    return distance(x.data() + m_.dim * u, x.data() + m_.dim * v, m_.dim);
   }
 
   // What improve(v) keeps of v's cells (per position in star(v)) while v alone moves: their
@@ -297,17 +304,9 @@ class Repair {
         cache_.min_distance[i][k] = u == v ? 0.0 : kMinDistanceFraction * distance(start_, u, v);
         ++k;
       }
-      cache_.others[i] = scaled_jacobian_above(i, cells[i], -kInfinity, ~cache_.corners[i]);
+      cache_.others[i] =
+          scaled_jacobian(cells[i], cache_.coords[i].data(), -kInfinity, ~cache_.corners[i]);
     }
-  }
-  // The scaled Jacobian of cell c at position i in star(v) from its gathered coordinates, over
-  // `corners`, if above `bar` (cell_scaled_jacobian_above).
-  double scaled_jacobian_above(std::size_t i, std::int64_t c, double bar,
-                               std::uint32_t corners) const {
-    const double* x = cache_.coords[i].data();
-    return m_.surface ? surface_cell_scaled_jacobian_above(m_.types[c], x, normals_[c].data(), bar,
-                                                           corners)
-                      : cell_scaled_jacobian_above(m_.types[c], x, bar, corners);
   }
   // Writes v's coordinates into the gathered ones of its cell at position i in star(v).
   void place(std::int64_t v, std::size_t i) {
@@ -337,8 +336,8 @@ class Repair {
     for (std::uint32_t i : worst_first) {
       if (!(cache_.others[i] > beat)) return std::nullopt;
       place(v, i);
-      star_sj_[i] =
-          std::min(cache_.others[i], scaled_jacobian_above(i, cells[i], beat, cache_.corners[i]));
+      star_sj_[i] = std::min(cache_.others[i], scaled_jacobian(cells[i], cache_.coords[i].data(),
+                                                               beat, cache_.corners[i]));
       if (!(star_sj_[i] > beat)) return std::nullopt;
     }
     Star q;
@@ -355,19 +354,15 @@ class Repair {
   // or below its bar).
   bool admissible(std::int64_t v) const {
     const int d = m_.dim;
-    const std::span<const double> p(m_.coords.data() + d * v, d);
+    const double* p = m_.coords.data() + d * v;
     const std::span<const std::int64_t> cells = star(v);
     for (std::size_t i = 0; i < cells.size(); ++i) {
       const double* x = cache_.coords[i].data();
       for (int k = 0; k < static_cast<int>(cell_vertices(cells[i]).size()); ++k) {
         if (cell_vertices(cells[i])[k] == v) continue;
-        double s = 0.0;
-        for (int a = 0; a < d; ++a) s += std::pow(x[d * k + a] - p[a], 2);
-        if (!(std::sqrt(s) >= cache_.min_distance[i][k])) return false;
+        if (!(distance(x + d * k, p, d) >= cache_.min_distance[i][k])) return false;
       }
-      const CellType type = m_.types[cells[i]];
-      const double ratio = m_.surface ? surface_cell_edge_ratio(type, x) : cell_edge_ratio(type, x);
-      if (!(ratio <= max_edge_ratio_)) return false;
+      if (!(edge_ratio(cells[i], x) <= max_edge_ratio_)) return false;
     }
     return true;
   }
