@@ -254,12 +254,18 @@ std::vector<double> Optimizer::Impl::cell_edge_ratios() const {
   return neomesh::cell_edge_ratios(view(), view().coords);
 }
 
+std::vector<double> Optimizer::Impl::cell_scaled_jacobians() const {
+  if (const InputCells* kept = current_input_cells()) return kept->scaled_jacobians;
+  return neomesh::cell_scaled_jacobians(view(), view().coords, &dofs());
+}
+
 void Optimizer::Impl::keep_input_cells() {
-  // The quality's volumes and edge ratios are cell_volumes()'s and cell_edge_ratios()'s, from
-  // the same functions of the same coordinates (geometry/quality.cpp).
+  // The quality's volumes, edge ratios and scaled Jacobians are cell_volumes()'s,
+  // cell_edge_ratios()'s and cell_scaled_jacobians()'s, from the same functions of the same
+  // coordinates (geometry/quality.cpp).
   const CellQuality& quality = std::as_const(mesh).cell_quality();
   input_cells = InputCells{std::as_const(mesh).plex().coordinates_version(), quality.volume,
-                           quality.edge_ratio};
+                           quality.edge_ratio, quality.scaled_jacobian};
 }
 
 QualitySummary Optimizer::Impl::input_quality(bool untangle) const {
@@ -461,10 +467,10 @@ RepairFreedom Optimizer::Impl::repair_freedom() const {
   int design = !input_share.empty();
   MPI_Allreduce(MPI_IN_PLACE, &design, 1, MPI_INT, MPI_MAX, mesh.comm());
   if (design) {
-    const std::vector<double> input_sj = cell_scaled_jacobians(view(), view().coords, &dofs());
+    const std::vector<double> input_sj = cell_scaled_jacobians();
     std::vector<double> local(dofs().num_local_dofs());
     dofs().global_to_local(x, local);
-    const std::vector<double> sj = cell_scaled_jacobians(view(), local, &dofs());
+    const std::vector<double> sj = neomesh::cell_scaled_jacobians(view(), local, &dofs());
     for (const CellBlock& block : view().blocks) {
       const bool right_angled = right_angled_target(block.type);
       for (PetscInt c = block.first_cell; c < block.first_cell + block.size(); ++c) {

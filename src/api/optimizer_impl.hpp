@@ -153,6 +153,7 @@ struct Optimizer::Impl {
   std::vector<double> cell_volumes() const;
   // Longest over shortest edge of each local cell at the mesh's coordinates.
   std::vector<double> cell_edge_ratios() const;
+  std::vector<double> cell_scaled_jacobians() const;
   // Keeps the volumes and edge ratios of the mesh's quality (computed by input_quality) for
   // cell_volumes() and cell_edge_ratios() while the mesh's coordinates stay: one pass over the
   // cells for the quality before and the targets instead of three.
@@ -173,7 +174,7 @@ struct Optimizer::Impl {
   std::vector<double> input_share;  // per local cell: the share of its input cell its target keeps
   struct InputCells {
     std::uint64_t coordinates_version;  // of the mesh, when they were kept
-    std::vector<double> volumes, edge_ratios;
+    std::vector<double> volumes, edge_ratios, scaled_jacobians;
   };
   std::optional<InputCells> input_cells;  // set by keep_input_cells()
   // input_cells if the mesh's coordinates are still those they were kept at, else null.

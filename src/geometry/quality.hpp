@@ -24,6 +24,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -84,6 +85,18 @@ double cell_scaled_jacobian_above(CellType type, const double* coords, double ba
 std::uint32_t scaled_jacobian_corners_at(CellType type, int vertex);
 // Its longest over its shortest edge, likewise.
 double cell_edge_ratio(CellType type, const double* coords);
+// The length of the edge between points a and b (dim values each), as the edge ratios take it,
+// bit for bit: so a search that moves one vertex can update a cell's edge ratio from the edges
+// at that vertex alone (the worst-cell repair). Eigen's norm of a 2- or 3-vector sums the
+// squares in this order (quality_test checks).
+inline double edge_length(const double* a, const double* b, int dim) {
+  double sum = 0.0;
+  for (int k = 0; k < dim; ++k) {
+    const double e = a[k] - b[k];
+    sum += e * e;
+  }
+  return std::sqrt(sum);
+}
 
 // A surface cell: a triangle or quadrilateral whose vertices lie in space (a surface mesh),
 // with its reference unit normal n, the side the cell faces (surface_orientation.hpp: the

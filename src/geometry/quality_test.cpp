@@ -367,6 +367,41 @@ TEST(CellQuality, ScaledJacobianSplitsIntoTheCornersAVertexMovesAndTheOthers) {
   EXPECT_GT(fixed_parts, 100);  // Q1 cells, wedges and pyramids have corners a vertex leaves be
 }
 
+// A cell's edge ratio is the longest over the shortest edge_length between the vertices of its
+// facets' edges, bit for bit, in 2D, in 3D and for surface cells in space: what the worst-cell
+// repair relies on when it updates a cell's edge ratio from the edges at the vertex it moves.
+TEST(CellQuality, EdgeRatioIsTheLongestOverTheShortestEdgeLength) {
+  auto from_lengths = [](CellType type, const std::vector<double>& x, int d) {
+    double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
+    for (int f = 0; f < facts(type).num_facets; ++f) {
+      const FacetVertices& facet = facts(type).facets[f];
+      for (int i = 0; i < facet.size; ++i) {
+        const int a = facet.vertices[i], b = facet.vertices[(i + 1) % facet.size];
+        const double length = edge_length(x.data() + d * a, x.data() + d * b, d);
+        EXPECT_EQ(length, edge_length(x.data() + d * b, x.data() + d * a, d));
+        shortest = std::min(shortest, length);
+        longest = std::max(longest, length);
+      }
+    }
+    return longest / shortest;
+  };
+  int cells = 0;
+  for (CellType type : kEveryType)
+    for (const std::vector<double>& x : jittered_cells(type, 0.45, 5)) {
+      EXPECT_EQ(cell_edge_ratio(type, x.data()), from_lengths(type, x, dimension(type)))
+          << name(type);
+      ++cells;
+    }
+  const Eigen::Matrix3d turned =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  for (const auto& [type, xy] : planar_cells()) {
+    const std::vector<double> x = into_space(xy, turned);
+    EXPECT_EQ(surface_cell_edge_ratio(type, x.data()), from_lengths(type, x, 3)) << name(type);
+    ++cells;
+  }
+  EXPECT_GT(cells, 50);
+}
+
 // A triangle or quadrilateral in the xy plane with normal +z, and the same cell turned anywhere
 // in space with its normal, measures as the 2D cell: the same area, determinants, scaled
 // Jacobian, angles, edge ratio and inverse mean ratio, to rounding.
