@@ -362,3 +362,65 @@ def test_each_exodus_node_sits_where_the_exodus_manual_numbers_it(tmp, case):
         centres = np.array([x[cell[list(p)]].mean(axis=0) for p in places])
         for k, node in enumerate(cell[corners:]):
             assert np.argmin(np.linalg.norm(centres - x[node], axis=1)) == k
+
+
+# CGNS' nodes after the corners (SIDS, "Unstructured Grid Element Numbering Conventions",
+# 0-based): a TETRA_10's edges, a HEXA_27's edges, faces and centre.
+CGNS_NODES = {
+    "tet10": (11, [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]),
+    "hex27": (19, [(0, 1), (1, 2), (2, 3), (3, 0), (0, 4), (1, 5), (2, 6), (3, 7), (4, 5),
+                   (5, 6), (6, 7), (7, 4), (0, 1, 2, 3), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6),
+                   (0, 4, 7, 3), (4, 5, 6, 7), tuple(range(8))]),
+}
+
+
+def cgns_cells(path, element_type):
+    """The coordinates and the cells of the section of `element_type` of a CGNS file's first
+    zone, read through the CGNS library itself (ctypes: no h5py needed)."""
+    import ctypes
+    lib = ctypes.CDLL("libcgns.so.3.4")
+    size = ctypes.c_int32 if "CG_BUILD_64BIT  0" in open("/usr/include/cgnstypes.h").read() \
+        else ctypes.c_int64
+    fn = ctypes.c_int()
+    assert lib.cg_open(path.encode(), 0, ctypes.byref(fn)) == 0
+    try:
+        zone = (size * 9)()
+        assert lib.cg_zone_read(fn, 1, 1, ctypes.create_string_buffer(33), zone) == 0
+        x = []
+        for name in (b"CoordinateX", b"CoordinateY", b"CoordinateZ"):
+            c = (ctypes.c_double * zone[0])()
+            assert lib.cg_coord_read(fn, 1, 1, name, 4, ctypes.byref(size(1)),
+                                     ctypes.byref(size(zone[0])), c) == 0
+            x.append(list(c))
+        sections = ctypes.c_int()
+        lib.cg_nsections(fn, 1, 1, ctypes.byref(sections))
+        for s in range(1, sections.value + 1):
+            kind, start, end = ctypes.c_int(), size(), size()
+            lib.cg_section_read(fn, 1, 1, s, ctypes.create_string_buffer(33), ctypes.byref(kind),
+                                ctypes.byref(start), ctypes.byref(end),
+                                ctypes.byref(ctypes.c_int()), ctypes.byref(ctypes.c_int()))
+            if kind.value != element_type:
+                continue
+            n = ctypes.c_int()
+            lib.cg_npe(kind, ctypes.byref(n))
+            data = (size * ((end.value - start.value + 1) * n.value))()
+            assert lib.cg_elements_read(fn, 1, 1, s, data, None) == 0
+            return np.array(x).T, np.array(list(data)).reshape(-1, n.value) - 1
+    finally:
+        lib.cg_close(fn)
+    raise AssertionError(f"{path} has no section of type {element_type}")
+
+
+@needs_gmsh
+@pytest.mark.skipif(not os.path.exists("/usr/include/cgnstypes.h"), reason="no CGNS headers")
+@pytest.mark.parametrize("case", sorted(CGNS_NODES))
+def test_each_cgns_node_sits_where_the_sids_number_it(tmp, case):
+    out = os.path.join(tmp, "out.cgns")
+    neomesh("convert", gmsh_mesh(tmp, case), "-o", out)
+    element_type, places = CGNS_NODES[case]
+    x, cells = cgns_cells(out, element_type)
+    corners = cells.shape[1] - len(places)
+    for cell in cells:
+        centres = np.array([x[cell[list(p)]].mean(axis=0) for p in places])
+        for k, node in enumerate(cell[corners:]):
+            assert np.argmin(np.linalg.norm(centres - x[node], axis=1)) == k
