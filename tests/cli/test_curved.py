@@ -424,3 +424,18 @@ def test_each_cgns_node_sits_where_the_sids_number_it(tmp, case):
         centres = np.array([x[cell[list(p)]].mean(axis=0) for p in places])
         for k, node in enumerate(cell[corners:]):
             assert np.argmin(np.linalg.norm(centres - x[node], axis=1)) == k
+
+
+@needs_corpus
+@pytest.mark.parametrize("name", ["2D/vtk/quadratic/homogeneousPart", "2D/vtk/quadratic/quadPart",
+                                  "3D/vtk/quadratic/6x6x6-hex20", "3D/vtk/quadratic/cutCube",
+                                  "3D/vtk/quadratic/hex3Dpart"])
+def test_mesquites_curved_meshes_measure_alike_through_exodus_cgns_and_medit(tmp, name):
+    # Cells that fold (cutCube, hex3Dpart) included: the same figures to the digit.
+    vtk = os.path.join(CORPUS, "mesquite", name + ".vtk")
+    reference = curved_quality(tmp, vtk)
+    medit_too = "quadPart" not in name and "hex" not in name
+    for ext in ("exo", "cgns") + (("mesh",) if medit_too else ()):
+        out = os.path.join(tmp, "out." + ext)
+        neomesh("convert", vtk, "-o", out)
+        assert curved_quality(tmp, out) == reference, ext
