@@ -8,14 +8,24 @@ namespace neomesh {
 
 namespace {
 
-constexpr CgnsElement kElements[] = {{CGNS_ENUMV(NODE), 0, 1, std::nullopt},
-                                     {CGNS_ENUMV(BAR_2), 1, 2, std::nullopt},
-                                     {CGNS_ENUMV(TRI_3), 2, 3, CellType::Triangle},
-                                     {CGNS_ENUMV(QUAD_4), 2, 4, CellType::Quadrilateral},
-                                     {CGNS_ENUMV(TETRA_4), 3, 4, CellType::Tetrahedron},
-                                     {CGNS_ENUMV(PYRA_5), 3, 5, CellType::Pyramid},
-                                     {CGNS_ENUMV(PENTA_6), 3, 6, CellType::Wedge},
-                                     {CGNS_ENUMV(HEXA_8), 3, 8, CellType::Hexahedron}};
+constexpr auto kTriangle = CellType::Triangle, kQuadrilateral = CellType::Quadrilateral,
+               kTetrahedron = CellType::Tetrahedron, kHexahedron = CellType::Hexahedron;
+constexpr CgnsElement kElements[] = {
+    {CGNS_ENUMV(NODE), 0, 1, 1, std::nullopt, std::nullopt},
+    {CGNS_ENUMV(BAR_2), 1, 2, 2, std::nullopt, std::nullopt},
+    {CGNS_ENUMV(TRI_3), 2, 3, 3, kTriangle, std::nullopt},
+    {CGNS_ENUMV(QUAD_4), 2, 4, 4, kQuadrilateral, std::nullopt},
+    {CGNS_ENUMV(TETRA_4), 3, 4, 4, kTetrahedron, std::nullopt},
+    {CGNS_ENUMV(PYRA_5), 3, 5, 5, CellType::Pyramid, std::nullopt},
+    {CGNS_ENUMV(PENTA_6), 3, 6, 6, CellType::Wedge, std::nullopt},
+    {CGNS_ENUMV(HEXA_8), 3, 8, 8, kHexahedron, std::nullopt},
+    {CGNS_ENUMV(BAR_3), 1, 3, 2, std::nullopt, std::nullopt},
+    {CGNS_ENUMV(TRI_6), 2, 6, 3, kTriangle, CurvedType::Triangle6},
+    {CGNS_ENUMV(QUAD_8), 2, 8, 4, kQuadrilateral, CurvedType::Quadrilateral8},
+    {CGNS_ENUMV(QUAD_9), 2, 9, 4, kQuadrilateral, CurvedType::Quadrilateral9},
+    {CGNS_ENUMV(TETRA_10), 3, 10, 4, kTetrahedron, CurvedType::Tetrahedron10},
+    {CGNS_ENUMV(HEXA_20), 3, 20, 8, kHexahedron, CurvedType::Hexahedron20},
+    {CGNS_ENUMV(HEXA_27), 3, 27, 8, kHexahedron, CurvedType::Hexahedron27}};
 
 // cg_close as a function (the CGNS functions are called through macros, cgns_library.hpp).
 int close_cgns(int file) {
@@ -50,8 +60,16 @@ CGNS_ENUMT(ElementType_t) cgns_type(CellType t) {
       ->type;
 }
 
-CGNS_ENUMT(ElementType_t) cgns_facet_type(int vertices) {
-  return vertices == 2 ? CGNS_ENUMV(BAR_2) : vertices == 3 ? CGNS_ENUMV(TRI_3) : CGNS_ENUMV(QUAD_4);
+CGNS_ENUMT(ElementType_t) cgns_type(CurvedType t) {
+  return std::find_if(std::begin(kElements), std::end(kElements),
+                      [&](const CgnsElement& e) { return e.curved == t; })
+      ->type;
+}
+
+CGNS_ENUMT(ElementType_t) cgns_facet_type(int dim, int points) {
+  return std::find_if(std::begin(kElements), std::end(kElements),
+                      [&](const CgnsElement& e) { return e.dim == dim - 1 && e.nodes == points; })
+      ->type;
 }
 
 }  // namespace neomesh

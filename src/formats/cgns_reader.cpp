@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <unordered_map>
 
 #include "core/error.hpp"
@@ -148,7 +149,8 @@ class CgnsReader {
   [[noreturn]] void refuse(const std::string& section, CGNS_ENUMT(ElementType_t) type) const {
     fail(
         "{}: section '{}' has {} elements; neomesh reads linear ones (NODE, BAR_2, TRI_3, QUAD_4, "
-        "TETRA_4, PYRA_5, PENTA_6, HEXA_8), alone or in MIXED sections",
+        "TETRA_4, PYRA_5, PENTA_6, HEXA_8) and second-order ones (BAR_3, TRI_6, QUAD_8, QUAD_9, "
+        "TETRA_10, HEXA_20, HEXA_27), alone or in MIXED sections",
         name(), section, cg_ElementTypeName(type));
   }
 
@@ -192,10 +194,20 @@ class MeshBuilder {
     UnionFind joined(nn);
     if (reader_.zones().size() > 1 && !join_by_connectivity(joined)) join_coinciding(xyz, joined);
     vertex_.assign(nn, -1);
+    node_.assign(nn, -1);
+    std::optional<std::string> first;  // a section of cells, and whether they are curved
+    bool curved = false;
     for (const Zone& zone : reader_.zones())
       for (const Section& s : zone.sections)
         for (std::size_t e = 0; e < s.elements.size(); ++e) {
-          if (s.elements[e].dim != mesh_.dim) continue;
+          const CgnsElement& kind = s.elements[e];
+          if (kind.dim != mesh_.dim) continue;
+          if (first && curved != kind.curved.has_value())
+            fail(
+                "{}: mixes first-order and second-order cells (sections '{}' and '{}'); neomesh "
+                "reads meshes of one order",
+                reader_.name(), *first, s.name);
+          if (!first) first = s.name, curved = kind.curved.has_value();
           for (cgsize_t k = s.offsets[e]; k < s.offsets[e + 1]; ++k) {
             if (s.nodes[k] < 1 || s.nodes[k] > zone.nodes)
               fail(
@@ -203,11 +215,17 @@ class MeshBuilder {
                   "(1..{})",
                   reader_.name(), s.start + static_cast<cgsize_t>(e), s.name, s.nodes[k],
                   zone.nodes);
-            vertex_[joined.find(zone.first_node + s.nodes[k] - 1)] = 0;
+            (k - s.offsets[e] < kind.corners
+                 ? vertex_
+                 : node_)[joined.find(zone.first_node + s.nodes[k] - 1)] = 0;
           }
         }
     number_used_vertices(vertex_, xyz, reader_.name(), mesh_);
-    for (std::int64_t n = 0; n < nn; ++n) vertex_[n] = vertex_[joined.find(n)];
+    number_high_order_nodes(node_, vertex_, xyz, reader_.name(), mesh_);
+    for (std::int64_t n = 0; n < nn; ++n) {
+      vertex_[n] = vertex_[joined.find(n)];
+      node_[n] = node_[joined.find(n)];
+    }
   }
 
   void add_cells() {
@@ -217,10 +235,21 @@ class MeshBuilder {
         for (std::size_t e = 0; e < s.elements.size(); ++e) {
           const CgnsElement& kind = s.elements[e];
           if (kind.dim != mesh_.dim) continue;
+          const cgsize_t* nodes = s.nodes.data() + s.offsets[e];
+          if (kind.curved && std::set<cgsize_t>(nodes, nodes + kind.nodes).size() !=
+                                 static_cast<std::size_t>(kind.nodes))
+            fail("{}: element {} of section '{}' has a repeated node", reader_.name(),
+                 s.start + static_cast<cgsize_t>(e), s.name);
           PetscInt v[8];
-          for (int j = 0; j < kind.nodes; ++j)
-            v[gmsh_from_canonical(*kind.cell)[j]] = vertex(zone, s.nodes[s.offsets[e] + j]);
+          for (int j = 0; j < kind.corners; ++j)
+            v[gmsh_from_canonical(*kind.cell)[j]] = vertex(zone, nodes[j]);
           mesh_.add_cell(*kind.cell, v, cell_names_.of(s.name, mesh_.dim, mesh_));
+          if (kind.curved) {
+            PetscInt gmsh[kMaxCurvedNodes];
+            for (int j = kind.corners; j < kind.nodes; ++j)
+              gmsh[facts(*kind.curved).cgns_order[j]] = node_[zone.first_node + nodes[j] - 1];
+            mesh_.high_order.add(*kind.curved, gmsh + kind.corners);
+          }
           mesh_.element_tag.push_back(zone.first_element + s.start + static_cast<std::int64_t>(e));
           ++cells;
         }
@@ -532,7 +561,7 @@ class MeshBuilder {
 
   void add_facet(const Zone& zone, const Section& s, std::size_t e, int tag) {
     PetscInt v[4];
-    const int n = s.elements[e].nodes;
+    const int n = s.elements[e].corners;
     for (int j = 0; j < n; ++j) {
       const PetscInt p = vertex(zone, s.nodes[s.offsets[e] + j]);
       if (p < 0)
@@ -560,6 +589,7 @@ class MeshBuilder {
   CgnsReader& reader_;
   InputMesh& mesh_;
   std::vector<PetscInt> vertex_;  // per node of the file (all zones): its vertex, or -1
+  std::vector<PetscInt> node_;    // likewise its high-order node
   std::vector<PetscInt> cells_;   // per zone: how many cells it has
   Names cell_names_, names_;      // of the cell and facet groups
 };
@@ -580,6 +610,9 @@ InputMesh read_cgns(const std::filesystem::path& path) {
   builder.add_cells();
   builder.add_boundaries();
   builder.add_solutions();
+  check_high_order_nodes(mesh, reader.name());
+  // (A curved mesh's point data would need its nodes' values too: it is not carried.)
+  if (mesh.curved()) mesh.point_data.clear();
   std::sort(mesh.groups.begin(), mesh.groups.end(), [](const auto& a, const auto& b) {
     return std::pair(a.dim, a.tag) < std::pair(b.dim, b.tag);
   });

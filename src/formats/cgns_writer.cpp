@@ -48,11 +48,19 @@ std::vector<Section> cell_sections(const InputMesh& mesh, const WrittenGroups& g
   std::map<int, Section> by_tag;
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
     const CellType t = mesh.cell_types[c];
+    Section& section = by_tag[mesh.cell_tags[c] != 0 ? mesh.cell_tags[c] : groups.untagged_cells];
+    cgsize_t v[kMaxCurvedNodes];
+    if (mesh.curved()) {  // its points (curved_cell_points) in CGNS' order
+      const CurvedFacts& f = facts(mesh.high_order.types[c]);
+      PetscInt points[kMaxCurvedNodes];
+      curved_cell_points(mesh, c, points);
+      for (int i = 0; i < f.nodes; ++i) v[i] = points[f.cgns_order[i]] + 1;
+      section.add(cgns_type(mesh.high_order.types[c]), v, f.nodes);
+      continue;
+    }
     const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
-    cgsize_t v[8];
     for (int i = 0; i < num_vertices(t); ++i) v[i] = cell[gmsh_from_canonical(t)[i]] + 1;
-    by_tag[mesh.cell_tags[c] != 0 ? mesh.cell_tags[c] : groups.untagged_cells].add(cgns_type(t), v,
-                                                                                   num_vertices(t));
+    section.add(cgns_type(t), v, num_vertices(t));
   }
   std::map<int, std::string> group_names;
   for (const PhysicalGroup& g : groups.all)
@@ -71,15 +79,17 @@ std::vector<Section> facet_sections(const InputMesh& mesh, const WrittenGroups& 
                                     UniqueNames& names) {
   std::vector<Section> out;
   const TaggedEntities& facets = mesh.facets;
+  const CurvedFacets curved(mesh);
   for (const PhysicalGroup& g : groups.all) {
     if (g.dim != mesh.dim - 1) continue;
     Section s;
     for (PetscInt k = 0; k < facets.size(); ++k) {
       if (facets.tags[k] != g.tag) continue;
-      const int n = static_cast<int>(facets.offsets[k + 1] - facets.offsets[k]);
-      cgsize_t v[4];
-      for (int j = 0; j < n; ++j) v[j] = facets.vertices[facets.offsets[k] + j] + 1;
-      s.add(cgns_facet_type(n), v, n);
+      PetscInt points[9];
+      const int n = curved.points(k, points);
+      cgsize_t v[9];
+      for (int j = 0; j < n; ++j) v[j] = points[j] + 1;
+      s.add(cgns_facet_type(mesh.dim, n), v, n);
     }
     if (s.types.empty()) continue;
     s.name = names.of(g.name, g.tag, "boundary");
@@ -117,11 +127,11 @@ cgsize_t write_section(const CgnsFile& file, int base, int zone, const Section& 
 
 void write_coordinates(const CgnsFile& file, int base, int zone, const InputMesh& mesh,
                        int num_dim) {
-  const std::vector<double> xyz = coordinates_in_space(mesh);
+  const std::vector<double> xyz = points_in_space(mesh);
   const char* names[3] = {"CoordinateX", "CoordinateY", "CoordinateZ"};
-  std::vector<double> c(mesh.num_vertices());
+  std::vector<double> c(mesh.num_points());
   for (int i = 0; i < num_dim; ++i) {
-    for (PetscInt v = 0; v < mesh.num_vertices(); ++v) c[v] = xyz[3 * v + i];
+    for (PetscInt v = 0; v < mesh.num_points(); ++v) c[v] = xyz[3 * v + i];
     int index = 0;
     file.check(
         cg_coord_write(file.id(), base, zone, CGNS_ENUMV(RealDouble), names[i], c.data(), &index),
@@ -218,7 +228,7 @@ void write_cgns(const GatheredMesh& g, const std::filesystem::path& path,
   const int num_dim = mesh.dim == 2 && !mesh.plane && !mesh.surface ? 2 : 3;
   int base = 0, zone = 0;
   file.check(cg_base_write(file.id(), "Base", mesh.dim, num_dim, &base), "writing the base");
-  const cgsize_t size[3] = {static_cast<cgsize_t>(mesh.num_vertices()),
+  const cgsize_t size[3] = {static_cast<cgsize_t>(mesh.num_points()),
                             static_cast<cgsize_t>(mesh.num_cells()), 0};
   file.check(cg_zone_write(file.id(), base, "Zone", size, CGNS_ENUMV(Unstructured), &zone),
              "writing the zone");

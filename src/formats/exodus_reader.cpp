@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 
 #include <dlfcn.h>
 #include <exodusII.h>
@@ -27,7 +28,9 @@ struct Block {
   bool shell = false;
   std::int64_t first_element = 0;  // 0-based global element number of its first element
   std::int64_t size = 0;
-  std::vector<std::int64_t> nodes;  // num_vertices(*type) per element
+  std::optional<CurvedType> curved;  // of a block of second-order cells
+  int per_element = 0;               // nodes: the corners first
+  std::vector<std::int64_t> nodes;   // per_element per element
 };
 
 class ExodusReader {
@@ -185,13 +188,22 @@ class ExodusReader {
     if (!b.type)
       fail(
           "{}: element block {} ('{}') has {} elements, which neomesh does not read (it reads "
-          "TRI3, QUAD4/SHELL4, TETRA4, HEX8, WEDGE6 and PYRAMID5, and skips points and lines)",
+          "TRI3/6, QUAD4/8/9, SHELL4, TETRA4/10, HEX8/20/27, WEDGE6 and PYRAMID5, and skips "
+          "points and lines)",
           name(), id, b.name, type);
-    if (nodes != num_vertices(*b.type))
-      fail(
-          "{}: element block {} ('{}') has {} elements with {} nodes; neomesh needs linear ({}) {}",
-          name(), id, b.name, type, nodes, num_vertices(*b.type), facts(*b.type).plural);
+    if (nodes != num_vertices(*b.type)) {
+      b.curved = curved_type(*b.type, static_cast<int>(nodes));
+      if (!b.curved || b.shell)
+        fail(
+            "{}: element block {} ('{}') has {} elements with {} nodes; neomesh reads {} of {} "
+            "nodes{}",
+            name(), id, b.name, type, nodes, facts(*b.type).plural, num_vertices(*b.type),
+            b.type == CellType::Wedge || b.type == CellType::Pyramid || b.shell
+                ? ""
+                : " and their second-order cells (TRI6, QUAD8/9, TETRA10, HEX20/27)");
+    }
     b.dim = facts(*b.type).dim;
+    b.per_element = static_cast<int>(nodes);
     b.nodes.resize(b.size * nodes);
     if (b.size > 0)
       file_.check(ex_get_conn(file_.id(), EX_ELEM_BLOCK, id, b.nodes.data(), nullptr, nullptr),
@@ -219,28 +231,39 @@ class GroupTags {
   int next_ = 1;
 };
 
-// Numbers the nodes that cells use (file order) into `vertex` and sets the mesh's coordinates.
+// Numbers the nodes that cells use (file order) into `vertex` (their corners) and `node` (the
+// other nodes of second-order cells), and sets the mesh's coordinates and high-order nodes.
 std::vector<PetscInt> number_vertices(const std::vector<Block>& blocks,
                                       const std::vector<double>& xyz, const std::string& file,
-                                      InputMesh& mesh) {
+                                      std::vector<PetscInt>& node, InputMesh& mesh) {
   const std::int64_t nn = static_cast<std::int64_t>(xyz.size() / 3);
   std::vector<PetscInt> vertex(nn, -1);
+  node.assign(nn, -1);
+  const Block* first = nullptr;  // of the cells
   for (const Block& b : blocks) {
     if (b.dim != mesh.dim) continue;
+    if (first && first->curved.has_value() != b.curved.has_value())
+      fail(
+          "{}: mixes first-order and second-order cells (blocks {} and {}); neomesh reads meshes "
+          "of one order",
+          file, first->id, b.id);
+    if (!first) first = &b;
+    const int corners = num_vertices(*b.type);
     for (std::size_t k = 0; k < b.nodes.size(); ++k) {
       const std::int64_t n = b.nodes[k];
       if (n < 1 || n > nn)
         fail("{}: element {} of block {} refers to node {}, which is out of range (1..{})", file,
-             k / num_vertices(*b.type) + 1, b.id, n, nn);
-      vertex[n - 1] = 0;
+             k / b.per_element + 1, b.id, n, nn);
+      (static_cast<int>(k % b.per_element) < corners ? vertex : node)[n - 1] = 0;
     }
   }
   number_used_vertices(vertex, xyz, file, mesh);
+  number_high_order_nodes(node, vertex, xyz, file, mesh);
   return vertex;
 }
 
 void add_cells(const std::vector<Block>& blocks, const std::vector<PetscInt>& vertex,
-               InputMesh& mesh) {
+               const std::vector<PetscInt>& node, const std::string& file, InputMesh& mesh) {
   std::vector<std::int64_t> ids;
   for (const Block& b : blocks) ids.push_back(b.id);
   GroupTags tags(ids);
@@ -254,10 +277,19 @@ void add_cells(const std::vector<Block>& blocks, const std::vector<PetscInt>& ve
     }
     const int n = num_vertices(*b.type);
     for (std::int64_t e = 0; e < b.size; ++e) {
+      const std::int64_t* nodes = b.nodes.data() + e * b.per_element;
+      if (b.curved && std::set<std::int64_t>(nodes, nodes + b.per_element).size() !=
+                          static_cast<std::size_t>(b.per_element))
+        fail("{}: element {} of block {} has a repeated node", file, b.first_element + e + 1, b.id);
       PetscInt v[8];
-      for (int j = 0; j < n; ++j)
-        v[gmsh_from_canonical(*b.type)[j]] = vertex[b.nodes[e * n + j] - 1];
+      for (int j = 0; j < n; ++j) v[gmsh_from_canonical(*b.type)[j]] = vertex[nodes[j] - 1];
       mesh.add_cell(*b.type, v, it->second);
+      if (b.curved) {
+        PetscInt gmsh[kMaxCurvedNodes];
+        for (int j = n; j < b.per_element; ++j)
+          gmsh[facts(*b.curved).exodus_order[j]] = node[nodes[j] - 1];
+        mesh.high_order.add(*b.curved, gmsh + n);
+      }
       mesh.element_tag.push_back(b.first_element + e + 1);
     }
   }
@@ -291,7 +323,7 @@ void add_side_sets(ExodusReader& reader, const std::vector<Block>& blocks,
         fail("{}: side set {} names side {} of element {}, which has no such side", file, id,
              sides[k], e + 1);
       const ExodusSide& s = table.sides[side];
-      const std::int64_t* nodes = b->nodes.data() + (e - b->first_element) * num_vertices(*b->type);
+      const std::int64_t* nodes = b->nodes.data() + (e - b->first_element) * b->per_element;
       PetscInt v[4];
       for (int j = 0; j < s.size; ++j) v[j] = vertex[nodes[s.nodes[j]] - 1];
       mesh.facets.add(v, s.size, tag);
@@ -367,6 +399,8 @@ void add_variables(ExodusReader& reader, const std::vector<Block>& blocks,
     steps.globals.push_back(reader.variable(step, EX_GLOBAL, 1, 0,
                                             static_cast<std::int64_t>(steps.global_names.size())));
     std::vector<DataArray> point = data.point_data(step), cell = data.cell_data(step);
+    // (A curved mesh's nodal variables would need its nodes' values too: they are not carried.)
+    if (mesh.curved()) point.clear();
     if (step == last) {
       mesh.point_data = std::move(point);
       mesh.cell_data = std::move(cell);
@@ -389,8 +423,11 @@ InputMesh read_exodus(const std::filesystem::path& path) {
   for (const Block& b : blocks)
     if (b.size > 0) mesh.dim = std::max(mesh.dim, b.dim);
   if (mesh.dim == 0) fail("{}: has no elements", file);
-  const std::vector<PetscInt> vertex = number_vertices(blocks, reader.coordinates(), file, mesh);
-  add_cells(blocks, vertex, mesh);
+  std::vector<PetscInt> node;
+  const std::vector<PetscInt> vertex =
+      number_vertices(blocks, reader.coordinates(), file, node, mesh);
+  add_cells(blocks, vertex, node, file, mesh);
+  check_high_order_nodes(mesh, file);
   add_side_sets(reader, blocks, vertex, mesh);
   add_variables(reader, blocks, vertex, mesh);
   std::sort(mesh.groups.begin(), mesh.groups.end(), [](const auto& a, const auto& b) {

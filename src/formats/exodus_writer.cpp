@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include <exodusII.h>
 
@@ -18,7 +19,15 @@ struct Block {
   std::int64_t id;
   std::string name;
   CellType type;
+  std::optional<CurvedType> curved;  // of a curved mesh's cells
   std::vector<PetscInt> cells;
+
+  int nodes() const { return curved ? facts(*curved).nodes : num_vertices(type); }
+  std::string type_name() const {
+    if (!curved) return std::string(exodus_type_name(type));
+    constexpr const char* kNames[] = {"TRI6", "QUAD8", "QUAD9", "TETRA10", "HEX20", "HEX27"};
+    return kNames[static_cast<int>(*curved)];
+  }
 };
 
 // A block per (cell group, type), by tag then type (the order of the .msh writer's elements).
@@ -26,10 +35,13 @@ struct Block {
 // without a name whose cells have several types names its blocks "block_<tag>", which the
 // reader joins into one group again.
 std::vector<Block> element_blocks(const InputMesh& mesh, const WrittenGroups& groups) {
-  std::map<std::pair<int, CellType>, std::vector<PetscInt>> cells;
+  using Type = std::pair<CellType, std::optional<CurvedType>>;
+  std::map<std::pair<int, Type>, std::vector<PetscInt>> cells;
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
     const int tag = mesh.cell_tags[c] != 0 ? mesh.cell_tags[c] : groups.untagged_cells;
-    cells[{tag, mesh.cell_types[c]}].push_back(c);
+    std::optional<CurvedType> curved;
+    if (mesh.curved()) curved = mesh.high_order.types[c];
+    cells[{tag, {mesh.cell_types[c], curved}}].push_back(c);
   }
   int largest = 0;
   std::map<int, std::string> names;
@@ -48,17 +60,25 @@ std::vector<Block> element_blocks(const InputMesh& mesh, const WrittenGroups& gr
     std::string name = names[tag];
     if (name.empty() && types[tag] > 1) name = fmt::format("block_{}", tag);
     const std::int64_t id = tag > 0 && tag != previous ? tag : next_id++;
-    out.push_back({id, std::move(name), type, std::move(list)});
+    out.push_back({id, std::move(name), type.first, type.second, std::move(list)});
     previous = tag;
   }
   return out;
 }
 
-// A cell's nodes in Exodus' order, 1-based.
-std::array<std::int64_t, 8> exodus_nodes(const InputMesh& mesh, PetscInt c) {
+// A cell's nodes in Exodus' order, 1-based (a curved mesh's points as curved_cell_points
+// numbers them).
+std::array<std::int64_t, kMaxCurvedNodes> exodus_nodes(const InputMesh& mesh, PetscInt c) {
+  std::array<std::int64_t, kMaxCurvedNodes> out{};
+  if (mesh.curved()) {
+    PetscInt points[kMaxCurvedNodes];
+    const int n = curved_cell_points(mesh, c, points);
+    for (int i = 0; i < n; ++i)
+      out[i] = points[facts(mesh.high_order.types[c]).exodus_order[i]] + 1;
+    return out;
+  }
   const CellType t = mesh.cell_types[c];
   const PetscInt* cell = mesh.cell_vertices.data() + mesh.cell_offsets[c];
-  std::array<std::int64_t, 8> out{};
   for (int i = 0; i < num_vertices(t); ++i) out[i] = cell[gmsh_from_canonical(t)[i]] + 1;
   return out;
 }
@@ -119,8 +139,8 @@ std::vector<SideSet> side_sets(const InputMesh& mesh, const WrittenGroups& group
 }
 
 void write_coordinates(const ExodusFile& file, const InputMesh& mesh, int num_dim) {
-  const std::vector<double> xyz = coordinates_in_space(mesh);
-  const PetscInt n = mesh.num_vertices();
+  const std::vector<double> xyz = points_in_space(mesh);
+  const PetscInt n = mesh.num_points();
   std::vector<double> x(n), y(n), z(n);
   for (PetscInt v = 0; v < n; ++v) {
     x[v] = xyz[3 * v];
@@ -135,8 +155,8 @@ void write_coordinates(const ExodusFile& file, const InputMesh& mesh, int num_di
 }
 
 void write_block(const ExodusFile& file, const InputMesh& mesh, const Block& b) {
-  const int n = num_vertices(b.type);
-  const std::string type(exodus_type_name(b.type));
+  const int n = b.nodes();
+  const std::string type = b.type_name();
   file.check(ex_put_block(file.id(), EX_ELEM_BLOCK, b.id, type.c_str(),
                           static_cast<std::int64_t>(b.cells.size()), n, 0, 0, 0),
              "writing an element block");
@@ -210,9 +230,9 @@ void write_step(const ExodusFile& file, int step, const InputMesh& mesh,
   for (const DataArray& a : mesh.point_data) {
     const std::vector<double> all = at_step(a, point);
     for (int k = 0; k < a.components; ++k) {
-      std::vector<double> values(nv);
+      std::vector<double> values(mesh.num_points(), std::nan(""));  // high-order nodes: NaN
       for (PetscInt v = 0; v < nv; ++v) values[v] = all[v * a.components + k];
-      file.check(ex_put_var(file.id(), step, EX_NODAL, ++var, 1, nv, values.data()),
+      file.check(ex_put_var(file.id(), step, EX_NODAL, ++var, 1, mesh.num_points(), values.data()),
                  "writing a nodal variable");
     }
   }
@@ -277,7 +297,7 @@ void write_exodus(const GatheredMesh& g, const std::filesystem::path& path,
   ex_init_params init{};
   std::snprintf(init.title, sizeof init.title, "neomesh");
   init.num_dim = mesh.dim == 2 && !mesh.plane && !mesh.surface ? 2 : 3;
-  init.num_nodes = mesh.num_vertices();
+  init.num_nodes = mesh.num_points();
   init.num_elem = mesh.num_cells();
   init.num_elem_blk = static_cast<std::int64_t>(blocks.size());
   init.num_side_sets = static_cast<std::int64_t>(sets.size());

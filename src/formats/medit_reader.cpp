@@ -19,21 +19,30 @@ namespace neomesh {
 
 namespace {
 
-// Element sections of the file: keyword, vertices per element, dimension, and neomesh's cell
-// type (none for edges).
+// Element sections of the file: keyword, vertices per element (its nodes: `corners` of them
+// first), dimension, and neomesh's cell type (none for edges) and curved type. The P2 sections'
+// other nodes are in VTK's order (curved_type.hpp), as Gmsh reads and writes them; Medit files
+// agree on no order for QuadrilateralsQ2 and HexahedraQ2 (libMeshb leaves it to an Ordering
+// section), which are refused.
 struct ElementKind {
   std::string_view keyword;
   int vertices;
+  int corners;
   int dim;
   std::optional<CellType> cell;
+  std::optional<CurvedType> curved;
 };
-constexpr ElementKind kElementKinds[] = {{"Edges", 2, 1, std::nullopt},
-                                         {"Triangles", 3, 2, CellType::Triangle},
-                                         {"Quadrilaterals", 4, 2, CellType::Quadrilateral},
-                                         {"Tetrahedra", 4, 3, CellType::Tetrahedron},
-                                         {"Pyramids", 5, 3, CellType::Pyramid},
-                                         {"Prisms", 6, 3, CellType::Wedge},
-                                         {"Hexahedra", 8, 3, CellType::Hexahedron}};
+constexpr ElementKind kElementKinds[] = {
+    {"Edges", 2, 2, 1, std::nullopt, std::nullopt},
+    {"Triangles", 3, 3, 2, CellType::Triangle, std::nullopt},
+    {"Quadrilaterals", 4, 4, 2, CellType::Quadrilateral, std::nullopt},
+    {"Tetrahedra", 4, 4, 3, CellType::Tetrahedron, std::nullopt},
+    {"Pyramids", 5, 5, 3, CellType::Pyramid, std::nullopt},
+    {"Prisms", 6, 6, 3, CellType::Wedge, std::nullopt},
+    {"Hexahedra", 8, 8, 3, CellType::Hexahedron, std::nullopt},
+    {"EdgesP2", 3, 2, 1, std::nullopt, std::nullopt},
+    {"TrianglesP2", 6, 3, 2, CellType::Triangle, CurvedType::Triangle6},
+    {"TetrahedraP2", 10, 4, 3, CellType::Tetrahedron, CurvedType::Tetrahedron10}};
 constexpr int kNumKinds = std::size(kElementKinds);
 
 // Sections skipped: keyword and numbers per entry (-1: `Dimension` numbers; 0: the section has
@@ -173,8 +182,8 @@ class MeditParser {
       }
     if (keyword.size() > 2 && (keyword.ends_with("P2") || keyword.ends_with("Q2")))
       fail(
-          "{}: has second-order (curved) elements ({}); neomesh needs first-order elements (MMG, "
-          "Gmsh: Mesh.ElementOrder = 1)",
+          "{}: has {}, whose node order Medit files do not agree on; of the second-order "
+          "(curved) elements neomesh reads EdgesP2, TrianglesP2 and TetrahedraP2",
           file_, section_);
     invalid("unknown keyword '{}'", section_);
   }
@@ -247,24 +256,38 @@ InputMesh read_medit(const std::filesystem::path& path) {
     return kElementKinds[k].dim == mesh.dim ||
            (kElementKinds[k].dim == mesh.dim - 1 && c.elements[k].refs[i] > 0);
   };
-  // Vertices: those of cells and kept facets.
+  // Vertices: the corners of cells and kept facets; nodes: the other nodes of curved cells.
   const std::int64_t nv = static_cast<std::int64_t>(c.xyz.size() / 3);
-  std::vector<PetscInt> vertex(nv, -1);
+  std::vector<PetscInt> vertex(nv, -1), node(nv, -1);
+  const ElementKind* first = nullptr;  // a kind of cells
   for (int k = 0; k < kNumKinds; ++k) {
     const Elements& e = c.elements[k];
-    const int n = kElementKinds[k].vertices;
+    const ElementKind& kind = kElementKinds[k];
+    if (kind.dim == mesh.dim && !e.refs.empty()) {
+      if (first && first->curved.has_value() != kind.curved.has_value())
+        fail(
+            "{}: mixes first-order and second-order cells ({} and {}); neomesh reads meshes of "
+            "one order",
+            file, first->keyword, kind.keyword);
+      first = &kind;
+    }
     for (std::size_t i = 0; i < e.refs.size(); ++i) {
       if (!kept(k, i)) continue;
-      for (int j = 0; j < n; ++j) {
-        const std::int64_t v = e.vertices[i * n + j];
+      for (int j = 0; j < kind.vertices; ++j) {
+        const std::int64_t v = e.vertices[i * kind.vertices + j];
         if (v < 1 || v > nv)
-          fail("{}: {} {} refers to vertex {}, which is out of range (1..{})", file,
-               kElementKinds[k].keyword, i + 1, v, nv);
-        vertex[v - 1] = 0;
+          fail("{}: {} {} refers to vertex {}, which is out of range (1..{})", file, kind.keyword,
+               i + 1, v, nv);
+        // (a facet's other nodes are the cells')
+        if (j < kind.corners)
+          vertex[v - 1] = 0;
+        else if (kind.dim == mesh.dim)
+          node[v - 1] = 0;
       }
     }
   }
   number_used_vertices(vertex, c.xyz, file, mesh);
+  number_high_order_nodes(node, vertex, c.xyz, file, mesh);
 
   std::set<int> cell_tags, facet_tags;
   for (int k : c.kinds) {
@@ -275,20 +298,27 @@ InputMesh read_medit(const std::filesystem::path& path) {
       const std::int64_t* medit = e.vertices.data() + i * kind.vertices;
       const int tag = group_tag(e.refs[i], file, kind.keyword);
       PetscInt v[8];
-      for (int j = 0; j < kind.vertices; ++j) {
+      for (int j = 0; j < kind.vertices; ++j)
         if (std::find(medit, medit + j, medit[j]) != medit + j)
           fail("{}: {} {} has a repeated vertex", file, kind.keyword, i + 1);
+      for (int j = 0; j < kind.corners; ++j)
         v[kind.dim == mesh.dim ? gmsh_from_canonical(*kind.cell)[j] : j] = vertex[medit[j] - 1];
-      }
       if (kind.dim == mesh.dim) {
         mesh.add_cell(*kind.cell, v, tag);
         if (tag > 0) cell_tags.insert(tag);
+        if (kind.curved) {
+          PetscInt gmsh[kMaxCurvedNodes];
+          for (int j = kind.corners; j < kind.vertices; ++j)
+            gmsh[facts(*kind.curved).vtk_order[j]] = node[medit[j] - 1];
+          mesh.high_order.add(*kind.curved, gmsh + kind.corners);
+        }
       } else {
-        mesh.facets.add(v, kind.vertices, tag);
+        mesh.facets.add(v, kind.corners, tag);
         facet_tags.insert(tag);
       }
     }
   }
+  check_high_order_nodes(mesh, file);
   for (int tag : facet_tags) mesh.groups.push_back({mesh.dim - 1, tag, ""});
   for (int tag : cell_tags) mesh.groups.push_back({mesh.dim, tag, ""});
 
@@ -304,7 +334,8 @@ InputMesh read_medit(const std::filesystem::path& path) {
       refs.type = ValueType::Int64;
     refs.values.push_back(static_cast<double>(r));
   }
-  if (any) mesh.point_data.push_back(std::move(refs));
+  // (A curved mesh's would need its nodes' references too: they are not carried.)
+  if (any && !mesh.curved()) mesh.point_data.push_back(std::move(refs));
   return mesh;
 }
 

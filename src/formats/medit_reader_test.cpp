@@ -134,12 +134,30 @@ TEST(ReadMedit, NamesTheLineOfAnError) {
   EXPECT_TRUE(has(error_reading(repeated), "in.mesh: Prisms 1 has a repeated vertex"));
 }
 
+// A tetrahedron10 whose nodes 5..10 are its edges (0,1) (1,2) (2,0) (0,3) (1,3) (2,3), as Gmsh
+// writes TetrahedraP2, with a TrianglesP2 facet.
+TEST(ReadMedit, ReadsP2TetrahedraInGmshsOrderWithTheirFacets) {
+  const InputMesh mesh = read_text(
+      "MeshVersionFormatted 2\nDimension 3\nVertices\n10\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n"
+      "0.5 0 0 0\n0.5 0.5 0 0\n0 0.5 0 0\n0 0 0.5 0\n0.5 0 0.5 0\n0 0.5 0.5 0\nTetrahedraP2\n1\n"
+      "1 2 3 4 5 6 7 8 9 10 2\nTrianglesP2\n1\n1 3 2 7 6 5 4\nEnd\n",
+      "tet10.mesh");
+  ASSERT_TRUE(mesh.curved());
+  EXPECT_EQ(mesh.high_order.types, std::vector{CurvedType::Tetrahedron10});
+  // Gmsh's edges (0,1) (1,2) (2,0) (3,0) (3,2) (3,1): the file's nodes 5, 6, 7, 8, 10, 9.
+  EXPECT_EQ(mesh.high_order.nodes, (std::vector<PetscInt>{0, 1, 2, 3, 5, 4}));
+  EXPECT_EQ(mesh.high_order.xyz[3 * 5 + 1], 0.5);  // node 10 at (0, 0.5, 0.5)
+  EXPECT_EQ(mesh.facets.size(), 1);
+  PetscInt points[9];
+  EXPECT_EQ(CurvedFacets(mesh).points(0, points), 6);
+}
+
 TEST(ReadMedit, RefusesWhatNeomeshDoesNotOptimizeInOneLine) {
   EXPECT_TRUE(has(error_reading("MeshVersionFormatted 2\nDimension 3\nVertices\n2\n0 0 0 0\n"
                                 "1 0 0 0\nEdges\n1\n1 2 0\nEnd\n"),
                   "in.mesh: has no 2D or 3D cells (only 1D elements)"));
-  EXPECT_TRUE(has(error_reading("MeshVersionFormatted 2\nDimension 3\nTetrahedraP2\n0\n"),
-                  "in.mesh: has second-order (curved) elements (TetrahedraP2)"));
+  EXPECT_TRUE(has(error_reading("MeshVersionFormatted 2\nDimension 3\nHexahedraQ2\n0\n"),
+                  "in.mesh: has HexahedraQ2, whose node order Medit files do not agree on"));
   EXPECT_TRUE(has(error_reading("MeshVersionFormatted 2\nDimension 4\n"),
                   "Dimension 4; neomesh reads 2 or 3"));
 }

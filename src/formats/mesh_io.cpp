@@ -93,15 +93,11 @@ PlexMesh load_mesh(const std::vector<std::filesystem::path>& paths, MPI_Comm com
 void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path, const MeshFields& fields) {
   require_writable_format(path);
   const auto extension = path.extension();
-  if (mesh.curved() && extension != ".msh" && extension != ".vtu" && extension != ".vtk")
-    fail(
-        "{}: a mesh of second-order (curved) cells is written to .msh, .vtu or .vtk only; "
-        "neomesh does not write curved cells to {} yet",
-        path.string(), extension.string());
   GatheredMesh gathered = gather_mesh(mesh, fields);
   make_room_for_data(gathered);
   on_root(mesh.comm(), [&] {
     const auto ext = path.extension();
+    if (ext == ".mesh") require_medit_curved_types(gathered.mesh, path.string());
     AtomicFile file(path, ext == ".vtu" || ext == ".cgns" || is_exodus(path));
     if (is_exodus(path))
       write_exodus(gathered, file.temporary_path(), path.string());

@@ -14,10 +14,12 @@ namespace neomesh {
 
 namespace {
 
-int gmsh_facet_type(int dim, PetscInt num_vertices) {
-  if (num_vertices == 1) return 15;  // point
-  if (dim == 2) return 1;            // line
-  return num_vertices == 3 ? 2 : 3;  // triangle or quadrilateral face
+// The Gmsh type of a facet or point of `points` points (a curved mesh's facets at second order).
+int gmsh_facet_type(int dim, int points) {
+  if (points == 1) return 15;                       // point
+  if (dim == 2) return points == 2 ? 1 : 8;         // line, line3
+  constexpr int faces[] = {2, 3, 0, 9, 0, 16, 10};  // triangle, quadrilateral, then second order
+  return faces[points - 3];
 }
 
 // One entity per (dim, physical tag); cells without a tag get the entity of tag 0.
@@ -82,14 +84,15 @@ std::vector<Block> element_blocks(const GatheredMesh& g, const WrittenGroups& gr
     block.elements.push_back(std::move(vertices));
     block.cells.push_back(c);
   }
+  const CurvedFacets curved(mesh);
   for (const TaggedEntities* tagged : {&mesh.facets, &mesh.points})
     for (PetscInt k = 0; k < tagged->size(); ++k) {
-      const PetscInt n = tagged->offsets[k + 1] - tagged->offsets[k];
+      PetscInt points[9] = {tagged->vertices[tagged->offsets[k]]};
+      const int n = tagged == &mesh.facets ? curved.points(k, points) : 1;
       const int dim = n == 1 ? 0 : mesh.dim - 1;
       entities.add(dim, tagged->tags[k]);
       blocks[{dim, tagged->tags[k], gmsh_facet_type(mesh.dim, n)}].elements.emplace_back(
-          tagged->vertices.begin() + tagged->offsets[k],
-          tagged->vertices.begin() + tagged->offsets[k + 1]);
+          points, points + n);
     }
   std::vector<Block> out;
   for (auto& [key, block] : blocks) {

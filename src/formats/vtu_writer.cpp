@@ -173,10 +173,13 @@ bool real(ValueType t) {
   return t == ValueType::Float32 || t == ValueType::Float64;
 }
 
-// The VTK type of a facet or point of `n` vertices: vertex, line, triangle, quadrilateral.
-std::uint8_t vtk_facet_type(PetscInt n) {
-  constexpr std::uint8_t types[] = {0, 1, 3, 5, 9};
-  return types[n];
+// The VTK type of a facet or point of `n` points: vertex, line, triangle, quadrilateral; a
+// curved mesh's facets as quadratic or Lagrange cells, as its cells (`lagrange`).
+std::uint8_t vtk_facet_type(int dim, int n, bool lagrange) {
+  if (dim == 2 && n == 3) return lagrange ? 68 : 21;  // the curve of 3 points
+  constexpr std::uint8_t types[] = {0, 1, 3, 5, 9, 0, 22, 0, 23, 28};
+  constexpr std::uint8_t lagrange_types[] = {0, 1, 3, 5, 9, 0, 69, 0, 23, 70};
+  return (lagrange ? lagrange_types : types)[n];
 }
 
 }  // namespace
@@ -212,12 +215,13 @@ VtkElements vtk_elements(const GatheredMesh& gathered, bool lagrange) {
   }
   e.tags.assign(mesh.cell_tags.begin(), mesh.cell_tags.end());
   e.has_tags = gathered.has_cell_groups;
+  const CurvedFacets curved(mesh);
   for (const TaggedEntities* group : {&mesh.facets, &mesh.points})
     for (PetscInt k = 0; k < group->size(); ++k) {
-      const PetscInt n = group->offsets[k + 1] - group->offsets[k];
-      e.connectivity.insert(e.connectivity.end(), group->vertices.begin() + group->offsets[k],
-                            group->vertices.begin() + group->offsets[k + 1]);
-      e.types.push_back(vtk_facet_type(n));
+      PetscInt points[9] = {group->vertices[group->offsets[k]]};
+      const int n = group == &mesh.facets ? curved.points(k, points) : 1;
+      e.connectivity.insert(e.connectivity.end(), points, points + n);
+      e.types.push_back(vtk_facet_type(mesh.dim, n, lagrange));
       e.offsets.push_back(static_cast<std::int64_t>(e.connectivity.size()));
       e.tags.push_back(group->tags[k]);
       e.has_tags = true;

@@ -5,11 +5,17 @@
 // per edge, per quadrilateral face and the centre. VTK lists the same nodes in another order
 // for the tetrahedron (the last three edges) and the hexahedra (edges and faces); its quadratic
 // cells (types 22-29) and its Lagrange cells of order 2 (types 69-72) agree with each other.
+// Exodus II (Ioss' element topologies) and CGNS (SIDS "Unstructured Grid Element Numbering
+// Conventions") list the tetrahedron's edges as VTK does and the hexahedron's as the bottom
+// face's cycle, the vertical edges, the top face's cycle; their hexahedron27 faces differ.
+// Medit's TrianglesP2 and TetrahedraP2, as Gmsh reads and writes them, are VTK's order.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "mesh/cell_type.hpp"
@@ -31,6 +37,30 @@ inline constexpr std::array<CurvedType, 6> kCurvedTypes = {
 
 inline constexpr int kMaxCurvedNodes = 27;
 
+// Gmsh's edges and (for the hexahedron) quadrilateral faces of each shape, by their corners: a
+// cell's edge nodes follow its corners in this order, its face nodes its edge nodes.
+using CurvedEdge = std::array<std::uint8_t, 2>;
+using CurvedFace = std::array<std::uint8_t, 4>;
+inline constexpr std::array<CurvedEdge, 3> kTriangleEdges = {{{0, 1}, {1, 2}, {2, 0}}};
+inline constexpr std::array<CurvedEdge, 4> kQuadrilateralEdges = {{{0, 1}, {1, 2}, {2, 3}, {3, 0}}};
+inline constexpr std::array<CurvedEdge, 6> kTetrahedronEdges = {
+    {{0, 1}, {1, 2}, {2, 0}, {3, 0}, {3, 2}, {3, 1}}};
+inline constexpr std::array<CurvedEdge, 12> kHexahedronEdges = {{{0, 1},
+                                                                 {0, 3},
+                                                                 {0, 4},
+                                                                 {1, 2},
+                                                                 {1, 5},
+                                                                 {2, 3},
+                                                                 {2, 6},
+                                                                 {3, 7},
+                                                                 {4, 5},
+                                                                 {4, 7},
+                                                                 {5, 6},
+                                                                 {6, 7}}};
+// z = −1, y = −1, x = −1, x = +1, y = +1, z = +1.
+inline constexpr std::array<CurvedFace, 6> kHexahedronFaces = {
+    {{0, 3, 2, 1}, {0, 1, 5, 4}, {0, 3, 7, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {4, 5, 6, 7}}};
+
 struct CurvedFacts {
   std::string_view name;  // "hexahedron27"
   CellType linear;        // the straight cell of the same shape: its corners are the vertices
@@ -38,23 +68,99 @@ struct CurvedFacts {
   int gmsh;               // Gmsh element type (.msh 2.2 and 4.1)
   int vtk;                // VTK's quadratic cell type
   int vtk_lagrange;       // VTK's Lagrange cell type (order 2 with `nodes` points)
-  // Position i of VTK's list holds Gmsh node vtk_order[i] (the corners agree).
+  // Position i of VTK's list holds Gmsh node vtk_order[i] (the corners agree); likewise
+  // Exodus II's and CGNS's.
   std::array<std::uint8_t, kMaxCurvedNodes> vtk_order;
+  std::array<std::uint8_t, kMaxCurvedNodes> exodus_order;
+  std::array<std::uint8_t, kMaxCurvedNodes> cgns_order;
+  std::span<const CurvedEdge> edges;  // the edges that carry a node
+  std::span<const CurvedFace> faces;  // the faces that carry one (of a 3D cell)
 };
 
+// Exodus' and CGNS' hexahedron: the corners, the edges (the bottom cycle, the vertical edges,
+// the top cycle), then the Gmsh nodes `after`.
+constexpr std::array<std::uint8_t, kMaxCurvedNodes> bottom_vertical_top(
+    std::initializer_list<std::uint8_t> after) {
+  std::array<std::uint8_t, kMaxCurvedNodes> order = {0,  1, 2,  3,  4,  5,  6,  7,  8,  11,
+                                                     13, 9, 10, 12, 14, 15, 16, 18, 19, 17};
+  int i = 20;
+  for (std::uint8_t n : after) order[i++] = n;
+  return order;
+}
+
 inline constexpr std::array<CurvedFacts, kCurvedTypes.size()> kCurvedFacts = {{
-    {"triangle6", CellType::Triangle, 6, 9, 22, 69, {0, 1, 2, 3, 4, 5}},
-    {"quadrilateral8", CellType::Quadrilateral, 8, 16, 23, -1, {0, 1, 2, 3, 4, 5, 6, 7}},
-    {"quadrilateral9", CellType::Quadrilateral, 9, 10, 28, 70, {0, 1, 2, 3, 4, 5, 6, 7, 8}},
+    {"triangle6",
+     CellType::Triangle,
+     6,
+     9,
+     22,
+     69,
+     {0, 1, 2, 3, 4, 5},
+     {0, 1, 2, 3, 4, 5},
+     {0, 1, 2, 3, 4, 5},
+     kTriangleEdges,
+     {}},
+    {"quadrilateral8",
+     CellType::Quadrilateral,
+     8,
+     16,
+     23,
+     -1,
+     {0, 1, 2, 3, 4, 5, 6, 7},
+     {0, 1, 2, 3, 4, 5, 6, 7},
+     {0, 1, 2, 3, 4, 5, 6, 7},
+     kQuadrilateralEdges,
+     {}},
+    {"quadrilateral9",
+     CellType::Quadrilateral,
+     9,
+     10,
+     28,
+     70,
+     {0, 1, 2, 3, 4, 5, 6, 7, 8},
+     {0, 1, 2, 3, 4, 5, 6, 7, 8},
+     {0, 1, 2, 3, 4, 5, 6, 7, 8},
+     kQuadrilateralEdges,
+     {}},
     // VTK's edges (0,1) (1,2) (2,0) (0,3) (1,3) (2,3); Gmsh's end (3,0) (3,2) (3,1).
-    {"tetrahedron10", CellType::Tetrahedron, 10, 11, 24, 71, {0, 1, 2, 3, 4, 5, 6, 7, 9, 8}},
+    {"tetrahedron10",
+     CellType::Tetrahedron,
+     10,
+     11,
+     24,
+     71,
+     {0, 1, 2, 3, 4, 5, 6, 7, 9, 8},
+     {0, 1, 2, 3, 4, 5, 6, 7, 9, 8},
+     {0, 1, 2, 3, 4, 5, 6, 7, 9, 8},
+     kTetrahedronEdges,
+     {}},
     // VTK's edges: the bottom and the top face's cycles, then the vertical ones.
-    {"hexahedron20", CellType::Hexahedron, 20, 17, 25, -1, {0,  1, 2,  3,  4,  5,  6,  7,  8,  11,
-                                                            13, 9, 16, 18, 19, 17, 10, 12, 14, 15}},
-    // As hexahedron20, then VTK's faces x = −1, x = +1, y = −1, y = +1, z = −1, z = +1.
-    {"hexahedron27", CellType::Hexahedron, 27, 12, 29, 72, {0,  1,  2,  3,  4,  5,  6,  7,  8,
-                                                            11, 13, 9,  16, 18, 19, 17, 10, 12,
-                                                            14, 15, 22, 23, 21, 24, 20, 25, 26}},
+    {"hexahedron20",
+     CellType::Hexahedron,
+     20,
+     17,
+     25,
+     -1,
+     {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15},
+     bottom_vertical_top({}),
+     bottom_vertical_top({}),
+     kHexahedronEdges,
+     {}},
+    // As hexahedron20, then VTK's faces x = −1, x = +1, y = −1, y = +1, z = −1, z = +1;
+    // Exodus' centre, then z = −1, z = +1, x = −1, x = +1, y = −1, y = +1; CGNS' z = −1,
+    // y = −1, x = +1, y = +1, x = −1, z = +1, then the centre.
+    {"hexahedron27",
+     CellType::Hexahedron,
+     27,
+     12,
+     29,
+     72,
+     {0,  1,  2,  3,  4,  5,  6,  7,  8,  11, 13, 9,  16, 18,
+      19, 17, 10, 12, 14, 15, 22, 23, 21, 24, 20, 25, 26},
+     bottom_vertical_top({26, 20, 25, 22, 23, 21, 24}),
+     bottom_vertical_top({20, 21, 23, 24, 22, 25, 26}),
+     kHexahedronEdges,
+     kHexahedronFaces},
 }};
 
 constexpr const CurvedFacts& facts(CurvedType t) {

@@ -94,6 +94,61 @@ int curved_cell_points(const InputMesh& mesh, PetscInt c, PetscInt* points) {
   return n;
 }
 
+void number_high_order_nodes(std::vector<PetscInt>& node, const std::vector<PetscInt>& vertex,
+                             std::span<const double> xyz, const std::string& file,
+                             InputMesh& mesh) {
+  for (std::size_t n = 0; n < node.size(); ++n) {
+    if (node[n] < 0) continue;
+    if (vertex[n] >= 0)
+      fail("{}: node {} is a corner of one element and a mid-edge, face or centre node of another",
+           file, n + 1);
+    node[n] = mesh.high_order.num_nodes();
+    mesh.high_order.xyz.insert(mesh.high_order.xyz.end(), xyz.begin() + 3 * n,
+                               xyz.begin() + 3 * n + 3);
+  }
+}
+
+CurvedFacets::CurvedFacets(const InputMesh& mesh) : mesh_(mesh) {
+  if (!mesh.curved() || mesh.facets.size() == 0) return;
+  for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
+    PetscInt p[kMaxCurvedNodes];
+    curved_cell_points(mesh, c, p);
+    const CurvedFacts& f = facts(mesh.high_order.types[c]);
+    const int corners = num_vertices(f.linear);
+    for (std::size_t e = 0; e < f.edges.size(); ++e) {
+      std::array<PetscInt, 2> key = {p[f.edges[e][0]], p[f.edges[e][1]]};
+      std::sort(key.begin(), key.end());
+      edge_.emplace(key, p[corners + e]);
+    }
+    for (std::size_t j = 0; j < f.faces.size(); ++j) {
+      std::array<PetscInt, 4> key;
+      for (int i = 0; i < 4; ++i) key[i] = p[f.faces[j][i]];
+      std::sort(key.begin(), key.end());
+      face_.emplace(key, p[corners + f.edges.size() + j]);
+    }
+  }
+}
+
+int CurvedFacets::points(PetscInt k, PetscInt* out) const {
+  const TaggedEntities& facets = mesh_.facets;
+  const PetscInt* v = facets.vertices.data() + facets.offsets[k];
+  const int n = static_cast<int>(facets.offsets[k + 1] - facets.offsets[k]);
+  std::copy(v, v + n, out);
+  if (edge_.empty()) return n;
+  int count = n;
+  for (int i = 0; i < (n == 2 ? 1 : n); ++i) {
+    const auto it = edge_.find({std::min(v[i], v[(i + 1) % n]), std::max(v[i], v[(i + 1) % n])});
+    if (it == edge_.end()) return n;
+    out[count++] = it->second;
+  }
+  if (n == 4) {
+    std::array<PetscInt, 4> key = {v[0], v[1], v[2], v[3]};
+    std::sort(key.begin(), key.end());
+    if (const auto it = face_.find(key); it != face_.end()) out[count++] = it->second;
+  }
+  return count;
+}
+
 std::vector<double> curved_point_coordinates(const InputMesh& mesh) {
   std::vector<double> x = mesh.coords;
   const int d = mesh.coord_dim();

@@ -3,7 +3,9 @@
 // in input order; physical groups keep their Gmsh (dim, tag, name).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <span>
 #include <string>
@@ -158,6 +160,12 @@ InputMesh input_from_data(const MeshData& data);
 void number_used_vertices(std::vector<PetscInt>& vertex, std::span<const double> xyz,
                           const std::string& file, InputMesh& mesh);
 
+// For the readers, after number_used_vertices: numbers the file's nodes marked (`node[n] >= 0`)
+// in file order as mesh.high_order's nodes, with their coordinates `xyz` (3 per node); throws
+// Error naming `file` and the node (1-based) if one is also a vertex (`vertex[n] >= 0`).
+void number_high_order_nodes(std::vector<PetscInt>& node, const std::vector<PetscInt>& vertex,
+                             std::span<const double> xyz, const std::string& file, InputMesh& mesh);
+
 // The vertices' coordinates in 3D space, 3 per vertex: a 2D mesh's put back in its plane.
 std::vector<double> coordinates_in_space(const InputMesh& mesh);
 
@@ -168,6 +176,24 @@ int curved_cell_points(const InputMesh& mesh, PetscInt c, PetscInt* points);
 // point, as coordinates_in_space() and the nodes' as read) for the writers.
 std::vector<double> points_in_space(const InputMesh& mesh);
 std::vector<double> curved_point_coordinates(const InputMesh& mesh);
+// The high-order nodes on the sides of a curved mesh's cells, found by the corners of their edge
+// (or hexahedron27 face), so that the group facets, which InputMesh keeps by their corners, are
+// written at second order: a line3, triangle6, quadrilateral8 or quadrilateral9.
+class CurvedFacets {
+ public:
+  explicit CurvedFacets(const InputMesh& mesh);
+  // Facet `k` of mesh.facets as points (as curved_cell_points numbers them): its corners as
+  // listed, the nodes of its edges (0,1), (1,2), ... (n−1,0), then of its face, the order of
+  // Gmsh, VTK, Exodus II, CGNS and Medit alike; how many. Just its corners when the mesh is
+  // straight or the facet no side of a cell.
+  int points(PetscInt k, PetscInt* out) const;
+
+ private:
+  const InputMesh& mesh_;
+  std::map<std::array<PetscInt, 2>, PetscInt> edge_;  // sorted corners → point
+  std::map<std::array<PetscInt, 4>, PetscInt> face_;
+};
+
 // For the readers, after number_used_vertices: throws Error naming `file` unless the high-order
 // nodes of a 2D mesh lie in the plane of its vertices (a curved surface mesh is not read).
 void check_high_order_nodes(const InputMesh& mesh, const std::string& file);

@@ -1,7 +1,8 @@
 """Curved (second-order) meshes as a user gives them: read from Gmsh .msh (2.2 and 4.1, ASCII and
-binary) and VTK .vtk/.vtu, measured by `quality` (validity certified over each cell), written by
-`convert` to .msh, .vtu (Lagrange cells, which VTK reads) and .vtk, and refused by `smooth` in
-one line. Gmsh meshes are made by the gmsh program (skipped without it), Mesquite's quadratic
+binary), VTK .vtk/.vtu, Exodus II, CGNS and Medit, measured by `quality` (validity certified over
+each cell), written by `convert` to .msh, .vtu (Lagrange cells, which VTK reads), .vtk, .exo,
+.cgns and .mesh (triangles and tetrahedra) with their group facets at second order, and refused
+by `smooth` in one line. Gmsh meshes are made by the gmsh program (skipped without it), Mesquite's quadratic
 meshes come from ../shared/corpus (skipped without it). Run with NEOMESH=path/to/neomesh."""
 import glob
 import json
@@ -29,10 +30,13 @@ Disk(1) = {0, 0, 0, 1, 1};
 Mesh.MeshSizeMax = 0.6;
 Extrude {0, 0, 1} { Surface{1}; Layers{2}; Recombine; }
 Physical Volume("solid", 3) = {1};
+Physical Surface("wall", 4) = {2};
 """
 BALL = """SetFactory("OpenCASCADE");
 Sphere(1) = {0, 0, 0, 1};
 Mesh.MeshSizeMax = 0.6;
+Physical Volume("ball", 5) = {1};
+Physical Surface("sphere", 6) = {1};
 """
 
 # name: (geometry, dimension, Gmsh options, the cell type neomesh reports)
@@ -58,6 +62,11 @@ def gmsh_mesh(tmp, case, fmt="msh41", binary=False):
     return out
 
 
+def medit(case):
+    """Whether Medit has the case's cells: its P2 triangles and tetrahedra."""
+    return case in ("tri6", "tet10")
+
+
 def curved_quality(tmp, path):
     out = os.path.join(tmp, "q.json")
     neomesh("quality", path, "--json", out)
@@ -70,7 +79,7 @@ def test_a_gmsh_curved_mesh_is_measured_alike_in_every_format(tmp, case):
     # 2.2, 4.1 ASCII and binary, and what convert writes: the same curved cells.
     inputs = [gmsh_mesh(tmp, case), gmsh_mesh(tmp, case, "msh22"),
               gmsh_mesh(tmp, case, binary=True)]
-    for ext in ("msh", "vtu", "vtk"):
+    for ext in ("msh", "vtu", "vtk", "exo", "cgns") + (("mesh",) if medit(case) else ()):
         inputs.append(os.path.join(tmp, f"converted.{ext}"))
         neomesh("convert", inputs[0], "-o", inputs[-1])
     reference = curved_quality(tmp, inputs[0])
@@ -125,7 +134,7 @@ def test_convert_keeps_the_groups_of_a_curved_mesh(tmp):
     neomesh("convert", gmsh_mesh(tmp, "tri6"), "-o", out)
     m = meshio.read(out)
     assert set(m.field_data) == {"ring", "boundary"}
-    assert {b.type for b in m.cells} == {"triangle6", "line"}
+    assert {b.type for b in m.cells} == {"triangle6", "line3"}
 
 
 @needs_gmsh
@@ -138,14 +147,103 @@ def test_smooth_refuses_a_curved_mesh_in_one_line_and_writes_nothing(tmp):
                               unwritten=[os.path.join(tmp, "out.msh")])
 
 
+def second_order_elements(path):
+    """Per element of a file (as meshio reads it), the coordinates of its nodes: cells as they
+    are listed, facets (lines, triangles, quadrilaterals of 3, 6, 8 or 9 nodes) as their
+    corners, each edge's corners with its node, and their centre, whichever corner comes first."""
+    import meshio
+    m = meshio.read(path)
+    dim = max(b.dim for b in m.cells)
+    out = {}
+    for block in m.cells:
+        for cell in block.data:
+            x = [tuple(np.round(m.points[n], 9)) for n in cell]
+            if block.dim == dim:
+                out[frozenset(x)] = (block.type, tuple(x))
+                continue
+            corners = {3: 2, 6: 3, 8: 4, 9: 4}.get(len(x), len(x))
+            edges = frozenset((frozenset((x[i], x[(i + 1) % corners])), x[corners + i])
+                              for i in range(1 if corners == 2 else corners)
+                              if corners + i < len(x))
+            out[frozenset(x)] = (block.type, frozenset(x[:corners]), edges, tuple(x[2 * corners:]))
+    return out
+
+
 @needs_gmsh
-def test_a_curved_mesh_is_not_written_where_the_format_has_no_curved_cells(tmp):
-    msh = gmsh_mesh(tmp, "tri6")
-    for ext in ("mesh", "exo", "cgns"):
-        out = os.path.join(tmp, "out." + ext)
-        expect_one_error_line(neomesh("convert", msh, "-o", out, expect=1),
-                              ["second-order (curved) cells", ".msh, .vtu or .vtk"],
-                              unwritten=[out])
+@pytest.mark.parametrize("case", sorted(GMSH_CASES))
+def test_a_round_trip_through_every_format_keeps_every_node_and_group(tmp, case):
+    # Gmsh -> X -> Gmsh: the cells keep their nodes in order, the group facets (second-order
+    # elements in Gmsh's file) their mid-edge and face nodes, the groups their elements.
+    import meshio
+    msh = gmsh_mesh(tmp, case)
+    original = second_order_elements(msh)
+    assert len({e[0] for e in original.values()}) == 2, "the case has group facets"
+    exts = ["msh", "vtu", "vtk", "exo", "cgns"] + (["mesh"] if medit(case) else [])
+    for ext in exts:
+        there, back = os.path.join(tmp, f"there.{ext}"), os.path.join(tmp, f"back-{ext}.msh")
+        neomesh("convert", msh, "-o", there)
+        neomesh("convert", there, "-o", back)
+        assert second_order_elements(back) == original, ext
+        if ext != "mesh":  # (Medit has no group names)
+            assert set(meshio.read(back).field_data) == set(meshio.read(msh).field_data), ext
+    # meshio's names of the cell types of the Exodus file.
+    cells = {"tri6": "triangle6", "quad8": "quad8", "quad9": "quad9", "tet10": "tetra10",
+             "hex20": "hexahedron20", "hex27": "hexahedron27"}
+    assert {b.type for b in meshio.read(os.path.join(tmp, "there.exo")).cells} == {cells[case]}
+
+
+@needs_gmsh
+@pytest.mark.parametrize("case", ["tri6", "tet10"])
+def test_gmsh_reads_the_medit_p2_file_with_each_node_where_it_was(tmp, case):
+    # Gmsh's own reader of TrianglesP2, TetrahedraP2 and EdgesP2: an order neomesh did not write.
+    gmsh = pytest.importorskip("gmsh")
+    msh = gmsh_mesh(tmp, case)
+    out = os.path.join(tmp, "out.mesh")
+    neomesh("convert", msh, "-o", out)
+    dim = GMSH_CASES[case][1]
+
+    def elements(path):
+        gmsh.initialize()
+        try:
+            gmsh.option.setNumber("General.Terminal", 0)
+            gmsh.open(path)
+            tags, xyz, _ = gmsh.model.mesh.getNodes()
+            at = dict(zip(tags, map(tuple, np.round(xyz.reshape(-1, 3), 9))))
+            found = {}
+            for d in (dim, dim - 1):
+                types, _, nodes = gmsh.model.mesh.getElements(d)
+                for t, listed in zip(types, nodes):
+                    n = gmsh.model.mesh.getElementProperties(t)[3]
+                    for e in np.array(listed).reshape(-1, n):
+                        x = tuple(at[k] for k in e)
+                        # (a facet, line3 or triangle6, by its edges' corners and nodes)
+                        c = {3: 2, 6: 3}.get(n, n)
+                        found[frozenset(x)] = (t, x if d == dim else frozenset(
+                            (frozenset((x[i], x[(i + 1) % c])), x[c + i])
+                            for i in range(1 if c == 2 else c)))
+            return found
+        finally:
+            gmsh.finalize()
+    assert elements(out) == elements(msh)
+
+
+@pytest.mark.skipif(shutil.which("cgnscheck") is None, reason="cgnscheck is missing")
+@needs_gmsh
+@pytest.mark.parametrize("case", sorted(GMSH_CASES))
+def test_cgnscheck_finds_no_error_in_a_curved_cgns_file(tmp, case):
+    out = os.path.join(tmp, "out.cgns")
+    neomesh("convert", gmsh_mesh(tmp, case), "-o", out)
+    check = subprocess.run(["cgnscheck", out], capture_output=True, text=True)
+    assert check.returncode == 0 and "ERROR" not in check.stdout.upper(), check.stdout
+
+
+@needs_gmsh
+@pytest.mark.parametrize("case", ["quad9", "hex20"])
+def test_medit_refuses_curved_quadrilaterals_and_hexahedra_in_one_line(tmp, case):
+    out = os.path.join(tmp, "out.mesh")
+    expect_one_error_line(neomesh("convert", gmsh_mesh(tmp, case), "-o", out, expect=1),
+                          ["QuadrilateralsQ2 and HexahedraQ2", GMSH_CASES[case][3]],
+                          unwritten=[out])
 
 
 @needs_corpus
@@ -235,3 +333,109 @@ def test_a_mirrored_curved_mesh_is_measured_as_its_mirror_image(tmp, case):
     out = os.path.join(tmp, "mirrored.vtu")
     neomesh("convert", mirrored, "-o", out)
     assert curved_quality(tmp, out) == image
+
+
+# Exodus II's nodes after the corners, by the corners they sit between (SEACAS Ioss' element
+# topologies, 0-based): a tetrahedron10's edges, a hexahedron27's edges, centre and faces.
+EXODUS_NODES = {
+    "tet10": [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)],
+    "hex27": [(0, 1), (1, 2), (2, 3), (3, 0), (0, 4), (1, 5), (2, 6), (3, 7), (4, 5), (5, 6),
+              (6, 7), (7, 4), tuple(range(8)), (0, 3, 2, 1), (4, 5, 6, 7), (0, 4, 7, 3),
+              (1, 2, 6, 5), (0, 1, 5, 4), (2, 3, 7, 6)],
+}
+
+
+@needs_gmsh
+@pytest.mark.parametrize("case", sorted(EXODUS_NODES))
+def test_each_exodus_node_sits_where_the_exodus_manual_numbers_it(tmp, case):
+    # Read with netCDF, not by neomesh: each node after the corners is nearer to the centre of
+    # the corners Ioss gives its number than to that of any other edge, face or the cell.
+    netcdf = pytest.importorskip("netCDF4")
+    out = os.path.join(tmp, "out.exo")
+    neomesh("convert", gmsh_mesh(tmp, case), "-o", out)
+    with netcdf.Dataset(out) as f:
+        x = np.stack([f.variables[c][:] for c in ("coordx", "coordy", "coordz")], axis=1)
+        cells = f.variables["connect1"][:] - 1
+    places = EXODUS_NODES[case]
+    corners = cells.shape[1] - len(places)
+    for cell in cells:
+        centres = np.array([x[cell[list(p)]].mean(axis=0) for p in places])
+        for k, node in enumerate(cell[corners:]):
+            assert np.argmin(np.linalg.norm(centres - x[node], axis=1)) == k
+
+
+# CGNS' nodes after the corners (SIDS, "Unstructured Grid Element Numbering Conventions",
+# 0-based): a TETRA_10's edges, a HEXA_27's edges, faces and centre.
+CGNS_NODES = {
+    "tet10": (11, [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]),
+    "hex27": (19, [(0, 1), (1, 2), (2, 3), (3, 0), (0, 4), (1, 5), (2, 6), (3, 7), (4, 5),
+                   (5, 6), (6, 7), (7, 4), (0, 1, 2, 3), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6),
+                   (0, 4, 7, 3), (4, 5, 6, 7), tuple(range(8))]),
+}
+
+
+def cgns_cells(path, element_type):
+    """The coordinates and the cells of the section of `element_type` of a CGNS file's first
+    zone, read through the CGNS library itself (ctypes: no h5py needed)."""
+    import ctypes
+    lib = ctypes.CDLL("libcgns.so.3.4")
+    size = ctypes.c_int32 if "CG_BUILD_64BIT  0" in open("/usr/include/cgnstypes.h").read() \
+        else ctypes.c_int64
+    fn = ctypes.c_int()
+    assert lib.cg_open(path.encode(), 0, ctypes.byref(fn)) == 0
+    try:
+        zone = (size * 9)()
+        assert lib.cg_zone_read(fn, 1, 1, ctypes.create_string_buffer(33), zone) == 0
+        x = []
+        for name in (b"CoordinateX", b"CoordinateY", b"CoordinateZ"):
+            c = (ctypes.c_double * zone[0])()
+            assert lib.cg_coord_read(fn, 1, 1, name, 4, ctypes.byref(size(1)),
+                                     ctypes.byref(size(zone[0])), c) == 0
+            x.append(list(c))
+        sections = ctypes.c_int()
+        lib.cg_nsections(fn, 1, 1, ctypes.byref(sections))
+        for s in range(1, sections.value + 1):
+            kind, start, end = ctypes.c_int(), size(), size()
+            lib.cg_section_read(fn, 1, 1, s, ctypes.create_string_buffer(33), ctypes.byref(kind),
+                                ctypes.byref(start), ctypes.byref(end),
+                                ctypes.byref(ctypes.c_int()), ctypes.byref(ctypes.c_int()))
+            if kind.value != element_type:
+                continue
+            n = ctypes.c_int()
+            lib.cg_npe(kind, ctypes.byref(n))
+            data = (size * ((end.value - start.value + 1) * n.value))()
+            assert lib.cg_elements_read(fn, 1, 1, s, data, None) == 0
+            return np.array(x).T, np.array(list(data)).reshape(-1, n.value) - 1
+    finally:
+        lib.cg_close(fn)
+    raise AssertionError(f"{path} has no section of type {element_type}")
+
+
+@needs_gmsh
+@pytest.mark.skipif(not os.path.exists("/usr/include/cgnstypes.h"), reason="no CGNS headers")
+@pytest.mark.parametrize("case", sorted(CGNS_NODES))
+def test_each_cgns_node_sits_where_the_sids_number_it(tmp, case):
+    out = os.path.join(tmp, "out.cgns")
+    neomesh("convert", gmsh_mesh(tmp, case), "-o", out)
+    element_type, places = CGNS_NODES[case]
+    x, cells = cgns_cells(out, element_type)
+    corners = cells.shape[1] - len(places)
+    for cell in cells:
+        centres = np.array([x[cell[list(p)]].mean(axis=0) for p in places])
+        for k, node in enumerate(cell[corners:]):
+            assert np.argmin(np.linalg.norm(centres - x[node], axis=1)) == k
+
+
+@needs_corpus
+@pytest.mark.parametrize("name", ["2D/vtk/quadratic/homogeneousPart", "2D/vtk/quadratic/quadPart",
+                                  "3D/vtk/quadratic/6x6x6-hex20", "3D/vtk/quadratic/cutCube",
+                                  "3D/vtk/quadratic/hex3Dpart"])
+def test_mesquites_curved_meshes_measure_alike_through_exodus_cgns_and_medit(tmp, name):
+    # Cells that fold (cutCube, hex3Dpart) included: the same figures to the digit.
+    vtk = os.path.join(CORPUS, "mesquite", name + ".vtk")
+    reference = curved_quality(tmp, vtk)
+    medit_too = "quadPart" not in name and "hex" not in name
+    for ext in ("exo", "cgns") + (("mesh",) if medit_too else ()):
+        out = os.path.join(tmp, "out." + ext)
+        neomesh("convert", vtk, "-o", out)
+        assert curved_quality(tmp, out) == reference, ext

@@ -4,6 +4,7 @@ unchanged (read -> write -> read: the same coordinates, cells, cell groups and f
 meshio reads it, and a run on an .exo changes nothing but the coordinates (the round trips
 with the other formats: test_formats.py). Run with
 NEOMESH=path/to/neomesh."""
+import json
 import os
 
 import numpy as np
@@ -133,6 +134,23 @@ def test_what_cannot_be_read_is_refused_in_one_line(tmp):
     garbage = os.path.join(tmp, "garbage.e")
     open(garbage, "w").write("not an Exodus file\n")
     out = os.path.join(tmp, "o.exo")
-    for path, words in [(second_order, ["p2.exo", "block 0", "TETRA10", "10 nodes"]),
+    for path, words in [(second_order, ["p2.exo", "second-order (curved) cells",
+                                        "does not optimize"]),
                         (garbage, ["garbage.e", "Exodus"])]:
         expect_one_error_line(neomesh("smooth", path, "-o", out, expect=1), words, [out])
+
+
+def test_meshios_tetra10_is_read_with_its_nodes_on_their_edges(tmp):
+    # meshio writes the nodes as given, here each on the edge Exodus numbers it: the curved cell
+    # is the straight one, measured alike (a wrong order would bend it).
+    second_order = os.path.join(tmp, "p2.exo")
+    points = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [.5, 0, 0], [.5, .5, 0],
+                       [0, .5, 0], [0, 0, .5], [.5, 0, .5], [0, .5, .5]], float)
+    meshio.write(second_order, meshio.Mesh(points, [("tetra10", [list(range(10))])]),
+                 file_format="exodus")
+    report = os.path.join(tmp, "q.json")
+    neomesh("quality", second_order, "--json", report)
+    q = json.load(open(report))
+    assert q["curved"]["cells"] == {"tetrahedron10": 1}
+    assert q["curved"]["not_certified_valid"] == 0
+    assert q["curved"]["scaled_jacobian"]["min"] == pytest.approx(2 ** -0.5)
