@@ -121,7 +121,8 @@ TEST(Feat3Charts, SphereIsOnePatch) {
   const Result result = optimizer.smooth();
   EXPECT_EQ(result.problem.boundary.patches, 1);
   EXPECT_EQ(result.problem.boundary.ridges, 0);
-  EXPECT_LT(result.seconds, 2.0);
+  // Ended by converging, not by the iteration limit (a hang is ctest's timeout).
+  EXPECT_LT(result.history.size(), 30u);
   EXPECT_EQ(result.quality_after.inverted, 0);
 }
 
