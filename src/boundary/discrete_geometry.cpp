@@ -16,6 +16,8 @@ namespace {
 
 // A simplex registered in more grid cells than this is checked on every query instead.
 constexpr long long kMaxCellsPerSimplex = 4096;
+// Relative: how much farther than the best a simplex's box must be for it to be skipped.
+constexpr double kBoxMargin = 1e-9;
 
 // The closest point of triangle abc to p, with its barycentric weights (Ericson, "Real-Time
 // Collision Detection", §5.1.5: by the Voronoi regions of the vertices, edges and face).
@@ -148,6 +150,7 @@ SimplexSet::SimplexSet(std::vector<Point> points, std::vector<std::array<int, 3>
       a = a.cwiseMin(points_[simplices_[s][i]]);
       b = b.cwiseMax(points_[simplices_[s][i]]);
     }
+    boxes_.push_back({a, b});
     const Cell first = cell_of(a), last = cell_of(b);
     long long count = 1;
     for (int k = 0; k < 3; ++k) count *= last[k] - first[k] + 1;
@@ -187,6 +190,12 @@ void SimplexSet::visit(const Cell& c, const Point& p, Hit& best) const {
   const auto it = grid_.find(key(c));
   if (it == grid_.end()) return;
   for (int s : it->second) {
+    // A simplex whose box is farther than the best cannot be closer: skipped without its
+    // closest point (the worst-cell repair's trial points on a surface spent most of their
+    // time here). The margin keeps a simplex whose computed distance could round below its
+    // box's.
+    const Point outside = (boxes_[s][0] - p).cwiseMax(p - boxes_[s][1]).cwiseMax(0.0);
+    if (outside.norm() > best.distance * (1 + kBoxMargin)) continue;
     const Hit h = closest_on(s, p);
     if (h.distance < best.distance || (h.distance == best.distance && s < best.simplex)) best = h;
   }

@@ -49,7 +49,8 @@ class SimplexSet {
   double spacing_ = 1.0;
   Cell cells_{};  // grid extent per axis
   std::unordered_map<long long, std::vector<int>> grid_;
-  std::vector<int> large_;  // simplices too large for the grid, checked always
+  std::vector<int> large_;                   // simplices too large for the grid, checked always
+  std::vector<std::array<Point, 2>> boxes_;  // per simplex: its bounding box, lowest and highest
 };
 
 // Segments (2D) or triangles (3D, polygons split in a fan) of some facets of a boundary
