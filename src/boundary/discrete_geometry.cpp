@@ -186,6 +186,19 @@ SimplexSet::Hit SimplexSet::closest_on(int s, const Point& p) const {
   return h;
 }
 
+// A simplex closer to p than some distance has its closest point in a cell no farther than that,
+// and is listed in that cell: a cell farther than the best needs no visit (with a margin of
+// kBoxMargin of the best and of the spacing for the cells' bounds computed with round-off).
+double SimplexSet::cell_distance(const Cell& c, const Point& p) const {
+  double sum = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = origin_[a] + static_cast<double>(c[a]) * spacing_;
+    const double outside = std::max({lo - p[a], p[a] - (lo + spacing_), 0.0});
+    sum += outside * outside;
+  }
+  return std::sqrt(sum);
+}
+
 void SimplexSet::visit(const Cell& c, const Point& p, Hit& best) const {
   const auto it = grid_.find(key(c));
   if (it == grid_.end()) return;
@@ -233,7 +246,9 @@ SimplexSet::Hit SimplexSet::closest(const Point& p) const {
         for (long long k = lo[2]; k <= hi[2]; ++k) {
           const long long ring =
               std::max({std::abs(i - c[0]), std::abs(j - c[1]), std::abs(k - c[2])});
-          if (ring == r) visit({i, j, k}, p, best);
+          if (ring == r && !(cell_distance({i, j, k}, p) >
+                             best.distance * (1 + kBoxMargin) + kBoxMargin * spacing_))
+            visit({i, j, k}, p, best);
         }
     if (best.distance < unseen) break;
   }

@@ -39,6 +39,7 @@ class SimplexSet {
   using Cell = std::array<long long, 3>;
   Cell cell_of(const Point& p) const;
   static long long key(const Cell& c);
+  double cell_distance(const Cell& c, const Point& p) const;
   void visit(const Cell& c, const Point& p, Hit& best) const;
   Hit closest_on(int simplex, const Point& p) const;
 
