@@ -139,6 +139,10 @@ struct QualityGuardResult {
   // SmoothOptions::repair_worst_cells, within kMeanSlack of the input's mean).
   double input_mean = 0.0;
   double mean_optimum = 0.0;
+  // Of a surface mesh, likewise its mean inverse mean ratio (the shapes alone, which the
+  // cells' sizes do not sway): where the optimum's is above the input's, the input is returned
+  // too, its worst cells repaired by moves that do not raise it. Unset for other meshes.
+  std::optional<double> input_mean_inverse_mean_ratio, mean_inverse_mean_ratio_optimum;
   bool input_returned = false;
   static constexpr double kMeanSlack = 0.005;
 };

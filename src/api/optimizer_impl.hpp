@@ -26,6 +26,10 @@
 
 namespace neomesh {
 
+// The share of a surface's gain in mean inverse mean ratio over the input that the worst-cell
+// repair may spend (Optimizer::Impl::repair_imr_ceiling).
+inline constexpr double kRepairImrSpend = 0.5;
+
 struct Optimizer::Impl {
   explicit Impl(Mesh& mesh);
 
@@ -83,6 +87,7 @@ struct Optimizer::Impl {
     bool tangled;       // the input has inverted or degenerate cells
     OwnedVec input;     // x before untangling: the input, its vertices placed on their charts
     double input_mean;  // ... and its mean scaled Jacobian
+    double input_imr;   // ... and, of a surface, its mean inverse mean ratio (else +∞)
   };
   // Smoothing's targets from the input cells (docs/method.md §9) and the problem with them:
   // result.problem, told to the observer. Returns the run's state.
@@ -120,8 +125,14 @@ struct Optimizer::Impl {
   void lift_corners(const QuasiNewtonOptions& method, const Observer& observer, Result& run);
   // Unless the method stopped at the time limit: the local repair of x's worst cells
   // (worst_cell_repair.hpp) into run.worst_cell_repair. No move takes the mean scaled Jacobian
-  // below `mean_floor` while x's is above it.
-  void repair_worst(Result& run, double mean_floor);
+  // below `mean_floor` while x's is above it, nor the mean inverse mean ratio above
+  // `imr_ceiling` (repair_imr_ceiling).
+  void repair_worst(Result& run, double mean_floor,
+                    double imr_ceiling = std::numeric_limits<double>::infinity());
+  // How far the repair may raise a surface's mean inverse mean ratio: by kRepairImrSpend of
+  // what x gained over the input, and not at all where x gained nothing (+∞ for a volume mesh,
+  // whose promise is on the mean scaled Jacobian alone).
+  double repair_imr_ceiling(const Smoothing& s) const;
   // No cell stays below the input's worst (run.quality_before) or `ceiling`, whichever is
   // lower: vertices are pulled back toward `input`, x where the call started
   // (quality_guard.hpp). Fills run.quality_guard.
@@ -131,7 +142,8 @@ struct Optimizer::Impl {
   // (its worst cells repaired unless switched off, the mean kept within the slack). Judged
   // after the worst cells' phases, not before: they lift the optimum's mean back within the
   // slack on some meshes (FEAT3's flowbench_c3d_00_hexa_48: 0.825 instead of the input's
-  // 0.591). Fills the mean's part of run.quality_guard.
+  // 0.591). On a surface, likewise where x's mean inverse mean ratio is above the input's (the
+  // repair then makes no move that raises it). Fills the mean's part of run.quality_guard.
   void guard_mean(const Smoothing& s, Result& run);
   // Moves the mesh to x and sets result's quality_after and boundary change; throws
   // Error if a cell is inverted (the energy is infinite there, so the method cannot produce

@@ -16,6 +16,8 @@ namespace {
 
 // A simplex registered in more grid cells than this is checked on every query instead.
 constexpr long long kMaxCellsPerSimplex = 4096;
+// Relative: how much farther than the best a simplex's box must be for it to be skipped.
+constexpr double kBoxMargin = 1e-9;
 
 // The closest point of triangle abc to p, with its barycentric weights (Ericson, "Real-Time
 // Collision Detection", §5.1.5: by the Voronoi regions of the vertices, edges and face).
@@ -148,6 +150,7 @@ SimplexSet::SimplexSet(std::vector<Point> points, std::vector<std::array<int, 3>
       a = a.cwiseMin(points_[simplices_[s][i]]);
       b = b.cwiseMax(points_[simplices_[s][i]]);
     }
+    boxes_.push_back({a, b});
     const Cell first = cell_of(a), last = cell_of(b);
     long long count = 1;
     for (int k = 0; k < 3; ++k) count *= last[k] - first[k] + 1;
@@ -183,10 +186,29 @@ SimplexSet::Hit SimplexSet::closest_on(int s, const Point& p) const {
   return h;
 }
 
+// A simplex closer to p than some distance has its closest point in a cell no farther than that,
+// and is listed in that cell: a cell farther than the best needs no visit (with a margin of
+// kBoxMargin of the best and of the spacing for the cells' bounds computed with round-off).
+double SimplexSet::cell_distance(const Cell& c, const Point& p) const {
+  double sum = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = origin_[a] + static_cast<double>(c[a]) * spacing_;
+    const double outside = std::max({lo - p[a], p[a] - (lo + spacing_), 0.0});
+    sum += outside * outside;
+  }
+  return std::sqrt(sum);
+}
+
 void SimplexSet::visit(const Cell& c, const Point& p, Hit& best) const {
   const auto it = grid_.find(key(c));
   if (it == grid_.end()) return;
   for (int s : it->second) {
+    // A simplex whose box is farther than the best cannot be closer: skipped without its
+    // closest point (the worst-cell repair's trial points on a surface spent most of their
+    // time here). The margin keeps a simplex whose computed distance could round below its
+    // box's.
+    const Point outside = (boxes_[s][0] - p).cwiseMax(p - boxes_[s][1]).cwiseMax(0.0);
+    if (outside.norm() > best.distance * (1 + kBoxMargin)) continue;
     const Hit h = closest_on(s, p);
     if (h.distance < best.distance || (h.distance == best.distance && s < best.simplex)) best = h;
   }
@@ -224,7 +246,9 @@ SimplexSet::Hit SimplexSet::closest(const Point& p) const {
         for (long long k = lo[2]; k <= hi[2]; ++k) {
           const long long ring =
               std::max({std::abs(i - c[0]), std::abs(j - c[1]), std::abs(k - c[2])});
-          if (ring == r) visit({i, j, k}, p, best);
+          if (ring == r && !(cell_distance({i, j, k}, p) >
+                             best.distance * (1 + kBoxMargin) + kBoxMargin * spacing_))
+            visit({i, j, k}, p, best);
         }
     if (best.distance < unseen) break;
   }

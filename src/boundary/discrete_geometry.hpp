@@ -39,6 +39,7 @@ class SimplexSet {
   using Cell = std::array<long long, 3>;
   Cell cell_of(const Point& p) const;
   static long long key(const Cell& c);
+  double cell_distance(const Cell& c, const Point& p) const;
   void visit(const Cell& c, const Point& p, Hit& best) const;
   Hit closest_on(int simplex, const Point& p) const;
 
@@ -49,7 +50,8 @@ class SimplexSet {
   double spacing_ = 1.0;
   Cell cells_{};  // grid extent per axis
   std::unordered_map<long long, std::vector<int>> grid_;
-  std::vector<int> large_;  // simplices too large for the grid, checked always
+  std::vector<int> large_;                   // simplices too large for the grid, checked always
+  std::vector<std::array<Point, 2>> boxes_;  // per simplex: its bounding box, lowest and highest
 };
 
 // Segments (2D) or triangles (3D, polygons split in a fan) of some facets of a boundary

@@ -398,6 +398,19 @@ MetricStats reduce(const std::vector<double>& values, std::int64_t global_count,
 }
 
 // metric.template operator()<Type>(x) of one cell of `type` at `coords` (dim values per vertex).
+// One metric of every cell: metric.template operator()<Type>(x, det) per cell, in the view's
+// cell order, along the reference normals where the mesh is a surface.
+template <typename Metric>
+std::vector<double> each_cell(const MeshView& view, std::span<const double> coords,
+                              const DofMap* dofs, Metric metric) {
+  std::vector<double> values(view.num_cells);
+  for_each_cell(view, coords, reference_normals(view, coords, dofs),
+                [&values, &metric]<CellType Type>(std::size_t i, const auto& x, auto det) {
+                  values[i] = metric.template operator()<Type>(x, det);
+                });
+  return values;
+}
+
 template <class Metric>
 double of_one_cell(CellType type, const double* coords, Metric metric) {
   double value = 0.0;
@@ -461,6 +474,13 @@ double surface_cell_scaled_jacobian_above(CellType type, const double* coords, c
       });
 }
 
+double surface_cell_inverse_mean_ratio(CellType type, const double* coords, const double* normal) {
+  return of_one_surface_cell<double>(type, coords, normal,
+                                     []<CellType Type>(const auto& x, const NormalArea& area) {
+                                       return inverse_mean_ratio<Type>(x, area);
+                                     });
+}
+
 double surface_cell_edge_ratio(CellType type, const double* coords) {
   const double any_normal[3] = {0.0, 0.0, 1.0};  // edge lengths do not depend on it
   return of_one_surface_cell<double>(
@@ -492,22 +512,23 @@ CellQuality cell_quality(const MeshView& view, std::span<const double> coords, c
 
 std::vector<double> cell_volumes(const MeshView& view, std::span<const double> coords,
                                  const DofMap* dofs) {
-  std::vector<double> volume(view.num_cells);
-  for_each_cell(view, coords, reference_normals(view, coords, dofs),
-                [&volume]<CellType Type>(std::size_t i, const auto& x, auto det) {
-                  volume[i] = signed_volume<Type>(x, det);
-                });
-  return volume;
+  return each_cell(view, coords, dofs, []<CellType Type>(const auto& x, auto det) {
+    return signed_volume<Type>(x, det);
+  });
 }
 
 std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const double> coords,
                                           const DofMap* dofs) {
-  std::vector<double> sj(view.num_cells);
-  for_each_cell(view, coords, reference_normals(view, coords, dofs),
-                [&sj]<CellType Type>(std::size_t i, const auto& x, auto det) {
-                  sj[i] = scaled_jacobian<Type>(x, det);
-                });
-  return sj;
+  return each_cell(view, coords, dofs, []<CellType Type>(const auto& x, auto det) {
+    return scaled_jacobian<Type>(x, det);
+  });
+}
+
+std::vector<double> cell_inverse_mean_ratios(const MeshView& view, std::span<const double> coords,
+                                             const DofMap* dofs) {
+  return each_cell(view, coords, dofs, []<CellType Type>(const auto& x, auto det) {
+    return inverse_mean_ratio<Type>(x, det);
+  });
 }
 
 double cell_scaled_jacobian(CellType type, const double* coords) {
@@ -533,6 +554,11 @@ std::uint32_t scaled_jacobian_corners_at(CellType type, int vertex) {
     if (at) corners |= 1u << k;
   }
   return corners;
+}
+
+double cell_inverse_mean_ratio(CellType type, const double* coords) {
+  return of_one_cell(type, coords,
+                     []<CellType Type>(const auto& x) { return inverse_mean_ratio<Type>(x); });
 }
 
 double cell_edge_ratio(CellType type, const double* coords) {

@@ -68,6 +68,8 @@ std::vector<double> cell_volumes(const MeshView& view, std::span<const double> c
                                  const DofMap* dofs = nullptr);
 std::vector<double> cell_scaled_jacobians(const MeshView& view, std::span<const double> coords,
                                           const DofMap* dofs = nullptr);
+std::vector<double> cell_inverse_mean_ratios(const MeshView& view, std::span<const double> coords,
+                                             const DofMap* dofs = nullptr);
 std::vector<double> cell_edge_ratios(const MeshView& view, std::span<const double> coords);
 // The scaled Jacobian of one cell of `type` with vertex coordinates `coords` (dim values per
 // vertex, in the cell's canonical order).
@@ -83,8 +85,9 @@ double cell_scaled_jacobian_above(CellType type, const double* coords, double ba
 // The corners whose value depends on the cell's vertex `vertex` (canonical index): its own and
 // those with an edge to it (a simplex: all).
 std::uint32_t scaled_jacobian_corners_at(CellType type, int vertex);
-// Its longest over its shortest edge, likewise.
+// Its longest over its shortest edge, and its inverse mean ratio, likewise.
 double cell_edge_ratio(CellType type, const double* coords);
+double cell_inverse_mean_ratio(CellType type, const double* coords);
 // The length of the edge between points a and b (dim values each), as the edge ratios take it,
 // bit for bit: so a search that moves one vertex can update a cell's edge ratio from the edges
 // at that vertex alone (the worst-cell repair). Eigen's norm of a 2- or 3-vector sums the
@@ -119,11 +122,12 @@ struct SurfaceCellMeasures {
 // for a type other than triangle and quadrilateral.
 SurfaceCellMeasures surface_cell_measures(CellType type, const double* coords,
                                           const double* normal);
-// Its scaled Jacobian alone, at a fraction of the cost; its edge ratio alone, which no normal
-// changes.
+// Its scaled Jacobian alone, at a fraction of the cost, and its inverse mean ratio; its edge
+// ratio alone, which no normal changes.
 double surface_cell_scaled_jacobian(CellType type, const double* coords, const double* normal);
 double surface_cell_scaled_jacobian_above(CellType type, const double* coords, const double* normal,
                                           double bar, std::uint32_t corners = kAllCorners);
+double surface_cell_inverse_mean_ratio(CellType type, const double* coords, const double* normal);
 double surface_cell_edge_ratio(CellType type, const double* coords);
 
 // The metrics of `quality` as the per-cell fields of an output (.vtu), by the names the

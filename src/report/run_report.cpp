@@ -165,15 +165,19 @@ nlohmann::json to_json(const IdealRetrySummary& retry) {
 }
 
 nlohmann::json to_json(const QualityGuardResult& guard) {
-  return {{"input_min_scaled_jacobian", guard.input_min},
-          {"min_scaled_jacobian_before", guard.min_before},
-          {"min_scaled_jacobian_after", guard.min_after},
-          {"vertices_moved", guard.vertices_moved},
-          {"gave_up", guard.gave_up},
-          {"rounds", guard.rounds},
-          {"input_mean_scaled_jacobian", guard.input_mean},
-          {"mean_scaled_jacobian_optimum", guard.mean_optimum},
-          {"input_returned", guard.input_returned}};
+  nlohmann::json j = {{"input_min_scaled_jacobian", guard.input_min},
+                      {"min_scaled_jacobian_before", guard.min_before},
+                      {"min_scaled_jacobian_after", guard.min_after},
+                      {"vertices_moved", guard.vertices_moved},
+                      {"gave_up", guard.gave_up},
+                      {"rounds", guard.rounds},
+                      {"input_mean_scaled_jacobian", guard.input_mean},
+                      {"mean_scaled_jacobian_optimum", guard.mean_optimum},
+                      {"input_returned", guard.input_returned}};
+  if (guard.input_mean_inverse_mean_ratio)  // a surface mesh
+    j.update({{"input_mean_inverse_mean_ratio", *guard.input_mean_inverse_mean_ratio},
+              {"mean_inverse_mean_ratio_optimum", *guard.mean_inverse_mean_ratio_optimum}});
+  return j;
 }
 
 nlohmann::json to_json(const FitSummary& f) {
@@ -288,11 +292,17 @@ std::string quality_guard_summary(const RunRecord& r) {
         "quality guard: {} vertices pulled back toward the input so that no cell has a scaled "
         "Jacobian below {:.4f} (min {:.4f} -> {:.4f})\n",
         guard.vertices_moved, guard.input_min, guard.min_before, guard.min_after);
-  if (guard.input_returned)
+  if (guard.input_returned &&
+      guard.mean_optimum < guard.input_mean - QualityGuardResult::kMeanSlack)
     lines += fmt::format(
         "quality guard: the energy's optimum lowers the mean scaled Jacobian ({:.4f} -> {:.4f}): "
         "the input is returned instead\n",
         guard.input_mean, guard.mean_optimum);
+  else if (guard.input_returned)
+    lines += fmt::format(
+        "quality guard: the energy's optimum raises the mean inverse mean ratio ({:.4f} -> "
+        "{:.4f}): the input is returned instead\n",
+        *guard.input_mean_inverse_mean_ratio, *guard.mean_inverse_mean_ratio_optimum);
   return lines;
 }
 

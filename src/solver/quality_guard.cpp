@@ -97,13 +97,28 @@ double min_scaled_jacobian(const MeshView& view, const DofMap& dofs, Vec x) {
   return global_min(scaled_jacobians(view, dofs, x), dofs.comm());
 }
 
-double mean_scaled_jacobian(const MeshView& view, const DofMap& dofs, Vec x) {
+namespace {
+
+// Over all ranks' cells.
+double global_mean(std::span<const double> values, const MeshView& view, MPI_Comm comm) {
   double sum = 0.0;
-  for (double q : scaled_jacobians(view, dofs, x)) sum += q;
+  for (double q : values) sum += q;
   std::int64_t cells = view.num_cells;
-  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, dofs.comm());
-  MPI_Allreduce(MPI_IN_PLACE, &cells, 1, MPI_INT64_T, MPI_SUM, dofs.comm());
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &cells, 1, MPI_INT64_T, MPI_SUM, comm);
   return cells > 0 ? sum / static_cast<double>(cells) : 0.0;
+}
+
+}  // namespace
+
+double mean_scaled_jacobian(const MeshView& view, const DofMap& dofs, Vec x) {
+  return global_mean(scaled_jacobians(view, dofs, x), view, dofs.comm());
+}
+
+double mean_inverse_mean_ratio(const MeshView& view, const DofMap& dofs, Vec x) {
+  std::vector<double> local(dofs.num_local_dofs());
+  dofs.global_to_local(x, local);
+  return global_mean(cell_inverse_mean_ratios(view, local, &dofs), view, dofs.comm());
 }
 
 }  // namespace neomesh

@@ -37,5 +37,7 @@ double min_scaled_jacobian(const MeshView& view, const DofMap& dofs, Vec x);
 // The mean scaled Jacobian at x (a global coordinate Vec laid out by `dofs`), as
 // Mesh::quality() reports it, without moving the mesh there. Collective.
 double mean_scaled_jacobian(const MeshView& view, const DofMap& dofs, Vec x);
+// The mean inverse mean ratio at x, likewise.
+double mean_inverse_mean_ratio(const MeshView& view, const DofMap& dofs, Vec x);
 
 }  // namespace neomesh

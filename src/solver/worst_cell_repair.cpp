@@ -135,7 +135,7 @@ std::vector<std::vector<double>> directions(int dim) {
 // The search on rank 0. Returns the indices of the moved vertices.
 class Repair {
  public:
-  Repair(WholeMesh& m, const RepairFreedom& freedom, double min_mean)
+  Repair(WholeMesh& m, const RepairFreedom& freedom, double min_mean, double max_mean_imr)
       : m_(m),
         project_(freedom.project),
         star_first_(m.vertex_id.size() + 1, 0),
@@ -143,6 +143,7 @@ class Repair {
         sj_(m.types.size()),
         start_(m.coords) {
     min_sum_ = min_mean * static_cast<double>(m.types.size());
+    max_imr_sum_ = max_mean_imr * static_cast<double>(m.types.size());
     for (CellType type : kAllCellTypes) {
       for (int k = 0; k < facts(type).vertices; ++k)
         corners_at_[static_cast<int>(type)][k] = scaled_jacobian_corners_at(type, k);
@@ -163,6 +164,10 @@ class Repair {
       if (m.surface) normals_.push_back(start_normal(m.types[c], cell_coords(c).data()));
       sj_[c] = scaled_jacobian(c);
       sum_ += sj_[c];
+      if (imr_ceiling()) {
+        imr_.push_back(inverse_mean_ratio(c, cell_coords(c).data()));
+        imr_sum_ += imr_.back();
+      }
       max_edge_ratio_ = std::max(max_edge_ratio_, edge_ratio(c));
     }
   }
@@ -173,14 +178,16 @@ class Repair {
 
   // What a sweep changes, to undo one.
   struct Snapshot {
-    std::vector<double> coords, sj;
-    double sum;
+    std::vector<double> coords, sj, imr;
+    double sum, imr_sum;
   };
-  Snapshot snapshot() const { return {m_.coords, sj_, sum_}; }
+  Snapshot snapshot() const { return {m_.coords, sj_, imr_, sum_, imr_sum_}; }
   void restore(Snapshot s) {
     m_.coords = std::move(s.coords);
     sj_ = std::move(s.sj);
+    imr_ = std::move(s.imr);
     sum_ = s.sum;
+    imr_sum_ = s.imr_sum;
   }
 
   // One sweep over the worst cells' neighbourhood with these step lengths; appends the vertices
@@ -257,6 +264,19 @@ class Repair {
     const std::array<double, 3 * 8> x = cell_coords(c);
     return m_.surface ? surface_cell_edge_ratio(m_.types[c], x.data())
                       : cell_edge_ratio(m_.types[c], x.data());
+  }
+  double inverse_mean_ratio(std::int64_t c, const double* x) const {
+    return m_.surface ? surface_cell_inverse_mean_ratio(m_.types[c], x, normals_[c].data())
+                      : cell_inverse_mean_ratio(m_.types[c], x);
+  }
+  bool imr_ceiling() const { return max_imr_sum_ < kInfinity; }
+  // The inverse mean ratios of v's cells summed, v placed in each (after around()).
+  double star_imr(std::int64_t v) const {
+    double sum = 0.0;
+    const std::span<const std::int64_t> cells = star(v);
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      sum += inverse_mean_ratio(cells[i], cache_.coords[i].data());
+    return sum;
   }
   // The unit normal of a surface cell from its vertex coordinates (surface_frame.hpp); zero for
   // one without area, which then measures as flat.
@@ -433,7 +453,11 @@ class Repair {
     if (!(h > 0.0) || !std::isfinite(h)) return false;
     const std::span<const std::int64_t> cells = star(v);
     Star base;  // where v is: its cells' scaled Jacobians are up to date
-    for (std::int64_t c : cells) base.worst = std::min(base.worst, sj_[c]), base.sum += sj_[c];
+    double base_imr = 0.0;
+    for (std::int64_t c : cells) {
+      base.worst = std::min(base.worst, sj_[c]), base.sum += sj_[c];
+      if (imr_ceiling()) base_imr += imr_[c];
+    }
     worst_first_.resize(cells.size());
     std::iota(worst_first_.begin(), worst_first_.end(), 0u);
     std::stable_sort(
@@ -455,6 +479,11 @@ class Repair {
         // A move that lowers the mean may not take it below the floor.
         if (!q || !(q->sum >= base.sum || sum_ - base.sum + q->sum >= min_sum_) || !admissible(v))
           continue;
+        // ... nor one that raises the mean inverse mean ratio above its ceiling.
+        if (imr_ceiling()) {
+          const double imr = star_imr(v);
+          if (!(imr <= base_imr || imr_sum_ - base_imr + imr <= max_imr_sum_)) continue;
+        }
         best = q->worst;
         best_move = by;
         found = true;
@@ -470,6 +499,11 @@ class Repair {
       sum_ -= sj_[c];
       sj_[c] = scaled_jacobian(c);
       sum_ += sj_[c];
+      if (imr_ceiling()) {
+        imr_sum_ -= imr_[c];
+        imr_[c] = inverse_mean_ratio(c, cell_coords(c).data());
+        imr_sum_ += imr_[c];
+      }
     }
     return true;
   }
@@ -488,6 +522,9 @@ class Repair {
   std::array<std::array<std::uint32_t, 8>, kNumCellTypes> corners_at_{};
   // The edges per cell type, as pairs of vertex positions: each facet's cycle (an edge twice).
   std::array<std::vector<std::array<int, 2>>, kNumCellTypes> edges_;
+  std::vector<double> imr_;          // per cell's inverse mean ratio, with a ceiling on the mean
+  double imr_sum_ = 0.0;             // of imr_
+  double max_imr_sum_ = kInfinity;   // the ceiling of imr_sum_ for a move that raises it
   double sum_ = 0.0;                 // of sj_
   double min_sum_ = 0.0;             // the floor of sum_ for a move that lowers it
   double max_edge_ratio_ = 0.0;      // the mesh's largest at the repair's start
@@ -498,7 +535,8 @@ class Repair {
 }  // namespace
 
 WorstCellRepair repair_worst_cells(const MeshView& view, const DofMap& dofs,
-                                   const RepairFreedom& freedom, Vec x, double min_mean) {
+                                   const RepairFreedom& freedom, Vec x, double min_mean,
+                                   double max_mean_imr) {
   const MPI_Comm comm = dofs.comm();
   const int d = view.dim;
   std::vector<double> local(dofs.num_local_dofs());
@@ -509,7 +547,7 @@ WorstCellRepair repair_worst_cells(const MeshView& view, const DofMap& dofs,
   std::vector<std::int64_t> moved_ids;
   std::vector<double> moved_coords;
   if (mpi_rank(comm) == 0) {
-    Repair repair(mesh, freedom, min_mean);
+    Repair repair(mesh, freedom, min_mean, max_mean_imr);
     summary.min_before = repair.min_quality();
     std::vector<std::uint8_t> moved(mesh.vertex_id.size(), 0);  // per vertex
     std::vector<std::int64_t> moved_now;                        // by the sweep

@@ -58,9 +58,12 @@ struct RepairFreedom {
 
 // x (a global Vec laid out by `dofs`) is changed in place. No move that lowers the mesh's mean
 // scaled Jacobian takes it below `min_mean`: smoothing's promise on the mean (quality_guard.hpp)
-// is a budget the repair spends, not a trade it may lose. Collective.
+// is a budget the repair spends, not a trade it may lose. Likewise no move that raises the mean
+// inverse mean ratio takes it above `max_mean_imr` (-∞: no move raises it; +∞, the default:
+// not measured). Collective.
 WorstCellRepair repair_worst_cells(const MeshView& view, const DofMap& dofs,
                                    const RepairFreedom& freedom, Vec x,
-                                   double min_mean = -std::numeric_limits<double>::infinity());
+                                   double min_mean = -std::numeric_limits<double>::infinity(),
+                                   double max_mean_imr = std::numeric_limits<double>::infinity());
 
 }  // namespace neomesh

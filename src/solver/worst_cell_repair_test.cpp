@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <span>
 
 #include "generate/generate.hpp"
@@ -96,6 +97,53 @@ TEST(WorstCellRepair, SlidesBoundaryVerticesAlongTheirGeometry) {
   EXPECT_EQ(xv[2 * bottom + 1], 0.0) << "on its geometry";
   EXPECT_LT(std::abs(xv[2 * left + 1] - 0.5), 0.05) << "slid back towards its place";
   EXPECT_EQ(xv[2 * left], 0.0) << "its fixed coordinate";
+}
+
+double mean_inverse_mean_ratio(const MeshView& view, Vec x) {
+  VecReadView xv(x);
+  const std::vector<double> imr =
+      cell_inverse_mean_ratios(view, std::span<const double>(xv.data(), xv.size()));
+  double sum = 0.0;
+  for (double q : imr) sum += q;
+  return sum / static_cast<double>(imr.size());
+}
+
+// A grid of squares with a fixed boundary vertex pushed along its side: the repair lifts the
+// two cells it skews by skewing their interior neighbours, so the mean inverse mean ratio
+// rises. With a ceiling it ends at or below it, with -∞ no move raises it, and the worst cell
+// is lifted all the same, less.
+TEST(WorstCellRepair, KeepsTheMeanInverseMeanRatioBelowItsCeiling) {
+  MeshData grid = square_random(6, 0.0, 3);
+  for (std::size_t v = 0; 2 * v < grid.coords.size(); ++v)
+    if (std::abs(grid.coords[2 * v] - 0.5) < 1e-12 && grid.coords[2 * v + 1] == 0.0)
+      grid.coords[2 * v] += 0.12;
+  const MeshView view = serial_view(grid);
+  const DofMap dofs = DofMap::serial(2, view.num_vertices);
+  RepairFreedom freedom{.fixed = std::vector<std::uint8_t>(2 * view.num_vertices),
+                        .geometry = std::vector<int>(view.num_vertices, -1),
+                        .project = {}};
+  for (PetscInt v = 0; v < view.num_vertices; ++v)
+    freedom.fixed[2 * v] = freedom.fixed[2 * v + 1] = view.on_boundary[v];
+  OwnedVec start = vector_of(dofs, grid.coords);
+  const double imr_before = mean_inverse_mean_ratio(view, start);
+  constexpr double kNoFloor = -std::numeric_limits<double>::infinity();
+
+  OwnedVec free = vector_of(dofs, grid.coords);
+  const WorstCellRepair unbounded = repair_worst_cells(view, dofs, freedom, free);
+  const double imr_free = mean_inverse_mean_ratio(view, free);
+  ASSERT_GT(imr_free, imr_before) << "the setup must make the repair raise the mean";
+
+  const double ceiling = 0.5 * (imr_before + imr_free);
+  OwnedVec half = vector_of(dofs, grid.coords);
+  const WorstCellRepair bounded = repair_worst_cells(view, dofs, freedom, half, kNoFloor, ceiling);
+  EXPECT_LE(mean_inverse_mean_ratio(view, half), ceiling);
+  EXPECT_GT(bounded.min_after, bounded.min_before);
+
+  OwnedVec none = vector_of(dofs, grid.coords);
+  const WorstCellRepair kept = repair_worst_cells(view, dofs, freedom, none, kNoFloor, kNoFloor);
+  EXPECT_LE(mean_inverse_mean_ratio(view, none), imr_before);
+  EXPECT_GT(kept.min_after, kept.min_before);
+  EXPECT_LE(kept.min_after, unbounded.min_after);
 }
 
 TEST(WorstCellRepair, MovesNothingThatIsNotMovable) {

@@ -223,18 +223,36 @@ def test_mesquites_surface_meshes_smooth_on_their_input_surface(tmp, name):
 
 
 @needs_corpus
-@pytest.mark.parametrize("name, lifted_to", [("2D/vtk/quads/untangled/paraboloid", 0.84),
-                                             ("2D/vtk/quads/untangled/quads_on_sphere_529", 0.86)])
+@pytest.mark.parametrize("name, lifted_to", [("2D/vtk/quads/untangled/paraboloid", 0.83),
+                                             ("2D/vtk/quads/untangled/quads_on_sphere_529", 0.82)])
 def test_the_worst_cells_repair_lifts_surface_cells_too(tmp, name, lifted_to):
     # The optimum leaves both worst cells where they were (0.750 and 0.785); the repair, its trial
     # points put back onto the input's cells and each cell judged along its normal at the
-    # repair's start (so that a fold counts as one), lifts them.
+    # repair's start (so that a fold counts as one), lifts them, spending no more of the mean
+    # inverse mean ratio than leaves it better than the input's.
     path = os.path.join(CORPUS, "mesquite", name + ".vtk")
     out, r = smooth(tmp, path)
     expect_smoothed_on_the_surface(path, out, r, MESQUITE[name])
     repair = r["worst_cell_repair"]
     assert repair["vertices_moved"] > 0
     assert r["quality_after"]["metrics"]["scaled_jacobian"]["min"] > lifted_to
+    figures = expect_better(r)
+    print(summary(os.path.basename(name), r, figures))
+
+
+@needs_corpus
+def test_on_quads_on_sphere_529_the_input_repaired_is_kept_over_an_optimum_of_worse_shapes(tmp):
+    # The cubed sphere's cells differ in size by design: the optimum of the energy evens them at
+    # the cost of their shapes (mean inverse mean ratio 1.0187 -> 1.0217), so the input is
+    # returned with its worst cells repaired by moves that do not raise that mean. Without the
+    # guard (--no-guard) the optimum is kept as it is.
+    path = os.path.join(CORPUS, "mesquite", "2D/vtk/quads/untangled/quads_on_sphere_529.vtk")
+    _, r = smooth(tmp, path)
+    assert r["quality_guard"]["input_returned"]
+    expect_better(r)
+    _, r = smooth(tmp, path, "--no-guard")
+    figures = before_and_after(r)
+    assert figures[3] > figures[1] and "quality_guard" not in r
 
 
 def make_poor_mesh(directory, name, shape, size, groups, recombine=False):
@@ -366,9 +384,9 @@ def test_a_cylinder_with_caps_keeps_its_rims_on_the_input_rims(tmp, capped_cylin
                                 a.points[rim[:, 1]]).max() < 1e-12
     assert np.array_equal(b.points[on_rim, 2], a.points[on_rim, 2])
     assert np.abs(b.points[on_rim] - a.points[on_rim]).max() > 0.01
-    # The worst cell is lifted; the mean inverse mean ratio is not lowered here (it is with the
-    # side given as a cylinder, below): user-guide.md, "Surface meshes".
-    figures = before_and_after(r)
+    # The worst cell is lifted and the mean inverse mean ratio lowered: the repair spends at most
+    # half of what the optimum gained on it (user-guide.md, "Surface meshes").
+    figures = expect_better(r)
     assert figures[2] > figures[0] + 0.1
     print(summary("Gmsh cylinder with caps", r, figures,
                   f", farthest from the cylinder {far:.3g} (sagitta {sagitta:.3g})"))
