@@ -168,6 +168,11 @@ int curved_cell_points(const InputMesh& mesh, PetscInt c, PetscInt* points);
 // point, as coordinates_in_space() and the nodes' as read) for the writers.
 std::vector<double> points_in_space(const InputMesh& mesh);
 std::vector<double> curved_point_coordinates(const InputMesh& mesh);
+// The nodes moved to `x`, dim values per node (a 2D mesh's in `plane`, null for z = 0), in space.
+void set_high_order_coordinates(HighOrderNodes& nodes, int dim, const PlaneEmbedding* plane,
+                                std::span<const double> x);
+// The inverse of curved_point_coordinates: the vertices and high-order nodes moved to `x`.
+void set_curved_point_coordinates(InputMesh& mesh, std::span<const double> x);
 // For the readers, after number_used_vertices: throws Error naming `file` unless the high-order
 // nodes of a 2D mesh lie in the plane of its vertices (a curved surface mesh is not read).
 void check_high_order_nodes(const InputMesh& mesh, const std::string& file);
