@@ -363,3 +363,20 @@ def test_mesquites_hexahedron20_grid_stays_valid_and_as_good(tmp):
     assert after["not_certified_valid"] == 0
     assert after["scaled_jacobian"]["min"] >= curved_quality(tmp, path)["scaled_jacobian"]["min"]
     assert report["curved"]["nodes"] == read_mesh(out).points.shape[0]
+
+
+@needs_gmsh
+def test_boundary_nodes_slide_on_a_given_circle_exactly(tmp):
+    # Corners and mid-edge nodes alike: every node of the rim stays on the circle.
+    geo, msh, out = (os.path.join(tmp, name) for name in ("disk.geo", "disk.msh", "out.vtu"))
+    open(geo, "w").write('SetFactory("OpenCASCADE");\nDisk(1) = {0, 0, 0, 1, 1};\n'
+                         'Mesh.MeshSizeMax = 0.3;\nPhysical Surface("disk", 7) = {1};\n'
+                         'Physical Curve("rim", 8) = {1};\n')
+    subprocess.run(["gmsh", "-2", "-order", "2", "-setnumber", "Mesh.RecombineAll", "1", geo,
+                    "-o", msh], check=True, capture_output=True)
+    report = smooth_report(tmp, msh, out, "--shape", "rim=circle:0,0,1")
+    assert not report["curved"]["input_returned"]
+    radius = np.hypot(*read_mesh(out).points[:, :2].T)
+    on_rim = np.abs(radius - 1) < 1e-3
+    assert on_rim.sum() == 48 and np.abs(radius[on_rim] - 1).max() < 1e-14
+    assert radius.max() < 1 + 1e-14
