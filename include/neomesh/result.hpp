@@ -147,6 +147,21 @@ struct QualityGuardResult {
   static constexpr double kMeanSlack = 0.005;
 };
 
+// Smoothing a mesh of second-order cells (docs/method.md §12, "The solver"): every node moves,
+// with the curved cells' energy. The worst cells' phases of straight meshes (corner lift,
+// worst-cell repair, the guards by the straight scaled Jacobian) are not run; the validity
+// certificate and the curved scaled Jacobian (§11) judge the optimum instead.
+struct CurvedSmoothingSummary {
+  std::int64_t cells = 0;  // curved cells
+  std::int64_t nodes = 0;  // their nodes: corners, edge, face and centre nodes
+  // The least curved scaled Jacobian (CurvedQualitySummary) of the input and of the optimum.
+  double min_scaled_jacobian_before = 0.0, min_scaled_jacobian_optimum = 0.0;
+  std::int64_t not_valid_optimum = 0;  // cells of the optimum the certificate did not find valid
+  // The optimum had a cell not certified valid, or a worse worst cell than the input: the input
+  // is returned instead.
+  bool input_returned = false;
+};
+
 // Smoothing's worst-cell phase (docs/method.md, "Corners"): the optimum of the thesis' energy
 // left a corner of a Q1 cell, wedge or pyramid nearly flat, so smoothing went on with the
 // corners sampled too.
@@ -210,6 +225,7 @@ struct Result : SolverRun {
   std::optional<IdealRetrySummary> ideal_retry;             // smooth, if kept cells stayed flat
   std::optional<WorstCellRepairSummary> worst_cell_repair;  // unless the guard is off
   std::optional<QualityGuardResult> quality_guard;          // smooth, unless switched off
+  std::optional<CurvedSmoothingSummary> curved;             // smooth, a mesh of curved cells
   std::vector<int> update_iterations;  // adapt: iterations after which volumes were updated
   VolumeRatioStats volume_ratio;       // adapt: Q = actual / desired volume at the end
   std::optional<FitSummary> fit;       // adapt with a LevelSet

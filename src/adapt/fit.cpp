@@ -52,7 +52,7 @@ void move_to_stage(const MeshView& view, const DofMap& dofs, const InterfaceCons
     std::fill(sum.begin(), sum.end(), 0.0);
     std::fill(count.begin(), count.end(), 0.0);
     for (const CellBlock& block : view.blocks) {
-      const int nv = num_vertices(block.type);
+      const int nv = block.nodes();
       for (PetscInt c = 0; c < block.size(); ++c) {
         const PetscInt* cell = block.cell(c);
         double mean[3] = {0, 0, 0};

@@ -14,6 +14,7 @@
 #include "api/vertex_order.hpp"
 #include "boundary/interface.hpp"
 #include "core/error.hpp"
+#include "geometry/node_mesh.hpp"
 #include "geometry/quality.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/quality_guard.hpp"
@@ -55,15 +56,6 @@ std::string list_cells(const Inversion& inversion) {
   return cells;
 }
 
-// Desired volumes asked for (a volume source, --sizes, of uniform) win over the volumes the
-// smoothed targets would keep; and a cell's design without its size (a layer's height across the
-// wall) is no design (docs/method.md §9).
-TargetMode targets_asked(const SmoothOptions& options) {
-  return options.targets == TargetMode::Smoothed && options.sizes == SizeMode::Uniform
-             ? TargetMode::Ideal
-             : options.targets;
-}
-
 // The options of an adaptation followed by a fit: of the adaptation, of the fit, and of the
 // fit's last stage. A warm step adapts only until the small cells have moved along with the
 // geometry: the fit goes on optimizing, and its start recomputes the desired volumes (one of the
@@ -85,6 +77,15 @@ FittedAdaptation fitted_adaptation(const AdaptOptions& options, bool warm) {
 }
 
 }  // namespace
+
+// Desired volumes asked for (a volume source, --sizes, of uniform) win over the volumes the
+// smoothed targets would keep; and a cell's design without its size (a layer's height across the
+// wall) is no design (docs/method.md §9).
+TargetMode targets_asked(const SmoothOptions& options) {
+  return options.targets == TargetMode::Smoothed && options.sizes == SizeMode::Uniform
+             ? TargetMode::Ideal
+             : options.targets;
+}
 
 Optimizer::Impl::Impl(Mesh& m) : mesh(m) {}
 
@@ -245,11 +246,14 @@ const Optimizer::Impl::InputCells* Optimizer::Impl::current_input_cells() const 
 }
 
 std::vector<double> Optimizer::Impl::cell_volumes() const {
+  if (curved) return curved_cell_volumes(curved->cells, curved->cells.coords);
   if (const InputCells* kept = current_input_cells()) return kept->volumes;
   return neomesh::cell_volumes(view(), view().coords, &dofs());
 }
 
 std::vector<double> Optimizer::Impl::cell_edge_ratios() const {
+  // A curved cell's: its corners' (the target's shape is its corners' too, cell_jacobians).
+  if (curved) return neomesh::cell_edge_ratios(curved->corners, curved->corners.coords);
   if (const InputCells* kept = current_input_cells()) return kept->edge_ratios;
   return neomesh::cell_edge_ratios(view(), view().coords);
 }
@@ -580,19 +584,18 @@ void Optimizer::Impl::fit(const LevelSet& level_set, const SizeField& field,
 
 namespace {
 
-// A curved mesh is refused before anything is built for it: its energy is not written yet.
-Mesh& uncurved(Mesh& mesh) {
+// Only smoothing optimizes curved meshes.
+void refuse_curved(const Mesh& mesh, std::string_view what) {
   if (mesh.curved())
     fail(
-        "{}: has second-order (curved) cells, which neomesh reads, measures (quality) and "
-        "converts but does not optimize yet",
-        mesh.name());
-  return mesh;
+        "{}: has second-order (curved) cells, which {} does not take (neomesh smooths, measures "
+        "and converts them)",
+        mesh.name(), what);
 }
 
 }  // namespace
 
-Optimizer::Optimizer(Mesh& mesh) : impl_(std::make_unique<Impl>(uncurved(mesh))) {}
+Optimizer::Optimizer(Mesh& mesh) : impl_(std::make_unique<Impl>(mesh)) {}
 Optimizer::~Optimizer() = default;
 Optimizer::Optimizer(Optimizer&&) noexcept = default;
 Optimizer& Optimizer::operator=(Optimizer&&) noexcept = default;
@@ -601,6 +604,7 @@ Optimizer& Optimizer::operator=(Optimizer&&) noexcept = default;
 // optimize()'s).
 Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer) {
   Impl& r = *impl_;
+  if (r.mesh.curved()) return r.smooth_curved(options, observer);
   Result result = r.start(options);
   const Impl::Smoothing s = r.set_up_smoothing(options, observer, result);
   if (options.untangle) result.untangling = r.untangle(s.method, observer);
@@ -615,6 +619,7 @@ Result Optimizer::smooth(const SmoothOptions& options, const Observer& observer)
 Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
                         const Observer& observer) {
   Impl& r = *impl_;
+  refuse_curved(r.mesh, "adapt");
   r.refuse_surface(field);
   Result result = r.start(options);
   const OwnedVec input =
@@ -635,6 +640,7 @@ Result Optimizer::adapt(const SizeField& field, const AdaptOptions& options,
 Result Optimizer::adapt(const SizeField& field, const LevelSet& fit_to, const AdaptOptions& options,
                         const Observer& observer) {
   Impl& r = *impl_;
+  refuse_curved(r.mesh, "adapt");
   r.refuse_surface(field);
   Result result = r.start(options);
   const FittedAdaptation parts = fitted_adaptation(options, r.warm);
@@ -660,7 +666,8 @@ void Optimizer::forget_warm_start() {
 
 std::vector<Field> Optimizer::cell_fields() const {
   const Impl& r = *impl_;
-  if (!r.functional || r.problem.desired_volumes().empty()) return {};
+  // A curved mesh's fields would be of its node mesh's cells: none are written.
+  if (r.curved || !r.functional || r.problem.desired_volumes().empty()) return {};
   const CellFields fields = r.functional->cell_fields(r.x);
   std::vector<Field> out = {{"energy", fields.energy},
                             {"det_G_min", fields.min_det},
@@ -697,6 +704,7 @@ std::vector<FacetGroup> Optimizer::facet_groups() const {
 double Optimizer::evaluate(const SmoothOptions& options) {
   options.validate();
   Impl& r = *impl_;
+  refuse_curved(r.mesh, "evaluate");
   r.start(options.energy, options.boundary);
   r.x = r.mesh.plex().coordinates();  // as they are: sliding vertices not projected
   r.warm = false;

@@ -19,6 +19,7 @@
 #include "adapt/fit.hpp"
 #include "boundary/boundary.hpp"
 #include "energy/functional.hpp"
+#include "mesh/input_mesh.hpp"
 #include "mesh/plex_mesh.hpp"
 #include "solver/quasi_newton.hpp"
 #include "solver/worst_cell_repair.hpp"
@@ -29,13 +30,45 @@ namespace neomesh {
 // The share of a surface's gain in mean inverse mean ratio over the input that the worst-cell
 // repair may spend (Optimizer::Impl::repair_imr_ceiling).
 inline constexpr double kRepairImrSpend = 0.5;
+// Smoothing's target mode after the sizes asked for (docs/method.md §9): smoothed targets with
+// uniform sizes are ideal ones.
+TargetMode targets_asked(const SmoothOptions& options);
 
 struct Optimizer::Impl {
   explicit Impl(Mesh& mesh);
 
-  // Read-only: the mesh keeps its quality cache (Mesh::plex()).
-  const MeshView& view() const { return std::as_const(mesh).plex().view(); }
-  const DofMap& dofs() const { return std::as_const(mesh).plex().dofs(); }
+  // A mesh of second-order cells as smoothing optimizes it (geometry/node_mesh.hpp): every node
+  // a vertex of `nodes`, whose view the boundary is classified on; the energy's cells are
+  // `cells`, the curved ones; `corners` their straight corner cells. Built where a smoothing of
+  // a curved mesh starts, from the mesh's coordinates then.
+  struct CurvedMesh {
+    InputMesh input;  // the whole curved mesh, its points moved to x by curved_points()
+    PlexMesh nodes;
+    MeshView cells, corners;
+  };
+  std::unique_ptr<CurvedMesh> curved;
+
+  // The vertices and cells the optimization runs on: the mesh's, or for a curved mesh the nodes
+  // and the curved cells. Read-only: the mesh keeps its quality cache (Mesh::plex()).
+  const MeshView& view() const {
+    return curved ? curved->cells : std::as_const(mesh).plex().view();
+  }
+  const DofMap& dofs() const {
+    return curved ? curved->nodes.dofs() : std::as_const(mesh).plex().dofs();
+  }
+
+  // Smoothing a mesh of second-order cells (docs/method.md §12, "The solver"): its own list of
+  // phases — set up the node mesh, the targets, minimize, judge by the certificate and the
+  // curved scaled Jacobian, finish.
+  Result smooth_curved(const SmoothOptions& options, const Observer& observer);
+  // The node mesh of the mesh's curved cells, the boundary and the constraints on it; x at its
+  // vertices.
+  void start_curved(const SmoothOptions& options);
+  // curved->input with its points at x; returns their curved quality.
+  CurvedQualitySummary curved_quality_at_x();
+  // Moves the mesh's corners and high-order nodes to x, and sets result's quality_after,
+  // boundary change and volume change.
+  void finish_curved(Result& result);
 
   // The mesh's quality where a call starts; throws Error if cells are inverted or degenerate
   // and `untangle` is false.

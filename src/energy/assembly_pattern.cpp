@@ -21,8 +21,8 @@ struct VertexCells {
     for (const CellBlock& block : view.blocks)
       for (PetscInt c = 0; c < block.size(); ++c) {
         cell_vertices[block.first_cell + c] = block.cell(c);
-        cell_size[block.first_cell + c] = num_vertices(block.type);
-        for (int i = 0; i < num_vertices(block.type); ++i) ++start[block.cell(c)[i] + 1];
+        cell_size[block.first_cell + c] = block.nodes();
+        for (int i = 0; i < block.nodes(); ++i) ++start[block.cell(c)[i] + 1];
       }
     std::partial_sum(start.begin(), start.end(), start.begin());
     cells.resize(start.back());
@@ -377,7 +377,7 @@ void fill_vertex_entries(const MeshView& view, const Numbering& num, const Layou
 void fill_cell_entries(const MeshView& view, const Numbering& num, const VertexCells& around,
                        const Layout& layout, int d, AssemblyPattern& p) {
   for (const CellBlock& block : view.blocks) {
-    const int n = num_vertices(block.type);
+    const int n = block.nodes();
     std::vector<PetscInt>& entry = p.block_entry.emplace_back(block.vertices.size() * n);
 #pragma omp parallel for schedule(static)
     for (PetscInt c = 0; c < block.size(); ++c)

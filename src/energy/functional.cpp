@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <atomic>
 #include <limits>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <type_traits>
 
 #include "core/collective_error.hpp"
 #include "energy/cell_kernels.hpp"
+#include "energy/curved_kernels.hpp"
 #include "energy/matrix_assembler.hpp"
 #include "energy/surface_kernels.hpp"
 
@@ -29,6 +31,22 @@ typename K::Coordinates cell_coordinates(const CellBlock& block, PetscInt c,
   for (int i = 0; i < K::vertices; ++i)
     x.col(i) = Eigen::Map<const Vector<dim>>(local_x + dim * vertex[i]);
   return x;
+}
+
+// The corners of cell c of `block` as the straight kernel of its type takes them: a curved
+// cell's corners in canonical order (curved_cell.hpp: linear_corners).
+template <typename Cells>
+typename Cells::StraightCoordinates corner_coordinates(const CellBlock& block, PetscInt c,
+                                                       const double* local_x) {
+  const auto x = cell_coordinates<typename Cells::Energy>(block, c, local_x);
+  if constexpr (Cells::curved) {
+    typename Cells::StraightCoordinates corners;
+    const auto order = linear_corners<Cells::curved_type>();
+    for (std::size_t i = 0; i < order.size(); ++i) corners.col(i) = x.col(order[i]);
+    return corners;
+  } else {
+    return x;
+  }
 }
 
 // The target of a surface cell: its 2D target and its frame Q (surface_frames).
@@ -108,18 +126,48 @@ SurfaceKernels make_surface_kernels(const EnergyOptions& options, double corner_
           make_untangling_surface_kernel<CellType::Quadrilateral>(untangling, n))};
 }
 
-// Calls f.template operator()<Type, Framed>() for the cells of `type`; Framed for the triangles
-// and quadrilaterals of a surface mesh.
+// What the loops over cells need to know of a block's cells: the kernels of both laws, the
+// dimension of their targets, and whether they are framed (surface cells) or curved.
+template <CellType Type, bool Framed>
+struct StraightCells {
+  using Energy = EnergyKernel<Type, Framed>;
+  using Untangling = UntanglingEnergyKernel<Type, Framed>;
+  static constexpr CellType type = Type;
+  static constexpr bool framed = Framed;
+  static constexpr bool curved = false;
+  static constexpr int target_dim = CellTraits<Type>::dim;
+  using StraightCoordinates = typename Energy::Coordinates;
+};
+template <CurvedType Type>
+struct CurvedCells {
+  using Energy = CurvedNeoHookeKernel<Type>;
+  using Untangling = CurvedUntanglingKernel<Type>;
+  static constexpr CellType type = CurvedTraits<Type>::linear;
+  static constexpr CurvedType curved_type = Type;
+  static constexpr bool framed = false;
+  static constexpr bool curved = true;
+  static constexpr int target_dim = CurvedTraits<Type>::dim;
+  using StraightCoordinates = typename NeoHookeKernel<CurvedTraits<Type>::linear>::Coordinates;
+};
+
+// Calls f.template operator()<Cells>() for the cells of `block`: StraightCells, framed for the
+// triangles and quadrilaterals of a surface mesh, or CurvedCells for second-order cells.
 template <typename F>
-void visit_cells(const MeshView& view, CellType type, F&& f) {
-  visit_cell_type(type, [&]<CellType Type>(CellTag<Type>) {
+void visit_cells(const MeshView& view, const CellBlock& block, F&& f) {
+  if (block.curved) {
+    visit_curved_type(*block.curved, [&]<CurvedType Type>(CurvedTag<Type>) {
+      f.template operator()<CurvedCells<Type>>();
+    });
+    return;
+  }
+  visit_cell_type(block.type, [&]<CellType Type>(CellTag<Type>) {
     if constexpr (CellTraits<Type>::dim == 2) {
       if (view.surface) {
-        f.template operator()<Type, true>();
+        f.template operator()<StraightCells<Type, true>>();
         return;
       }
     }
-    f.template operator()<Type, false>();
+    f.template operator()<StraightCells<Type, false>>();
   });
 }
 
@@ -159,6 +207,57 @@ Kernels make_kernels(const EnergyOptions& options, double corner_weight = 0.0) {
                  NeoHookeKernel<CellType::Pyramid>(law3, n, w)};
 }
 
+// The curved cells' kernels of both laws (curved_kernels.hpp: their own Gauss rule, with the
+// corner samples of `corner_weight`, and the untangling law's at half the weight each).
+using CurvedKernels = std::tuple<
+    CurvedNeoHookeKernel<CurvedType::Triangle6>, CurvedNeoHookeKernel<CurvedType::Quadrilateral8>,
+    CurvedNeoHookeKernel<CurvedType::Quadrilateral9>,
+    CurvedNeoHookeKernel<CurvedType::Tetrahedron10>, CurvedNeoHookeKernel<CurvedType::Hexahedron20>,
+    CurvedNeoHookeKernel<CurvedType::Hexahedron27>, CurvedUntanglingKernel<CurvedType::Triangle6>,
+    CurvedUntanglingKernel<CurvedType::Quadrilateral8>,
+    CurvedUntanglingKernel<CurvedType::Quadrilateral9>,
+    CurvedUntanglingKernel<CurvedType::Tetrahedron10>,
+    CurvedUntanglingKernel<CurvedType::Hexahedron20>,
+    CurvedUntanglingKernel<CurvedType::Hexahedron27>>;
+
+template <CurvedType Type>
+CurvedNeoHookeKernel<Type> curved_kernel(const EnergyOptions& options, double corner_weight) {
+  constexpr int d = CurvedTraits<Type>::dim;
+  return CurvedNeoHookeKernel<Type>(
+      NeoHooke<d>{options.lambda, options.mu, options.effective_kappa()}, kCurvedGaussPoints,
+      corner_weight);
+}
+template <CurvedType Type>
+CurvedUntanglingKernel<Type> curved_untangling_kernel(const EnergyOptions& options,
+                                                      double epsilon) {
+  constexpr int d = CurvedTraits<Type>::dim;
+  return make_curved_untangling_kernel<Type>(
+      RegularizedNeoHooke<d>{options.lambda, options.mu, epsilon});
+}
+
+CurvedKernels make_curved_kernels(const EnergyOptions& o, double corner_weight, double epsilon) {
+  using enum CurvedType;
+  const double w = corner_weight;
+  return CurvedKernels{curved_kernel<Triangle6>(o, w),
+                       curved_kernel<Quadrilateral8>(o, w),
+                       curved_kernel<Quadrilateral9>(o, w),
+                       curved_kernel<Tetrahedron10>(o, w),
+                       curved_kernel<Hexahedron20>(o, w),
+                       curved_kernel<Hexahedron27>(o, w),
+                       curved_untangling_kernel<Triangle6>(o, epsilon),
+                       curved_untangling_kernel<Quadrilateral8>(o, epsilon),
+                       curved_untangling_kernel<Quadrilateral9>(o, epsilon),
+                       curved_untangling_kernel<Tetrahedron10>(o, epsilon),
+                       curved_untangling_kernel<Hexahedron20>(o, epsilon),
+                       curved_untangling_kernel<Hexahedron27>(o, epsilon)};
+}
+
+// True if some block of `view` holds second-order cells.
+bool has_curved_cells(const MeshView& view) {
+  return std::any_of(view.blocks.begin(), view.blocks.end(),
+                     [](const CellBlock& b) { return b.curved.has_value(); });
+}
+
 double sum_over_ranks(double local, MPI_Comm comm) {
   double global = 0.0;
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
@@ -179,6 +278,7 @@ struct Functional::Impl {
   // > 0), at any ε.
   UntanglingKernels untangling_kernels;
   SurfaceKernels surface_kernels;  // both laws, in the frames of a surface mesh's cells
+  std::optional<CurvedKernels> curved_kernels;  // both laws, for a view with curved cells
   bool untangling = false;
   const std::vector<std::uint8_t>& fixed;  // per local dof
   const SlidingVertices& sliding;
@@ -207,6 +307,12 @@ struct Functional::Impl {
         surface_kernels(make_surface_kernels(
             o, problem.corner_weight,
             problem.untangling_epsilon > 0.0 ? problem.untangling_epsilon : 1.0)),
+        curved_kernels(
+            has_curved_cells(view)
+                ? std::optional(make_curved_kernels(
+                      o, problem.corner_weight,
+                      problem.untangling_epsilon > 0.0 ? problem.untangling_epsilon : 1.0))
+                : std::nullopt),
         untangling(problem.untangling_epsilon > 0.0),
         fixed(c.fixed),
         sliding(c.sliding),
@@ -214,25 +320,29 @@ struct Functional::Impl {
         targets(problem.targets.get()),
         frames(targets ? surface_frames(view, dofs, view.coords) : std::vector<double>{}) {}
 
-  template <CellType Type, bool Framed = false>
-  const EnergyKernel<Type, Framed>& kernel() const {
-    if constexpr (Framed)
-      return std::get<FramedNeoHooke<Type>>(surface_kernels);
+  template <typename Cells>
+  const typename Cells::Energy& kernel() const {
+    if constexpr (Cells::framed)
+      return std::get<typename Cells::Energy>(surface_kernels);
+    else if constexpr (Cells::curved)
+      return std::get<typename Cells::Energy>(*curved_kernels);
     else
-      return std::get<NeoHookeKernel<Type>>(kernels);
+      return std::get<typename Cells::Energy>(kernels);
   }
-  template <CellType Type, bool Framed = false>
-  const UntanglingEnergyKernel<Type, Framed>& untangling_kernel() const {
-    if constexpr (Framed)
-      return std::get<FramedUntangling<Type>>(surface_kernels);
+  template <typename Cells>
+  const typename Cells::Untangling& untangling_kernel() const {
+    if constexpr (Cells::framed)
+      return std::get<typename Cells::Untangling>(surface_kernels);
+    else if constexpr (Cells::curved)
+      return std::get<typename Cells::Untangling>(*curved_kernels);
     else
-      return std::get<UntanglingKernel<Type>>(untangling_kernels);
+      return std::get<typename Cells::Untangling>(untangling_kernels);
   }
   // Calls f with the kernel of the energy being minimized: Neo-Hookean, or untangling.
-  template <CellType Type, bool Framed, typename F>
+  template <typename Cells, typename F>
   decltype(auto) with_energy_kernel(F&& f) const {
-    if (untangling) return f(untangling_kernel<Type, Framed>());
-    return f(kernel<Type, Framed>());
+    if (untangling) return f(untangling_kernel<Cells>());
+    return f(kernel<Cells>());
   }
 
   // The target of local cell `cell` (cell_kernels.hpp).
@@ -244,12 +354,12 @@ struct Functional::Impl {
             t.weights[cell]};
   }
   // The same as the kernel of cells of `Type` takes it: with its frame for a surface cell.
-  template <CellType Type, bool Framed>
+  template <typename Cells>
   auto target_of(PetscInt cell) const {
-    if constexpr (Framed)
+    if constexpr (Cells::framed)
       return FramedTarget{target<2>(cell), frames.data() + 6 * cell};
     else
-      return target<CellTraits<Type>::dim>(cell);
+      return target<Cells::target_dim>(cell);
   }
 
   bool is_fixed_dof(PetscInt local_dof) const { return fixed[local_dof] != 0; }
@@ -292,7 +402,7 @@ struct Functional::Impl {
   void assemble(Fill&& fill, const char* what, Mat M, double curvature = 0.0) const;
   // Adds the blocks of the cells of block b; returns the first cell for which fill returned
   // false (or the largest PetscInt).
-  template <CellType Type, bool Framed, typename Fill>
+  template <typename Cells, typename Fill>
   PetscInt add_cell_blocks(Fill& fill, std::size_t b, MatrixAssembler::Values& values) const;
 };
 
@@ -304,14 +414,14 @@ double Functional::Impl::local_energy() const {
   std::atomic<bool> not_finite{false};
   for (const CellBlock& block : view.blocks) {
     if (not_finite.load(std::memory_order_relaxed)) break;
-    visit_cells(view, block.type, [&]<CellType Type, bool Framed>() {
-      with_energy_kernel<Type, Framed>([&]<typename K>(const K& k) {
+    visit_cells(view, block, [&]<typename Cells>() {
+      with_energy_kernel<Cells>([&]<typename K>(const K& k) {
         double block_sum = 0.0;
 #pragma omp parallel for reduction(+ : block_sum) schedule(static)
         for (PetscInt c = 0; c < block.size(); ++c) {
           if (not_finite.load(std::memory_order_relaxed)) continue;
           const double e = k.energy(cell_coordinates<K>(block, c, local_x.data()),
-                                    target_of<Type, Framed>(block.first_cell + c));
+                                    target_of<Cells>(block.first_cell + c));
           if (!std::isfinite(e)) not_finite.store(true, std::memory_order_relaxed);
           block_sum += e;
         }
@@ -332,8 +442,8 @@ double Functional::Impl::local_energy_and_gradient(std::span<double> gradient) c
   thread_gradients.assign(n * (threads - 1), 0.0);
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
-    visit_cells(view, block.type, [&]<CellType Type, bool Framed>() {
-      with_energy_kernel<Type, Framed>([&]<typename K>(const K& k) {
+    visit_cells(view, block, [&]<typename Cells>() {
+      with_energy_kernel<Cells>([&]<typename K>(const K& k) {
         constexpr int dim = K::dim;
         double block_sum = 0.0;
 #pragma omp parallel reduction(+ : block_sum)
@@ -344,7 +454,7 @@ double Functional::Impl::local_energy_and_gradient(std::span<double> gradient) c
 #pragma omp for schedule(static)
           for (PetscInt c = 0; c < block.size(); ++c) {
             block_sum += k.energy_and_gradient(cell_coordinates<K>(block, c, local_x.data()),
-                                               target_of<Type, Framed>(block.first_cell + c), g);
+                                               target_of<Cells>(block.first_cell + c), g);
             const PetscInt* vertex = block.cell(c);
             for (int i = 0; i < K::vertices; ++i)
               Eigen::Map<Vector<dim>>(mine + dim * vertex[i]) += g.col(i);
@@ -395,10 +505,10 @@ void Functional::Impl::project_block(const PetscInt* vertex, Block& block) const
   }
 }
 
-template <CellType Type, bool Framed, typename Fill>
+template <typename Cells, typename Fill>
 PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b,
                                            MatrixAssembler::Values& values) const {
-  using K = EnergyKernel<Type, Framed>;
+  using K = typename Cells::Energy;
   using Block = typename K::Block;
   constexpr int n = K::vertices;
   constexpr int d = K::dim;
@@ -414,9 +524,9 @@ PetscInt Functional::Impl::add_cell_blocks(Fill& fill, std::size_t b,
       const PetscInt end = std::min(block.size(), (chunks[k] + 1) * MatrixAssembler::kChunk);
       for (PetscInt c = chunks[k] * MatrixAssembler::kChunk; c < end; ++c) {
         Block cell_block;
-        if (!fill.template operator()<Type, Framed>(cell_coordinates<K>(block, c, local_x.data()),
-                                                    target_of<Type, Framed>(block.first_cell + c),
-                                                    Eigen::Map<Block>(cell_block.data()))) {
+        if (!fill.template operator()<Cells>(cell_coordinates<K>(block, c, local_x.data()),
+                                             target_of<Cells>(block.first_cell + c),
+                                             Eigen::Map<Block>(cell_block.data()))) {
           first_bad = std::min(first_bad, block.first_cell + c);
           continue;
         }
@@ -434,8 +544,8 @@ void Functional::Impl::assemble(Fill&& fill, const char* what, Mat M, double cur
   PetscInt first_bad = std::numeric_limits<PetscInt>::max();
   MatrixAssembler::Values values(constraints.assembler(), M);
   for (std::size_t b = 0; b < view.blocks.size(); ++b) {
-    visit_cells(view, view.blocks[b].type, [&]<CellType Type, bool Framed>() {
-      first_bad = std::min(first_bad, add_cell_blocks<Type, Framed>(fill, b, values));
+    visit_cells(view, view.blocks[b], [&]<typename Cells>() {
+      first_bad = std::min(first_bad, add_cell_blocks<Cells>(fill, b, values));
     });
   }
   values.gather();
@@ -504,15 +614,15 @@ std::vector<double> Functional::cell_jacobians(Vec x) const {
   impl_->dofs.global_to_local(x, impl_->local_x);
   std::vector<double> jacobians(static_cast<std::size_t>(d * d * view.num_cells));
   for (const CellBlock& block : view.blocks) {
-    visit_cells(view, block.type, [&]<CellType Type, bool Framed>() {
+    visit_cells(view, block, [&]<typename Cells>() {
+      constexpr CellType Type = Cells::type;
       constexpr int dim = CellTraits<Type>::dim;
       // One Gauss point: the centre (for a pyramid the centre of its base).
       const OptimalCellQuadrature<Type> centre(1);
       for (PetscInt c = 0; c < block.size(); ++c) {
-        const auto xc =
-            cell_coordinates<EnergyKernel<Type, Framed>>(block, c, impl_->local_x.data());
+        const auto xc = corner_coordinates<Cells>(block, c, impl_->local_x.data());
         Eigen::Map<Matrix<dim>> jacobian(jacobians.data() + dim * dim * (block.first_cell + c));
-        if constexpr (Framed)  // of the cell's image in its frame at x
+        if constexpr (Cells::framed)  // of the cell's image in its frame at x
           jacobian = surface_cell_frame<Type>(xc).value_or(SurfaceFrame::Zero()).transpose() * xc *
                      centre.unit_gradients[0].transpose();
         else
@@ -579,9 +689,8 @@ void Functional::assemble_hessian(Vec x, double alpha, Mat H) const {
   impl_->load_coordinates_and_tangents(x);
   const Impl& impl = *impl_;
   impl.assemble(
-      [&impl, alpha]<CellType Type, bool Framed>(const auto& coordinates, const auto& target,
-                                                 auto block) {
-        return impl.with_energy_kernel<Type, Framed>(
+      [&impl, alpha]<typename Cells>(const auto& coordinates, const auto& target, auto block) {
+        return impl.with_energy_kernel<Cells>(
             [&](const auto& k) { return k.hessian(coordinates, target, alpha, block); });
       },
       "H(alpha)", H, alpha);
@@ -594,9 +703,8 @@ void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat matrix) cons
     impl_->load_coordinates_and_tangents(x);
     const Impl& impl = *impl_;
     impl.assemble(
-        [&impl]<CellType Type, bool Framed>(const auto& coordinates, const auto& target,
-                                            auto block) {
-          return impl.kernel<Type, Framed>().current_laplacian(coordinates, target, block);
+        [&impl]<typename Cells>(const auto& coordinates, const auto& target, auto block) {
+          return impl.kernel<Cells>().current_laplacian(coordinates, target, block);
         },
         "current-mesh Laplacian", L);
   } else {
@@ -606,8 +714,8 @@ void Functional::assemble_laplacian(RieszLaplacian kind, Vec x, Mat matrix) cons
       impl_->require_volumes();
     const Impl& impl = *impl_;
     impl.assemble(
-        [&impl]<CellType Type, bool Framed>(const auto&, const auto& target, auto block) {
-          impl.kernel<Type, Framed>().optimal_laplacian(target, block);
+        [&impl]<typename Cells>(const auto&, const auto& target, auto block) {
+          impl.kernel<Cells>().optimal_laplacian(target, block);
           return true;
         },
         "optimal-cell Laplacian", L);
@@ -622,13 +730,13 @@ CellFields Functional::cell_fields(Vec x) const {
   fields.min_det.resize(view.num_cells);
   fields.volume_ratio.resize(view.num_cells);
   for (const CellBlock& block : view.blocks) {
-    visit_cells(view, block.type, [&]<CellType Type, bool Framed>() {
-      const auto& k = impl_->kernel<Type, Framed>();
-      using K = EnergyKernel<Type, Framed>;
+    visit_cells(view, block, [&]<typename Cells>() {
+      const auto& k = impl_->kernel<Cells>();
+      using K = typename Cells::Energy;
 #pragma omp parallel for schedule(static)
       for (PetscInt c = 0; c < block.size(); ++c) {
         const PetscInt cell = block.first_cell + c;
-        const auto target = impl_->target_of<Type, Framed>(cell);
+        const auto target = impl_->target_of<Cells>(cell);
         const auto x = cell_coordinates<K>(block, c, impl_->local_x.data());
         const CellMeasure measure = k.measure(x, target);
         fields.energy[cell] = k.energy(x, target);
@@ -645,13 +753,13 @@ Inversion Functional::inversion(Vec x, int listed, double below) const {
   const MeshView& view = impl_->view;
   Inversion local{0, std::numeric_limits<double>::infinity(), {}};
   for (const CellBlock& block : view.blocks) {
-    visit_cells(view, block.type, [&]<CellType Type, bool Framed>() {
-      const auto& k = impl_->untangling_kernel<Type, Framed>();
-      using K = UntanglingEnergyKernel<Type, Framed>;
+    visit_cells(view, block, [&]<typename Cells>() {
+      const auto& k = impl_->untangling_kernel<Cells>();
+      using K = typename Cells::Untangling;
       for (PetscInt c = 0; c < block.size(); ++c) {
         const PetscInt cell = block.first_cell + c;
         const double det = k.measure(cell_coordinates<K>(block, c, impl_->local_x.data()),
-                                     impl_->target_of<Type, Framed>(cell))
+                                     impl_->target_of<Cells>(cell))
                                .min_det;
         local.min_det = std::min(local.min_det, det);
         if (det > below) continue;
@@ -700,16 +808,28 @@ std::int64_t Functional::free_dofs() const {
 
 double mesh_volume(const MeshView& view, const DofMap& dofs, Vec x) {
   // Two Gauss points per direction integrate det ∇τ of Q1 cells exactly; the law is unused.
-  const Kernels kernels = make_kernels(EnergyOptions{.gauss_points = 2});
+  // The curved cells' rule integrates their det J exactly too (curved_kernels.hpp).
+  const EnergyOptions options{.gauss_points = 2};
+  const Kernels kernels = make_kernels(options);
+  const std::optional<CurvedKernels> curved_kernels =
+      has_curved_cells(view) ? std::optional(make_curved_kernels(options, 0.0, 1.0)) : std::nullopt;
   std::vector<double> local_x(static_cast<std::size_t>(dofs.num_local_dofs()));
   dofs.global_to_local(x, local_x);
   double sum = 0.0;
   for (const CellBlock& block : view.blocks) {
-    visit_cells(view, block.type, [&]<CellType Type, bool Framed>() {
-      const NeoHookeKernel<Type>& k = std::get<NeoHookeKernel<Type>>(kernels);
+    visit_cells(view, block, [&]<typename Cells>() {
+      constexpr CellType Type = Cells::type;
+      using K = typename Cells::Energy;
+      const auto& k = [&]() -> const auto& {
+        if constexpr (Cells::curved)
+          return std::get<K>(*curved_kernels);
+        else
+          return std::get<NeoHookeKernel<Type>>(kernels);
+      }
+      ();
       for (PetscInt c = 0; c < block.size(); ++c) {
-        const auto x = cell_coordinates<EnergyKernel<Type, Framed>>(block, c, local_x.data());
-        if constexpr (Framed) {  // the area of its image in its own frame
+        const auto x = cell_coordinates<K>(block, c, local_x.data());
+        if constexpr (Cells::framed) {  // the area of its image in its own frame
           if (const auto frame = surface_cell_frame<Type>(x))
             sum += k.measure(frame->transpose() * x, 1.0).volume;
         } else {

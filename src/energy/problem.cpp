@@ -110,7 +110,7 @@ Constraints::Constraints(const MeshView& v, const DofMap& d, FixedDofs f, Slidin
   std::vector<std::uint8_t> used(view.num_vertices, 0);
   for (const CellBlock& block : view.blocks)
     for (PetscInt c = 0; c < block.size(); ++c)
-      for (int i = 0; i < num_vertices(block.type); ++i) used[block.cell(c)[i]] = 1;
+      for (int i = 0; i < block.nodes(); ++i) used[block.cell(c)[i]] = 1;
   for (PetscInt u = 0; u < view.num_vertices; ++u)
     if (!used[u]) std::fill_n(fixed.begin() + u * view.dim, view.dim, 1);
   projector_of.assign(view.num_vertices, -1);

@@ -140,9 +140,8 @@ TEST_P(Distributed, CarriesTheInputDataInItsNumbering) {
     for (const CellBlock& block : view.blocks)
       for (PetscInt c = 0; c < block.size(); ++c) {
         double sum = 0;
-        for (int i = 0; i < num_vertices(block.type); ++i)
-          sum += view.coords[block.cell(c)[i] * view.dim];
-        fields.cell[1].values[block.first_cell + c] = sum / num_vertices(block.type);
+        for (int i = 0; i < block.nodes(); ++i) sum += view.coords[block.cell(c)[i] * view.dim];
+        fields.cell[1].values[block.first_cell + c] = sum / block.nodes();
       }
     fields.vertex.push_back({"x", {}, 1});
     for (PetscInt v = 0; v < view.num_vertices; ++v)

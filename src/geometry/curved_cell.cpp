@@ -624,6 +624,15 @@ CurvedScaledJacobian curved_scaled_jacobian(const typename CurvedTraits<Type>::N
           .upper = upper};
 }
 
+template <CurvedType Type>
+double curved_volume(const typename CurvedTraits<Type>::Nodes& x) {
+  using Traits = CurvedTraits<Type>;
+  // The unit simplex: 1/d!; [−1,1]^d: 2^d.
+  const double reference =
+      Traits::simplex ? (Traits::dim == 2 ? 0.5 : 1.0 / 6.0) : 1 << Traits::dim;
+  return reference * jacobian_bezier_coefficients<Type>(x).mean();
+}
+
 #define NEOMESH_CURVED_INSTANTIATE(T)                                                            \
   template Vector<CurvedTraits<T>::dim> reference_node<T>(int);                                  \
   template Eigen::Matrix<double, CurvedTraits<T>::nodes, 1> curved_basis<T>(                     \
@@ -641,6 +650,7 @@ CurvedScaledJacobian curved_scaled_jacobian(const typename CurvedTraits<Type>::N
       const Eigen::Matrix<double, CurvedTraits<T>::dim, CurvedTraits<T>::corners>&);             \
   template Eigen::VectorXd jacobian_bezier_coefficients<T>(const CurvedTraits<T>::Nodes&);       \
   template double bezier_value<T>(const Eigen::VectorXd&, const Vector<CurvedTraits<T>::dim>&);  \
+  template double curved_volume<T>(const CurvedTraits<T>::Nodes&);                               \
   template JacobianCertificate certify_jacobian<T>(const CurvedTraits<T>::Nodes&, int);          \
   template CurvedScaledJacobian curved_scaled_jacobian<T>(const CurvedTraits<T>::Nodes&, int,    \
                                                           double);

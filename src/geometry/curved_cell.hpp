@@ -97,6 +97,12 @@ Eigen::VectorXd jacobian_bezier_coefficients(const typename CurvedTraits<Type>::
 template <CurvedType Type>
 double bezier_value(const Eigen::VectorXd& coefficients, const Vector<CurvedTraits<Type>::dim>& xi);
 
+// ∫ det J over the reference cell, exactly: the cell's (signed) volume. Every Bernstein polynomial
+// of one degree has the same integral over its domain, so it is the mean of the coefficients
+// times the reference cell's volume.
+template <CurvedType Type>
+double curved_volume(const typename CurvedTraits<Type>::Nodes& x);
+
 // --- The validity certificate ----------------------------------------------------------------
 
 enum class Validity {

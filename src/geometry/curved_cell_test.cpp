@@ -9,23 +9,13 @@
 #include <utility>
 
 #include "geometry/quality.hpp"
+#include "geometry/testing/curved_types.hpp"
 
 namespace neomesh {
 
 namespace {
 
-// Calls f.template operator()<Type>() for every second-order type, with the type in the trace.
-template <typename F>
-void for_each_curved_type(F&& f) {
-  [&]<std::size_t... I>(std::index_sequence<I...>) {
-    (([&] {
-       SCOPED_TRACE(name(kCurvedTypes[I]));
-       f.template operator()<kCurvedTypes[I]>();
-     }()),
-     ...);
-  }
-  (std::make_index_sequence<kCurvedTypes.size()>{});
-}
+using neomesh::testing::for_each_curved_type;
 
 template <CurvedType Type>
 using Corners = Eigen::Matrix<double, CurvedTraits<Type>::dim, CurvedTraits<Type>::corners>;

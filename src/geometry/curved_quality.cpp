@@ -24,21 +24,9 @@ CurvedScaledJacobian measure(const InputMesh& mesh, const std::vector<double>& x
 
 CurvedScaledJacobian curved_cell_quality(const InputMesh& mesh, const std::vector<double>& x,
                                          PetscInt c) {
-  switch (mesh.high_order.types[c]) {
-    case CurvedType::Triangle6:
-      return measure<CurvedType::Triangle6>(mesh, x, c);
-    case CurvedType::Quadrilateral8:
-      return measure<CurvedType::Quadrilateral8>(mesh, x, c);
-    case CurvedType::Quadrilateral9:
-      return measure<CurvedType::Quadrilateral9>(mesh, x, c);
-    case CurvedType::Tetrahedron10:
-      return measure<CurvedType::Tetrahedron10>(mesh, x, c);
-    case CurvedType::Hexahedron20:
-      return measure<CurvedType::Hexahedron20>(mesh, x, c);
-    case CurvedType::Hexahedron27:
-      break;
-  }
-  return measure<CurvedType::Hexahedron27>(mesh, x, c);
+  return visit_curved_type(mesh.high_order.types[c], [&]<CurvedType Type>(CurvedTag<Type>) {
+    return measure<Type>(mesh, x, c);
+  });
 }
 
 CurvedQualitySummary curved_quality(const InputMesh& mesh) {

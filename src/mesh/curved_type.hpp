@@ -17,6 +17,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <type_traits>
 
 #include "mesh/cell_type.hpp"
 
@@ -168,6 +169,31 @@ constexpr const CurvedFacts& facts(CurvedType t) {
 }
 constexpr std::string_view name(CurvedType t) {
   return facts(t).name;
+}
+
+// A curved type as a type, for dispatching once per block or cell to code compiled per type.
+template <CurvedType Type>
+using CurvedTag = std::integral_constant<CurvedType, Type>;
+
+// Calls f(CurvedTag<type>{}) with the type as a compile-time constant: the one switch over
+// curved types.
+template <typename F>
+decltype(auto) visit_curved_type(CurvedType type, F&& f) {
+  switch (type) {
+    case CurvedType::Triangle6:
+      return f(CurvedTag<CurvedType::Triangle6>{});
+    case CurvedType::Quadrilateral8:
+      return f(CurvedTag<CurvedType::Quadrilateral8>{});
+    case CurvedType::Quadrilateral9:
+      return f(CurvedTag<CurvedType::Quadrilateral9>{});
+    case CurvedType::Tetrahedron10:
+      return f(CurvedTag<CurvedType::Tetrahedron10>{});
+    case CurvedType::Hexahedron20:
+      return f(CurvedTag<CurvedType::Hexahedron20>{});
+    case CurvedType::Hexahedron27:
+      break;
+  }
+  return f(CurvedTag<CurvedType::Hexahedron27>{});
 }
 
 // VTK before 9.1 numbered the quadratic Lagrange hexahedron's (type 72) vertical edges at y = 1

@@ -56,7 +56,7 @@ Packet pack(const PlexMesh& mesh, const MeshFields& fields) {
     for (PetscInt c = 0; c < block.size(); ++c) {
       const PetscInt cell = block.first_cell + c;
       out.ints.insert(out.ints.end(), {view.global_cell[cell], static_cast<PetscInt>(block.type)});
-      for (int i = 0; i < num_vertices(block.type); ++i)
+      for (int i = 0; i < block.nodes(); ++i)
         out.ints.push_back(m.view->input_vertex[block.cell(c)[i]]);
       for (const Field& f : fields.cell)
         out.reals.insert(out.reals.end(), f.values.begin() + cell * f.components,

@@ -165,6 +165,26 @@ std::vector<double> curved_point_coordinates(const InputMesh& mesh) {
   return x;
 }
 
+void set_high_order_coordinates(HighOrderNodes& nodes, int dim, const PlaneEmbedding* plane,
+                                std::span<const double> x) {
+  if (x.size() != static_cast<std::size_t>(dim * nodes.num_nodes()))
+    fail("internal error: {} coordinates for {} high-order nodes", x.size(), nodes.num_nodes());
+  if (dim == 3)
+    std::copy(x.begin(), x.end(), nodes.xyz.begin());
+  else if (plane)
+    nodes.xyz = plane->to_space(x);
+  else
+    for (PetscInt n = 0; n < nodes.num_nodes(); ++n)
+      std::copy_n(x.begin() + 2 * n, 2, nodes.xyz.begin() + 3 * n);
+}
+
+void set_curved_point_coordinates(InputMesh& mesh, std::span<const double> x) {
+  const std::size_t corners = mesh.coords.size();
+  if (mesh.surface || x.size() < corners) fail("internal error: curved points of a surface mesh");
+  std::copy_n(x.begin(), corners, mesh.coords.begin());
+  set_high_order_coordinates(mesh.high_order, mesh.dim, mesh.plane.get(), x.subspan(corners));
+}
+
 std::vector<double> points_in_space(const InputMesh& mesh) {
   std::vector<double> xyz = coordinates_in_space(mesh);
   xyz.insert(xyz.end(), mesh.high_order.xyz.begin(), mesh.high_order.xyz.end());

@@ -194,6 +194,11 @@ class CurvedFacets {
   std::map<std::array<PetscInt, 4>, PetscInt> face_;
 };
 
+// The nodes moved to `x`, dim values per node (a 2D mesh's in `plane`, null for z = 0), in space.
+void set_high_order_coordinates(HighOrderNodes& nodes, int dim, const PlaneEmbedding* plane,
+                                std::span<const double> x);
+// The inverse of curved_point_coordinates: the vertices and high-order nodes moved to `x`.
+void set_curved_point_coordinates(InputMesh& mesh, std::span<const double> x);
 // For the readers, after number_used_vertices: throws Error naming `file` unless the high-order
 // nodes of a 2D mesh lie in the plane of its vertices (a curved surface mesh is not read).
 void check_high_order_nodes(const InputMesh& mesh, const std::string& file);

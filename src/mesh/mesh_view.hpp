@@ -8,25 +8,30 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <petscsys.h>
 
 #include "mesh/cell_type.hpp"
+#include "mesh/curved_type.hpp"
 
 namespace neomesh {
 
-// Cells of one type. `vertices` holds num_vertices(type) local vertex indices per cell in
-// canonical order (cell_type.hpp); the block's cells are cells [first_cell, first_cell +
-// size()) of the per-cell arrays.
+// Cells of one type. `vertices` holds nodes() local vertex indices per cell: num_vertices(type)
+// in canonical order (cell_type.hpp), or for second-order cells (`curved`, whose straight cell is
+// `type`) every node in Gmsh's order (curved_cell.hpp), each node a vertex of the view. The
+// block's cells are cells [first_cell, first_cell + size()) of the per-cell arrays.
 struct CellBlock {
   CellType type = CellType::Quadrilateral;
   PetscInt first_cell = 0;
   std::vector<PetscInt> vertices;
+  std::optional<CurvedType> curved = std::nullopt;
 
-  PetscInt size() const { return static_cast<PetscInt>(vertices.size()) / num_vertices(type); }
-  const PetscInt* cell(PetscInt c) const { return vertices.data() + c * num_vertices(type); }
+  int nodes() const { return curved ? facts(*curved).nodes : num_vertices(type); }
+  PetscInt size() const { return static_cast<PetscInt>(vertices.size()) / nodes(); }
+  const PetscInt* cell(PetscInt c) const { return vertices.data() + c * nodes(); }
 };
 
 struct BoundarySurface;  // boundary_surface.hpp

@@ -341,6 +341,14 @@ void PlexMesh::set_coordinates(Vec coords) {
   ++impl_->coordinates_version;
 }
 
+void PlexMesh::set_high_order_nodes(std::span<const double> x) {
+  Impl& m = *impl_;
+  HighOrderNodes& h = m.high_order;
+  if (!m.curved) fail("{}: has no high-order nodes to move", m.source);
+  if (mpi_rank(m.comm) == 0) set_high_order_coordinates(h, m.dim, m.plane.get(), x);
+  ++m.coordinates_version;
+}
+
 void PlexMesh::move_surface_to_coordinates() {
   MeshView& view = *impl_->view;
   if (!view.surface) fail("{}: only a surface mesh moves its surface", impl_->source);

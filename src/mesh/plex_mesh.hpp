@@ -57,6 +57,9 @@ class PlexMesh {
   // Moves the vertices: `coords` is a global Vec laid out by dofs(). view().coords is the one
   // place that holds them (dm() updates the DMPlex's when asked).
   void set_coordinates(Vec coords);
+  // Moves a curved mesh's high-order nodes (rank 0; the other ranks pass nothing): `x` holds
+  // dim() coordinates per node, in input numbering (a 2D mesh's in its plane). Collective.
+  void set_high_order_nodes(std::span<const double> x);
   // On a surface mesh: the surface its vertices slide on, view().boundary, becomes its cells at
   // the current coordinates (the caller moved the surface). A new BoundarySurface: what was
   // built on the old one keeps it and tells by comparing pointers. Collective.

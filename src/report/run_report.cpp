@@ -164,6 +164,15 @@ nlohmann::json to_json(const IdealRetrySummary& retry) {
           {"ideal_kept", retry.ideal_kept}};
 }
 
+nlohmann::json to_json(const CurvedSmoothingSummary& curved) {
+  return {{"cells", curved.cells},
+          {"nodes", curved.nodes},
+          {"min_scaled_jacobian_before", curved.min_scaled_jacobian_before},
+          {"min_scaled_jacobian_optimum", curved.min_scaled_jacobian_optimum},
+          {"not_valid_optimum", curved.not_valid_optimum},
+          {"input_returned", curved.input_returned}};
+}
+
 nlohmann::json to_json(const QualityGuardResult& guard) {
   nlohmann::json j = {{"input_min_scaled_jacobian", guard.input_min},
                       {"min_scaled_jacobian_before", guard.min_before},
@@ -318,6 +327,20 @@ std::string ideal_retry_summary(const RunRecord& r) {
       retry.ideal_kept ? "ideal" : "first");
 }
 
+// What smoothing a curved mesh found, and whether it kept the optimum.
+std::string curved_summary(const RunRecord& r) {
+  if (!r.result.curved) return {};
+  const CurvedSmoothingSummary& curved = *r.result.curved;
+  std::string line = fmt::format(
+      "curved cells: {} nodes of {} cells optimized; min curved scaled Jacobian {:.4f} -> {:.4f}",
+      curved.nodes, curved.cells, curved.min_scaled_jacobian_before,
+      curved.min_scaled_jacobian_optimum);
+  if (curved.not_valid_optimum > 0)
+    line += fmt::format(", {} cells not certified valid", curved.not_valid_optimum);
+  if (curved.input_returned) line += ": the input is returned instead";
+  return line + "\n";
+}
+
 std::string result_summary(const RunRecord& r) {
   const Result& result = r.result;
   return fmt::format(
@@ -387,6 +410,11 @@ const std::vector<ReportPart>& report_parts() {
        "smoothing once more towards ideal cells, where cells kept from the input stayed flat: "
        "both runs' worst cells, which was kept",
        optional_part<&Result::ideal_retry>, ideal_retry_summary},
+      {"curved", S::Run,
+       "smoothing a mesh of curved cells: cells, nodes, the min curved scaled Jacobian of the "
+       "input and of the optimum, cells of the optimum not certified valid, whether the input "
+       "was returned",
+       optional_part<&Result::curved>, curved_summary},
       {"result", S::Run,
        "the iterations: their count, the stop reason, F and the Newton defect before and after, "
        "wall time per phase, and one record per iteration (`history`)",

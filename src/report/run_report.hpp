@@ -31,6 +31,7 @@ nlohmann::json to_json(const CornerPhaseSummary& phase);
 nlohmann::json to_json(const IdealRetrySummary& retry);
 nlohmann::json to_json(const WorstCellRepairSummary& repair);
 nlohmann::json to_json(const QualityGuardResult& guard);
+nlohmann::json to_json(const CurvedSmoothingSummary& curved);
 
 nlohmann::json to_json(const FitSummary& fit);
 

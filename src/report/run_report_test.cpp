@@ -28,6 +28,7 @@ TEST(ReportParts, EveryKeyOfTheReportIsDeclaredOnceInTheTable) {
   result.ideal_retry.emplace();
   result.worst_cell_repair.emplace();
   result.quality_guard.emplace();
+  result.curved.emplace();
   result.fit.emplace();
   const CommandLineRecord command_line;
   nlohmann::json report = result_report(result, mesh);

@@ -56,7 +56,7 @@ QualityGuardResult guard_worst_quality(const MeshView& view, const DofMap& dofs,
     for (const CellBlock& block : view.blocks)
       for (PetscInt c = 0; c < block.size(); ++c) {
         if (!(sj[block.first_cell + c] < result.input_min)) continue;
-        for (int i = 0; i < num_vertices(block.type); ++i)
+        for (int i = 0; i < block.nodes(); ++i)
           for (int j = 0; j < d; ++j) local_marks[block.cell(c)[i] * d + j] = 1.0;
       }
     NM_PETSC(VecZeroEntries(marked));

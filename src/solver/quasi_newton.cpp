@@ -529,7 +529,7 @@ OwnedVec local_cell_size(const MeshView& view, const DofMap& dofs,
   for (std::size_t c = 0; c < size.size(); ++c) size[c] = std::pow(desired_volumes[c], power);
   std::vector<double> size_sum(view.coords.size(), 0.0), count(view.coords.size(), 0.0);
   for (const CellBlock& block : view.blocks) {
-    const int nv = num_vertices(block.type);
+    const int nv = block.nodes();
     for (PetscInt c = 0; c < block.size(); ++c) {
       const double h = size[block.first_cell + c];
       for (int i = 0; i < nv; ++i)

@@ -45,7 +45,7 @@ std::vector<double> average_over_neighbours(const MeshView& view, const DofMap& 
   std::vector<double> local(view.coords.size(), 0.0);
   for (const CellBlock& block : view.blocks)
     for (PetscInt c = 0; c < block.size(); ++c)
-      for (int i = 0; i < num_vertices(block.type); ++i) {
+      for (int i = 0; i < block.nodes(); ++i) {
         local[block.cell(c)[i] * d] += values[block.first_cell + c];
         local[block.cell(c)[i] * d + 1] += 1.0;
       }
@@ -56,11 +56,11 @@ std::vector<double> average_over_neighbours(const MeshView& view, const DofMap& 
 #pragma omp parallel for schedule(static)
     for (PetscInt c = 0; c < block.size(); ++c) {
       double sum = 0.0;
-      for (int i = 0; i < num_vertices(block.type); ++i) {
+      for (int i = 0; i < block.nodes(); ++i) {
         const PetscInt v = block.cell(c)[i];
         sum += local[v * d] / local[v * d + 1];
       }
-      averaged[block.first_cell + c] = sum / num_vertices(block.type);
+      averaged[block.first_cell + c] = sum / block.nodes();
     }
   return averaged;
 }

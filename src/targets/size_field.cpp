@@ -268,7 +268,7 @@ std::vector<double> cell_centroids(const MeshView& view, std::span<const double>
   const int d = view.dim;
   std::vector<double> centroids(static_cast<std::size_t>(view.num_cells) * d, 0.0);
   for (const CellBlock& block : view.blocks) {
-    const int nv = num_vertices(block.type);
+    const int nv = block.nodes();
     for (PetscInt c = 0; c < block.size(); ++c)
       for (int i = 0; i < nv; ++i)
         for (int j = 0; j < d; ++j)

@@ -1,9 +1,10 @@
 """Curved (second-order) meshes as a user gives them: read from Gmsh .msh (2.2 and 4.1, ASCII and
 binary), VTK .vtk/.vtu, Exodus II, CGNS and Medit, measured by `quality` (validity certified over
 each cell), written by `convert` to .msh, .vtu (Lagrange cells, which VTK reads), .vtk, .exo,
-.cgns and .mesh (triangles and tetrahedra) with their group facets at second order, and refused
-by `smooth` in one line. Gmsh meshes are made by the gmsh program (skipped without it), Mesquite's quadratic
-meshes come from ../shared/corpus (skipped without it). Run with NEOMESH=path/to/neomesh."""
+.cgns and .mesh (triangles and tetrahedra) with their group facets at second order, and smoothed,
+every node moving, to a mesh whose cells are certified valid. Gmsh meshes are made by the gmsh
+program (skipped without it), Mesquite's quadratic meshes come from ../shared/corpus (skipped
+without it). Run with NEOMESH=path/to/neomesh."""
 import glob
 import json
 import os
@@ -13,7 +14,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import CORPUS, expect_one_error_line, needs_corpus, neomesh
+from conftest import CORPUS, expect_one_error_line, needs_corpus, neomesh, read_mesh
 
 needs_gmsh = pytest.mark.skipif(shutil.which("gmsh") is None, reason="the gmsh program is missing")
 
@@ -137,14 +138,102 @@ def test_convert_keeps_the_groups_of_a_curved_mesh(tmp):
     assert {b.type for b in m.cells} == {"triangle6", "line3"}
 
 
+SQUARE = """SetFactory("OpenCASCADE");
+Rectangle(1) = {0, 0, 0, 1, 1};
+Mesh.MeshSizeMax = 0.25;
+Physical Surface("square", 1) = {1};
+Physical Curve("boundary", 2) = {1, 2, 3, 4};
+"""
+
+
+def jittered_square(tmp, case, amount=0.025, seed=1):
+    """The unit square meshed by Gmsh with cells of `case`, every interior node (corners and
+    higher-order nodes) moved at random by up to `amount` of the mesh size per coordinate."""
+    gmsh = pytest.importorskip("gmsh")
+    _, _, options, _ = GMSH_CASES[case]
+    geo = os.path.join(tmp, "square.geo")
+    open(geo, "w").write(SQUARE)
+    msh = os.path.join(tmp, f"square-{case}.msh")
+    subprocess.run(["gmsh", "-2", "-order", "2", *options, geo, "-o", msh], check=True,
+                   capture_output=True)
+    rng = np.random.default_rng(seed)
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.open(msh)
+        inner = set(gmsh.model.mesh.getNodes(2, 1)[0])
+        tags, coords, _ = gmsh.model.mesh.getNodes()
+        for i, tag in enumerate(tags):
+            if tag in inner:
+                x = coords[3 * i:3 * i + 3].copy()
+                x[:2] += rng.uniform(-1, 1, 2) * amount * 0.25
+                gmsh.model.mesh.setNode(tag, x, [])
+        gmsh.write(msh)
+    finally:
+        gmsh.finalize()
+    return msh
+
+
+def smooth_report(tmp, path, out, *options):
+    report = os.path.join(tmp, "smooth.json")
+    neomesh("smooth", path, "-o", out, "--report", report, *options)
+    return json.load(open(report))
+
+
 @needs_gmsh
-def test_smooth_refuses_a_curved_mesh_in_one_line_and_writes_nothing(tmp):
+@pytest.mark.parametrize("case", ["tri6", "quad9", "quad8"])
+@pytest.mark.parametrize("boundary", ["fixed", "slide"])
+def test_smooth_moves_every_node_of_a_curved_mesh_to_a_better_valid_one(tmp, case, boundary):
+    msh = jittered_square(tmp, case)
+    before = curved_quality(tmp, msh)
+    assert before["not_certified_valid"] == 0
+    out = os.path.join(tmp, "out.msh")
+    report = smooth_report(tmp, msh, out, "--boundary", boundary)
+    after = curved_quality(tmp, out)
+    assert after["not_certified_valid"] == 0
+    assert after["scaled_jacobian"]["min"] > before["scaled_jacobian"]["min"] + 0.2
+    assert after["scaled_jacobian"]["mean"] > before["scaled_jacobian"]["mean"]
+    curved = report["curved"]
+    assert not curved["input_returned"] and curved["not_valid_optimum"] == 0
+    assert curved["min_scaled_jacobian_optimum"] == pytest.approx(after["scaled_jacobian"]["min"])
+    # The square stays the square: boundary nodes on its sides, corners where they were.
+    m = read_mesh(out)
+    assert np.allclose(m.points[:, :2].min(axis=0), 0) and np.allclose(m.points[:, :2].max(axis=0), 1)
+    assert report["boundary_change"]["max_distance_from_input_boundary"] < 1e-12
+    # Every node moved, not only the corners: the mid-edge nodes leave the straight edges' midpoints.
+    assert report["free_dofs"] > 2 * report["vertices"]
+
+
+@needs_gmsh
+def test_a_uniform_straight_grid_given_as_order_two_is_at_rest(tmp):
+    # Every cell the optimal square (docs/method.md §12): the stress vanishes, so the mid-edge
+    # and centre nodes are stationary too, and nothing moves.
+    geo = os.path.join(tmp, "grid.geo")
+    open(geo, "w").write(SQUARE.replace("Mesh.MeshSizeMax = 0.25;",
+                                        "Transfinite Surface{1}; Transfinite Curve{:} = 5;"))
+    msh, out = os.path.join(tmp, "grid.msh"), os.path.join(tmp, "out.msh")
+    subprocess.run(["gmsh", "-2", "-order", "2", "-setnumber", "Mesh.RecombineAll", "1", geo,
+                    "-o", msh], check=True, capture_output=True)
+    neomesh("smooth", msh, "-o", out, "--boundary", "fixed", "--sizes", "uniform")
+    # The same points (neomesh lists the corners first, then the other nodes).
+    points = [np.round(read_mesh(path).points, 9) for path in (msh, out)]
+    assert sorted(map(tuple, points[0])) == sorted(map(tuple, points[1]))
+
+
+@needs_gmsh
+def test_adapt_refuses_a_curved_mesh_in_one_line_and_writes_nothing(tmp):
     msh = gmsh_mesh(tmp, "quad9")
-    for command in (["smooth", msh, "-o", "out.msh"],
-                    ["adapt", msh, "-o", "out.msh", "--circle", "0,0,1.5"]):
-        proc = neomesh(*command, cwd=tmp, expect=1)
-        expect_one_error_line(proc, ["second-order (curved) cells", "does not optimize"],
-                              unwritten=[os.path.join(tmp, "out.msh")])
+    proc = neomesh("adapt", msh, "-o", "out.msh", "--circle", "0,0,1.5", cwd=tmp, expect=1)
+    expect_one_error_line(proc, ["second-order (curved) cells", "adapt does not take"],
+                          unwritten=[os.path.join(tmp, "out.msh")])
+
+
+@needs_gmsh
+def test_smooth_refuses_a_curved_mesh_on_several_processes(tmp):
+    msh = gmsh_mesh(tmp, "tri6")
+    proc = neomesh("smooth", msh, "-o", "out.msh", cwd=tmp, expect=1, ranks=2)
+    expect_one_error_line(proc, ["second-order (curved) cells", "one process"],
+                          unwritten=[os.path.join(tmp, "out.msh")])
 
 
 def second_order_elements(path):
@@ -439,3 +528,59 @@ def test_mesquites_curved_meshes_measure_alike_through_exodus_cgns_and_medit(tmp
         out = os.path.join(tmp, "out." + ext)
         neomesh("convert", vtk, "-o", out)
         assert curved_quality(tmp, out) == reference, ext
+
+MESQUITE_2D = os.path.join(CORPUS, "mesquite", "2D", "vtk", "quadratic")
+
+
+@needs_corpus
+def test_mesquites_folded_2d_quadratic_meshes_are_untangled_to_certified_valid_ones(tmp):
+    # Each has 1 to 3 cells that a mid-edge node folds: untangled, then smoothed.
+    files = sorted(glob.glob(os.path.join(MESQUITE_2D, "*.vtk")))
+    assert len(files) == 11
+    out = os.path.join(tmp, "out.vtk")
+    for path in files:
+        assert curved_quality(tmp, path)["not_certified_valid"] > 0, path
+        report = smooth_report(tmp, path, out)
+        after = curved_quality(tmp, out)
+        assert after["not_certified_valid"] == 0, path
+        assert after["scaled_jacobian"]["min"] > 0.02, path
+        assert report["curved"]["min_scaled_jacobian_optimum"] == pytest.approx(
+            after["scaled_jacobian"]["min"])
+
+
+@needs_corpus
+def test_a_folded_curved_mesh_is_refused_without_untangling_and_nothing_is_written(tmp):
+    out = os.path.join(tmp, "out.vtk")
+    proc = neomesh("smooth", os.path.join(MESQUITE_2D, "triPatch_0_0.vtk"), "-o", out,
+                   "--no-untangle", expect=1)
+    expect_one_error_line(proc, ["not certified valid", "untangling is switched off"],
+                          unwritten=[out])
+
+
+@needs_corpus
+def test_mesquites_hexahedron20_grid_stays_valid_and_as_good(tmp):
+    # Serendipity cells: the virtual face and centre vertices carry the topology only.
+    path = os.path.join(CORPUS, "mesquite", "3D", "vtk", "quadratic", "6x6x6-hex20.vtk")
+    out = os.path.join(tmp, "out.vtk")
+    report = smooth_report(tmp, path, out)
+    after = curved_quality(tmp, out)
+    assert after["not_certified_valid"] == 0
+    assert after["scaled_jacobian"]["min"] >= curved_quality(tmp, path)["scaled_jacobian"]["min"]
+    assert report["curved"]["nodes"] == read_mesh(out).points.shape[0]
+
+
+@needs_gmsh
+def test_boundary_nodes_slide_on_a_given_circle_exactly(tmp):
+    # Corners and mid-edge nodes alike: every node of the rim stays on the circle.
+    geo, msh, out = (os.path.join(tmp, name) for name in ("disk.geo", "disk.msh", "out.vtu"))
+    open(geo, "w").write('SetFactory("OpenCASCADE");\nDisk(1) = {0, 0, 0, 1, 1};\n'
+                         'Mesh.MeshSizeMax = 0.3;\nPhysical Surface("disk", 7) = {1};\n'
+                         'Physical Curve("rim", 8) = {1};\n')
+    subprocess.run(["gmsh", "-2", "-order", "2", "-setnumber", "Mesh.RecombineAll", "1", geo,
+                    "-o", msh], check=True, capture_output=True)
+    report = smooth_report(tmp, msh, out, "--shape", "rim=circle:0,0,1")
+    assert not report["curved"]["input_returned"]
+    radius = np.hypot(*read_mesh(out).points[:, :2].T)
+    on_rim = np.abs(radius - 1) < 1e-3
+    assert on_rim.sum() == 48 and np.abs(radius[on_rim] - 1).max() < 1e-14
+    assert radius.max() < 1 + 1e-14
