@@ -28,6 +28,10 @@ class Optimizer {
   // Every cell towards an ideal cell of its desired volume (thesis chapter 5); inverted cells
   // are untangled first unless options.untangle is false. Throws Error if the options are out
   // of range, if cells stay inverted, or if the boundary cannot be classified. Collective.
+  // Called again with the same energy, boundary and targets options (the mesh moved a little
+  // between calls), it starts warm: the targets are the mesh's as it finds them, as in any
+  // call, but the quasi-Newton method starts in the Newton regime, with the α the last call
+  // ended with and no antigradient steps (solver.advanced.alpha0, if set, still wins).
   Result smooth(const SmoothOptions& options = {}, const Observer& observer = {});
 
   // Cells crowd where `field` is small (thesis chapter 6): the desired volumes are recomputed
@@ -50,7 +54,7 @@ class Optimizer {
   // at its time: one object to move (set_time) for a geometry that is both adapted to and fitted.
   Result adapt(const LevelSet& phi, const AdaptOptions& options = {},
                const Observer& observer = {});
-  // The next adapt() starts cold (the mesh was changed in another way, say).
+  // The next smooth() or adapt() starts cold (the mesh was changed in another way, say).
   void forget_warm_start();
 
   // Per local cell at the mesh's coordinates: "energy", "det_G_min", "Q" (actual over desired

@@ -110,7 +110,7 @@ class Optimizer:
         return Result(self._optimizer.adapt(size_field, fit, progress, **options))
 
     def forget_warm_start(self) -> None:
-        """The next adapt() starts cold (the mesh was changed in another way)."""
+        """The next smooth() or adapt() starts cold (the mesh was changed in another way)."""
         self._optimizer.forget_warm_start()
 
     def write(self, path: str) -> None:

@@ -224,8 +224,17 @@ struct Optimizer::Impl {
   std::optional<InputCells> input_cells;  // set by keep_input_cells()
   // input_cells if the mesh's coordinates are still those they were kept at, else null.
   const InputCells* current_input_cells() const;
-  OwnedVec cell_size;                     // local cell size per dof, for the practical criterion
-  bool warm = false;                      // an adapt() ran: the next one starts from its volumes
+  OwnedVec cell_size;  // local cell size per dof, for the practical criterion
+  bool warm = false;   // an adapt() ran: the next one starts from its volumes
+  // The last smooth()'s minimization, for a warm start of the next one on the same problem
+  // (same energy, boundary and targets options; the connectivity is the Mesh's, fixed): the α
+  // it ended with. Reset by anything else that sets up a problem.
+  struct SmoothingEnd {
+    double alpha;
+    TargetMode targets;
+    SizeMode sizes;
+  };
+  std::optional<SmoothingEnd> smoothed;
   std::unique_ptr<LevelSetFunction> phi;  // of the last fit; its constraint refers to it
   std::optional<FitResult> fitted;        // the last fit, until the next call
 };

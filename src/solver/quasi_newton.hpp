@@ -29,6 +29,10 @@ struct QuasiNewtonOptions : SolverOptions {
   double energy_roundoff = 0.0;
   // MPI_Wtime() after which no step starts (SolverOptions::time_limit from the call's start).
   double deadline = std::numeric_limits<double>::infinity();
+  // A warm start (Optimizer: smooth() called again on the same problem, the mesh moved a little):
+  // α starts here instead of at initial_alpha() unless advanced.alpha0 is set, and no
+  // antigradient steps are taken. Above the thesis' α₀ it is proven as the automatic α₀ = 1 is.
+  std::optional<double> warm_alpha;
 };
 
 // Whether MPI_Wtime() is past `deadline` (never for +∞), by the first rank's clock. Collective

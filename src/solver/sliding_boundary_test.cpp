@@ -96,8 +96,9 @@ RingOutcome smooth_ring(CellType type, int n, int m,
   BoundaryOptions options(BoundaryMode::Slide);
   options.shapes = shapes;
   ThesisProblem p(ring(type, n, m, 3.0), {}, options);
-  const SolverRun result =
-      p.minimize(QuasiNewtonOptions{{}, energy_roundoff(p.energy, p.view.dim, p.volume)});
+  QuasiNewtonOptions method;
+  method.energy_roundoff = energy_roundoff(p.energy, p.view.dim, p.volume);
+  const SolverRun result = p.minimize(method);
   EXPECT_NE(result.reason, StopReason::LineSearchFailed);
   EXPECT_NE(result.reason, StopReason::MaxIterations);
 
@@ -184,7 +185,8 @@ TEST(SlidingBoundary, ShellHexesSpreadEvenlyAlongTheCirclesAndKeepTheirRidges) {
 TEST(SlidingBoundary, RejectedDirectionsAreTurnedJustEnoughTowardsTheAntigradient) {
   for (RejectedDirection choice : {RejectedDirection::Blend, RejectedDirection::Antigradient}) {
     ThesisProblem p(ring(CellType::Triangle, 48, 4, 3.0), {}, BoundaryMode::Slide);
-    QuasiNewtonOptions options{{}, energy_roundoff(p.energy, p.view.dim, p.volume)};
+    QuasiNewtonOptions options;
+    options.energy_roundoff = energy_roundoff(p.energy, p.view.dim, p.volume);
     options.advanced.rejected_direction = choice;
     const SolverRun result = p.minimize(options);
     EXPECT_NE(result.reason, StopReason::LineSearchFailed);
