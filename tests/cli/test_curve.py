@@ -4,7 +4,7 @@ import json
 import math
 import os
 
-from conftest import expect_one_error_line, neomesh, read_mesh
+from conftest import CORPUS, expect_one_error_line, needs_corpus, neomesh, read_mesh
 
 
 def quality(tmp, path):
@@ -78,3 +78,19 @@ def test_wedges_an_unknown_part_and_order_3_are_refused_in_one_line(tmp):
                                   expect=1), ["no boundary part 'hole'"], [out])
     expect_one_error_line(neomesh("curve", quads, "-o", out, "--order", "3", expect=1),
                           ["--order 3"], [out])
+
+
+@needs_corpus
+def test_a_feat3_mesh_puts_its_nodes_on_its_charts(tmp):
+    # FEAT3's flow around a cylinder: part bnd:c on the circle chart (0.2, 0.2), r = 0.05; the
+    # outer box on a closed Bezier polyline. No shape given: the charts are the geometry.
+    curved = os.path.join(tmp, "curved.msh")
+    proc = neomesh("curve", os.path.join(CORPUS, "feat3", "flowbench_c2d_00_quad_130.xml"),
+                   "-o", curved)
+    assert "0 boundary nodes of parts without a shape or chart left straight" in proc.stdout
+    assert quality(tmp, curved)["curved"]["not_certified_valid"] == 0
+    points = read_mesh(curved).points
+    radii = [math.hypot(x - 0.2, y - 0.2) for x, y, _ in points]
+    near = [r for r in radii if abs(r - 0.05) < 0.002]
+    assert len(near) == 24  # the circle's 12 vertices and 12 edge nodes
+    assert max(abs(r - 0.05) for r in near) <= 1e-12
