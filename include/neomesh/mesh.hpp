@@ -24,6 +24,8 @@ class PlexMesh;          // the implementation (src/mesh/plex_mesh.hpp)
 struct CellQuality;      // per-cell quality (src/geometry/quality.hpp)
 struct GenerateOptions;  // neomesh/generate.hpp
 struct MeshArrays;       // below
+struct CurveOptions;     // neomesh/curve.hpp
+struct CurveSummary;     // neomesh/curve.hpp
 
 // Whether a mesh with inverted or degenerate cells is an error (Refuse) or read as it is
 // (Keep: Optimizer::smooth untangles it, quality() counts the inverted cells).
@@ -171,6 +173,8 @@ class Mesh {
  private:
   friend class Optimizer;  // works on the implementation
   friend class SizeField;  // a metric per vertex is interpolated over the mesh
+  friend Mesh curve_mesh(const std::vector<std::filesystem::path>& inputs,
+                         const CurveOptions& options, CurveSummary* summary, MPI_Comm comm);
   // The implementation; the non-const one may move the vertices, so it drops the quality cache.
   PlexMesh& plex();
   const PlexMesh& plex() const;

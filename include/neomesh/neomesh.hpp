@@ -10,6 +10,7 @@
 #pragma once
 
 #include <neomesh/cell_type.hpp>
+#include <neomesh/curve.hpp>
 #include <neomesh/error.hpp>
 #include <neomesh/field.hpp>
 #include <neomesh/generate.hpp>

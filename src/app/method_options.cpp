@@ -33,7 +33,15 @@ std::string help_text(const OptionSpec<Options>& spec) {
   return note.empty() ? std::string(spec.help) : fmt::format("{} ({})", spec.help, note);
 }
 
-// "boundary.shapes" entries PART=SPEC as (part, spec) pairs.
+// A markdown table cell: | escaped.
+std::string cell(std::string_view text) {
+  std::string out;
+  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+
+}  // namespace
+
 Shapes parse_shapes(const std::vector<std::string>& texts) {
   Shapes shapes;
   for (const std::string& shape : texts) {
@@ -44,15 +52,6 @@ Shapes parse_shapes(const std::vector<std::string>& texts) {
   }
   return shapes;
 }
-
-// A markdown table cell: | escaped.
-std::string cell(std::string_view text) {
-  std::string out;
-  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
-  return out;
-}
-
-}  // namespace
 
 template <typename Options>
 void TaskOptions<Options>::add(CLI::App& cmd, const OptionSpec<Options>& spec) {

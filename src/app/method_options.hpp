@@ -53,6 +53,10 @@ class TaskOptions {
 template <typename Options>
 std::string options_markdown();
 
+// `--shape` arguments PART=SPEC as (part, spec) pairs; throws Error for one without a part or a
+// shape.
+Shapes parse_shapes(const std::vector<std::string>& texts);
+
 // A library error about an option begins with the option's field path ("solver.advanced.eta must be
 // ...", "boundary.shapes: ..."): the message with the command line's spelling instead
 // ("--eta must be ...", "--shape: ...").

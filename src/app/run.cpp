@@ -215,7 +215,7 @@ std::string describe_parse_error(const CLI::ParseError& e, const std::vector<std
   if (auto file = between(m, "", " was not readable (missing?)"))
     return fmt::format("--config {}: cannot read the file (missing?)", shorten(*file, 200));
   if (m == "A subcommand is required")
-    return "give a subcommand: generate, quality, convert, smooth, render or adapt";
+    return "give a subcommand: generate, quality, convert, curve, smooth, render or adapt";
   if (!m.empty()) m[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(m[0])));
   return shorten(m, 300);
 }
@@ -348,7 +348,8 @@ int run(int argc, char** argv) {
       ->type_name("FILE");
 
   std::vector<Subcommand> commands = {add_generate(cli), add_quality(cli), add_convert(cli),
-                                      add_smooth(cli),   add_render(cli),  add_adapt(cli)};
+                                      add_curve(cli),    add_smooth(cli),  add_render(cli),
+                                      add_adapt(cli)};
   for (auto& c : commands) {
     c.cli->fallthrough();
     c.cli->set_help_flag("-h,--help", "print this help and exit");

@@ -16,6 +16,7 @@ struct Subcommand {
 Subcommand add_generate(CLI::App& app);
 Subcommand add_quality(CLI::App& app);
 Subcommand add_convert(CLI::App& app);
+Subcommand add_curve(CLI::App& app);
 Subcommand add_smooth(CLI::App& app);
 Subcommand add_render(CLI::App& app);
 Subcommand add_adapt(CLI::App& app);

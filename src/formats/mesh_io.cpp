@@ -54,38 +54,46 @@ void require_writable_format(const std::filesystem::path& path) {
         path.string(), ext.string());
 }
 
+namespace {
+
+InputMesh read_input(const std::filesystem::path& path) {
+  check_input_file(path);
+  require_readable_format(path);
+  const auto ext = path.extension();
+  return ext == ".msh"     ? read_gmsh(path)
+         : ext == ".vtk"   ? read_vtk(path)
+         : ext == ".vtu"   ? read_vtu(path)
+         : ext == ".pvtu"  ? read_pvtu(path)
+         : ext == ".mesh"  ? read_medit(path)
+         : is_exodus(path) ? read_exodus(path)
+         : ext == ".cgns"  ? read_cgns(path)
+                           : input_from_data(read_feat(path));
+}
+
+}  // namespace
+
 PlexMesh load_mesh(const std::filesystem::path& path, MPI_Comm comm, bool keep_inverted) {
-  InputMesh input;
-  on_root(comm, [&] {
-    check_input_file(path);
-    require_readable_format(path);
-    const auto ext = path.extension();
-    input = ext == ".msh"     ? read_gmsh(path)
-            : ext == ".vtk"   ? read_vtk(path)
-            : ext == ".vtu"   ? read_vtu(path)
-            : ext == ".pvtu"  ? read_pvtu(path)
-            : ext == ".mesh"  ? read_medit(path)
-            : is_exodus(path) ? read_exodus(path)
-            : ext == ".cgns"  ? read_cgns(path)
-                              : input_from_data(read_feat(path));
-  });
-  return PlexMesh::from_input(input, path.string(), comm, keep_inverted);
+  return load_mesh(std::vector<std::filesystem::path>{path}, comm, keep_inverted);
 }
 
 PlexMesh load_mesh(const std::vector<std::filesystem::path>& paths, MPI_Comm comm,
-                   bool keep_inverted) {
-  if (paths.size() == 1) return load_mesh(paths[0], comm, keep_inverted);
+                   bool keep_inverted, const std::function<void(InputMesh&)>& prepare) {
   InputMesh input;
   std::string source;
   for (const auto& path : paths) source += (source.empty() ? "" : " + ") + path.string();
   on_root(comm, [&] {
-    for (const auto& path : paths) {
-      check_input_file(path);
-      if (path.extension() != ".xml")
-        fail("{}: only FEAT3 .xml meshes are read together with other files (chart files)",
-             path.string());
+    if (paths.size() == 1) {
+      input = read_input(paths[0]);
+    } else {
+      for (const auto& path : paths) {
+        check_input_file(path);
+        if (path.extension() != ".xml")
+          fail("{}: only FEAT3 .xml meshes are read together with other files (chart files)",
+               path.string());
+      }
+      input = input_from_data(read_feat(paths));
     }
-    input = input_from_data(read_feat(paths));
+    if (prepare) prepare(input);
   });
   return PlexMesh::from_input(input, source, comm, keep_inverted);
 }

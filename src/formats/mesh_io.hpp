@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,9 +30,12 @@ void require_writable_format(const std::filesystem::path& path);
 // with `keep_inverted`, inverted and degenerate cells are kept (InvertedCells::Keep).
 PlexMesh load_mesh(const std::filesystem::path& path, MPI_Comm comm = PETSC_COMM_WORLD,
                    bool keep_inverted = false);
-// A FEAT3 mesh file with its chart files, in any order (one path: as above).
+// A FEAT3 mesh file with its chart files, in any order (one path: as above). `prepare`, if
+// given, changes the mesh as read on rank 0 before it is checked and distributed (`neomesh
+// curve` raises its order there).
 PlexMesh load_mesh(const std::vector<std::filesystem::path>& paths,
-                   MPI_Comm comm = PETSC_COMM_WORLD, bool keep_inverted = false);
+                   MPI_Comm comm = PETSC_COMM_WORLD, bool keep_inverted = false,
+                   const std::function<void(InputMesh&)>& prepare = {});
 
 void write_mesh(const PlexMesh& mesh, const std::filesystem::path& path,
                 const MeshFields& fields = {});

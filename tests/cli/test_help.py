@@ -11,6 +11,7 @@ GROUPS = {
     "generate": ["Positionals:", "Options:"],
     "quality": ["Positionals:", "Options:"],
     "convert": ["Positionals:", "Options:"],
+    "curve": ["Positionals:", "Options:"],
     "smooth": ["Options:", "Energy", "Quasi-Newton method", "Linear solvers"],
     "render": ["Options:"],
     "adapt": ["Options:", "Size field", "Picard iteration", "Energy", "Quasi-Newton method",

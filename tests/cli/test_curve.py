@@ -1,0 +1,96 @@
+"""`neomesh curve`: a straight mesh raised to second order with its boundary on the exact
+geometry, written only when every curved cell is certified valid."""
+import json
+import math
+import os
+
+from conftest import CORPUS, expect_one_error_line, needs_corpus, neomesh, read_mesh
+
+
+def quality(tmp, path):
+    report = os.path.join(tmp, "quality.json")
+    neomesh("quality", path, "--json", report)
+    with open(report) as f:
+        return json.load(f)
+
+
+def ring_msh(path, around, inner, outer):
+    """A ring of `around` quadrilaterals between radii `inner` and `outer` (one layer), Gmsh 2.2,
+    its circles in the physical groups "inner" and "outer"."""
+    nodes = [(r * math.cos(2 * math.pi * i / around), r * math.sin(2 * math.pi * i / around))
+             for r in (inner, outer) for i in range(around)]
+    elements = []
+    for i in range(around):
+        j = (i + 1) % around
+        elements.append(f"1 2 1 1 {i + 1} {j + 1}")
+        elements.append(f"1 2 2 2 {around + i + 1} {around + j + 1}")
+        elements.append(f"3 2 3 3 {i + 1} {j + 1} {around + j + 1} {around + i + 1}")
+    with open(path, "w") as f:
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n"
+                '1 1 "inner"\n1 2 "outer"\n2 3 "ring"\n$EndPhysicalNames\n')
+        f.write(f"$Nodes\n{len(nodes)}\n")
+        f.writelines(f"{k + 1} {x!r} {y!r} 0\n" for k, (x, y) in enumerate(nodes))
+        f.write(f"$EndNodes\n$Elements\n{len(elements)}\n")
+        f.writelines(f"{k + 1} {e}\n" for k, e in enumerate(elements))
+        f.write("$EndElements\n")
+
+
+def test_an_annulus_is_raised_with_its_arcs_nodes_on_the_circles(tmp):
+    straight, curved = os.path.join(tmp, "annulus.msh"), os.path.join(tmp, "curved.msh")
+    neomesh("generate", "annulus-quad", "--level", "2", "-o", straight)
+    proc = neomesh("curve", straight, "-o", curved, "--order", "2",
+                   "--shape", "inner=circle:0,0,1", "--shape", "outer=circle:0,0,2")
+    assert "certified valid" in proc.stdout
+    q = quality(tmp, curved)
+    assert q["curved"]["cells"] == {"quadrilateral9": 16}
+    assert q["curved"]["not_certified_valid"] == 0
+    points = read_mesh(curved).points
+    radii = [math.hypot(x, y) for x, y, _ in points]
+    # Raising adds 40 edge and 16 centre nodes to the 25 vertices; the arcs' 8 + 10 lie on them.
+    assert len(points) == 25 + 40 + 16
+    for target in (1.0, 2.0):
+        near = [r for r in radii if abs(r - target) < 0.05]
+        assert len(near) == 9, (target, near)
+        assert max(abs(r - target) for r in near) <= 1e-12
+
+
+def test_a_thin_layer_under_a_coarse_circle_is_refused_and_nothing_written(tmp):
+    straight, curved = os.path.join(tmp, "ring.msh"), os.path.join(tmp, "curved.msh")
+    ring_msh(straight, 6, 0.5, 0.55)
+    proc = neomesh("curve", straight, "-o", curved,
+                   "--shape", "inner=circle:0,0,0.5", "--shape", "outer=circle:0,0,0.55",
+                   expect=1)
+    expect_one_error_line(proc, ["6 of 6 cells are not certified valid",
+                                 "interior nodes need optimizing"], [curved])
+    # Without shapes the ring stays straight, and valid.
+    neomesh("curve", straight, "-o", curved)
+    assert quality(tmp, curved)["curved"]["not_certified_valid"] == 0
+
+
+def test_wedges_an_unknown_part_and_order_3_are_refused_in_one_line(tmp):
+    wedges, out = os.path.join(tmp, "wedges.msh"), os.path.join(tmp, "out.msh")
+    neomesh("generate", "box-wedge", "--level", "1", "-o", wedges)
+    expect_one_error_line(neomesh("curve", wedges, "-o", out, expect=1),
+                          ["wedges cannot be raised"], [out])
+    quads = os.path.join(tmp, "quads.msh")
+    neomesh("generate", "annulus-quad", "--level", "1", "-o", quads)
+    expect_one_error_line(neomesh("curve", quads, "-o", out, "--shape", "hole=circle:0,0,1",
+                                  expect=1), ["no boundary part 'hole'"], [out])
+    expect_one_error_line(neomesh("curve", quads, "-o", out, "--order", "3", expect=1),
+                          ["--order 3"], [out])
+
+
+@needs_corpus
+def test_a_feat3_mesh_puts_its_nodes_on_its_charts(tmp):
+    # FEAT3's flow around a cylinder: part bnd:c on the circle chart (0.2, 0.2), r = 0.05; the
+    # outer box on a closed Bezier polyline. No shape given: the charts are the geometry.
+    curved = os.path.join(tmp, "curved.msh")
+    proc = neomesh("curve", os.path.join(CORPUS, "feat3", "flowbench_c2d_00_quad_130.xml"),
+                   "-o", curved)
+    assert "0 boundary nodes of parts without a shape or chart left straight" in proc.stdout
+    assert quality(tmp, curved)["curved"]["not_certified_valid"] == 0
+    points = read_mesh(curved).points
+    radii = [math.hypot(x - 0.2, y - 0.2) for x, y, _ in points]
+    near = [r for r in radii if abs(r - 0.05) < 0.002]
+    assert len(near) == 24  # the circle's 12 vertices and 12 edge nodes
+    assert max(abs(r - 0.05) for r in near) <= 1e-12
