@@ -134,10 +134,11 @@ def test_what_cannot_be_read_is_refused_in_one_line(tmp):
     garbage = os.path.join(tmp, "garbage.e")
     open(garbage, "w").write("not an Exodus file\n")
     out = os.path.join(tmp, "o.exo")
-    for path, words in [(second_order, ["p2.exo", "second-order (curved) cells",
-                                        "does not optimize"]),
-                        (garbage, ["garbage.e", "Exodus"])]:
-        expect_one_error_line(neomesh("smooth", path, "-o", out, expect=1), words, [out])
+    for command, path, more, words in [
+            ("adapt", second_order, ["--sphere", "0.3,0.3,0.3,0.1"],
+             ["p2.exo", "second-order (curved) cells", "adapt does not take"]),
+            ("smooth", garbage, [], ["garbage.e", "Exodus"])]:
+        expect_one_error_line(neomesh(command, path, "-o", out, *more, expect=1), words, [out])
 
 
 def test_meshios_tetra10_is_read_with_its_nodes_on_their_edges(tmp):
