@@ -89,6 +89,17 @@ std::vector<double> coordinates(DM dm) {
   return all;
 }
 
+// This rank's cells by their point in rank 0's mesh (from the migration).
+std::vector<PetscInt> cells_of_rank(const Distributed& d) {
+  const Graph migration = graph_of(d.migration);
+  PetscInt cells = 0;
+  NM_PETSC(DMPlexGetHeightStratum(d.dm, 0, nullptr, &cells));
+  std::vector<PetscInt> mine;
+  for (std::size_t i = 0; i < migration.local.size(); ++i)
+    if (migration.local[i] < cells) mine.push_back(migration.remote[i].second);
+  return mine;
+}
+
 // One cell type: the migration is made in DMPlex's order; several: it is stratified by type.
 class DistributePlex : public testing::TestWithParam<bool> {};
 
@@ -102,11 +113,7 @@ TEST_P(DistributePlex, MakesWhatDMPlexDistributeMakesOfTheSameParts) {
 
   // The parts ours made (each rank's cells, from its migration), for DMPlexDistribute.
   const Graph migration = graph_of(ours.migration);
-  PetscInt cells = 0;
-  NM_PETSC(DMPlexGetHeightStratum(ours.dm, 0, nullptr, &cells));
-  std::vector<PetscInt> mine;
-  for (std::size_t i = 0; i < migration.local.size(); ++i)
-    if (migration.local[i] < cells) mine.push_back(migration.remote[i].second);
+  const std::vector<PetscInt> mine = cells_of_rank(ours);
   EXPECT_FALSE(mine.empty());
   int size = 0;
   MPI_Comm_size(MPI_COMM_WORLD, &size);
@@ -167,14 +174,8 @@ INSTANTIATE_TEST_SUITE_P(CellTypes, DistributePlex, testing::Values(false, true)
 
 // Per cell of rank 0's mesh, the rank it went to (on rank 0; empty elsewhere).
 std::vector<int> rank_of_cells(const Distributed& d, PetscInt num_cells) {
-  const Graph migration = graph_of(d.migration);
-  PetscInt cells = 0;
-  NM_PETSC(DMPlexGetHeightStratum(d.dm, 0, nullptr, &cells));
-  std::vector<PetscInt> mine;
-  for (std::size_t i = 0; i < migration.local.size(); ++i)
-    if (migration.local[i] < cells) mine.push_back(migration.remote[i].second);
   std::vector<int> rank(num_cells, -1), owner(num_cells, -1);
-  for (PetscInt c : mine) rank[c] = mpi_rank(MPI_COMM_WORLD);
+  for (PetscInt c : cells_of_rank(d)) rank[c] = mpi_rank(MPI_COMM_WORLD);
   MPI_Reduce(rank.data(), owner.data(), static_cast<int>(num_cells), MPI_INT, MPI_MAX, 0,
              MPI_COMM_WORLD);
   return mpi_rank(MPI_COMM_WORLD) == 0 ? owner : std::vector<int>{};
