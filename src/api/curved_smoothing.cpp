@@ -23,17 +23,13 @@ void Optimizer::Impl::start_curved(const SmoothOptions& options) {
   input_cells.reset();
   input_share.clear();
   curved.reset();
-  InputMesh input = gather_mesh(mesh.plex(), {}).mesh;
-  NodeMesh nodes = node_mesh(input);
-  // Sub-cells of a valid curved cell may be inverted (a bent edge): they give the topology only.
-  PlexMesh plex = PlexMesh::from_input(nodes.mesh, mesh.name(), mesh.comm(), true);
-  MeshView cells = curved_cells_view(plex.view(), input);
-  MeshView corners = corner_cells_view(plex.view(), input);
-  curved = std::make_unique<CurvedMesh>(
-      CurvedMesh{std::move(input), std::move(plex), std::move(cells), std::move(corners)});
+  // The whole curved mesh on rank 0, which builds the node mesh and sends each process its part.
+  const InputMesh input = gather_mesh(mesh.plex(), {}).mesh;
+  curved = std::make_unique<CurvedMesh>(distribute_node_mesh(input, mesh.name(), mesh.comm()));
   x = curved->nodes.coordinates();
   const std::vector<double> volumes = cell_volumes();
-  mesh_volume = std::accumulate(volumes.begin(), volumes.end(), 0.0);
+  const double local_volume = std::accumulate(volumes.begin(), volumes.end(), 0.0);
+  MPI_Allreduce(&local_volume, &mesh_volume, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
   boundary = std::make_unique<Boundary>(curved->nodes.view(), dofs(), options.boundary);
   energy = options.energy;
   boundary_options = options.boundary;
@@ -42,51 +38,41 @@ void Optimizer::Impl::start_curved(const SmoothOptions& options) {
 }
 
 CurvedQualitySummary Optimizer::Impl::curved_quality_at_x() {
-  InputMesh& input = curved->input;
-  const MeshView& nodes = curved->nodes.view();
-  const int d = nodes.dim;
   std::vector<double> local(dofs().num_local_dofs());
   dofs().global_to_local(x, local);
-  // The node mesh's first vertices are the curved mesh's points (node_mesh.hpp).
-  std::vector<double> points(static_cast<std::size_t>(d * input.num_points()));
-  for (PetscInt v = 0; v < nodes.num_vertices; ++v)
-    if (const PetscInt p = nodes.input_vertex[v]; p < input.num_points())
-      std::copy_n(local.begin() + d * v, d, points.begin() + d * p);
-  set_curved_point_coordinates(input, points);
-  return curved_quality(input);
+  return curved_quality(curved->cells, local, mesh.comm());
 }
 
 void Optimizer::Impl::finish_curved(Result& result) {
-  const InputMesh& input = curved->input;  // its points at x (curved_quality_at_x)
   PlexMesh& plex = mesh.plex();
   const MeshView& view = plex.view();
   const int d = view.dim;
-  // The corners, by their input numbers (the curved mesh's first points).
-  std::vector<double> local(static_cast<std::size_t>(d * view.num_vertices));
+  std::vector<double> local_x(dofs().num_local_dofs());
+  dofs().global_to_local(x, local_x);
+  // Every point on rank 0 in input numbering, the corners back to the processes that hold them in
+  // the mesh's own partition (another than the node mesh's).
+  const std::vector<double> points =
+      gather_points(curved->nodes.view(), local_x, curved->points, mesh.comm());
+  std::vector<double> local = points_at_vertices(view, points, d, mesh.comm());
   for (PetscInt v = 0; v < view.num_vertices; ++v)
-    std::copy_n(input.coords.begin() + d * view.input_vertex[v], d, local.begin() + d * v);
+    if (!view.owned[v]) std::fill_n(local.begin() + d * v, d, 0.0);
   const OwnedVec corners = plex.dofs().create_global_vector();
   plex.dofs().add_local_to_global(local, corners);
-  const std::vector<double> points = curved_point_coordinates(input);
-  plex.set_high_order_nodes(std::span(points).subspan(input.coords.size()));
+  // Rank 0's high-order nodes: its points after the corners (none elsewhere).
+  const std::size_t corners_end = points.empty() ? 0 : d * plex.global_num_vertices();
+  plex.set_high_order_nodes(std::span(points).subspan(corners_end));
   plex.set_coordinates(corners);
   result.quality_after = mesh.quality();
   result.boundary_distance = boundary->max_distance_from_input(x);
-  std::vector<double> local_x(dofs().num_local_dofs());
-  dofs().global_to_local(x, local_x);
   const std::vector<double> volumes = curved_cell_volumes(curved->cells, local_x);
-  const double volume = std::accumulate(volumes.begin(), volumes.end(), 0.0);
+  double volume = std::accumulate(volumes.begin(), volumes.end(), 0.0);
+  MPI_Allreduce(MPI_IN_PLACE, &volume, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
   result.volume_change = (volume - mesh_volume) / mesh_volume;
 }
 
 Result Optimizer::Impl::smooth_curved(const SmoothOptions& options, const Observer& observer) {
   options.validate();
   started = MPI_Wtime();
-  if (mpi_size(mesh.comm()) > 1)
-    fail(
-        "{}: a mesh of second-order (curved) cells is smoothed on one process only; run it "
-        "without mpiexec",
-        mesh.name());
   Result result;
   result.quality_before = mesh.quality();
   const CurvedQualitySummary before = *result.quality_before.curved;
@@ -122,8 +108,8 @@ Result Optimizer::Impl::smooth_curved(const SmoothOptions& options, const Observ
   // The barrier sees det J at sample points only; the certificate decides (§11). With the quality
   // guard, the worst cell may not get worse either.
   CurvedSmoothingSummary& summary = result.curved.emplace();
-  summary.cells = curved->input.num_cells();
-  summary.nodes = curved->input.num_points();
+  summary.cells = mesh.plex().global_num_cells();
+  summary.nodes = curved->points;
   summary.min_scaled_jacobian_before = before.scaled_jacobian.min;
   const CurvedQualitySummary optimum = curved_quality_at_x();
   summary.min_scaled_jacobian_optimum = optimum.scaled_jacobian.min;
@@ -139,7 +125,6 @@ Result Optimizer::Impl::smooth_curved(const SmoothOptions& options, const Observ
        (options.quality_guard && optimum.scaled_jacobian.min < before.scaled_jacobian.min));
   if (summary.input_returned) {
     NM_PETSC(VecCopy(input, x));
-    curved_quality_at_x();
     result.final_energy = functional->value(x);
   }
   finish_curved(result);

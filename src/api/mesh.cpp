@@ -77,32 +77,7 @@ InputMesh input_from_arrays(int coordinate_dim, std::span<const double> coordina
 
 // The curved cells' summary, computed on rank 0 from the gathered mesh and sent to every rank.
 CurvedQualitySummary curved_summary(const PlexMesh& plex) {
-  const GatheredMesh gathered = gather_mesh(plex, {});
-  constexpr int kTypes = static_cast<int>(kCurvedTypes.size());
-  std::array<double, kTypes + 6> values{};  // counts per type, then the rest in order
-  CurvedQualitySummary s;
-  on_root(plex.comm(), [&] {
-    s = curved_quality(gathered.mesh);
-    for (const auto& [type, count] : s.cells_by_type)
-      for (int t = 0; t < kTypes; ++t)
-        if (name(kCurvedTypes[t]) == type) values[t] = static_cast<double>(count);
-    const double rest[] = {static_cast<double>(s.invalid), static_cast<double>(s.undecided),
-                           s.scaled_jacobian.min,          s.scaled_jacobian.mean,
-                           s.scaled_jacobian.max,          s.scaled_jacobian_lower_bound};
-    std::copy(std::begin(rest), std::end(rest), values.begin() + kTypes);
-  });
-  MPI_Bcast(values.data(), static_cast<int>(values.size()), MPI_DOUBLE, 0, plex.comm());
-  s = {};
-  for (int t = 0; t < kTypes; ++t)
-    if (values[t] > 0)
-      s.cells_by_type.emplace_back(std::string(name(kCurvedTypes[t])),
-                                   static_cast<std::int64_t>(values[t]));
-  s.invalid = static_cast<std::int64_t>(values[kTypes]);
-  s.undecided = static_cast<std::int64_t>(values[kTypes + 1]);
-  s.not_valid = s.invalid + s.undecided;
-  s.scaled_jacobian = {values[kTypes + 2], values[kTypes + 3], values[kTypes + 4]};
-  s.scaled_jacobian_lower_bound = values[kTypes + 5];
-  return s;
+  return curved_quality_on_root(gather_mesh(plex, {}).mesh, plex.comm());
 }
 
 }  // namespace

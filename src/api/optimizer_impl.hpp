@@ -19,6 +19,7 @@
 #include "adapt/fit.hpp"
 #include "boundary/boundary.hpp"
 #include "energy/functional.hpp"
+#include "geometry/node_mesh.hpp"
 #include "mesh/input_mesh.hpp"
 #include "mesh/plex_mesh.hpp"
 #include "solver/quasi_newton.hpp"
@@ -41,11 +42,7 @@ struct Optimizer::Impl {
   // a vertex of `nodes`, whose view the boundary is classified on; the energy's cells are
   // `cells`, the curved ones; `corners` their straight corner cells. Built where a smoothing of
   // a curved mesh starts, from the mesh's coordinates then.
-  struct CurvedMesh {
-    InputMesh input;  // the whole curved mesh, its points moved to x by curved_points()
-    PlexMesh nodes;
-    MeshView cells, corners;
-  };
+  using CurvedMesh = DistributedNodeMesh;
   std::unique_ptr<CurvedMesh> curved;
 
   // The vertices and cells the optimization runs on: the mesh's, or for a curved mesh the nodes
@@ -64,7 +61,7 @@ struct Optimizer::Impl {
   // The node mesh of the mesh's curved cells, the boundary and the constraints on it; x at its
   // vertices.
   void start_curved(const SmoothOptions& options);
-  // curved->input with its points at x; returns their curved quality.
+  // The curved quality of the cells at x (collective: every process gets the summary).
   CurvedQualitySummary curved_quality_at_x();
   // Moves the mesh's corners and high-order nodes to x, and sets result's quality_after,
   // boundary change and volume change.

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "geometry/curved_cell.hpp"
+#include "mesh/gather.hpp"
 
 namespace neomesh {
 
@@ -74,9 +75,11 @@ class Builder {
   }
 
   NodeMesh build() {
-    for (PetscInt c = 0; c < curved_.num_cells(); ++c)
+    for (PetscInt c = 0; c < curved_.num_cells(); ++c) {
       visit_curved_type(curved_.high_order.types[c],
                         [&]<CurvedType Type>(CurvedTag<Type>) { add_cell<Type>(c); });
+      out_.subcells.push_back(out_.mesh.num_cells());
+    }
     subdivide_facets();
     out_.mesh.points = curved_.points;
     out_.mesh.groups = curved_.groups;
@@ -213,36 +216,57 @@ class Builder {
   std::map<FaceKey, PetscInt> face_node_;  // by its face's corner points
 };
 
-// `nodes`' local vertex of each vertex of the node mesh.
-std::vector<PetscInt> local_of_input(const MeshView& nodes) {
-  std::vector<PetscInt> local(nodes.input_vertex.size(), -1);
-  for (PetscInt v = 0; v < nodes.num_vertices; ++v) local[nodes.input_vertex[v]] = v;
-  return local;
-}
+// A process' curved cells: those whose sub-cells its part of the node mesh has, in increasing
+// number, each with its points (input numbers, as curved_cell_points gives them).
+struct CurvedCells {
+  std::vector<PetscInt> number;  // in the curved mesh
+  std::vector<CurvedType> types;
+  std::vector<PetscInt> offsets = {0};  // into `points`
+  std::vector<PetscInt> points;
+};
 
-// The view of `nodes` with blocks of the curved cells of `curved`, per type: every node
+// `nodes`' local vertices by their input numbers.
+class LocalVertices {
+ public:
+  explicit LocalVertices(const MeshView& nodes) {
+    by_input_.reserve(nodes.num_vertices);
+    for (PetscInt v = 0; v < nodes.num_vertices; ++v)
+      by_input_.emplace_back(nodes.input_vertex[v], v);
+    std::sort(by_input_.begin(), by_input_.end());
+  }
+  PetscInt operator()(PetscInt input) const {
+    const auto it =
+        std::lower_bound(by_input_.begin(), by_input_.end(), std::pair(input, PetscInt{0}));
+    if (it == by_input_.end() || it->first != input)
+      fail("internal error: node {} of a local curved cell is not a local vertex", input);
+    return it->second;
+  }
+
+ private:
+  std::vector<std::pair<PetscInt, PetscInt>> by_input_;
+};
+
+// The view of `nodes` with blocks of the curved cells `cells`, per type: every node
 // (`corners_only` false) or the corners in canonical order.
-MeshView view_of_cells(const MeshView& nodes, const InputMesh& curved, bool corners_only) {
-  if (!curved.curved()) fail("internal error: the curved cells of a straight mesh");
+MeshView view_of_cells(const MeshView& nodes, const CurvedCells& cells, bool corners_only) {
   MeshView view = nodes;
   view.blocks.clear();
   view.global_cell.clear();
   view.num_cells = 0;
-  const std::vector<PetscInt> local = local_of_input(nodes);
+  const LocalVertices local(nodes);
   for (CurvedType type : kCurvedTypes) {
     CellBlock block{
         facts(type).linear, view.num_cells, {}, corners_only ? std::nullopt : std::optional(type)};
     visit_curved_type(type, [&]<CurvedType Type>(CurvedTag<Type>) {
-      PetscInt points[kMaxCurvedNodes];
-      for (PetscInt c = 0; c < curved.num_cells(); ++c) {
-        if (curved.high_order.types[c] != type) continue;
-        curved_cell_points(curved, c, points);
+      for (std::size_t k = 0; k < cells.types.size(); ++k) {
+        if (cells.types[k] != type) continue;
+        const PetscInt* points = cells.points.data() + cells.offsets[k];
         if (corners_only)
-          for (int k : linear_corners<Type>()) block.vertices.push_back(local[points[k]]);
+          for (int i : linear_corners<Type>()) block.vertices.push_back(local(points[i]));
         else
           for (int i = 0; i < CurvedTraits<Type>::nodes; ++i)
-            block.vertices.push_back(local[points[i]]);
-        view.global_cell.push_back(c);
+            block.vertices.push_back(local(points[i]));
+        view.global_cell.push_back(cells.number[k]);
       }
     });
     if (block.vertices.empty()) continue;
@@ -252,6 +276,65 @@ MeshView view_of_cells(const MeshView& nodes, const InputMesh& curved, bool corn
   return view;
 }
 
+// Rank 0's answer to process r's sub-cells `subcells` (node mesh cell numbers): their curved
+// cells, as a count, then per cell its number, type, and points.
+void pack_curved_cells(std::span<const PetscInt> subcells, const NodeMesh& node_mesh,
+                       const InputMesh& curved, std::vector<PetscInt>& out) {
+  std::vector<PetscInt> cells;
+  for (PetscInt s : subcells) {
+    const auto& first = node_mesh.subcells;
+    cells.push_back(std::upper_bound(first.begin(), first.end(), s) - first.begin() - 1);
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  out.push_back(static_cast<PetscInt>(cells.size()));
+  PetscInt points[kMaxCurvedNodes];
+  for (PetscInt c : cells) {
+    const int n = curved_cell_points(curved, c, points);
+    out.insert(out.end(), {c, static_cast<PetscInt>(curved.high_order.types[c]), n});
+    out.insert(out.end(), points, points + n);
+  }
+}
+
+// Collective: the curved cells of this process' part `nodes` of the node mesh (distributed with
+// NodeMesh::subcells kept together); `node_mesh` and the curved mesh `curved` are read on rank 0
+// (empty elsewhere), which sends each process its cells.
+CurvedCells local_curved_cells(const MeshView& nodes, const NodeMesh& node_mesh,
+                               const InputMesh& curved, MPI_Comm comm) {
+  const int size = mpi_size(comm);
+  // Every process' sub-cells on rank 0, each list after its length.
+  std::vector<PetscInt> mine = {nodes.num_cells};
+  mine.insert(mine.end(), nodes.global_cell.begin(), nodes.global_cell.end());
+  const std::vector<PetscInt> all = gatherv(comm, mine, MPIU_INT);
+  std::vector<PetscInt> send;
+  std::vector<int> counts(size, 0), offsets(size, 0);
+  if (mpi_rank(comm) == 0) {
+    for (std::size_t at = 0, r = 0; r < static_cast<std::size_t>(size); ++r) {
+      const PetscInt n = all[at];
+      offsets[r] = static_cast<int>(send.size());
+      pack_curved_cells(std::span(all).subspan(at + 1, n), node_mesh, curved, send);
+      counts[r] = static_cast<int>(send.size()) - offsets[r];
+      at += 1 + n;
+    }
+  }
+  int count = 0;
+  MPI_Scatter(counts.data(), 1, MPI_INT, &count, 1, MPI_INT, 0, comm);
+  std::vector<PetscInt> received(count);
+  MPI_Scatterv(send.data(), counts.data(), offsets.data(), MPIU_INT, received.data(), count,
+               MPIU_INT, 0, comm);
+  CurvedCells cells;
+  for (PetscInt k = 0, at = 1; k < received[0]; ++k) {
+    const PetscInt n = received[at + 2];
+    cells.number.push_back(received[at]);
+    cells.types.push_back(static_cast<CurvedType>(received[at + 1]));
+    cells.points.insert(cells.points.end(), received.begin() + at + 3,
+                        received.begin() + at + 3 + n);
+    cells.offsets.push_back(static_cast<PetscInt>(cells.points.size()));
+    at += 3 + n;
+  }
+  return cells;
+}
+
 }  // namespace
 
 NodeMesh node_mesh(const InputMesh& curved) {
@@ -259,12 +342,23 @@ NodeMesh node_mesh(const InputMesh& curved) {
   return Builder(curved).build();
 }
 
-MeshView curved_cells_view(const MeshView& nodes, const InputMesh& curved) {
-  return view_of_cells(nodes, curved, false);
-}
-
-MeshView corner_cells_view(const MeshView& nodes, const InputMesh& curved) {
-  return view_of_cells(nodes, curved, true);
+std::vector<double> gather_points(const MeshView& nodes, std::span<const double> coords,
+                                  PetscInt points, MPI_Comm comm) {
+  const int d = nodes.dim;
+  std::vector<PetscInt> numbers;
+  std::vector<double> values;
+  for (PetscInt v = 0; v < nodes.num_vertices; ++v)
+    if (nodes.owned[v] && nodes.input_vertex[v] < points) {
+      numbers.push_back(nodes.input_vertex[v]);
+      values.insert(values.end(), coords.begin() + d * v, coords.begin() + d * (v + 1));
+    }
+  const std::vector<PetscInt> all_numbers = gatherv(comm, std::move(numbers), MPIU_INT);
+  const std::vector<double> all_values = gatherv(comm, std::move(values), MPI_DOUBLE);
+  if (mpi_rank(comm) != 0) return {};
+  std::vector<double> out(static_cast<std::size_t>(d * points));
+  for (std::size_t k = 0; k < all_numbers.size(); ++k)
+    std::copy_n(all_values.begin() + d * k, d, out.begin() + d * all_numbers[k]);
+  return out;
 }
 
 std::vector<double> curved_cell_volumes(const MeshView& cells, std::span<const double> coords) {
@@ -282,6 +376,38 @@ std::vector<double> curved_cell_volumes(const MeshView& cells, std::span<const d
     });
   }
   return volumes;
+}
+
+DistributedNodeMesh distribute_node_mesh(const InputMesh& curved, const std::string& name,
+                                         MPI_Comm comm) {
+  NodeMesh nodes = mpi_rank(comm) == 0 ? node_mesh(curved) : NodeMesh{};
+  PlexMesh plex = PlexMesh::from_input(nodes.mesh, name, comm, true, nodes.subcells);
+  const CurvedCells cells = local_curved_cells(plex.view(), nodes, curved, comm);
+  MeshView curved_view = view_of_cells(plex.view(), cells, false);
+  MeshView corners = view_of_cells(plex.view(), cells, true);
+  MPI_Bcast(&nodes.points, 1, MPIU_INT, 0, comm);
+  return {std::move(plex), std::move(curved_view), std::move(corners), nodes.points};
+}
+
+std::vector<double> points_at_vertices(const MeshView& view, std::span<const double> points, int d,
+                                       MPI_Comm comm) {
+  std::vector<double> out(static_cast<std::size_t>(d * view.num_vertices));
+  if (mpi_size(comm) == 1) {
+    for (PetscInt v = 0; v < view.num_vertices; ++v)
+      std::copy_n(points.begin() + d * view.input_vertex[v], d, out.begin() + d * v);
+    return out;
+  }
+  std::vector<PetscSFNode> remote(out.size());
+  for (PetscInt v = 0; v < view.num_vertices; ++v)
+    for (int j = 0; j < d; ++j) remote[d * v + j] = {0, d * view.input_vertex[v] + j};
+  OwnedSF sf;
+  NM_PETSC(PetscSFCreate(comm, sf.out()));
+  NM_PETSC(PetscSFSetGraph(sf, static_cast<PetscInt>(points.size()),
+                           static_cast<PetscInt>(out.size()), nullptr, PETSC_COPY_VALUES,
+                           remote.data(), PETSC_COPY_VALUES));
+  NM_PETSC(PetscSFBcastBegin(sf, MPI_DOUBLE, points.data(), out.data(), MPI_REPLACE));
+  NM_PETSC(PetscSFBcastEnd(sf, MPI_DOUBLE, points.data(), out.data(), MPI_REPLACE));
+  return out;
 }
 
 }  // namespace neomesh

@@ -11,15 +11,24 @@
 // at the curved map's image of those reference points. Virtual vertices belong to no curved
 // cell: they have no energy, stay where they are, and are not written. The sub-cells only give
 // the topology (the boundary's facets, who neighbours whom); their shape plays no part.
+//
+// On several processes the node mesh is distributed with each curved cell's sub-cells kept on
+// one process (PlexMesh::from_input's cell_groups = NodeMesh::subcells): METIS splits the graph
+// of the curved cells, so that every curved cell's energy and certificate are one process' alone,
+// its nodes owned there or ghosts, as a straight cell's vertices are. Splitting the sub-cells
+// instead would cut curved cells, whose energy couples all their nodes.
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
+#include <mpi.h>
 #include <petscsys.h>
 
 #include "mesh/input_mesh.hpp"
 #include "mesh/mesh_view.hpp"
+#include "mesh/plex_mesh.hpp"
 
 namespace neomesh {
 
@@ -29,17 +38,40 @@ struct NodeMesh {
   // physical groups subdivided alike, so that boundary parts keep their names.
   InputMesh mesh;
   PetscInt points = 0;  // vertices below this are the curved mesh's points
+  // Curved cell c's sub-cells are cells [subcells[c], subcells[c + 1]) of `mesh`.
+  std::vector<PetscInt> subcells = {0};
 };
 
 // Throws Error for a mesh without second-order cells.
 NodeMesh node_mesh(const InputMesh& curved);
 
-// The views the optimizer uses beside `nodes` (the view of node_mesh's PlexMesh, one process):
-// the same vertices, with blocks of the curved cells (CellBlock::curved, every node in Gmsh's
-// order) or of their straight corner cells (canonical order), cells grouped by type, and
-// global_cell the curved cell's number in `curved`.
-MeshView curved_cells_view(const MeshView& nodes, const InputMesh& curved);
-MeshView corner_cells_view(const MeshView& nodes, const InputMesh& curved);
+// A process' part of a curved mesh's node mesh, as smoothing optimizes it.
+struct DistributedNodeMesh {
+  PlexMesh nodes;  // node_mesh's, each curved cell's sub-cells on one process
+  // Its view's vertices with blocks of the curved cells (CellBlock::curved, every node in Gmsh's
+  // order) or of their straight corner cells (canonical order), by type; global_cell is the
+  // curved cell's number.
+  MeshView cells, corners;
+  PetscInt points = 0;  // NodeMesh::points, on every process
+};
+
+// Collective: the node mesh of `curved` (the whole curved mesh on rank 0, empty elsewhere, as
+// gather_mesh gives it), distributed over `comm`; `name` for messages. Its sub-cells may be
+// inverted: they give the topology only.
+DistributedNodeMesh distribute_node_mesh(const InputMesh& curved, const std::string& name,
+                                         MPI_Comm comm);
+
+// Collective: `points` (rank 0: `d` values per point of the curved mesh, in input numbering, as
+// gather_points gives them) at the local vertices of `view`, a mesh whose vertices are the
+// curved mesh's first points (its corners, or the node mesh): d values per local vertex.
+std::vector<double> points_at_vertices(const MeshView& view, std::span<const double> points, int d,
+                                       MPI_Comm comm);
+
+// Collective: the curved mesh's points (`points` of them, node_mesh's first vertices) at
+// `coords` (nodes.dim values per local vertex of `nodes`) on rank 0, in input numbering, each
+// from the process that owns it; empty elsewhere.
+std::vector<double> gather_points(const MeshView& nodes, std::span<const double> coords,
+                                  PetscInt points, MPI_Comm comm);
 
 // The volume of each cell of a view of curved cells at `coords` (view.dim per vertex), exactly
 // (curved_volume).

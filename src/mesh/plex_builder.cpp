@@ -133,6 +133,48 @@ std::pair<std::vector<PetscInt>, std::vector<PetscInt>> cell_parts(DM dm, CellGr
   return {points, sizes};
 }
 
+// The graph of the groups of consecutive cells (group g: cells [groups[g], groups[g + 1])):
+// two groups are neighbours when cells of theirs are.
+CellGraph group_graph(const CellGraph& cells, std::span<const PetscInt> groups) {
+  const PetscInt ng = static_cast<PetscInt>(groups.size()) - 1;
+  const PetscInt nc = static_cast<PetscInt>(cells.offsets.size()) - 1;
+  if (groups.front() != 0 || groups.back() != nc)
+    fail("internal error: {} cells in groups of {} cells", nc, groups.back() - groups.front());
+  std::vector<PetscInt> group_of(nc);
+  for (PetscInt g = 0; g < ng; ++g)
+    std::fill(group_of.begin() + groups[g], group_of.begin() + groups[g + 1], g);
+  CellGraph out;
+  out.offsets.reserve(ng + 1);
+  std::vector<PetscInt> neighbours;
+  for (PetscInt g = 0; g < ng; ++g) {
+    neighbours.clear();
+    for (PetscInt c = groups[g]; c < groups[g + 1]; ++c)
+      for (PetscInt k = cells.offsets[c]; k < cells.offsets[c + 1]; ++k)
+        if (group_of[cells.neighbours[k]] != g) neighbours.push_back(group_of[cells.neighbours[k]]);
+    std::sort(neighbours.begin(), neighbours.end());
+    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+    out.neighbours.insert(out.neighbours.end(), neighbours.begin(), neighbours.end());
+    out.offsets.push_back(static_cast<PetscInt>(out.neighbours.size()));
+  }
+  return out;
+}
+
+// Parts of groups (as cell_parts gives them) as parts of their cells.
+std::pair<std::vector<PetscInt>, std::vector<PetscInt>> cells_of_groups(
+    const std::pair<std::vector<PetscInt>, std::vector<PetscInt>>& parts,
+    std::span<const PetscInt> groups) {
+  const auto& [by_part, group_sizes] = parts;
+  std::vector<PetscInt> points, sizes(group_sizes.size(), 0);
+  std::size_t at = 0;
+  for (std::size_t r = 0; r < group_sizes.size(); ++r)
+    for (PetscInt k = 0; k < group_sizes[r]; ++k, ++at) {
+      const PetscInt g = by_part[at];
+      for (PetscInt c = groups[g]; c < groups[g + 1]; ++c) points.push_back(c);
+      sizes[r] += groups[g + 1] - groups[g];
+    }
+  return {points, sizes};
+}
+
 // Collective: whether rank 0's cells are of several types.
 bool mixes_cell_types(DM dm) {
   const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
@@ -203,9 +245,12 @@ OwnedSF part_migration(DM dm, const std::vector<PetscInt>& points,
 
 }  // namespace
 
-Distributed distribute_plex(DM dm, CellGraph& graph) {
+Distributed distribute_plex(DM dm, CellGraph& graph, std::span<const PetscInt> groups) {
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
-  const auto [points, sizes] = cell_parts(dm, graph);
+  // Only rank 0 has cells and groups; the others pass their empty graph to the partitioner.
+  CellGraph grouped = groups.empty() ? CellGraph{} : group_graph(graph, groups);
+  const auto [points, sizes] =
+      groups.empty() ? cell_parts(dm, graph) : cells_of_groups(cell_parts(dm, grouped), groups);
   Distributed d;
   d.migration = part_migration(dm, points, sizes);
   if (mixes_cell_types(dm)) {  // cells by type, as DMPlex numbers them

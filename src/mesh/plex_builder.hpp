@@ -5,6 +5,8 @@
 
 #include <mpi.h>
 
+#include <span>
+
 #include "core/petsc.hpp"
 #include "mesh/facet_table.hpp"
 #include "mesh/input_mesh.hpp"
@@ -28,6 +30,6 @@ struct Distributed {
   // Leaves: the new DM's points; roots: rank 0's points of `dm`.
   OwnedSF migration;
 };
-Distributed distribute_plex(DM dm, CellGraph& graph);
+Distributed distribute_plex(DM dm, CellGraph& graph, std::span<const PetscInt> groups = {});
 
 }  // namespace neomesh

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -88,6 +89,17 @@ std::vector<double> coordinates(DM dm) {
   return all;
 }
 
+// This rank's cells by their point in rank 0's mesh (from the migration).
+std::vector<PetscInt> cells_of_rank(const Distributed& d) {
+  const Graph migration = graph_of(d.migration);
+  PetscInt cells = 0;
+  NM_PETSC(DMPlexGetHeightStratum(d.dm, 0, nullptr, &cells));
+  std::vector<PetscInt> mine;
+  for (std::size_t i = 0; i < migration.local.size(); ++i)
+    if (migration.local[i] < cells) mine.push_back(migration.remote[i].second);
+  return mine;
+}
+
 // One cell type: the migration is made in DMPlex's order; several: it is stratified by type.
 class DistributePlex : public testing::TestWithParam<bool> {};
 
@@ -101,11 +113,7 @@ TEST_P(DistributePlex, MakesWhatDMPlexDistributeMakesOfTheSameParts) {
 
   // The parts ours made (each rank's cells, from its migration), for DMPlexDistribute.
   const Graph migration = graph_of(ours.migration);
-  PetscInt cells = 0;
-  NM_PETSC(DMPlexGetHeightStratum(ours.dm, 0, nullptr, &cells));
-  std::vector<PetscInt> mine;
-  for (std::size_t i = 0; i < migration.local.size(); ++i)
-    if (migration.local[i] < cells) mine.push_back(migration.remote[i].second);
+  const std::vector<PetscInt> mine = cells_of_rank(ours);
   EXPECT_FALSE(mine.empty());
   int size = 0;
   MPI_Comm_size(MPI_COMM_WORLD, &size);
@@ -163,6 +171,42 @@ TEST_P(DistributePlex, MakesWhatDMPlexDistributeMakesOfTheSameParts) {
 }
 
 INSTANTIATE_TEST_SUITE_P(CellTypes, DistributePlex, testing::Values(false, true));
+
+// Per cell of rank 0's mesh, the rank it went to (on rank 0; empty elsewhere).
+std::vector<int> rank_of_cells(const Distributed& d, PetscInt num_cells) {
+  std::vector<int> rank(num_cells, -1), owner(num_cells, -1);
+  for (PetscInt c : cells_of_rank(d)) rank[c] = mpi_rank(MPI_COMM_WORLD);
+  MPI_Reduce(rank.data(), owner.data(), static_cast<int>(num_cells), MPI_INT, MPI_MAX, 0,
+             MPI_COMM_WORLD);
+  return mpi_rank(MPI_COMM_WORLD) == 0 ? owner : std::vector<int>{};
+}
+
+TEST(DistributePlexGroups, KeepEachGroupOnOneRank) {
+  const InputMesh input = grid(12, /*split=*/true);
+  PetscInt nc = input.num_cells();
+  MPI_Bcast(&nc, 1, MPIU_INT, 0, MPI_COMM_WORLD);
+  CellGraph cell_graph;
+  std::vector<PetscInt> pairs, singles;  // groups of 2 consecutive cells; of 1
+  if (mpi_rank(MPI_COMM_WORLD) == 0) {
+    cell_graph = FacetTable(input).cell_graph();
+    for (PetscInt c = 0; c < nc; c += 2) pairs.push_back(c);
+    pairs.push_back(nc);
+    for (PetscInt c = 0; c <= nc; ++c) singles.push_back(c);
+  }
+  const auto ranks = [&](std::span<const PetscInt> groups) {
+    OwnedDM from = build_plex(MPI_COMM_WORLD, input);
+    return rank_of_cells(distribute_plex(from, cell_graph, groups), nc);
+  };
+  const std::vector<int> grouped = ranks(pairs), alone = ranks(singles), plain = ranks({});
+  if (mpi_rank(MPI_COMM_WORLD) != 0) return;
+  for (PetscInt c = 0; c + 1 < nc; c += 2) EXPECT_EQ(grouped[c], grouped[c + 1]) << "cell " << c;
+  EXPECT_EQ(std::count(grouped.begin(), grouped.end(), -1), 0);
+  EXPECT_GT(std::count(grouped.begin(), grouped.end(), 1), nc / 4);
+  EXPECT_GT(std::count(grouped.begin(), grouped.end(), 0), nc / 4);
+  // Groups of one cell are the cells: the same graph, the same parts.
+  EXPECT_EQ(alone, plain);
+  EXPECT_NE(grouped, plain);
+}
 
 }  // namespace
 }  // namespace neomesh

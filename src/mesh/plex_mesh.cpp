@@ -35,13 +35,13 @@ void broadcast_groups(MPI_Comm comm, std::vector<PhysicalGroup>& groups) {
   }
 }
 
-// Distributes the cells over the ranks (no overlap) as distribute_plex splits `graph`. Returns,
-// per local point, its point number in the undistributed DM.
-std::vector<PetscInt> distribute(Impl& m, CellGraph& graph) {
+// Distributes the cells over the ranks (no overlap) as distribute_plex splits `graph`, `groups`
+// kept together. Returns, per local point, its point number in the undistributed DM.
+std::vector<PetscInt> distribute(Impl& m, CellGraph& graph, std::span<const PetscInt> groups) {
   PetscInt pStart, pEnd;
   OwnedSF migration;
   if (mpi_size(m.comm) > 1) {
-    Distributed distributed = distribute_plex(m.dm, graph);
+    Distributed distributed = distribute_plex(m.dm, graph, groups);
     m.dm = std::move(distributed.dm);
     migration = std::move(distributed.migration);
   }
@@ -216,7 +216,7 @@ void build_dofs(Impl& m) {
 // The common end of from_data and from_input (and so of load_mesh()): validate on rank 0, build,
 // distribute, view.
 PlexMesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
-                bool keep_inverted = false) {
+                bool keep_inverted = false, std::span<const PetscInt> cell_groups = {}) {
   validate(input, source, comm, keep_inverted);
   auto m = std::make_unique<Impl>();
   m->comm = comm;
@@ -258,7 +258,7 @@ PlexMesh create(MPI_Comm comm, InputMesh& input, const std::string& source,
   m->curved = is_curved != 0;
   m->high_order = std::move(input.high_order);
 
-  const auto original = distribute(*m, graph);
+  const auto original = distribute(*m, graph, cell_groups);
   build_view(*m, original, counts[2], root, std::move(surface));
   build_dofs(*m);
   return MeshAccess::create(std::move(m));
@@ -273,8 +273,8 @@ PlexMesh PlexMesh::from_data(const MeshData& data, const std::string& source, MP
 }
 
 PlexMesh PlexMesh::from_input(InputMesh& input, const std::string& source, MPI_Comm comm,
-                              bool keep_inverted) {
-  return create(comm, input, source, keep_inverted);
+                              bool keep_inverted, std::span<const PetscInt> cell_groups) {
+  return create(comm, input, source, keep_inverted, cell_groups);
 }
 
 PlexMesh::PlexMesh(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

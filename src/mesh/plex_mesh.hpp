@@ -28,9 +28,12 @@ class PlexMesh {
   static PlexMesh from_data(const MeshData& data, const std::string& source,
                             MPI_Comm comm = PETSC_COMM_WORLD, bool keep_inverted = false);
 
-  // Builds a mesh from an InputMesh on rank 0 (other ranks pass an empty one).
+  // Builds a mesh from an InputMesh on rank 0 (other ranks pass an empty one). `cell_groups`
+  // (rank 0; empty: none) keeps groups of consecutive cells on one rank (distribute_plex in
+  // plex_builder.hpp).
   static PlexMesh from_input(InputMesh& input, const std::string& source,
-                             MPI_Comm comm = PETSC_COMM_WORLD, bool keep_inverted = false);
+                             MPI_Comm comm = PETSC_COMM_WORLD, bool keep_inverted = false,
+                             std::span<const PetscInt> cell_groups = {});
 
   PlexMesh(PlexMesh&&) noexcept;
   PlexMesh& operator=(PlexMesh&&) noexcept;

@@ -228,14 +228,6 @@ def test_adapt_refuses_a_curved_mesh_in_one_line_and_writes_nothing(tmp):
                           unwritten=[os.path.join(tmp, "out.msh")])
 
 
-@needs_gmsh
-def test_smooth_refuses_a_curved_mesh_on_several_processes(tmp):
-    msh = gmsh_mesh(tmp, "tri6")
-    proc = neomesh("smooth", msh, "-o", "out.msh", cwd=tmp, expect=1, ranks=2)
-    expect_one_error_line(proc, ["second-order (curved) cells", "one process"],
-                          unwritten=[os.path.join(tmp, "out.msh")])
-
-
 def second_order_elements(path):
     """Per element of a file (as meshio reads it), the coordinates of its nodes: cells as they
     are listed, facets (lines, triangles, quadrilaterals of 3, 6, 8 or 9 nodes) as their
