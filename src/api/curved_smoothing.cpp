@@ -35,7 +35,7 @@ void Optimizer::Impl::start_curved(const SmoothOptions& options) {
   x = curved->nodes.coordinates();
   const std::vector<double> volumes = cell_volumes();
   mesh_volume = std::accumulate(volumes.begin(), volumes.end(), 0.0);
-  boundary = std::make_unique<Boundary>(curved->nodes.view(), dofs(), options.boundary);
+  boundary = std::make_unique<Boundary>(curved->nodes.view(), dofs(), options.boundary, true);
   energy = options.energy;
   boundary_options = options.boundary;
   constrain({});

@@ -28,8 +28,8 @@ QUADRATIC = sorted(glob.glob(os.path.join(CORPUS, "mesquite", "*", "vtk", "quadr
 # Refusals that are right, by file name: a word the one error line must hold.
 HONEST = {}
 # Files whose run takes more than a few seconds, with the seconds a run took.
-LONG = {"cutCube": 8, "hexCyl": 27, "sphereCube": 21, "sphereCylinder_1194_inv": 28,
-        "sphereCylinder_22492": 113, "sphereCylinder_22492_inv": 60}
+LONG = {"cutCube": 8, "hexCyl": 27, "sphereCylinder_1194_inv": 28, "sphereCylinder_22492": 113,
+        "sphereCylinder_22492_inv": 74}
 LONG_TESTS = os.environ.get("NEOMESH_LONG_TESTS") == "1"
 
 
@@ -65,10 +65,13 @@ def judge(path, tmp):
         why.append(f"worse least curved scaled Jacobian {sa:.3g} -> {sb:.3g}")
     if before["not_certified_valid"] and sb <= 1e-3:
         why.append(f"untangled to least curved scaled Jacobian {sb:.2e}")
-    # meshio cannot read every file of the corpus (triPatch_*): the input as convert writes it.
-    given = os.path.join(tmp, "in.msh")
-    neomesh("convert", path, "-o", given)
-    mi, mo = read_mesh(given), read_mesh(out)
+    try:
+        mi = read_mesh(path)
+    except Exception:  # meshio cannot read triPatch_*: the input as convert writes it
+        given = os.path.join(tmp, "in.msh")
+        neomesh("convert", path, "-o", given)
+        mi = read_mesh(given)
+    mo = read_mesh(out)
     if len(mi.points) != len(mo.points):
         why.append("point count changed")
     elif mi.cells[0].data.shape[1] in (6, 8, 9):  # a 2D mesh: it stays in its plane
