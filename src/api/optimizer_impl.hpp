@@ -55,12 +55,15 @@ struct Optimizer::Impl {
   }
 
   // Smoothing a mesh of second-order cells (docs/method.md §12, "The solver"): its own list of
-  // phases — set up the node mesh, the targets, minimize, judge by the certificate and the
-  // curved scaled Jacobian, finish.
+  // phases — set up the node mesh, the targets, untangle, minimize, lift flat corners, judge by
+  // the certificate and the curved scaled Jacobian, finish.
   Result smooth_curved(const SmoothOptions& options, const Observer& observer);
   // The node mesh of the mesh's curved cells, the boundary and the constraints on it; x at its
   // vertices.
   void start_curved(const SmoothOptions& options);
+  // The worst-cell phase on the curved optimum at x: result.corner_phase, by the least curved
+  // scaled Jacobian; x and result's run are the optimum's again unless that rose.
+  void lift_curved_corners(const SmoothOptions& options, const Observer& observer, Result& result);
   // The curved quality of the cells at x (collective: every process gets the summary).
   CurvedQualitySummary curved_quality_at_x();
   // Moves the mesh's corners and high-order nodes to x, and sets result's quality_after,

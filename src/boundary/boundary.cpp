@@ -90,7 +90,7 @@ struct Boundary::Impl {
   BoundarySummary summary;
   mutable std::unique_ptr<DistanceToBoundary> input_boundary;  // built when first asked
 
-  Impl(const MeshView& v, const DofMap& d, const BoundaryOptions& o)
+  Impl(const MeshView& v, const DofMap& d, const BoundaryOptions& o, bool sub_facets)
       : view(v), dofs(d), options(o), surface_owner(v.boundary), surface(*surface_owner) {
     fixed.assign(static_cast<std::size_t>(view.num_vertices) * view.dim, 0);
     if (options.mode == BoundaryMode::Fixed) {
@@ -98,7 +98,8 @@ struct Boundary::Impl {
         if (view.on_boundary[u]) std::fill_n(fixed.begin() + u * view.dim, view.dim, 1);
       return;
     }
-    features = find_features(surface, options.feature_angle, smooth_parts(), view.surface);
+    features = find_features(surface, options.feature_angle, smooth_parts(),
+                             view.surface || (sub_facets && view.dim == 3));
     build_patches();
     place_on_charts();
     build_ridges();
@@ -447,8 +448,9 @@ struct Boundary::Impl {
   }
 };
 
-Boundary::Boundary(const MeshView& view, const DofMap& dofs, const BoundaryOptions& options)
-    : impl_(std::make_unique<Impl>(view, dofs, options)) {}
+Boundary::Boundary(const MeshView& view, const DofMap& dofs, const BoundaryOptions& options,
+                   bool sub_facets)
+    : impl_(std::make_unique<Impl>(view, dofs, options, sub_facets)) {}
 Boundary::~Boundary() = default;
 
 bool Boundary::slides_on_surface_of(const MeshView& view) const {

@@ -38,8 +38,12 @@ class Boundary {
  public:
   // Classifies the boundary and builds its geometry; throws Error for a shape naming an
   // unknown part, or not passing through its part's vertices (naming the vertex). The view
-  // must outlive the Boundary. Collective.
-  Boundary(const MeshView& view, const DofMap& dofs, const BoundaryOptions& options);
+  // must outlive the Boundary. Collective. `sub_facets`: the view's boundary facets are the
+  // straight sub-facets of second-order faces (geometry/node_mesh.hpp); where a curved face folds
+  // at a corner, one of them lies folded over the others, and is seen with its normal reversed,
+  // so that its edges are no ridges and the nodes around it still slide on their surface.
+  Boundary(const MeshView& view, const DofMap& dofs, const BoundaryOptions& options,
+           bool sub_facets = false);
   ~Boundary();
   Boundary(const Boundary&) = delete;
   Boundary& operator=(const Boundary&) = delete;

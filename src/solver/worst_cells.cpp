@@ -41,8 +41,12 @@ bool flat_cap(const MeshView& view, const DofMap& dofs, Vec x) {
 std::optional<CornerPhaseSummary> lift_flat_corners(
     const Functional& functional, const MeshView& view, const DofMap& dofs, Vec x,
     const QuasiNewtonOptions& options, Vec cell_size, Result& run,
-    const std::function<void(const IterationRecord&)>& observe) {
-  const double before = min_non_simplex_jacobian(view, dofs, x);
+    const std::function<void(const IterationRecord&)>& observe,
+    const std::function<double(Vec)>& least_jacobian) {
+  const auto measure = [&](Vec at) {
+    return least_jacobian ? least_jacobian(at) : min_non_simplex_jacobian(view, dofs, at);
+  };
+  const double before = measure(x);
   if (!(before < kFlatCellJacobian)) return std::nullopt;
   // From a corner at det G ≈ 1e-10 the barrier's gradient is too steep for a line search:
   // the untangling energy, regularized at ε = kLiftedDet, first lifts such corners above it,
@@ -86,7 +90,7 @@ std::optional<CornerPhaseSummary> lift_flat_corners(
   run.final_energy = functional.value(x);
   run.final_defect = polish.final_defect;
   return CornerPhaseSummary{.min_scaled_jacobian_before = before,
-                            .min_scaled_jacobian_after = min_non_simplex_jacobian(view, dofs, x),
+                            .min_scaled_jacobian_after = measure(x),
                             .iterations = iterations + static_cast<int>(polish.history.size())};
 }
 

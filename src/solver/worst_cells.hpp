@@ -45,10 +45,12 @@ bool flat_cap(const MeshView& view, const DofMap& dofs, Vec x);
 // minimizes again from x with corner samples and returns what that did (its iterations go to
 // `observe` and are appended to `run`'s, whose stop reason, final energy (the thesis' energy)
 // and defect become the phase's); else nullopt. The phase's problems derive from
-// `functional`'s. Collective.
+// `functional`'s. `least_jacobian` measures the worst cell at x instead (a curved mesh's least
+// curved scaled Jacobian, whose simplices fold at their corners too). Collective.
 std::optional<CornerPhaseSummary> lift_flat_corners(
     const Functional& functional, const MeshView& view, const DofMap& dofs, Vec x,
     const QuasiNewtonOptions& options, Vec cell_size, Result& run,
-    const std::function<void(const IterationRecord&)>& observe = {});
+    const std::function<void(const IterationRecord&)>& observe = {},
+    const std::function<double(Vec)>& least_jacobian = {});
 
 }  // namespace neomesh
