@@ -36,7 +36,8 @@ PHASES = [
     ("memory fault-in", r"neomesh::keep_and_fault_in\("),
     ("quality before", r"Optimizer::Impl::input_quality\("),
     ("boundary, functional", r"Optimizer::Impl::start\(neomesh::EnergyOptions"),
-    ("targets", r"Optimizer::Impl::smoothing_targets\("),
+    ("set-up: the targets, the input's means", r"Optimizer::Impl::set_up_smoothing\("),
+    ("  of which the targets", r"Optimizer::Impl::smoothing_targets\("),
     ("inversion check", r"Optimizer::Impl::untangle\("),
     ("minimize (the solve)", r"neomesh::minimize\("),
     ("corner phase", r"Optimizer::Impl::lift_corners\("),
@@ -45,6 +46,7 @@ PHASES = [
     ("mean guard (the input returned: its repair too)", r"Optimizer::Impl::guard_mean\("),
     ("quality after", r"Optimizer::Impl::finish\("),
     ("write", r"OptimizationRun::snapshot\("),
+    ("  of which the cell fields (energy, det G, Q)", r"Functional::cell_fields\("),
     ("PetscFinalize", r":PetscFinalize "),
 ]
 LAUNCHER_ENV = {"GLIBC_TUNABLES": "glibc.malloc.hugetlb=0", "OMP_WAIT_POLICY": "PASSIVE"}

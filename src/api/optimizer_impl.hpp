@@ -199,6 +199,9 @@ struct Optimizer::Impl {
   // Longest over shortest edge of each local cell at the mesh's coordinates.
   std::vector<double> cell_edge_ratios() const;
   std::vector<double> cell_scaled_jacobians() const;
+  // Whether y holds the mesh's coordinates bit for bit on every rank (no vertex moved onto a
+  // chart or boundary): the quality before then measured y's cells. Collective.
+  bool at_mesh_coordinates(Vec y) const;
   // Keeps the volumes and edge ratios of the mesh's quality (computed by input_quality) for
   // cell_volumes() and cell_edge_ratios() while the mesh's coordinates stay: one pass over the
   // cells for the quality before and the targets instead of three.

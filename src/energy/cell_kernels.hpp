@@ -25,6 +25,7 @@
 #include <cmath>
 #include <limits>
 #include <type_traits>
+#include <utility>
 
 #include "energy/neo_hooke.hpp"
 #include "energy/regularized_neo_hooke.hpp"
@@ -223,7 +224,8 @@ class SampleKernel {
     const double scale = target.inverse_edge;
     double sum = 0.0;
     for (int q = 0; q < rule_.size; ++q) {
-      const auto p = law_.point(x * target.pull_back(rule_.unit_gradients[q], scale).transpose());
+      const auto p =
+          law_.energy_point(x * target.pull_back(rule_.unit_gradients[q], scale).transpose());
       if (!Law::admissible(p)) return std::numeric_limits<double>::infinity();
       sum += target.weight() * rule_.unit_weights[q] * law_.energy(p);
     }
@@ -293,6 +295,28 @@ class SampleKernel {
     }
     make_exactly_symmetric(block);
     return true;
+  }
+
+  // energy(x, target) and measure(x, target) bit for bit, each point's G formed once (the
+  // output's cell fields).
+  std::pair<double, CellMeasure> energy_and_measure(const Coordinates& x,
+                                                    const Target& target) const {
+    constexpr double infinity = std::numeric_limits<double>::infinity();
+    const double scale = target.inverse_edge;
+    double energy = barrier_holds(x) ? 0.0 : infinity;
+    CellMeasure m{0.0, infinity};
+    for (int q = 0; q < rule_.size; ++q) {
+      const auto p =
+          law_.energy_point(x * target.pull_back(rule_.unit_gradients[q], scale).transpose());
+      const double det = p.G.determinant();
+      m.volume += target.volume * rule_.unit_weights[q] * det;
+      m.min_det = std::min(m.min_det, det);
+      if (!Law::admissible(p))
+        energy = infinity;
+      else if (energy < infinity)
+        energy += target.weight() * rule_.unit_weights[q] * law_.energy(p);
+    }
+    return {energy, m};
   }
 
   // Actual volume Σ_q v ŵ_q det G_q (exact for ≥ 2 Gauss points per direction) and min det G.

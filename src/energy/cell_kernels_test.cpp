@@ -176,6 +176,27 @@ TYPED_TEST(CellKernelTest, InvertedCellIsInfiniteAndRejected) {
   EXPECT_LT(kernel.measure(x, 1.0).min_det, 0.0);
 }
 
+// The output's cell fields take both at once: the same values as energy() and measure(), bit
+// for bit, on valid cells, with corner samples, and where the energy is infinite.
+TYPED_TEST(CellKernelTest, EnergyAndMeasureAreEnergyAndMeasureBitForBit) {
+  constexpr CellType Type = TypeParam::value;
+  std::mt19937 rng(14);
+  for (double w : kCornerWeights) {
+    const NeoHookeKernel<Type> kernel = thesis_kernel<Type>(w);
+    for (int trial = 0; trial < 4; ++trial) {
+      const double volume = 0.5 + trial;
+      Coordinates<Type> x = perturbed_cell<Type>(volume, rng);
+      if (trial == 3) x.row(0) *= -1.0;  // inverted
+      const auto [energy, measure] = kernel.energy_and_measure(x, volume);
+      const CellMeasure alone = kernel.measure(x, volume);
+      EXPECT_EQ(energy, kernel.energy(x, volume));
+      EXPECT_EQ(measure.volume, alone.volume);
+      EXPECT_EQ(measure.min_det, alone.min_det);
+      EXPECT_EQ(std::isinf(energy), trial == 3);
+    }
+  }
+}
+
 // A dart: vertex 3 of the unit square pulled in to (0.45, 0.45). det J is positive at all
 // 3×3 Gauss points but negative at that corner, so the line search must not accept it.
 TEST(QuadKernel, NonConvexQuadWithPositiveGaussPointsIsInfinite) {

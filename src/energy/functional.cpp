@@ -90,6 +90,10 @@ class FramedKernel {
   CellMeasure measure(const Coordinates& x, const FramedTarget& t) const {
     return k_.measure(x, t.q(), t.target);
   }
+  std::pair<double, CellMeasure> energy_and_measure(const Coordinates& x,
+                                                    const FramedTarget& t) const {
+    return k_.energy_and_measure(x, t.q(), t.target);
+  }
 
  private:
   Surface k_;
@@ -738,8 +742,8 @@ CellFields Functional::cell_fields(Vec x) const {
         const PetscInt cell = block.first_cell + c;
         const auto target = impl_->target_of<Cells>(cell);
         const auto x = cell_coordinates<K>(block, c, impl_->local_x.data());
-        const CellMeasure measure = k.measure(x, target);
-        fields.energy[cell] = k.energy(x, target);
+        const auto [energy, measure] = k.energy_and_measure(x, target);
+        fields.energy[cell] = energy;
         fields.min_det[cell] = measure.min_det;
         fields.volume_ratio[cell] = measure.volume / impl_->targets->volumes[cell];  // Q (§6.2)
       }
@@ -756,11 +760,17 @@ Inversion Functional::inversion(Vec x, int listed, double below) const {
     visit_cells(view, block, [&]<typename Cells>() {
       const auto& k = impl_->untangling_kernel<Cells>();
       using K = typename Cells::Untangling;
+      // The cells on every thread (a whole pass over the mesh before every smoothing), then
+      // counted and listed in order.
+      std::vector<double> dets(static_cast<std::size_t>(block.size()));
+#pragma omp parallel for schedule(static)
+      for (PetscInt c = 0; c < block.size(); ++c)
+        dets[c] = k.measure(cell_coordinates<K>(block, c, impl_->local_x.data()),
+                            impl_->target_of<Cells>(block.first_cell + c))
+                      .min_det;
       for (PetscInt c = 0; c < block.size(); ++c) {
         const PetscInt cell = block.first_cell + c;
-        const double det = k.measure(cell_coordinates<K>(block, c, impl_->local_x.data()),
-                                     impl_->target_of<Cells>(cell))
-                               .min_det;
+        const double det = dets[c];
         local.min_det = std::min(local.min_det, det);
         if (det > below) continue;
         ++local.count;

@@ -95,6 +95,7 @@ struct RegularizedNeoHooke {
   };
   static constexpr bool barrier = false;
   Point point(const Matrix<Dim>& G) const { return {G, at(G.determinant())}; }
+  Point energy_point(const Matrix<Dim>& G) const { return point(G); }
   static bool admissible(const Point&) { return true; }
   double energy(const Point& p) const { return p.r.phi + 0.5 * mu * (p.G.squaredNorm() - Dim); }
   Matrix<Dim> stress(const Point& p) const { return p.r.dphi * cofactor(p.G) + mu * p.G; }

@@ -112,6 +112,11 @@ class SurfaceCellKernel {
   CellMeasure measure(const Coordinates& x, const SurfaceFrame& frame, const Target& target) const {
     return planar_.measure(in_frame(x, frame), target);
   }
+  // energy() and measure() at once (CellKernel::energy_and_measure).
+  std::pair<double, CellMeasure> energy_and_measure(const Coordinates& x, const SurfaceFrame& frame,
+                                                    const Target& target) const {
+    return planar_.energy_and_measure(in_frame(x, frame), target);
+  }
 
  private:
   // Block (i, j) = Q A_ij Qᵀ for the 2D block A_ij; the lower blocks computed, the upper ones

@@ -58,6 +58,7 @@ using Jacobian = Eigen::Matrix<double, X::RowsAtCompileTime, D>;
 
 struct Measures {
   double volume, min_corner_det, min_gauss_det, scaled_jacobian, min_angle, max_angle, edge_ratio;
+  double inverse_mean_ratio;
 
   void record_angle(double angle) {
     min_angle = std::min(min_angle, angle);
@@ -67,7 +68,9 @@ struct Measures {
   // of a hexahedron's 24 angles (finish_angles).
   template <int Dim>
   void record_angle_between(const Vector<Dim>& a, const Vector<Dim>& b) {
-    const double c = cosine_between<Dim>(a, b);
+    record_cosine(cosine_between<Dim>(a, b));
+  }
+  void record_cosine(double c) {
     max_cosine = std::max(max_cosine, c);
     min_cosine = std::min(min_cosine, c);
   }
@@ -193,6 +196,47 @@ double scaled_jacobian(const X& x, Det det = {}, double bar = -kInfinity,
   return lowest / ideal;
 }
 
+// W⁻¹ at each corner frame of the optimal cell of `Type` (quality.hpp, inverse mean ratio),
+// and whether every one is the identity (Q1 cells: the unit square's and cube's frames), where
+// T = J W⁻¹ is J itself.
+template <CellType Type>
+struct IdealCornerInverses {
+  std::array<Matrix<CellTraits<Type>::dim>, 8> inverse;
+  bool identity = true;
+};
+template <CellType Type>
+const IdealCornerInverses<Type>& ideal_corner_inverses() {
+  static const IdealCornerInverses<Type> ideal = [] {
+    IdealCornerInverses<Type> w;
+    const auto optimal = unit_optimal_cell<Type>();
+    for (int k = 0; k < facts(Type).num_corners; ++k) {
+      w.inverse[k] = corner_jacobian<Type>(optimal, k).inverse();
+      w.identity = w.identity && w.inverse[k] == Matrix<CellTraits<Type>::dim>::Identity();
+    }
+    return w;
+  }();
+  return ideal;
+}
+
+// Inverse mean ratio, the shape metric of Mesquite and of MFEM's TMOP (Knupp 2001): at each
+// corner frame T = J W⁻¹, J the corner's Jacobian and W the optimal cell's at that corner,
+// and |T|²_F / (d det(T)^(2/d)) ≥ 1, with 1 only where T is a scaled rotation; the mean over
+// the cell's corner frames (a simplex has one). +∞ where det T ≤ 0.
+template <CellType Type, typename X, typename Det = Determinant>
+double inverse_mean_ratio(const X& x, Det det = {}) {
+  constexpr int d = CellTraits<Type>::dim;
+  const auto& ideal_inverse = ideal_corner_inverses<Type>().inverse;
+  const int corners = facts(Type).num_corners;
+  double sum = 0.0;
+  for (int k = 0; k < corners; ++k) {
+    const Jacobian<X, d> t = corner_jacobian<Type>(x, k) * ideal_inverse[k];
+    const double det_t = det(t);
+    if (!(det_t > 0.0)) return kInfinity;
+    sum += t.squaredNorm() / (d * std::pow(det_t, 2.0 / d));
+  }
+  return sum / corners;
+}
+
 template <CellType Type, typename X, typename Det = Determinant>
 Measures measure_simplex(const X& x, Det det = {}) {
   constexpr int d = CellTraits<Type>::dim, rows = X::RowsAtCompileTime;
@@ -222,6 +266,7 @@ Measures measure_simplex(const X& x, Det det = {}) {
   }
   m.finish_angles();
   m.edge_ratio = edge_ratio<Type>(x);
+  m.inverse_mean_ratio = inverse_mean_ratio<Type>(x, det);
   return m;
 }
 
@@ -229,26 +274,60 @@ template <CellType Type, typename X, typename Det = Determinant>
 Measures measure_q1(const X& x, Det det = {}) {
   constexpr int d = CellTraits<Type>::dim, n = CellTraits<Type>::vertices;
   constexpr int rows = X::RowsAtCompileTime;
+  static_assert(facts(Type).num_corners == n && [] {
+    for (int c = 0; c < n; ++c) {
+      if (facts(Type).corners[c].vertex != c) return false;
+      for (int j = 0; j < d; ++j)
+        if (facts(Type).corners[c].ends[j] != (c ^ (1 << j))) return false;
+    }
+    return true;
+  }());
   Measures m{};
   m.min_corner_det = m.min_gauss_det = m.min_angle = kInfinity;
   m.max_angle = 0.0;
-  m.scaled_jacobian = scaled_jacobian<Type>(x, det);
   m.volume = signed_volume<Type>(x, det);
+  // Each corner's Jacobian, determinant and edge lengths once, for the scaled Jacobian, the
+  // corner determinants, the angles, the edge ratio and the inverse mean ratio: the operations
+  // each of them did on its own, in the same order, so the same bits. Corner frame c is at
+  // vertex c, its edge j towards vertex c ^ 2^j (the cell-type table), with a sign.
+  const bool unit_frames = ideal_corner_inverses<Type>().identity;
+  double lowest_sine = kInfinity, shortest = kInfinity, longest = 0.0, imr_sum = 0.0;
   for (int c = 0; c < n; ++c) {
-    // Edges along the reference axes, pointing the way the axes do (so the unit cell has J = I).
-    const double corner_det = det(corner_jacobian<Type>(x, c));
+    const Jacobian<X, d> jacobian = corner_jacobian<Type>(x, c);
+    const double corner_det = det(jacobian);
     m.min_corner_det = std::min(m.min_corner_det, corner_det);
+    std::array<double, d> length;
+    double product = 1.0;
+    for (int j = 0; j < d; ++j) {
+      length[j] = jacobian.col(j).norm();
+      product *= length[j];
+      shortest = std::min(shortest, length[j]);
+      longest = std::max(longest, length[j]);
+    }
+    lowest_sine = std::min(lowest_sine, product > 0.0 ? corner_det / product : 0.0);
     for (int j = 0; j < d; ++j)
       for (int k = j + 1; k < d; ++k) {
         // The actual edges leave the corner; the angle between them is the one inside the
         // cell unless the corner is reflex (2D) or inverted.
         const Vector<rows> a = x.col(c ^ (1 << j)) - x.col(c), b = x.col(c ^ (1 << k)) - x.col(c);
+        const double cosine = std::clamp(a.dot(b) / (length[j] * length[k]), -1.0, 1.0);
         if (d == 2 && corner_det <= 0.0)
-          m.record_angle(360.0 - degrees(cosine_between<rows>(a, b)));
+          m.record_angle(360.0 - degrees(cosine));
         else
-          m.record_angle_between<rows>(a, b);
+          m.record_cosine(cosine);
       }
+    if (unit_frames && imr_sum < kInfinity) {
+      // T = J W⁻¹ is J itself.
+      if (!(corner_det > 0.0))
+        imr_sum = kInfinity;
+      else
+        imr_sum += jacobian.squaredNorm() / (d * std::pow(corner_det, 2.0 / d));
+    }
   }
+  m.scaled_jacobian = lowest_sine / facts(Type).ideal_corner_sine;
+  m.inverse_mean_ratio = !unit_frames          ? inverse_mean_ratio<Type>(x, det)
+                         : imr_sum < kInfinity ? imr_sum / n
+                                               : kInfinity;
   m.finish_angles();
   // 2 ∇N at the 3 Gauss points per direction, computed once.
   static const auto det_gradients = [] {
@@ -261,7 +340,8 @@ Measures measure_q1(const X& x, Det det = {}) {
     const Jacobian<X, d> jacobian = x * det_gradients.second[q].transpose();
     m.min_gauss_det = std::min(m.min_gauss_det, det(jacobian));
   }
-  m.edge_ratio = edge_ratio<Type>(x);
+  // Every edge is an edge of two corners.
+  m.edge_ratio = shortest > 0.0 ? longest / shortest : kInfinity;
   return m;
 }
 
@@ -296,32 +376,8 @@ Measures measure_wedge_or_pyramid(const typename CellTraits<Type>::Coordinates& 
     m.min_gauss_det = std::min(m.min_gauss_det, scale * det);
   }
   m.edge_ratio = edge_ratio<Type>(x);
+  m.inverse_mean_ratio = inverse_mean_ratio<Type>(x);
   return m;
-}
-
-// Inverse mean ratio, the shape metric of Mesquite and of MFEM's TMOP (Knupp 2001): at each
-// corner frame T = J W⁻¹, J the corner's Jacobian and W the optimal cell's at that corner,
-// and |T|²_F / (d det(T)^(2/d)) ≥ 1, with 1 only where T is a scaled rotation; the mean over
-// the cell's corner frames (a simplex has one). +∞ where det T ≤ 0.
-template <CellType Type, typename X, typename Det = Determinant>
-double inverse_mean_ratio(const X& x, Det det = {}) {
-  constexpr int d = CellTraits<Type>::dim;
-  static const std::array<Matrix<d>, 8> ideal_inverse = [] {
-    std::array<Matrix<d>, 8> inverses;
-    const auto optimal = unit_optimal_cell<Type>();
-    for (int k = 0; k < facts(Type).num_corners; ++k)
-      inverses[k] = corner_jacobian<Type>(optimal, k).inverse();
-    return inverses;
-  }();
-  const int corners = facts(Type).num_corners;
-  double sum = 0.0;
-  for (int k = 0; k < corners; ++k) {
-    const Jacobian<X, d> t = corner_jacobian<Type>(x, k) * ideal_inverse[k];
-    const double det_t = det(t);
-    if (!(det_t > 0.0)) return kInfinity;
-    sum += t.squaredNorm() / (d * std::pow(det_t, 2.0 / d));
-  }
-  return sum / corners;
 }
 
 // The reference normals of a surface mesh's cells (surface_orientation.hpp); none for others.
@@ -455,7 +511,7 @@ SurfaceCellMeasures surface_cell_measures(CellType type, const double* coords,
                                    .min_angle = m.min_angle,
                                    .max_angle = m.max_angle,
                                    .edge_ratio = m.edge_ratio,
-                                   .inverse_mean_ratio = inverse_mean_ratio<Type>(x, area)};
+                                   .inverse_mean_ratio = m.inverse_mean_ratio};
       });
 }
 
@@ -505,7 +561,7 @@ CellQuality cell_quality(const MeshView& view, std::span<const double> coords, c
                   q.min_angle[i] = m.min_angle;
                   q.max_angle[i] = m.max_angle;
                   q.edge_ratio[i] = m.edge_ratio;
-                  q.inverse_mean_ratio[i] = inverse_mean_ratio<Type>(x, det);
+                  q.inverse_mean_ratio[i] = m.inverse_mean_ratio;
                 });
   return q;
 }

@@ -222,12 +222,20 @@ TEST(CellQuality, OneMetricPassesAgreeWithTheFullOne) {
        {CellType::Triangle, CellType::Quadrilateral, CellType::Tetrahedron, CellType::Hexahedron}) {
     MeshData mesh = box(type, 2);
     const int d = dimension(type);
-    mesh.coords[d * 1] = mesh.coords[0];  // vertex 1 onto vertex 0: cells with an edge 0
+    // Every vertex moved (generic cells, to compare bits), then vertex 1 onto vertex 0: cells
+    // with an edge 0.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-0.1, 0.1);
+    for (double& c : mesh.coords) c += u(rng);
+    mesh.coords[d * 1] = mesh.coords[0];
     for (int k = 1; k < d; ++k) mesh.coords[d * 1 + k] = mesh.coords[k];
     const MeshView view = serial_view(mesh);
     const CellQuality q = cell_quality(view, view.coords);
     EXPECT_EQ(cell_volumes(view, view.coords), q.volume) << name(type);
     EXPECT_EQ(cell_scaled_jacobians(view, view.coords), q.scaled_jacobian) << name(type);
+    // The full pass takes each corner once for all its metrics (quadrilaterals, hexahedra).
+    EXPECT_EQ(cell_edge_ratios(view, view.coords), q.edge_ratio) << name(type);
+    EXPECT_EQ(cell_inverse_mean_ratios(view, view.coords), q.inverse_mean_ratio) << name(type);
     int collapsed = 0;
     for (std::size_t c = 0; c < q.size(); ++c) {
       if (q.edge_ratio[c] < INFINITY) continue;
