@@ -9,6 +9,7 @@ largest distance of the nodes of the cylinder's (sphere's) facets from the exact
 
     bench/curve_boundary_layer.py                    # both cases
     bench/curve_boundary_layer.py --case sphere --around 16 --first 1e-3
+    bench/curve_boundary_layer.py --case sphere --first 1e-2 --skip-optimize-ho
 
 Needs python3-gmsh and meshio. Environment: NEOMESH (default build/neomesh). Timings on a
 loaded machine are provisional.
@@ -192,6 +193,8 @@ def run_case(case, args, tmp):
         _, seconds = timed(lambda: gmsh.model.mesh.setOrder(2))
         write(plain)
         rows.append(("Gmsh -order 2", plain, seconds))
+        if args.skip_optimize_ho:
+            raise StopIteration
         gmsh.model.remove()
         model(args.around, args.first, args.layers)
         optimized = os.path.join(tmp, f"{case}-gmsh-optimize-ho.msh")
@@ -209,6 +212,8 @@ def run_case(case, args, tmp):
         write(optimized)
         rows.append(("Gmsh -order 2 -optimize_ho" + (f" ({note})" if note else ""), optimized,
                      seconds))
+    except StopIteration:  # --skip-optimize-ho
+        pass
     finally:
         gmsh.finalize()
     curved = os.path.join(tmp, f"{case}-neomesh-curve.msh")
@@ -247,6 +252,8 @@ def main():
     parser.add_argument("--first", type=float, default=1e-3,
                         help="first layer's thickness over the radius")
     parser.add_argument("--layers", type=int, default=10, help="layers in the boundary layer")
+    parser.add_argument("--skip-optimize-ho", action="store_true",
+                        help="leave out Gmsh's high-order optimizer (minutes on the sphere)")
     args = parser.parse_args()
     tmp = tempfile.mkdtemp(prefix="curve-bl-")
     for case in CASES if args.case == "all" else [args.case]:
