@@ -1,15 +1,15 @@
 #!/usr/bin/python3
 """Second-order boundary-layer meshes: Gmsh's `-order 2` (plain), Gmsh's high-order optimizer
 (`-optimize_ho`) and `neomesh curve` side by side, on the mesh around a cylinder (2D: quads in
-the layer, triangles outside) and around a sphere (3D: tetrahedra in the layer, each prism of
-Gmsh's extruded layer split in three, as neomesh has no curved wedge; tetrahedra outside), the
-first layer `--first` of the radius thick. Each result is measured by `neomesh quality --json`
+the layer, triangles outside) and around a sphere (3D: the prisms of Gmsh's extruded layer,
+raised to wedge18; tetrahedra outside), the first layer `--first` of the radius thick. Each result is measured by `neomesh quality --json`
 (the Bézier certificate: cells not certified valid, least curved scaled Jacobian) and by the
 largest distance of the nodes of the cylinder's (sphere's) facets from the exact circle
 (sphere); each step is timed (seconds, wall). One Markdown table per case.
 
     bench/curve_boundary_layer.py                    # both cases
     bench/curve_boundary_layer.py --case sphere --around 16 --first 1e-3
+    bench/curve_boundary_layer.py --case sphere --first 1e-2 --skip-optimize-ho
 
 Needs python3-gmsh and meshio. Environment: NEOMESH (default build/neomesh). Timings on a
 loaded machine are provisional.
@@ -76,8 +76,7 @@ def cylinder_model(around, first, layers):
 def sphere_model(around, first, layers):
     """The linear boundary-layer mesh around the sphere: its eight octant patches (Gmsh's
     built-in kernel, exact spherical patches) extruded along their normals in `layers` thin
-    layers of tetrahedra (each prism split in three: neomesh has no curved wedge), tetrahedra
-    from there to the box [-BOX3, BOX3]³; the sphere in the physical group "sphere", the box in
+    layers of prisms, tetrahedra from there to the box [-BOX3, BOX3]³; the sphere in the physical group "sphere", the box in
     "outer", the volume in "fluid"."""
     gmsh.model.add("sphere")
     geo = gmsh.model.geo
@@ -100,7 +99,7 @@ def sphere_model(around, first, layers):
         loop = geo.addCurveLoop([arc(a, b), arc(b, c), arc(c, a)])
         patches.append(geo.addSurfaceFilling([loop], -1, centre))
     heights = [first * RADIUS * (1.3 ** (k + 1) - 1) / 0.3 for k in range(layers)]
-    extruded = geo.extrudeBoundaryLayer([(2, s) for s in patches], [1] * layers, heights, False)
+    extruded = geo.extrudeBoundaryLayer([(2, s) for s in patches], [1] * layers, heights, True)
     # Per patch: the top surface, the volume, the sides.
     tops = [extruded[i - 1][1] for i, (d, _) in enumerate(extruded) if d == 3]
     layer_volumes = [t for d, t in extruded if d == 3]
@@ -194,6 +193,8 @@ def run_case(case, args, tmp):
         _, seconds = timed(lambda: gmsh.model.mesh.setOrder(2))
         write(plain)
         rows.append(("Gmsh -order 2", plain, seconds))
+        if args.skip_optimize_ho:
+            raise StopIteration
         gmsh.model.remove()
         model(args.around, args.first, args.layers)
         optimized = os.path.join(tmp, f"{case}-gmsh-optimize-ho.msh")
@@ -211,6 +212,8 @@ def run_case(case, args, tmp):
         write(optimized)
         rows.append(("Gmsh -order 2 -optimize_ho" + (f" ({note})" if note else ""), optimized,
                      seconds))
+    except StopIteration:  # --skip-optimize-ho
+        pass
     finally:
         gmsh.finalize()
     curved = os.path.join(tmp, f"{case}-neomesh-curve.msh")
@@ -223,7 +226,7 @@ def run_case(case, args, tmp):
     counts = read_mesh(linear)
     by_type = {}
     for b in counts.cells:
-        if b.type in ("quad", "triangle", "tetra") and b.data.shape[1] > dim:
+        if b.type in ("quad", "triangle", "tetra", "wedge") and b.data.shape[1] > dim:
             by_type[b.type] = by_type.get(b.type, 0) + len(b.data)
     cells = ", ".join(f"{n} {t}" for t, n in by_type.items())
     print(f"\n{case} of radius {RADIUS}, {args.around} edges around, first layer "
@@ -249,6 +252,8 @@ def main():
     parser.add_argument("--first", type=float, default=1e-3,
                         help="first layer's thickness over the radius")
     parser.add_argument("--layers", type=int, default=10, help="layers in the boundary layer")
+    parser.add_argument("--skip-optimize-ho", action="store_true",
+                        help="leave out Gmsh's high-order optimizer (minutes on the sphere)")
     args = parser.parse_args()
     tmp = tempfile.mkdtemp(prefix="curve-bl-")
     for case in CASES if args.case == "all" else [args.case]:

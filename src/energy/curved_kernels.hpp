@@ -23,8 +23,9 @@
 namespace neomesh {
 
 // Gauss points per direction of the curved energy. The smallest rules that integrate the
-// polynomial parts of W(G(ξ)) exactly (tr GᵀG has degree 2(p − 1) = 2 on simplices and 4 per
-// direction on tensor cells: 2 points on triangles, 3 on tetrahedra and tensor cells) do not
+// polynomial parts of W(G(ξ)) exactly (tr GᵀG has degree 2(p − 1) = 2 on simplices, 4 per
+// direction on tensor cells, and 4 in the wedge's triangle and along its axis: 2 points on
+// triangles, 3 on tetrahedra, tensor cells and wedges) do not
 // resolve the logarithmic parts; 4 is the least for which the energy of a moderately curved cell
 // changes by less than 1e-6 (relative) with one more, for every type (docs/method.md §12,
 // `CurvedKernelTest.DefaultRuleIsConverged` measures it).
@@ -35,6 +36,8 @@ inline constexpr int kCurvedGaussPoints = 4;
 // SampleKernel, cell_kernels.hpp).
 // - Tensor cells: the tensor Gauss–Legendre rule with n points per direction on [−1,1]^d,
 //   exact for degree 2n − 1 per direction.
+// - Wedges: the triangle's collapsed rule (below) times n Gauss–Legendre points along the axis,
+//   n³ points, exact for total degree 2n − 2 in the triangle and 2n − 1 along the axis.
 // - Simplices: the collapsed (Duffy) product of n-point Gauss–Legendre rules,
 //   ξ = (a, b(1 − a)) on the triangle and (a, b(1 − a), c(1 − a)(1 − b)) on the tetrahedron,
 //   weights w_a w_b (1 − a) and w_a w_b w_c (1 − a)²(1 − b): positive, n^d points, exact for
@@ -88,6 +91,12 @@ struct CurvedCellQuadrature {
   static Matrix<dim> optimal_jacobian() {
     if constexpr (Traits::simplex) {
       return unit_optimal_simplex_edges<dim>();
+    } else if constexpr (Traits::wedge) {
+      // The optimal prism's triangle edges, and half its height (ζ spans 2).
+      const auto y = unit_optimal_cell<CellType::Wedge>();
+      Matrix<3> j;
+      j << y.col(1) - y.col(0), y.col(2) - y.col(0), 0.5 * (y.col(3) - y.col(0));
+      return j;
     } else {
       return 0.5 * Matrix<dim>::Identity();
     }
@@ -101,7 +110,17 @@ struct CurvedCellQuadrature {
   }
 
   void add_gauss_points(int n, double share) {
-    if constexpr (!Traits::simplex) {
+    if constexpr (Traits::wedge) {
+      // The triangle's collapsed rule times n Gauss points along the axis.
+      const GaussRule1D g = gauss_legendre(n);
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          const double a = 0.5 * (1.0 + g.points[i]), b = 0.5 * (1.0 + g.points[j]);
+          const double w = 0.25 * g.weights[i] * g.weights[j] * (1.0 - a);
+          for (int k = 0; k < n; ++k)
+            add(Vector<3>(a, b * (1.0 - a), g.points[k]), share * w * g.weights[k]);
+        }
+    } else if constexpr (!Traits::simplex) {
       const TensorGaussRule<dim> rule(n);
       for (int q = 0; q < rule.size; ++q) add(rule.points[q], share * rule.weights[q]);
     } else {

@@ -217,12 +217,14 @@ using CurvedKernels = std::tuple<
     CurvedNeoHookeKernel<CurvedType::Triangle6>, CurvedNeoHookeKernel<CurvedType::Quadrilateral8>,
     CurvedNeoHookeKernel<CurvedType::Quadrilateral9>,
     CurvedNeoHookeKernel<CurvedType::Tetrahedron10>, CurvedNeoHookeKernel<CurvedType::Hexahedron20>,
-    CurvedNeoHookeKernel<CurvedType::Hexahedron27>, CurvedUntanglingKernel<CurvedType::Triangle6>,
+    CurvedNeoHookeKernel<CurvedType::Hexahedron27>, CurvedNeoHookeKernel<CurvedType::Wedge15>,
+    CurvedNeoHookeKernel<CurvedType::Wedge18>, CurvedUntanglingKernel<CurvedType::Triangle6>,
     CurvedUntanglingKernel<CurvedType::Quadrilateral8>,
     CurvedUntanglingKernel<CurvedType::Quadrilateral9>,
     CurvedUntanglingKernel<CurvedType::Tetrahedron10>,
     CurvedUntanglingKernel<CurvedType::Hexahedron20>,
-    CurvedUntanglingKernel<CurvedType::Hexahedron27>>;
+    CurvedUntanglingKernel<CurvedType::Hexahedron27>, CurvedUntanglingKernel<CurvedType::Wedge15>,
+    CurvedUntanglingKernel<CurvedType::Wedge18>>;
 
 template <CurvedType Type>
 CurvedNeoHookeKernel<Type> curved_kernel(const EnergyOptions& options, double corner_weight) {
@@ -248,12 +250,16 @@ CurvedKernels make_curved_kernels(const EnergyOptions& o, double corner_weight, 
                        curved_kernel<Tetrahedron10>(o, w),
                        curved_kernel<Hexahedron20>(o, w),
                        curved_kernel<Hexahedron27>(o, w),
+                       curved_kernel<Wedge15>(o, w),
+                       curved_kernel<Wedge18>(o, w),
                        curved_untangling_kernel<Triangle6>(o, epsilon),
                        curved_untangling_kernel<Quadrilateral8>(o, epsilon),
                        curved_untangling_kernel<Quadrilateral9>(o, epsilon),
                        curved_untangling_kernel<Tetrahedron10>(o, epsilon),
                        curved_untangling_kernel<Hexahedron20>(o, epsilon),
-                       curved_untangling_kernel<Hexahedron27>(o, epsilon)};
+                       curved_untangling_kernel<Hexahedron27>(o, epsilon),
+                       curved_untangling_kernel<Wedge15>(o, epsilon),
+                       curved_untangling_kernel<Wedge18>(o, epsilon)};
 }
 
 // True if some block of `view` holds second-order cells.

@@ -25,7 +25,9 @@ constexpr CgnsElement kElements[] = {
     {CGNS_ENUMV(QUAD_9), 2, 9, 4, kQuadrilateral, CurvedType::Quadrilateral9},
     {CGNS_ENUMV(TETRA_10), 3, 10, 4, kTetrahedron, CurvedType::Tetrahedron10},
     {CGNS_ENUMV(HEXA_20), 3, 20, 8, kHexahedron, CurvedType::Hexahedron20},
-    {CGNS_ENUMV(HEXA_27), 3, 27, 8, kHexahedron, CurvedType::Hexahedron27}};
+    {CGNS_ENUMV(HEXA_27), 3, 27, 8, kHexahedron, CurvedType::Hexahedron27},
+    {CGNS_ENUMV(PENTA_15), 3, 15, 6, CellType::Wedge, CurvedType::Wedge15},
+    {CGNS_ENUMV(PENTA_18), 3, 18, 6, CellType::Wedge, CurvedType::Wedge18}};
 
 // cg_close as a function (the CGNS functions are called through macros, cgns_library.hpp).
 int close_cgns(int file) {

@@ -188,7 +188,7 @@ class ExodusReader {
     if (!b.type)
       fail(
           "{}: element block {} ('{}') has {} elements, which neomesh does not read (it reads "
-          "TRI3/6, QUAD4/8/9, SHELL4, TETRA4/10, HEX8/20/27, WEDGE6 and PYRAMID5, and skips "
+          "TRI3/6, QUAD4/8/9, SHELL4, TETRA4/10, HEX8/20/27, WEDGE6/15/18 and PYRAMID5, and skips "
           "points and lines)",
           name(), id, b.name, type);
     if (nodes != num_vertices(*b.type)) {
@@ -198,9 +198,9 @@ class ExodusReader {
             "{}: element block {} ('{}') has {} elements with {} nodes; neomesh reads {} of {} "
             "nodes{}",
             name(), id, b.name, type, nodes, facts(*b.type).plural, num_vertices(*b.type),
-            b.type == CellType::Wedge || b.type == CellType::Pyramid || b.shell
+            b.type == CellType::Pyramid || b.shell
                 ? ""
-                : " and their second-order cells (TRI6, QUAD8/9, TETRA10, HEX20/27)");
+                : " and their second-order cells (TRI6, QUAD8/9, TETRA10, HEX20/27, WEDGE15/18)");
     }
     b.dim = facts(*b.type).dim;
     b.per_element = static_cast<int>(nodes);

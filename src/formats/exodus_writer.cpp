@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <optional>
 
@@ -25,7 +26,9 @@ struct Block {
   int nodes() const { return curved ? facts(*curved).nodes : num_vertices(type); }
   std::string type_name() const {
     if (!curved) return std::string(exodus_type_name(type));
-    constexpr const char* kNames[] = {"TRI6", "QUAD8", "QUAD9", "TETRA10", "HEX20", "HEX27"};
+    constexpr const char* kNames[] = {"TRI6",  "QUAD8", "QUAD9",   "TETRA10",
+                                      "HEX20", "HEX27", "WEDGE15", "WEDGE18"};
+    static_assert(std::size(kNames) == kCurvedTypes.size());
     return kNames[static_cast<int>(*curved)];
   }
 };

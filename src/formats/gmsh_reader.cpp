@@ -619,8 +619,8 @@ int cell_dimension(const Contents& c, const std::string& file) {
       if (!kCellType[p] || !curved_type(*kCellType[p], nodes))
         fail(
             "{}: has a {} of {} nodes (element {}); of the curved cells neomesh reads triangles "
-            "(6 nodes), quadrilaterals (8, 9), tetrahedra (10) and hexahedra (20, 27), not yet "
-            "curved wedges or pyramids or cells of third order",
+            "(6 nodes), quadrilaterals (8, 9), tetrahedra (10), hexahedra (20, 27) and wedges "
+            "(15, 18), not yet curved pyramids or cells of third order",
             file, kPolytopeName[p], nodes, e.numbers[k]);
     }
   }

@@ -127,7 +127,8 @@ int cell_dimension(const VtkCells& c, const std::string& file) {
       if (!curved_type(t, vertices))
         fail(
             "{}: cell {} (0-based) is a {} of {} points; of the second-order cells neomesh reads "
-            "triangles (6 points), quadrilaterals (8, 9), tetrahedra (10) and hexahedra (20, 27)",
+            "triangles (6 points), quadrilaterals (8, 9), tetrahedra (10), hexahedra (20, 27) "
+            "and wedges (15, 18)",
             file, i, t.name, vertices);
       continue;
     }
@@ -158,11 +159,12 @@ void add_high_order_nodes(const VtkCells& c, std::size_t i, const std::vector<Pe
   const int n = static_cast<int>(c.offsets[i + 1] - c.offsets[i]);
   const CurvedType type = *curved_type(*vtk_type(c.types[i]), n);
   const int corners = num_vertices(facts(type).linear);
-  const bool old = c.old_lagrange_hexahedra && c.types[i] == facts(type).vtk_lagrange &&
-                   type == CurvedType::Hexahedron27;
+  const bool lagrange = c.types[i] == facts(type).vtk_lagrange;
+  const bool old = c.old_lagrange_hexahedra && lagrange && type == CurvedType::Hexahedron27;
   PetscInt gmsh[kMaxCurvedNodes];
   for (int k = corners; k < n; ++k)
-    gmsh[facts(type).vtk_order[old ? old_lagrange_hexahedron_position(k) : k]] = node[points[k]];
+    gmsh[vtk_order(type, lagrange)[old ? old_lagrange_hexahedron_position(k) : k]] =
+        node[points[k]];
   mesh.high_order.add(type, gmsh + corners);
 }
 
@@ -182,8 +184,13 @@ void add_cells(const VtkCells& c, const std::string& file, const std::vector<Pet
     for (int k = 0; k < all; ++k)
       if (std::find(points, points + k, points[k]) != points + k)
         fail("{}: cell {} (0-based) has a repeated vertex", file, i);
-    for (int k = 0; k < n; ++k)
-      canonical[tensor ? k : vtk_from_canonical(type)[k]] = vertex[points[k]];
+    // A second-order cell's corners as its node order says (a Lagrange wedge's are Gmsh's).
+    const auto corner = [&](int k) -> int {
+      if (t.order == 1) return tensor ? k : vtk_from_canonical(type)[k];
+      const CurvedType curved = *curved_type(t, all);
+      return gmsh_from_canonical(type)[vtk_order(curved, t.vtk == facts(curved).vtk_lagrange)[k]];
+    };
+    for (int k = 0; k < n; ++k) canonical[corner(k)] = vertex[points[k]];
     const int tag = c.tags.empty() ? 0 : std::max(c.tags[i], 0);
     mesh.add_cell(type, canonical, tag);
     if (t.order > 1) add_high_order_nodes(c, i, node, mesh);

@@ -194,12 +194,12 @@ VtkElements vtk_elements(const GatheredMesh& gathered, bool lagrange) {
       PetscInt points[kMaxCurvedNodes];
       curved_cell_points(mesh, c, points);
       // .vtu files are written as version 1.0: Lagrange hexahedra in VTK's order before 9.1.
-      const bool old = lagrange && mesh.high_order.types[c] == CurvedType::Hexahedron27;
+      const bool as_lagrange = lagrange && f.vtk_lagrange > 0;
+      const bool old = as_lagrange && mesh.high_order.types[c] == CurvedType::Hexahedron27;
+      const auto& order = vtk_order(mesh.high_order.types[c], as_lagrange);
       for (int i = 0; i < f.nodes; ++i)
-        e.connectivity.push_back(
-            points[f.vtk_order[old ? old_lagrange_hexahedron_position(i) : i]]);
-      e.types.push_back(
-          static_cast<std::uint8_t>(lagrange && f.vtk_lagrange > 0 ? f.vtk_lagrange : f.vtk));
+        e.connectivity.push_back(points[order[old ? old_lagrange_hexahedron_position(i) : i]]);
+      e.types.push_back(static_cast<std::uint8_t>(as_lagrange ? f.vtk_lagrange : f.vtk));
       e.offsets.push_back(static_cast<std::int64_t>(e.connectivity.size()));
     }
   } else {

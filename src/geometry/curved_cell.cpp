@@ -27,6 +27,8 @@ std::pair<int, int> edge_corners(int e) {
   if constexpr (CurvedTraits<Type>::simplex) {
     const auto& edges = dim == 2 ? kTriangleEdges : kTetrahedronEdges;
     if (e < (dim == 2 ? 3 : 6)) return {edges[e][0], edges[e][1]};
+  } else if constexpr (CurvedTraits<Type>::wedge) {
+    if (e < static_cast<int>(kWedgeEdges.size())) return {kWedgeEdges[e][0], kWedgeEdges[e][1]};
   } else if constexpr (dim == 2) {
     if (e < 4) return {kQuadrilateralEdges[e][0], kQuadrilateralEdges[e][1]};
   } else {
@@ -42,6 +44,10 @@ Vector<CurvedTraits<Type>::dim> reference_corner(int i) {
   Vector<dim> xi = Vector<dim>::Zero();
   if constexpr (CurvedTraits<Type>::simplex) {
     if (i > 0) xi[i - 1] = 1.0;
+  } else if constexpr (CurvedTraits<Type>::wedge) {
+    // The triangle's corners (0,0) (1,0) (0,1) at ζ = −1, then at ζ = +1.
+    if (i % 3 > 0) xi[i % 3 - 1] = 1.0;
+    xi[2] = i >= 3 ? 1.0 : -1.0;
   } else {
     // Counter-clockwise in the plane z = −1, then the same in z = +1.
     const int in_plane = i % 4;
@@ -59,6 +65,13 @@ Vector<CurvedTraits<Type>::dim> reference_node_uncached(int i) {
   const int first_edge_node = Traits::corners;
   if (const auto [a, b] = edge_corners<Type>(i - first_edge_node); a >= 0)
     return 0.5 * (reference_corner<Type>(a) + reference_corner<Type>(b));
+  // Wedge18's quadrilateral faces.
+  if constexpr (Traits::wedge) {
+    Vector<3> centre = Vector<3>::Zero();
+    for (int corner : kWedgeFaces[i - first_edge_node - static_cast<int>(kWedgeEdges.size())])
+      centre += 0.25 * reference_corner<Type>(corner);
+    return centre;
+  }
   // Tensor cells only: hexahedron27's faces, then the centre (quadrilateral9's node 8).
   if constexpr (Traits::dim == 3 && !Traits::simplex) {
     const int face = i - first_edge_node - 12;
@@ -82,7 +95,8 @@ const std::array<Vector<CurvedTraits<Type>::dim>, CurvedTraits<Type>::nodes>& re
 }
 
 constexpr bool is_serendipity(CurvedType type) {
-  return type == CurvedType::Quadrilateral8 || type == CurvedType::Hexahedron20;
+  return type == CurvedType::Quadrilateral8 || type == CurvedType::Hexahedron20 ||
+         type == CurvedType::Wedge15;
 }
 
 // Π_j f_j and its gradient, ∂_k = f'_k Π_{j≠k} f_j.
@@ -157,20 +171,71 @@ std::pair<double, Vector<CurvedTraits<Type>::dim>> simplex_basis(
           4.0 * (lambda(b) * grad_lambda(a) + lambda(a) * grad_lambda(b))};
 }
 
+// On the wedge, with the triangle's barycentric coordinates λ (as above) and μ those of the node
+// at reference position p (each 0, 1/2 or 1), and t = ζ, z = p_ζ:
+// - wedge18: the triangle's P2 function of the node, Π_{μ_a > 0} (μ_a = 1 ? λ_a (2λ_a − 1) :
+//   2λ_a), times the quadratic Lagrange polynomial of z on {−1, 0, 1};
+// - wedge15 (serendipity): at a corner ½ λ_a (2λ_a − 1)(1 + z t) − ½ λ_a (1 − t²), at the
+//   midpoint of a triangle's edge 2 λ_a λ_b (1 + z t), at that of a vertical edge λ_a (1 − t²).
+template <CurvedType Type>
+std::pair<double, Vector<3>> wedge_basis(const Vector<3>& p, const Vector<3>& xi) {
+  const std::array<double, 3> lambda = {1.0 - xi[0] - xi[1], xi[0], xi[1]};
+  const std::array<double, 3> mu = {1.0 - p[0] - p[1], p[0], p[1]};
+  const std::array<Vector<3>, 3> grad_lambda = {Vector<3>(-1.0, -1.0, 0.0), Vector<3>::UnitX(),
+                                                Vector<3>::UnitY()};
+  const double t = xi[2], z = p[2];
+  if constexpr (!is_serendipity(Type)) {
+    double f = 1.0;  // the triangle's factor
+    Vector<3> df = Vector<3>::Zero();
+    for (int a = 0; a < 3; ++a) {
+      if (mu[a] == 0.0) continue;
+      const bool corner = mu[a] == 1.0;
+      const double g = corner ? lambda[a] * (2.0 * lambda[a] - 1.0) : 2.0 * lambda[a];
+      const Vector<3> dg = (corner ? 4.0 * lambda[a] - 1.0 : 2.0) * grad_lambda[a];
+      df = df * g + f * dg;
+      f *= g;
+    }
+    const double l = z == 0.0 ? 1.0 - t * t : 0.5 * t * (t + z);
+    const double dl = z == 0.0 ? -2.0 * t : t + 0.5 * z;
+    return {f * l, df * l + f * dl * Vector<3>::UnitZ()};
+  } else {
+    int a = 0, b = -1;  // the node's corners of the triangle
+    while (mu[a] == 0.0) ++a;
+    if (mu[a] != 1.0)
+      for (b = a + 1; mu[b] == 0.0;) ++b;
+    const double la = lambda[a];
+    if (z == 0.0)  // a vertical edge
+      return {la * (1.0 - t * t),
+              (1.0 - t * t) * grad_lambda[a] - 2.0 * t * la * Vector<3>::UnitZ()};
+    if (b >= 0) {
+      const double lb = lambda[b], s = 1.0 + z * t;
+      return {2.0 * la * lb * s, 2.0 * s * (lb * grad_lambda[a] + la * grad_lambda[b]) +
+                                     2.0 * la * lb * z * Vector<3>::UnitZ()};
+    }
+    const double c = la * (2.0 * la - 1.0), s = 1.0 + z * t;
+    return {0.5 * c * s - 0.5 * la * (1.0 - t * t),
+            (0.5 * (4.0 * la - 1.0) * s - 0.5 * (1.0 - t * t)) * grad_lambda[a] +
+                (0.5 * c * z + la * t) * Vector<3>::UnitZ()};
+  }
+}
+
 template <CurvedType Type>
 std::pair<double, Vector<CurvedTraits<Type>::dim>> basis_function(
     int node, const Vector<CurvedTraits<Type>::dim>& xi) {
   if constexpr (CurvedTraits<Type>::simplex)
     return simplex_basis<Type>(node, xi);
+  else if constexpr (CurvedTraits<Type>::wedge)
+    return wedge_basis<Type>(reference_nodes<Type>()[node], xi);
   else
     return tensor_basis<Type>(reference_nodes<Type>()[node], xi);
 }
 
 // --- Bernstein polynomials ----------------------------------------------------------------------
 //
-// On the unit domain — the unit simplex or [0,1]^d — in coordinates t; a sub-cell is the image
-// ξ = origin + M t of the unit domain in reference coordinates (the whole tensor cell: origin
-// (−1, ..., −1), M = 2I; the whole simplex: origin 0, M = I).
+// On the unit domain — the unit simplex, [0,1]^d, or the unit triangle × [0,1] — in coordinates
+// t; a sub-cell is the image ξ = origin + M t of the unit domain in reference coordinates (the
+// whole tensor cell: origin (−1, ..., −1), M = 2I; the whole simplex: origin 0, M = I; the whole
+// wedge: origin (0, 0, −1), M = diag(1, 1, 2)).
 
 double binomial(int n, int k) {
   double b = 1.0;
@@ -178,28 +243,42 @@ double binomial(int n, int k) {
   return b;
 }
 
+// With λ = (1 − Σ t, t) and α = (n − Σ a, a): n!/Π α_k! Π λ_k^α_k, the Bernstein polynomial
+// of degree n on the unit simplex.
+template <int Dim>
+double simplex_bernstein(int n, const Eigen::Array<int, Dim, 1>& a, const Vector<Dim>& t) {
+  const int a0 = n - a.sum();
+  double value = std::pow(1.0 - t.sum(), a0) * binomial(n, a0);
+  int left = n - a0;
+  for (int j = 0; j < Dim; ++j) {
+    value *= binomial(left, a[j]) * std::pow(t[j], a[j]);
+    left -= a[j];
+  }
+  return value;
+}
+
 template <CurvedType Type>
 struct Bezier {
   static constexpr int dim = CurvedTraits<Type>::dim;
   static constexpr int degree = CurvedTraits<Type>::det_degree;
+  static constexpr int axis_degree = CurvedTraits<Type>::det_axis_degree;  // the wedge's
+  // Simplices and wedges invert the whole matrix T; tensor cells T's factor of one direction.
+  static constexpr bool whole_matrix = CurvedTraits<Type>::simplex || CurvedTraits<Type>::wedge;
   std::vector<Eigen::Array<int, dim, 1>> indices;  // multi-index a of B_a
   std::vector<Vector<dim>> points;                 // the Lagrange points a/n
-  // T⁻¹: simplices the whole matrix; tensor cells that of one direction, since T is the
-  // Kronecker product of d copies of it (points and basis both first index fastest).
+  // T⁻¹: simplices and wedges the whole matrix; tensor cells that of one direction, since T is
+  // the Kronecker product of d copies of it (points and basis both first index fastest).
   Eigen::MatrixXd to_bezier;
 
-  // Tensor: Π_j C(n, a_j) t_j^a_j (1 − t_j)^(n − a_j); simplex, with λ = (1 − Σ t, t) and
-  // α = (n − Σ a, a): n!/Π α_k! Π λ_k^α_k.
+  // Tensor: Π_j C(n, a_j) t_j^a_j (1 − t_j)^(n − a_j); simplex: simplex_bernstein; wedge: the
+  // triangle's of degree n in (t_0, t_1) times the axis' of degree n_axis in t_2.
   static double basis(const Eigen::Array<int, dim, 1>& a, const Vector<dim>& t) {
     if constexpr (CurvedTraits<Type>::simplex) {
-      const int a0 = degree - a.sum();
-      double value = std::pow(1.0 - t.sum(), a0) * binomial(degree, a0);
-      int left = degree - a0;
-      for (int j = 0; j < dim; ++j) {
-        value *= binomial(left, a[j]) * std::pow(t[j], a[j]);
-        left -= a[j];
-      }
-      return value;
+      return simplex_bernstein<dim>(degree, a, t);
+    } else if constexpr (CurvedTraits<Type>::wedge) {
+      return simplex_bernstein<2>(degree, a.template head<2>(), t.template head<2>()) *
+             binomial(axis_degree, a[2]) * std::pow(t[2], a[2]) *
+             std::pow(1.0 - t[2], axis_degree - a[2]);
     } else {
       double value = 1.0;
       for (int j = 0; j < dim; ++j)
@@ -210,18 +289,25 @@ struct Bezier {
   }
 
   Bezier() {
+    constexpr int largest = std::max(degree, axis_degree);
     Eigen::Array<int, dim, 1> a = Eigen::Array<int, dim, 1>::Zero();
     for (;;) {
-      if (!CurvedTraits<Type>::simplex || a.sum() <= degree) {
+      bool in = true;
+      if constexpr (CurvedTraits<Type>::simplex) in = a.sum() <= degree;
+      if constexpr (CurvedTraits<Type>::wedge) in = a[0] + a[1] <= degree;
+      if constexpr (!whole_matrix) in = a.maxCoeff() <= degree;
+      if (in) {
         indices.push_back(a);
-        points.push_back(a.template cast<double>().matrix() / degree);
+        Vector<dim> p = a.template cast<double>().matrix() / degree;
+        if constexpr (CurvedTraits<Type>::wedge) p[2] = double(a[2]) / axis_degree;
+        points.push_back(p);
       }
-      int j = 0;  // next multi-index in [0, n]^d, first index fastest
-      while (j < dim && a[j] == degree) a[j++] = 0;
+      int j = 0;  // next multi-index in [0, largest]^d, first index fastest
+      while (j < dim && a[j] == largest) a[j++] = 0;
       if (j == dim) break;
       ++a[j];
     }
-    if constexpr (CurvedTraits<Type>::simplex) {
+    if constexpr (whole_matrix) {
       const int n = static_cast<int>(points.size());
       Eigen::MatrixXd t(n, n);
       for (int p = 0; p < n; ++p)
@@ -239,7 +325,7 @@ struct Bezier {
 
   // The Bézier coefficients of the polynomial with `values` at the points.
   Eigen::VectorXd coefficients(const Eigen::VectorXd& values) const {
-    if constexpr (CurvedTraits<Type>::simplex) {
+    if constexpr (whole_matrix) {
       return to_bezier * values;
     } else {
       // T⁻¹ applied along each direction in turn: (n + 1) d multiplications per value instead of
@@ -278,19 +364,31 @@ SubCell<CurvedTraits<Type>::dim> whole_cell() {
   constexpr int dim = CurvedTraits<Type>::dim;
   if constexpr (CurvedTraits<Type>::simplex)
     return {Vector<dim>::Zero(), Matrix<dim>::Identity(), 0, -kInfinity};
+  else if constexpr (CurvedTraits<Type>::wedge)
+    return {Vector<3>(0.0, 0.0, -1.0), Matrix<3>(Vector<3>(1.0, 1.0, 2.0).asDiagonal()), 0,
+            -kInfinity};
   else
     return {Vector<dim>::Constant(-1.0), 2.0 * Matrix<dim>::Identity(), 0, -kInfinity};
 }
 
 // The children of the unit domain as affine maps t ↦ o + M t: 2^d half boxes; the triangle's
 // 4 and the tetrahedron's 8 sub-simplices of its edge midpoints (the tetrahedron: its 4 corner
-// tetrahedra and the inner octahedron cut along the diagonal from mid(0,2) to mid(1,3)).
+// tetrahedra and the inner octahedron cut along the diagonal from mid(0,2) to mid(1,3)); the
+// wedge's 8, the triangle's 4 times the axis' 2 halves.
 template <CurvedType Type>
 std::vector<std::pair<Vector<CurvedTraits<Type>::dim>, Matrix<CurvedTraits<Type>::dim>>>
 unit_children() {
   constexpr int dim = CurvedTraits<Type>::dim;
   std::vector<std::pair<Vector<dim>, Matrix<dim>>> children;
-  if constexpr (!CurvedTraits<Type>::simplex) {
+  if constexpr (CurvedTraits<Type>::wedge) {
+    for (const auto& [o, m] : unit_children<CurvedType::Triangle6>())
+      for (int half = 0; half < 2; ++half) {
+        Matrix<3> m3 = Matrix<3>::Zero();
+        m3.topLeftCorner<2, 2>() = m;
+        m3(2, 2) = 0.5;
+        children.emplace_back(Vector<3>(o[0], o[1], 0.5 * half), m3);
+      }
+  } else if constexpr (!CurvedTraits<Type>::simplex) {
     for (int c = 0; c < (1 << dim); ++c) {
       Vector<dim> o;
       for (int j = 0; j < dim; ++j) o[j] = ((c >> j) & 1) ? 0.5 : 0.0;
@@ -335,6 +433,17 @@ const std::vector<Matrix<CurvedTraits<Type>::dim>>& corner_frames() {
         Matrix<dim> frame;
         for (int j = 0, col = 0; j <= dim; ++j)
           if (j != k) frame.col(col++) = reference_corner<Type>(j) - reference_corner<Type>(k);
+        a.push_back(frame);
+      }
+    } else if constexpr (CurvedTraits<Type>::wedge) {
+      // Corner k: the edges to the next two corners of its triangle, and the axis upwards (the
+      // cell-type table's frames; det A_k = 1).
+      for (int k = 0; k < 6; ++k) {
+        const int base = k - k % 3;
+        Matrix<3> frame;
+        for (int j = 1; j <= 2; ++j)
+          frame.col(j - 1) = reference_corner<Type>(base + (k + j) % 3) - reference_corner<Type>(k);
+        frame.col(2) = Vector<3>::UnitZ();
         a.push_back(frame);
       }
     } else {
@@ -544,7 +653,7 @@ double curved_det(const typename CurvedTraits<Type>::Nodes& x,
 
 template <CurvedType Type>
 std::array<int, CurvedTraits<Type>::corners> linear_corners() {
-  if constexpr (CurvedTraits<Type>::simplex) {
+  if constexpr (CurvedTraits<Type>::simplex || CurvedTraits<Type>::wedge) {
     std::array<int, CurvedTraits<Type>::corners> c;
     for (int i = 0; i < CurvedTraits<Type>::corners; ++i) c[i] = i;
     return c;
@@ -566,6 +675,13 @@ typename CurvedTraits<Type>::Nodes straight_curved_cell(
       x.col(i) = corners.col(0);
       for (int k = 0; k < Traits::dim; ++k)
         x.col(i) += p[k] * (corners.col(k + 1) - corners.col(0));
+    } else if constexpr (Traits::wedge) {
+      // λ_a (1 ∓ ζ)/2 (reference_cell.hpp's wedge).
+      const double lambda[3] = {1.0 - p[0] - p[1], p[0], p[1]};
+      x.col(i).setZero();
+      for (int a = 0; a < 3; ++a)
+        x.col(i) += lambda[a] *
+                    (0.5 * (1.0 - p[2]) * corners.col(a) + 0.5 * (1.0 + p[2]) * corners.col(a + 3));
     } else {
       // Q1 in tensor order: N_v(ξ) = Π_j (1 + s_vj ξ_j)/2.
       x.col(i).setZero();
@@ -627,9 +743,10 @@ CurvedScaledJacobian curved_scaled_jacobian(const typename CurvedTraits<Type>::N
 template <CurvedType Type>
 double curved_volume(const typename CurvedTraits<Type>::Nodes& x) {
   using Traits = CurvedTraits<Type>;
-  // The unit simplex: 1/d!; [−1,1]^d: 2^d.
-  const double reference =
-      Traits::simplex ? (Traits::dim == 2 ? 0.5 : 1.0 / 6.0) : 1 << Traits::dim;
+  // The unit simplex: 1/d!; [−1,1]^d: 2^d; the unit triangle × [−1,1]: 1.
+  const double reference = Traits::simplex ? (Traits::dim == 2 ? 0.5 : 1.0 / 6.0)
+                           : Traits::wedge ? 1.0
+                                           : 1 << Traits::dim;
   return reference * jacobian_bezier_coefficients<Type>(x).mean();
 }
 
@@ -661,6 +778,8 @@ NEOMESH_CURVED_INSTANTIATE(CurvedType::Quadrilateral9)
 NEOMESH_CURVED_INSTANTIATE(CurvedType::Tetrahedron10)
 NEOMESH_CURVED_INSTANTIATE(CurvedType::Hexahedron20)
 NEOMESH_CURVED_INSTANTIATE(CurvedType::Hexahedron27)
+NEOMESH_CURVED_INSTANTIATE(CurvedType::Wedge15)
+NEOMESH_CURVED_INSTANTIATE(CurvedType::Wedge18)
 
 #undef NEOMESH_CURVED_INSTANTIATE
 

@@ -7,12 +7,15 @@
 //   in Gmsh's edge order, then one per quadrilateral face, then the centre. The triangle6 and
 //   tetrahedron10 edges are (0,1) (1,2) (2,0) and (0,1) (1,2) (2,0) (3,0) (3,2) (3,1); the
 //   hexahedron's edges (0,1) (0,3) (0,4) (1,2) (1,5) (2,3) (2,6) (3,7) (4,5) (4,7) (5,6) (6,7),
-//   its faces z = −1, y = −1, x = −1, x = +1, y = +1, z = +1.
+//   its faces z = −1, y = −1, x = −1, x = +1, y = +1, z = +1. The wedge's (Gmsh's prism) edges
+//   (0,1) (0,2) (0,3) (1,2) (1,4) (2,5) (3,4) (3,5) (4,5), its quadrilateral faces (0,1,4,3)
+//   (0,2,5,3) (1,2,5,4).
 // - Reference cells are Gmsh's: the unit simplex (corner 0 at the origin, corner k at the k-th
-//   unit vector) and [−1,1]^d for quadrilaterals and hexahedra. The higher-order nodes sit at
-//   the midpoints of their edges, the centres of their faces and of the cell.
-// - Quadrilateral9 and hexahedron27 are the tensor-product Lagrange cells; quadrilateral8 and
-//   hexahedron20 the serendipity cells (no face or centre nodes).
+//   unit vector), [−1,1]^d for quadrilaterals and hexahedra, and the unit triangle × [−1,1] for
+//   the wedge (corners 0 1 2 at ζ = −1, 3 4 5 above them). The higher-order nodes sit at the
+//   midpoints of their edges, the centres of their faces and of the cell.
+// - Quadrilateral9, hexahedron27 and wedge18 are the Lagrange cells (tensor products);
+//   quadrilateral8, hexahedron20 and wedge15 the serendipity cells (no face or centre nodes).
 // - J(ξ) = ∂x/∂ξ is the Jacobian of the map from the reference cell; det J > 0 everywhere on a
 //   valid, positively oriented cell.
 #pragma once
@@ -32,16 +35,21 @@ namespace neomesh {
 
 // Compile-time facts of a second-order type. `det_degree` is the degree of det J as a
 // polynomial: total degree d(p − 1) = 2 (triangle) or 3 (tetrahedron) for simplices, degree per
-// direction dp − 1 = 3 (quadrilateral) or 5 (hexahedron) for tensor cells; the serendipity cells
-// share their Lagrange sibling's bound.
+// direction dp − 1 = 3 (quadrilateral) or 5 (hexahedron) for tensor cells. The wedge's map lies
+// in P2(triangle) ⊗ P2(axis), so ∂x/∂r, ∂x/∂s lie in P1 ⊗ P2 and ∂x/∂ζ in P2 ⊗ P1: det J is in
+// P4 ⊗ P5, total degree `det_degree` = 4 in the triangle's coordinates and `det_axis_degree` = 5
+// along the axis. The serendipity cells share their Lagrange sibling's bound (their maps lie in
+// its space).
 template <CurvedType Type>
 struct CurvedTraits {
   static constexpr CellType linear = facts(Type).linear;  // the straight cell
   static constexpr int dim = dimension(linear);
   static constexpr bool simplex = is_simplex(linear);
+  static constexpr bool wedge = facts(linear).shape == CellShape::Wedge;
   static constexpr int nodes = facts(Type).nodes;
-  static constexpr int corners = simplex ? dim + 1 : (1 << dim);
-  static constexpr int det_degree = simplex ? dim : 2 * dim - 1;
+  static constexpr int corners = simplex ? dim + 1 : wedge ? 6 : (1 << dim);
+  static constexpr int det_degree = simplex ? dim : wedge ? 4 : 2 * dim - 1;
+  static constexpr int det_axis_degree = wedge ? 5 : det_degree;
   using Nodes = Eigen::Matrix<double, dim, nodes>;  // one column per node
   using Point = Vector<dim>;
 };
@@ -84,11 +92,11 @@ typename CurvedTraits<Type>::Nodes straight_curved_cell(
 // --- The Bézier (Bernstein) expansion of det J ------------------------------------------------
 //
 // det J is a polynomial of degree n = det_degree (total degree on simplices, per direction on
-// tensor cells). On a (sub)domain D it is Σ_k c_k B_k, with B_k the Bernstein polynomials of
-// degree n on D: nonnegative and summing to 1, so min_k c_k ≤ min_D det J ≤ the value at any
-// point of D. The coefficients are found by sampling det J at the Lagrange points of degree n
-// on D (equispaced) and applying the inverse of the fixed matrix T_pk = B_k(point p), computed
-// once per type.
+// tensor cells; on the wedge total degree 4 in the triangle times degree 5 along the axis). On a
+// (sub)domain D it is Σ_k c_k B_k, with B_k the Bernstein polynomials of that degree on D:
+// nonnegative and summing to 1, so min_k c_k ≤ min_D det J ≤ the value at any point of D. The
+// coefficients are found by sampling det J at the Lagrange points of degree n on D (equispaced) and
+// applying the inverse of the fixed matrix T_pk = B_k(point p), computed once per type.
 
 // The coefficients of det J on the whole reference cell, in the order of bezier_value's basis.
 template <CurvedType Type>
@@ -127,7 +135,8 @@ struct JacobianCertificate {
 // Decides the sign of det J over the cell: on each sub-cell, a sampled det J ≤ 0 makes the cell
 // invalid; all Bézier coefficients > 0 make the sub-cell valid; otherwise the sub-cell is split
 // (tensor cells into 2^d halves, triangles into 4 and tetrahedra into 8 by their edge
-// midpoints) until `max_depth`, where it stays undecided. On Invalid the search stops at once.
+// midpoints, wedges into 8: the triangle's 4 times the axis' 2 halves) until `max_depth`, where it
+// stays undecided. On Invalid the search stops at once.
 template <CurvedType Type>
 JacobianCertificate certify_jacobian(const typename CurvedTraits<Type>::Nodes& x,
                                      int max_depth = kCertificateDepth);
@@ -135,9 +144,10 @@ JacobianCertificate certify_jacobian(const typename CurvedTraits<Type>::Nodes& x
 // The scaled Jacobian of a curved cell.
 //
 // At a reference point ξ and for corner frame k, q_k(ξ) = det J(ξ) / Π_j |J(ξ) A_k e_j|, where
-// the columns of A_k are the reference edges leaving corner k (|det A_k| = 1), divided like
-// quality.hpp's measure by its value on the optimal cell (√3/2 for triangles, √2/2 for
-// tetrahedra, 1 otherwise). Quadrilaterals and hexahedra have one frame, the reference axes:
+// the columns of A_k are the reference edges leaving corner k (|det A_k| = 1; the wedge's: the
+// edges of its triangle and the unit axis, as the cell-type table's corner frames), divided like
+// quality.hpp's measure by its value on the optimal cell (√3/2 for triangles and wedges, √2/2
+// for tetrahedra, 1 otherwise). Quadrilaterals and hexahedra have one frame, the reference axes:
 // q = det J / Π_j |∂x/∂ξ_j|. At corner k, J A_k holds the tangents of the cell's edges there, so
 // q_k(corner k) is quality.hpp's corner sine of the curved cell. Pointwise, q(ξ) = min_k q_k(ξ).
 struct CurvedScaledJacobian {

@@ -24,12 +24,16 @@ using Corners = Eigen::Matrix<double, CurvedTraits<Type>::dim, CurvedTraits<Type
 template <CurvedType Type>
 Vector<CurvedTraits<Type>::dim> random_point(std::mt19937& rng) {
   constexpr int dim = CurvedTraits<Type>::dim;
-  if constexpr (CurvedTraits<Type>::simplex) {
+  if constexpr (CurvedTraits<Type>::simplex || CurvedTraits<Type>::wedge) {
+    // The wedge: the triangle's, then the axis' coordinate in [−1, 1].
+    constexpr int simplex_dim = CurvedTraits<Type>::wedge ? 2 : dim;
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (;;) {
       Vector<dim> xi;
       for (int j = 0; j < dim; ++j) xi[j] = u(rng);
-      if (xi.sum() <= 1.0) return xi;
+      if (xi.template head<simplex_dim>().sum() > 1.0) continue;
+      if constexpr (CurvedTraits<Type>::wedge) xi[2] = 2.0 * xi[2] - 1.0;
+      return xi;
     }
   } else {
     std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -48,6 +52,8 @@ Corners<Type> jittered_corners(std::mt19937& rng, double jitter) {
   for (int v = 0; v < CurvedTraits<Type>::corners; ++v) {
     if constexpr (CurvedTraits<Type>::simplex)
       c.col(v) = v == 0 ? Vector<dim>::Zero() : Vector<dim>(Vector<dim>::Unit(v - 1));
+    else if constexpr (CurvedTraits<Type>::wedge)
+      c.col(v) = reference_node<Type>(v);  // canonical order is Gmsh's
     else
       c.col(v) = q1_vertex<dim>(v);
     for (int j = 0; j < dim; ++j) c(j, v) += u(rng);
@@ -74,6 +80,8 @@ double linear_det(const Corners<Type>& c, const Vector<CurvedTraits<Type>::dim>&
     Matrix<dim> edges;
     for (int j = 0; j < dim; ++j) edges.col(j) = c.col(j + 1) - c.col(0);
     return edges.determinant();
+  } else if constexpr (CurvedTraits<Type>::wedge) {
+    return (c * wedge_gradients(xi).transpose()).determinant();
   } else {
     return (c * q1_gradients<dim>(xi).transpose()).determinant();
   }
@@ -86,7 +94,20 @@ double pointwise_scaled_jacobian(const typename CurvedTraits<Type>::Nodes& x,
   constexpr int dim = CurvedTraits<Type>::dim;
   const Matrix<dim> j = curved_jacobian<Type>(x, xi);
   const CellType linear = CurvedTraits<Type>::linear;
-  if constexpr (!CurvedTraits<Type>::simplex) {
+  if constexpr (CurvedTraits<Type>::wedge) {
+    // At corner k: the edges to the next two corners of its triangle, and the axis upwards.
+    double q = 1.0;
+    for (int k = 0; k < 6; ++k) {
+      const int base = k - k % 3;
+      Matrix<3> frame;
+      frame << j * (reference_node<Type>(base + (k + 1) % 3) - reference_node<Type>(k)),
+          j * (reference_node<Type>(base + (k + 2) % 3) - reference_node<Type>(k)),
+          j * Vector<3>::UnitZ();
+      q = std::min(
+          q, frame.determinant() / frame.colwise().norm().prod() / facts(linear).ideal_corner_sine);
+    }
+    return q;
+  } else if constexpr (!CurvedTraits<Type>::simplex) {
     return j.determinant() / j.colwise().norm().prod() / facts(linear).ideal_corner_sine;
   } else {
     double q = 1.0;
@@ -121,11 +142,11 @@ typename CurvedTraits<Type>::Nodes pushed_cell(double across) {
   return x;
 }
 
-// A cell with det J > 0 everywhere whose undivided Bézier bounds do not show it. Tensor cells:
-// the first mid-edge node pushed a little (by as much as the Lagrange and serendipity bases need
-// to bend the edge alike). Simplices: a single moved node leaves det J affine — J is then a
-// rank-one update of the straight cell's, det(J + u gᵀ) = det J (1 + gᵀ J⁻¹ u) with g linear —
-// so its Bézier bounds are exact and never undecided; two moved nodes make it quadratic (cubic).
+// A cell with det J > 0 everywhere whose undivided Bézier bounds do not show it. Tensor cells
+// and wedges: the first mid-edge node pushed a little (by as much as the Lagrange and serendipity
+// bases need to bend the edge alike). Simplices: a single moved node leaves det J affine — J is
+// then a rank-one update of the straight cell's, det(J + u gᵀ) = det J (1 + gᵀ J⁻¹ u) with g linear
+// — so its Bézier bounds are exact and never undecided; two moved nodes make it quadratic (cubic).
 template <CurvedType Type>
 typename CurvedTraits<Type>::Nodes slightly_pushed_cell() {
   using Traits = CurvedTraits<Type>;
@@ -133,6 +154,8 @@ typename CurvedTraits<Type>::Nodes slightly_pushed_cell() {
   if constexpr (Type == CurvedType::Quadrilateral9) return pushed_cell<Type>(0.28);
   if constexpr (Type == CurvedType::Hexahedron20) return pushed_cell<Type>(0.44);
   if constexpr (Type == CurvedType::Hexahedron27) return pushed_cell<Type>(0.15);
+  if constexpr (Type == CurvedType::Wedge15) return pushed_cell<Type>(0.4);
+  if constexpr (Type == CurvedType::Wedge18) return pushed_cell<Type>(0.2);
   std::mt19937 unused;
   typename Traits::Nodes x = straight_curved_cell<Type>(jittered_corners<Type>(unused, 0.0));
   if constexpr (Type == CurvedType::Triangle6) {
@@ -264,8 +287,10 @@ TEST(JacobianCertificate, BoundsContainSampledDetJ) {
   for_each_curved_type([]<CurvedType Type>() {
     std::mt19937 rng(6);
     std::array<int, 3> seen{};  // by Validity
+    // (The wedge's 18 nodes on a reference cell of height 2 but unit triangle fold more often.)
+    const double bend = CurvedTraits<Type>::wedge ? 0.2 : 0.3;
     for (int trial = 0; trial < 20; ++trial) {
-      const auto x = random_curved_cell<Type>(rng, 0.2, 0.3);
+      const auto x = random_curved_cell<Type>(rng, 0.2, bend);
       const CurvedScaledJacobian s = curved_scaled_jacobian<Type>(x);
       const JacobianCertificate& cert = s.certificate;
       EXPECT_LE(cert.min_det_lower, cert.min_det_upper);

@@ -26,6 +26,10 @@ std::vector<int> carrier(const Vector<CurvedTraits<Type>::dim>& p) {
       // Barycentric λ_k(p) > 0: corner 0 at the origin, corner k at e_k.
       const double lambda = k == 0 ? 1.0 - p.sum() : p[k - 1];
       in = lambda > 1e-12;
+    } else if constexpr (Traits::wedge) {
+      // The triangle's barycentric λ_{k mod 3}(p) > 0, and p at the corner's level or between.
+      const double lambda = k % 3 == 0 ? 1.0 - p[0] - p[1] : p[k % 3 - 1];
+      in = lambda > 1e-12 && (p[2] == 0.0 || p[2] == q[2]);
     } else {
       for (int j = 0; j < Traits::dim; ++j)
         if (p[j] != 0.0 && p[j] != q[j]) in = false;
@@ -50,7 +54,8 @@ FaceKey face_key(const Corners& corners) {
   return key;
 }
 
-// The sub-cells of a simplex in node numbers (either orientation; fixed below).
+// The sub-cells of a simplex in node numbers (either orientation; fixed below); the triangle's
+// are positively oriented (the wedge's sub-cells are built on them).
 constexpr std::array<std::array<int, 3>, 4> kTriangleSubcells = {
     {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}}};
 // Gmsh's edges 4:(0,1) 5:(1,2) 6:(2,0) 7:(3,0) 8:(3,2) 9:(3,1): the corners' tetrahedra, and the
@@ -117,6 +122,38 @@ class Builder {
         for (const auto& sub : kTriangleSubcells) add(sub);
       else
         for (const auto& sub : kTetrahedronSubcells) add(sub);
+    } else if constexpr (Traits::wedge) {
+      // The triangle6 lattice at ζ = −1, 0, 1 (the wedge15's face centres virtual): 8 wedges,
+      // the triangle's 4 sub-triangles between two consecutive levels.
+      std::array<std::array<PetscInt, 6>, 3> lattice;  // [level][triangle6 node]
+      for (auto& level : lattice) level.fill(-1);
+      const auto triangle_node = [](const Vector<3>& p) {
+        const int a = static_cast<int>(std::lround(2.0 * p[0])),
+                  b = static_cast<int>(std::lround(2.0 * p[1]));
+        // Triangle6: corners (0,0) (2,0) (0,2), then mid-edges (1,0) (1,1) (0,1), in halves.
+        constexpr int kNode[3][3] = {{0, 5, 2}, {3, 4, -1}, {1, -1, -1}};
+        return kNode[a][b];
+      };
+      for (int i = 0; i < Traits::nodes; ++i) {
+        const Vector<3> p = reference_node<Type>(i);
+        lattice[std::lround(p[2]) + 1][triangle_node(p)] = points[i];
+      }
+      for (int level = 0; level < 3; ++level)
+        for (int t = 0; t < 6; ++t) {
+          if (lattice[level][t] >= 0) continue;
+          const Vector<2> uv = reference_node<CurvedType::Triangle6>(t);
+          lattice[level][t] =
+              virtual_vertex<Type>(Vector<3>(uv[0], uv[1], level - 1.0), nodes, points);
+        }
+      for (int level = 0; level < 2; ++level)
+        for (const auto& sub : kTriangleSubcells) {
+          std::array<PetscInt, 6> v;
+          for (int i = 0; i < 3; ++i) {
+            v[i] = lattice[level][sub[i]];
+            v[i + 3] = lattice[level + 1][sub[i]];
+          }
+          out_.mesh.add_cell(Traits::linear, v.data(), tag);
+        }
     } else {
       // The lattice {−1, 0, 1}^d of the tensor cell, the serendipity cell's missing points
       // filled with virtual vertices.

@@ -5,10 +5,12 @@
 //
 // The DMPlex of such a mesh is built from the straight sub-cells through the nodes: a
 // triangle6 gives 4 triangles, a tetrahedron10 8 tetrahedra (its inner octahedron cut along one
-// diagonal), a quadrilateral9 4 quadrilaterals and a hexahedron27 8 hexahedra. The serendipity
-// cells lack the face and centre nodes of that lattice: a quadrilateral8 gets a virtual centre,
-// a hexahedron20 virtual face centres (shared with the neighbour across the face) and a centre,
-// at the curved map's image of those reference points. Virtual vertices belong to no curved
+// diagonal), a quadrilateral9 4 quadrilaterals, a hexahedron27 8 hexahedra and a wedge18 8
+// wedges (the triangle's 4 sub-triangles between its 3 levels). The serendipity cells lack the
+// face and centre nodes of that lattice: a quadrilateral8 gets a virtual centre, a hexahedron20
+// virtual face centres (shared with the neighbour across the face) and a centre, a wedge15
+// virtual centres of its quadrilateral faces, at the curved map's image of those reference
+// points. Virtual vertices belong to no curved
 // cell: they have no energy, stay where they are, and are not written. The sub-cells only give
 // the topology (the boundary's facets, who neighbours whom); their shape plays no part.
 //

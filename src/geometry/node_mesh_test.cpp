@@ -59,9 +59,11 @@ TEST(NodeMesh, EveryNodeIsAVertexAndTheSubcellsTileTheCell) {
     const NodeMesh nodes = node_mesh(curved);
     const InputMesh& m = nodes.mesh;
     EXPECT_EQ(nodes.points, Traits::nodes);
-    // The serendipity cells' missing lattice points: the centre, and a hexahedron's 6 faces'.
+    // The serendipity cells' missing lattice points: the centre, and a hexahedron's 6 faces';
+    // a wedge15's 3 quadrilateral faces'.
     const int virtual_vertices = Type == CurvedType::Quadrilateral8 ? 1
                                  : Type == CurvedType::Hexahedron20 ? 7
+                                 : Type == CurvedType::Wedge15      ? 3
                                                                     : 0;
     EXPECT_EQ(m.num_vertices(), Traits::nodes + virtual_vertices);
     ASSERT_EQ(m.num_cells(), 1 << Traits::dim);
@@ -100,8 +102,9 @@ TEST(NodeMesh, TheCurvedVolumeIsTheStraightCellsForAStraightCell) {
     const auto order = linear_corners<Type>();
     for (int i = 0; i < Traits::corners; ++i)
       corners.col(i) = 2.0 * reference_node<Type>(order[i]) + Vector<Traits::dim>::Constant(0.1);
-    const double reference =
-        Traits::simplex ? (Traits::dim == 2 ? 0.5 : 1.0 / 6) : 1 << Traits::dim;
+    const double reference = Traits::simplex ? (Traits::dim == 2 ? 0.5 : 1.0 / 6)
+                             : Traits::wedge ? 1.0
+                                             : 1 << Traits::dim;
     EXPECT_NEAR(curved_volume<Type>(straight_curved_cell<Type>(corners)),
                 reference * (1 << Traits::dim), 1e-12);
   });

@@ -29,17 +29,20 @@ enum class CurvedType : std::uint8_t {
   Quadrilateral9,
   Tetrahedron10,
   Hexahedron20,
-  Hexahedron27
+  Hexahedron27,
+  Wedge15,
+  Wedge18
 };
 
-inline constexpr std::array<CurvedType, 6> kCurvedTypes = {
+inline constexpr std::array<CurvedType, 8> kCurvedTypes = {
     CurvedType::Triangle6,     CurvedType::Quadrilateral8, CurvedType::Quadrilateral9,
-    CurvedType::Tetrahedron10, CurvedType::Hexahedron20,   CurvedType::Hexahedron27};
+    CurvedType::Tetrahedron10, CurvedType::Hexahedron20,   CurvedType::Hexahedron27,
+    CurvedType::Wedge15,       CurvedType::Wedge18};
 
 inline constexpr int kMaxCurvedNodes = 27;
 
-// Gmsh's edges and (for the hexahedron) quadrilateral faces of each shape, by their corners: a
-// cell's edge nodes follow its corners in this order, its face nodes its edge nodes.
+// Gmsh's edges and (for the hexahedron and the wedge) quadrilateral faces of each shape, by their
+// corners: a cell's edge nodes follow its corners in this order, its face nodes its edge nodes.
 using CurvedEdge = std::array<std::uint8_t, 2>;
 using CurvedFace = std::array<std::uint8_t, 4>;
 inline constexpr std::array<CurvedEdge, 3> kTriangleEdges = {{{0, 1}, {1, 2}, {2, 0}}};
@@ -61,6 +64,12 @@ inline constexpr std::array<CurvedEdge, 12> kHexahedronEdges = {{{0, 1},
 // z = −1, y = −1, x = −1, x = +1, y = +1, z = +1.
 inline constexpr std::array<CurvedFace, 6> kHexahedronFaces = {
     {{0, 3, 2, 1}, {0, 1, 5, 4}, {0, 3, 7, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {4, 5, 6, 7}}};
+// The wedge (Gmsh's prism): its edges by their lower corner, then its quadrilateral faces
+// y = 0, x = 0 and x + y = 1 of the reference prism.
+inline constexpr std::array<CurvedEdge, 9> kWedgeEdges = {
+    {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 4}, {2, 5}, {3, 4}, {3, 5}, {4, 5}}};
+inline constexpr std::array<CurvedFace, 3> kWedgeFaces = {
+    {{0, 1, 4, 3}, {0, 2, 5, 3}, {1, 2, 5, 4}}};
 
 struct CurvedFacts {
   std::string_view name;  // "hexahedron27"
@@ -69,9 +78,11 @@ struct CurvedFacts {
   int gmsh;               // Gmsh element type (.msh 2.2 and 4.1)
   int vtk;                // VTK's quadratic cell type
   int vtk_lagrange;       // VTK's Lagrange cell type (order 2 with `nodes` points)
-  // Position i of VTK's list holds Gmsh node vtk_order[i] (the corners agree); likewise
-  // Exodus II's and CGNS's.
+  // Position i of VTK's list holds Gmsh node vtk_order[i] (the corners agree but for the
+  // wedge's, whose triangles VTK's quadratic wedges list the other way round); that of VTK's
+  // Lagrange cell lagrange_order[i]; likewise Exodus II's and CGNS's.
   std::array<std::uint8_t, kMaxCurvedNodes> vtk_order;
+  std::array<std::uint8_t, kMaxCurvedNodes> lagrange_order;
   std::array<std::uint8_t, kMaxCurvedNodes> exodus_order;
   std::array<std::uint8_t, kMaxCurvedNodes> cgns_order;
   std::span<const CurvedEdge> edges;  // the edges that carry a node
@@ -99,6 +110,7 @@ inline constexpr std::array<CurvedFacts, kCurvedTypes.size()> kCurvedFacts = {{
      {0, 1, 2, 3, 4, 5},
      {0, 1, 2, 3, 4, 5},
      {0, 1, 2, 3, 4, 5},
+     {0, 1, 2, 3, 4, 5},
      kTriangleEdges,
      {}},
     {"quadrilateral8",
@@ -110,6 +122,7 @@ inline constexpr std::array<CurvedFacts, kCurvedTypes.size()> kCurvedFacts = {{
      {0, 1, 2, 3, 4, 5, 6, 7},
      {0, 1, 2, 3, 4, 5, 6, 7},
      {0, 1, 2, 3, 4, 5, 6, 7},
+     {0, 1, 2, 3, 4, 5, 6, 7},
      kQuadrilateralEdges,
      {}},
     {"quadrilateral9",
@@ -118,6 +131,7 @@ inline constexpr std::array<CurvedFacts, kCurvedTypes.size()> kCurvedFacts = {{
      10,
      28,
      70,
+     {0, 1, 2, 3, 4, 5, 6, 7, 8},
      {0, 1, 2, 3, 4, 5, 6, 7, 8},
      {0, 1, 2, 3, 4, 5, 6, 7, 8},
      {0, 1, 2, 3, 4, 5, 6, 7, 8},
@@ -133,6 +147,7 @@ inline constexpr std::array<CurvedFacts, kCurvedTypes.size()> kCurvedFacts = {{
      {0, 1, 2, 3, 4, 5, 6, 7, 9, 8},
      {0, 1, 2, 3, 4, 5, 6, 7, 9, 8},
      {0, 1, 2, 3, 4, 5, 6, 7, 9, 8},
+     {0, 1, 2, 3, 4, 5, 6, 7, 9, 8},
      kTetrahedronEdges,
      {}},
     // VTK's edges: the bottom and the top face's cycles, then the vertical ones.
@@ -142,6 +157,7 @@ inline constexpr std::array<CurvedFacts, kCurvedTypes.size()> kCurvedFacts = {{
      17,
      25,
      -1,
+     {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15},
      {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15},
      bottom_vertical_top({}),
      bottom_vertical_top({}),
@@ -158,10 +174,43 @@ inline constexpr std::array<CurvedFacts, kCurvedTypes.size()> kCurvedFacts = {{
      72,
      {0,  1,  2,  3,  4,  5,  6,  7,  8,  11, 13, 9,  16, 18,
       19, 17, 10, 12, 14, 15, 22, 23, 21, 24, 20, 25, 26},
+     {0,  1,  2,  3,  4,  5,  6,  7,  8,  11, 13, 9,  16, 18,
+      19, 17, 10, 12, 14, 15, 22, 23, 21, 24, 20, 25, 26},
      bottom_vertical_top({26, 20, 25, 22, 23, 21, 24}),
      bottom_vertical_top({20, 21, 23, 24, 22, 25, 26}),
      kHexahedronEdges,
      kHexahedronFaces},
+    // Gmsh's prism15 and prism18. VTK's quadratic wedges (26, 32) list the corners as its linear
+    // wedge (cell_order.hpp: both triangles the other way round), then the edges of the bottom
+    // and the top triangle's cycles, the vertical edges, and (32) the faces (0,1,4,3) (1,2,5,4)
+    // (2,0,3,5) in its own numbering; its Lagrange wedge (73) keeps Gmsh's corners, then the
+    // same cycles of edges and the faces y = 0, x + y = 1, x = 0 (vtkHigherOrderWedge::
+    // PointIndexFromIJK). Exodus (Ioss' Wedge18) and CGNS (PENTA_18): the bottom cycle, the
+    // vertical edges, the top cycle, then the faces (0,1,4,3) (1,2,5,4) (0,3,5,2).
+    {"wedge15",
+     CellType::Wedge,
+     15,
+     18,
+     26,
+     -1,
+     {0, 2, 1, 3, 5, 4, 7, 9, 6, 13, 14, 12, 8, 11, 10},
+     {0, 2, 1, 3, 5, 4, 7, 9, 6, 13, 14, 12, 8, 11, 10},
+     {0, 1, 2, 3, 4, 5, 6, 9, 7, 8, 10, 11, 12, 14, 13},
+     {0, 1, 2, 3, 4, 5, 6, 9, 7, 8, 10, 11, 12, 14, 13},
+     kWedgeEdges,
+     {}},
+    {"wedge18",
+     CellType::Wedge,
+     18,
+     13,
+     32,
+     73,
+     {0, 2, 1, 3, 5, 4, 7, 9, 6, 13, 14, 12, 8, 11, 10, 16, 17, 15},
+     {0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11, 15, 17, 16},
+     {0, 1, 2, 3, 4, 5, 6, 9, 7, 8, 10, 11, 12, 14, 13, 15, 17, 16},
+     {0, 1, 2, 3, 4, 5, 6, 9, 7, 8, 10, 11, 12, 14, 13, 15, 17, 16},
+     kWedgeEdges,
+     kWedgeFaces},
 }};
 
 constexpr const CurvedFacts& facts(CurvedType t) {
@@ -191,9 +240,13 @@ decltype(auto) visit_curved_type(CurvedType type, F&& f) {
     case CurvedType::Hexahedron20:
       return f(CurvedTag<CurvedType::Hexahedron20>{});
     case CurvedType::Hexahedron27:
+      return f(CurvedTag<CurvedType::Hexahedron27>{});
+    case CurvedType::Wedge15:
+      return f(CurvedTag<CurvedType::Wedge15>{});
+    case CurvedType::Wedge18:
       break;
   }
-  return f(CurvedTag<CurvedType::Hexahedron27>{});
+  return f(CurvedTag<CurvedType::Wedge18>{});
 }
 
 // VTK before 9.1 numbered the quadratic Lagrange hexahedron's (type 72) vertical edges at y = 1
@@ -201,6 +254,13 @@ decltype(auto) visit_curved_type(CurvedType type, F&& f) {
 // reading (XML before 2.2, legacy before 5.1), so such files hold the old order.
 constexpr int old_lagrange_hexahedron_position(int i) {
   return i == 18 ? 19 : i == 19 ? 18 : i;
+}
+
+// Position i of VTK's list of a cell of `type` holds Gmsh node vtk_order(type, lagrange)[i]:
+// for its Lagrange cell (`lagrange`) or its quadratic one.
+constexpr const std::array<std::uint8_t, kMaxCurvedNodes>& vtk_order(CurvedType type,
+                                                                     bool lagrange) {
+  return lagrange ? facts(type).lagrange_order : facts(type).vtk_order;
 }
 
 // The type with `nodes` nodes whose straight cell is `linear`, or none.

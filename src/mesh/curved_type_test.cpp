@@ -70,6 +70,12 @@ TEST(CurvedType, ExodusOrdersAreIossTopologies) {
                      {26, {2, 3, 7, 6}}});
   expect_order(CurvedType::Hexahedron27, facts(CurvedType::Hexahedron27).exodus_order, hexahedron,
                "exo");
+  std::map<int, Corners> wedge = {{6, {0, 1}},  {7, {1, 2}},  {8, {2, 0}},
+                                  {9, {0, 3}},  {10, {1, 4}}, {11, {2, 5}},
+                                  {12, {3, 4}}, {13, {4, 5}}, {14, {5, 3}}};
+  expect_order(CurvedType::Wedge15, facts(CurvedType::Wedge15).exodus_order, wedge, "exo");
+  wedge.insert({{15, {0, 1, 4, 3}}, {16, {1, 2, 5, 4}}, {17, {0, 3, 5, 2}}});
+  expect_order(CurvedType::Wedge18, facts(CurvedType::Wedge18).exodus_order, wedge, "exo");
 }
 
 // CGNS: SIDS, "Unstructured Grid Element Numbering Conventions" (1-based there).
@@ -92,8 +98,10 @@ TEST(CurvedType, CgnsOrdersAreTheSids) {
                      {26, kHexahedron}});
   expect_order(CurvedType::Hexahedron27, facts(CurvedType::Hexahedron27).cgns_order, hexahedron,
                "cgns");
-  for (CurvedType t :
-       {CurvedType::Triangle6, CurvedType::Quadrilateral8, CurvedType::Quadrilateral9})
+  // PENTA_15/18: the bottom triangle's edges, the vertical ones, the top triangle's, then the
+  // faces (1,2,5,4) (2,3,6,5) (3,1,4,6) (1-based): Ioss' order.
+  for (CurvedType t : {CurvedType::Triangle6, CurvedType::Quadrilateral8,
+                       CurvedType::Quadrilateral9, CurvedType::Wedge15, CurvedType::Wedge18})
     EXPECT_EQ(facts(t).cgns_order, facts(t).exodus_order) << name(t);
 }
 
@@ -107,6 +115,28 @@ TEST(CurvedType, VtkOrdersPlaceEachNodeOnItsEdgeOrFace) {
       {24, {0, 1, 2, 3}}, {25, {4, 5, 6, 7}}, {26, kHexahedron}};
   expect_order(CurvedType::Hexahedron27, facts(CurvedType::Hexahedron27).vtk_order, hexahedron,
                "vtk");
+  // vtkLagrangeWedge (PointIndexFromIJK at order 2): Gmsh's corners, the bottom and the top
+  // triangle's cycles, the vertical edges, the faces y = 0, x + y = 1, x = 0.
+  std::map<int, Corners> lagrange = {{6, {0, 1}},        {7, {1, 2}},        {8, {2, 0}},
+                                     {9, {3, 4}},        {10, {4, 5}},       {11, {5, 3}},
+                                     {12, {0, 3}},       {13, {1, 4}},       {14, {2, 5}},
+                                     {15, {0, 1, 4, 3}}, {16, {1, 2, 5, 4}}, {17, {0, 2, 5, 3}}};
+  expect_order(CurvedType::Wedge18, facts(CurvedType::Wedge18).lagrange_order, lagrange,
+               "vtk lagrange");
+  // vtkQuadraticWedge and vtkBiQuadraticQuadraticWedge: the same list in VTK's own corner
+  // numbering, whose corners 1 and 2 (4 and 5) are Gmsh's 2 and 1 (5 and 4).
+  constexpr std::array<int, 6> gmsh_corner = {0, 2, 1, 3, 5, 4};
+  for (CurvedType t : {CurvedType::Wedge15, CurvedType::Wedge18}) {
+    const auto& order = facts(t).vtk_order;
+    for (int p = 0; p < 6; ++p) EXPECT_EQ(order[p], gmsh_corner[p]) << name(t);
+    const std::vector<Corners> gmsh = gmsh_nodes(t);
+    for (const auto& [p, on] : lagrange) {
+      if (p >= facts(t).nodes) continue;
+      Corners mapped;
+      for (int c : on) mapped.insert(gmsh_corner[c]);
+      EXPECT_EQ(gmsh[order[p] - 6], mapped) << name(t) << " vtk node " << p;
+    }
+  }
 }
 
 }  // namespace

@@ -18,6 +18,8 @@ std::optional<CurvedType> raised_type(CellType linear) {
       return CurvedType::Tetrahedron10;
     case CellType::Hexahedron:
       return CurvedType::Hexahedron27;
+    case CellType::Wedge:
+      return CurvedType::Wedge18;
     default:
       return std::nullopt;
   }

@@ -9,15 +9,15 @@
 
 namespace neomesh {
 
-// The second-order type a straight cell is raised to, or none (wedges and pyramids: no curved
-// type yet).
+// The second-order type a straight cell is raised to (the Lagrange cells: quadrilateral9,
+// hexahedron27, wedge18), or none (pyramids: no curved type yet).
 std::optional<CurvedType> raised_type(CellType linear);
 
-// Fills mesh.high_order: one node per edge, per quadrilateral face and per quadrilateral or
-// hexahedron centre, an edge's or face's node shared by its cells and created once (in the order
-// the cells first reach it). The vertices and their numbering stay as they are; the group facets
-// find their nodes by their corners (CurvedFacets). Throws Error, in one line naming the cell
-// type, for a mesh already curved, a surface mesh, or wedges and pyramids.
+// Fills mesh.high_order: one node per edge, per quadrilateral face (of hexahedra and wedges) and
+// per quadrilateral or hexahedron centre, an edge's or face's node shared by its cells and created
+// once (in the order the cells first reach it). The vertices and their numbering stay as they are;
+// the group facets find their nodes by their corners (CurvedFacets). Throws Error, in one line
+// naming the cell type, for a mesh already curved, a surface mesh, or pyramids.
 void raise_to_second_order(InputMesh& mesh);
 
 }  // namespace neomesh

@@ -4,6 +4,8 @@ import json
 import math
 import os
 
+import pytest
+
 from conftest import CORPUS, expect_one_error_line, needs_corpus, neomesh, read_mesh
 
 
@@ -77,11 +79,33 @@ def test_a_thin_layer_folded_under_a_coarse_circle_is_untangled_onto_valid_cells
     assert quality(tmp, curved)["curved"]["not_certified_valid"] == 0
 
 
-def test_wedges_an_unknown_part_and_order_3_are_refused_in_one_line(tmp):
-    wedges, out = os.path.join(tmp, "wedges.msh"), os.path.join(tmp, "out.msh")
+def test_wedges_are_raised_with_one_node_per_edge_and_quadrilateral_face(tmp):
+    wedges, curved = os.path.join(tmp, "wedges.msh"), os.path.join(tmp, "curved.msh")
     neomesh("generate", "box-wedge", "--level", "1", "-o", wedges)
-    expect_one_error_line(neomesh("curve", wedges, "-o", out, expect=1),
-                          ["wedges cannot be raised"], [out])
+    straight = read_mesh(wedges)
+    cells = next(b.data for b in straight.cells if b.type == "wedge")
+    edges, faces = set(), set()
+    for c in cells:
+        for a, b in [(0, 1), (1, 2), (2, 0), (3, 4), (4, 5), (5, 3), (0, 3), (1, 4), (2, 5)]:
+            edges.add(frozenset((c[a], c[b])))
+        for face in [(0, 1, 4, 3), (1, 2, 5, 4), (2, 0, 3, 5)]:
+            faces.add(frozenset(c[list(face)]))
+    proc = neomesh("curve", wedges, "-o", curved)
+    assert "certified valid" in proc.stdout
+    q = quality(tmp, curved)
+    assert q["curved"]["cells"] == {"wedge18": len(cells)}
+    assert q["curved"]["not_certified_valid"] == 0
+    # A straight box: every wedge18 is its straight wedge, as good as it.
+    straight_min = quality(tmp, wedges)["metrics"]["scaled_jacobian"]["min"]
+    assert q["curved"]["scaled_jacobian"]["min"] == pytest.approx(straight_min, rel=1e-12)
+    assert len(read_mesh(curved).points) == len(straight.points) + len(edges) + len(faces)
+
+
+def test_pyramids_an_unknown_part_and_order_3_are_refused_in_one_line(tmp):
+    pyramids, out = os.path.join(tmp, "pyramids.msh"), os.path.join(tmp, "out.msh")
+    neomesh("generate", "box-pyramid", "--level", "1", "-o", pyramids)
+    expect_one_error_line(neomesh("curve", pyramids, "-o", out, expect=1),
+                          ["pyramids cannot be raised"], [out])
     quads = os.path.join(tmp, "quads.msh")
     neomesh("generate", "annulus-quad", "--level", "1", "-o", quads)
     expect_one_error_line(neomesh("curve", quads, "-o", out, "--shape", "hole=circle:0,0,1",
