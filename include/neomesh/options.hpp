@@ -118,6 +118,17 @@ struct SolverOptions {
   // unchanged, σ = 1) that moved no vertex more than newton_move_rtol times its local cell
   // size; the next step would move them by about the square of that (0: off).
   double newton_move_rtol = 1e-2;
+  // Practical criterion, the stall's half: also stop when the Newton defect fell by less than
+  // half over the last settle_window iterations and they lowered F by less than settle_rtol
+  // times what it fell since the start (0: off). On a surface slid on as its input's cells F
+  // has a kink at every edge, and on a closed one a direction it does not see (turning about
+  // an axis): the defect stalls and the vertices creep on for hundreds of iterations, each
+  // gaining next to nothing (docs/method.md §6). Unset: settle_rtol_for() picks it — on for
+  // surface meshes only, since on volume meshes it cut runs whose last iterations still
+  // lifted the worst cell (Mesquite's hole_in_square_tanglap: 0.504 → 0.485).
+  std::optional<double> settle_rtol = std::nullopt;
+  static constexpr double kSurfaceSettleRtol = 1e-2;
+  int settle_window = 5;
   LinearSolverKind linear_solver = LinearSolverKind::Amg;
   double hessian_rtol = 1e-4;  // loose δ̃ solve: 4 digits (or Advanced::hessian_defect_factor)
   // s only steers: it is the antigradient direction of the first k_min steps and enters the
@@ -174,6 +185,10 @@ struct SolverOptions {
   // curvature (docs/method.md §4).
   double initial_alpha(bool slides) const {
     return advanced.alpha0.value_or(slides ? Advanced::kThesisAlpha0 : 1.0);
+  }
+
+  double settle_rtol_for(bool surface) const {
+    return settle_rtol.value_or(surface ? kSurfaceSettleRtol : 0.0);
   }
 
   // Throws OptionError ("solver.advanced.eta must be in (0, 1) (got 2)") for a field out of

@@ -71,6 +71,13 @@ Mat maij_scalar(Mat m) {
 // every PCI device's configuration space was 7 of MPI_Init's 18 ms here. Under mpiexec nothing
 // changes.
 //
+// Nor does one process need most of the components Open MPI opens at MPI_Init (~50 shared
+// objects: network and shared-memory transports, tuned collectives, the daemon's state
+// machines), each dlopen'ed and its symbols resolved: the loopback transport, the collectives
+// for one process (self, basic, and libnbc for PETSc's non-blocking ones) and the application's
+// state machine do, 16 of 260 M instructions of `neomesh --version` fewer
+// (docs/benchmarks.md, "Start-up").
+//
 // Isolated singletons all put their session directory at jf.0 under the same top directory,
 // and one that ends removes it while another starts in it ("A call to mkdir was unable to
 // create the desired directory ... orte_session_dir failed": 2 of 316 tests under ctest -j2
@@ -98,6 +105,13 @@ void configure_singleton_mpi() {
     if (std::getenv(launched)) return;
   setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
   setenv("OMPI_MCA_pml", "ob1", 0);
+  setenv("OMPI_MCA_btl", "self", 0);
+  setenv("OMPI_MCA_coll", "self,basic,libnbc", 0);
+  setenv("OMPI_MCA_state", "app", 0);
+  setenv("OMPI_MCA_errmgr", "default_app", 0);
+  setenv("OMPI_MCA_schizo", "orte", 0);
+  setenv("OMPI_MCA_reachable", "weighted", 0);
+  setenv("OMPI_MCA_shmem", "mmap", 0);
   setenv("HWLOC_COMPONENTS", "-pci,-linuxio", 0);
   if (std::getenv("OMPI_MCA_orte_tmpdir_base")) return;
   static std::string session_base;

@@ -111,6 +111,10 @@ struct QuasiNewton::Impl {
   // restart() asked for L at the current x; the next step assembles it (x has not moved).
   bool laplacian_pending = false;
   std::optional<StopReason> stop;
+  // F and the defect at the start of the solve and after each step since, for the stall's half
+  // of the practical criterion; a restart begins them anew (F may be another problem's).
+  double start_energy = 0.0;
+  std::vector<double> energies, defects;
   PhaseTimes times;
   double start_time = MPI_Wtime();
 
@@ -388,6 +392,20 @@ struct QuasiNewton::Impl {
     return std::abs(sigma) * m;
   }
 
+  // The defect stalled (it fell by less than half over the window: no Newton convergence, the
+  // kinks of a discrete surface block it) and the window's steps gained a negligible part of
+  // the fall of F since the start. `defects` holds each step's starting defect.
+  bool settled() const {
+    const auto w = static_cast<std::size_t>(options.settle_window);
+    const double rtol = options.settle_rtol_for(constraints->view.surface);
+    if (rtol <= 0 || energies.size() <= w) return false;
+    const std::size_t last = energies.size() - 1;
+    const double window_gain = energies[last - w] - energies[last];
+    const double total_gain = start_energy - energies[last];
+    return defect > 0.5 * defects[last - w + 1] && total_gain > 0 &&
+           window_gain < rtol * total_gain;
+  }
+
   std::optional<StopReason> defect_stop() const {
     if (defect <= options.defect_atol) return StopReason::DefectAbsolute;
     if (defect <= options.defect_rtol * initial_defect) return StopReason::DefectRelative;
@@ -455,9 +473,11 @@ struct QuasiNewton::Impl {
     // would move the vertices by about its square (docs/method.md §6).
     const bool full_newton_step = rec.delta_solved && !rec.used_s && !rec.blended &&
                                   !rec.delta_truncated && rec.armijo_steps == 0 && rec.alpha >= 1.0;
+    energies.push_back(energy);
+    defects.push_back(rec.defect);
     if (options.practical &&
         ((energy_change < options.energy_rtol && rec.max_move < options.move_rtol) ||
-         (full_newton_step && rec.max_move < options.newton_move_rtol)))
+         (full_newton_step && rec.max_move < options.newton_move_rtol) || settled()))
       stop = StopReason::Practical;
     rec.seconds = MPI_Wtime() - start_time;
     return rec;
@@ -479,6 +499,9 @@ void QuasiNewton::restart(Vec x, const Functional& functional) {
     fail("internal error: a quasi-Newton restart on other constraints");
   impl_->functional = &functional;
   impl_->evaluate_gradient(x);
+  impl_->start_energy = impl_->energy;
+  impl_->energies.clear();
+  impl_->defects.clear();
   if (impl_->initial_defect < 0) {
     impl_->initial_defect = impl_->defect;
     // Warm, the first α update has no defect before to compare with: α stays where it was
