@@ -112,8 +112,8 @@ std::pair<double, int> off_radius(const InputMesh& mesh, double R, int dims) {
 }  // namespace
 
 TEST(RaiseOrder, KeepsTheStraightMapOfEveryCellAndTheVertices) {
-  for (CellType type :
-       {CellType::Triangle, CellType::Quadrilateral, CellType::Tetrahedron, CellType::Hexahedron}) {
+  for (CellType type : {CellType::Triangle, CellType::Quadrilateral, CellType::Tetrahedron,
+                        CellType::Hexahedron, CellType::Wedge}) {
     MeshData data = box(type, 3);
     jitter(data, 2.0 / 3.0, 0.15, 7);
     const InputMesh straight = input_from_data(data);
@@ -153,16 +153,14 @@ TEST(RaiseOrder, CreatesOneNodePerEdgeFaceAndCentreAsEulerCountsThem) {
             hex_edges + hex_faces + hexes);
 }
 
-TEST(RaiseOrder, RefusesWedgesPyramidsAndCurvedMeshesInOneLine) {
-  for (CellType type : {CellType::Wedge, CellType::Pyramid}) {
-    InputMesh mesh = input_from_data(box(type, 2));
-    try {
-      raise_to_second_order(mesh);
-      ADD_FAILURE() << name(type);
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(std::string(name(type))), std::string::npos) << e.what();
-      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
-    }
+TEST(RaiseOrder, RefusesPyramidsAndCurvedMeshesInOneLine) {
+  InputMesh pyramids = input_from_data(box(CellType::Pyramid, 2));
+  try {
+    raise_to_second_order(pyramids);
+    ADD_FAILURE() << "pyramids raised";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("pyramid"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
   }
   InputMesh twice = raised(box(CellType::Triangle, 2));
   EXPECT_THROW(raise_to_second_order(twice), Error);
