@@ -34,9 +34,9 @@ void require_medit_curved_types(const InputMesh& mesh, const std::string& target
   for (const CurvedType t : mesh.high_order.types)
     if (t != CurvedType::Triangle6 && t != CurvedType::Tetrahedron10)
       fail(
-          "cannot write {}: it has {} cells, and Medit files agree on no node order for "
-          "QuadrilateralsQ2 and HexahedraQ2 (neomesh writes TrianglesP2 and TetrahedraP2); write "
-          "it to .msh, .vtu, .vtk, .exo or .cgns",
+          "cannot write {}: it has {} cells, and of second-order cells Medit files hold only "
+          "TrianglesP2 and TetrahedraP2 in a node order their readers agree on; write it to .msh, "
+          ".vtu, .vtk, .exo or .cgns",
           target, name(t));
 }
 

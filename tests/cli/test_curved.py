@@ -329,11 +329,11 @@ def test_cgnscheck_finds_no_error_in_a_curved_cgns_file(tmp, case):
 
 
 @needs_gmsh
-@pytest.mark.parametrize("case", ["quad9", "hex20"])
-def test_medit_refuses_curved_quadrilaterals_and_hexahedra_in_one_line(tmp, case):
+@pytest.mark.parametrize("case", ["quad9", "hex20", "wedge18"])
+def test_medit_refuses_curved_cells_other_than_triangles_and_tetrahedra_in_one_line(tmp, case):
     out = os.path.join(tmp, "out.mesh")
     expect_one_error_line(neomesh("convert", gmsh_mesh(tmp, case), "-o", out, expect=1),
-                          ["QuadrilateralsQ2 and HexahedraQ2", GMSH_CASES[case][3]],
+                          ["TrianglesP2 and TetrahedraP2", GMSH_CASES[case][3]],
                           unwritten=[out])
 
 
