@@ -75,7 +75,7 @@ Mat maij_scalar(Mat m) {
 // objects: network and shared-memory transports, tuned collectives, the daemon's state
 // machines), each dlopen'ed and its symbols resolved: the loopback transport, the collectives
 // for one process (self, basic, and libnbc for PETSc's non-blocking ones) and the application's
-// state machine do, 16 of 260 M instructions of `neomesh --version` fewer
+// state machine do, 15 of 260 M instructions of `neomesh --version` fewer
 // (docs/benchmarks.md, "Start-up").
 //
 // Isolated singletons all put their session directory at jf.0 under the same top directory,
