@@ -196,6 +196,18 @@ double scaled_jacobian(const X& x, Det det = {}, double bar = -kInfinity,
   return lowest / ideal;
 }
 
+// Each corner's value of scaled_jacobian (corners as there), to out[K]; returns their count.
+template <CellType Type, typename X, typename Det = Determinant>
+int scaled_jacobian_corners(const X& x, Det det, double* out) {
+  constexpr int n =
+      facts(Type).shape == CellShape::Simplex ? CellTraits<Type>::dim + 1 : facts(Type).num_corners;
+  [&]<int... K>(std::integer_sequence<int, K...>) {
+    ((out[K] = scaled_jacobian<Type>(x, det, -kInfinity, 1u << K)), ...);
+  }
+  (std::make_integer_sequence<int, n>{});
+  return n;
+}
+
 // W⁻¹ at each corner frame of the optimal cell of `Type` (quality.hpp, inverse mean ratio),
 // and whether every one is the identity (Q1 cells: the unit square's and cube's frames), where
 // T = J W⁻¹ is J itself.
@@ -530,6 +542,14 @@ double surface_cell_scaled_jacobian_above(CellType type, const double* coords, c
       });
 }
 
+int surface_cell_scaled_jacobian_corners(CellType type, const double* coords, const double* normal,
+                                         double* out) {
+  return of_one_surface_cell<int>(type, coords, normal,
+                                  [out]<CellType Type>(const auto& x, const NormalArea& area) {
+                                    return scaled_jacobian_corners<Type>(x, area, out);
+                                  });
+}
+
 double surface_cell_inverse_mean_ratio(CellType type, const double* coords, const double* normal) {
   return of_one_surface_cell<double>(type, coords, normal,
                                      []<CellType Type>(const auto& x, const NormalArea& area) {
@@ -597,6 +617,17 @@ double cell_scaled_jacobian_above(CellType type, const double* coords, double ba
   return of_one_cell(type, coords, [bar, corners]<CellType Type>(const auto& x) {
     return scaled_jacobian<Type>(x, Determinant{}, bar, corners);
   });
+}
+
+int cell_scaled_jacobian_corners(CellType type, const double* coords, double* out) {
+  int n = 0;
+  visit_cell_type(type, [&]<CellType Type>(CellTag<Type>) {
+    using Traits = CellTraits<Type>;
+    n = scaled_jacobian_corners<Type>(
+        Eigen::Map<const typename Traits::Coordinates>(coords, Traits::dim, Traits::vertices),
+        Determinant{}, out);
+  });
+  return n;
 }
 
 std::uint32_t scaled_jacobian_corners_at(CellType type, int vertex) {
