@@ -1,6 +1,7 @@
 #include "geometry/quality.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -83,19 +84,37 @@ struct Measures {
   double max_cosine = -kInfinity, min_cosine = kInfinity;
 };
 
-// Longest over shortest edge; every edge lies on a facet (2D: is one), so the facets' cycles
-// visit them all.
-template <CellType Type, typename X>
-double edge_ratio(const X& x) {
-  double shortest = kInfinity, longest = 0.0;
+// The edges of `Type`, each once, as pairs of vertex numbers: every edge lies on a facet (2D: is
+// one), so the facets' cycles visit them all, a 3D cell's twice.
+template <CellType Type>
+constexpr auto cell_edges() {
+  struct {
+    std::array<std::array<int, 2>, 24> edge{};
+    int size = 0;
+  } edges;
   for (int f = 0; f < facts(Type).num_facets; ++f) {
     const FacetVertices& facet = facts(Type).facets[f];
     for (int i = 0; i < facet.size; ++i) {
       const int a = facet.vertices[i], b = facet.vertices[(i + 1) % facet.size];
-      const double length = (x.col(b) - x.col(a)).norm();
-      shortest = std::min(shortest, length);
-      longest = std::max(longest, length);
+      bool seen = false;
+      for (int e = 0; e < edges.size; ++e)
+        seen = seen || (edges.edge[e][0] == std::min(a, b) && edges.edge[e][1] == std::max(a, b));
+      if (!seen) edges.edge[edges.size++] = {std::min(a, b), std::max(a, b)};
     }
+  }
+  return edges;
+}
+
+// Longest over shortest edge; each edge's length once (a facet's cycle takes an edge the other
+// way round than its neighbour's: the same length, bit for bit, as x_a - x_b = -(x_b - x_a)).
+template <CellType Type, typename X>
+double edge_ratio(const X& x) {
+  static constexpr auto edges = cell_edges<Type>();
+  double shortest = kInfinity, longest = 0.0;
+  for (int e = 0; e < edges.size; ++e) {
+    const double length = (x.col(edges.edge[e][1]) - x.col(edges.edge[e][0])).norm();
+    shortest = std::min(shortest, length);
+    longest = std::max(longest, length);
   }
   return shortest > 0.0 ? longest / shortest : kInfinity;
 }

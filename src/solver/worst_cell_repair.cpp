@@ -57,8 +57,10 @@ WholeMesh gather_whole_mesh(const MeshView& view, std::span<const double> local,
   for (PetscInt v = 0; v < view.num_vertices; ++v) {
     if (!view.owned[v]) continue;
     ids.push_back(view.input_vertex[v]);
-    coords.insert(coords.end(), local.begin() + d * v, local.begin() + d * (v + 1));
-    flags.insert(flags.end(), freedom.fixed.begin() + d * v, freedom.fixed.begin() + d * (v + 1));
+    for (int a = 0; a < d; ++a) {  // (not insert(): a call per vertex)
+      coords.push_back(local[d * v + a]);
+      flags.push_back(freedom.fixed[d * v + a]);
+    }
     geometry.push_back(freedom.geometry[v]);
   }
   std::vector<std::int64_t> cell_ids, cell_vertices;
@@ -85,14 +87,24 @@ WholeMesh gather_whole_mesh(const MeshView& view, std::span<const double> local,
   if (mpi_rank(comm) != 0) return m;
   std::vector<std::size_t> order(all_ids.size());
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return all_ids[a] < all_ids[b]; });
+  // (On one process the input's order already: nothing to sort.)
+  if (!std::is_sorted(all_ids.begin(), all_ids.end()))
+    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return all_ids[a] < all_ids[b]; });
   for (std::size_t k : order) {
     m.vertex_id.push_back(all_ids[k]);
-    m.coords.insert(m.coords.end(), all_coords.begin() + d * k, all_coords.begin() + d * (k + 1));
-    for (int a = 0; a < d; ++a) m.fixed.push_back(static_cast<std::uint8_t>(all_flags[d * k + a]));
+    for (int a = 0; a < d; ++a) {
+      m.coords.push_back(all_coords[d * k + a]);
+      m.fixed.push_back(static_cast<std::uint8_t>(all_flags[d * k + a]));
+    }
     m.geometry.push_back(all_geometry[k]);
   }
-  auto index_of = [&m](std::int64_t id) {
+  // The input numbers, ascending and distinct, are mostly 0, 1, 2, ...: a vertex's index is then
+  // its number less the first.
+  const bool consecutive =
+      m.vertex_id.empty() ||
+      m.vertex_id.back() - m.vertex_id.front() == static_cast<std::int64_t>(m.vertex_id.size()) - 1;
+  auto index_of = [&m, consecutive](std::int64_t id) -> std::int64_t {
+    if (consecutive) return id - m.vertex_id.front();
     return std::lower_bound(m.vertex_id.begin(), m.vertex_id.end(), id) - m.vertex_id.begin();
   };
   std::vector<std::int64_t> first(all_cell_ids.size() + 1, 0);
@@ -100,8 +112,9 @@ WholeMesh gather_whole_mesh(const MeshView& view, std::span<const double> local,
     first[c + 1] = first[c] + facts(static_cast<CellType>(all_types[c])).vertices;
   std::vector<std::size_t> cells(all_cell_ids.size());
   std::iota(cells.begin(), cells.end(), 0);
-  std::sort(cells.begin(), cells.end(),
-            [&](auto a, auto b) { return all_cell_ids[a] < all_cell_ids[b]; });
+  if (!std::is_sorted(all_cell_ids.begin(), all_cell_ids.end()))
+    std::sort(cells.begin(), cells.end(),
+              [&](auto a, auto b) { return all_cell_ids[a] < all_cell_ids[b]; });
   m.offsets.push_back(0);
   for (std::size_t c : cells) {
     m.types.push_back(static_cast<CellType>(all_types[c]));
@@ -162,20 +175,20 @@ class Repair {
     for (std::size_t c = 0; c < m.types.size(); ++c) {
       for (std::int64_t k = m.offsets[c]; k < m.offsets[c + 1]; ++k)
         star_[next[m.vertices[k]]++] = static_cast<std::int64_t>(c);
-      if (m.surface) normals_.push_back(start_normal(m.types[c], cell_coords(c).data()));
-      sj_[c] = evaluate(c);
+      const std::array<double, 3 * 8> x = cell_coords(c);
+      if (m.surface) normals_.push_back(start_normal(m.types[c], x.data()));
+      sj_[c] = evaluate(c, x.data());
       sum_ += sj_[c];
       if (imr_ceiling()) {
-        imr_.push_back(inverse_mean_ratio(c, cell_coords(c).data()));
+        imr_.push_back(inverse_mean_ratio(c, x.data()));
         imr_sum_ += imr_.back();
       }
-      max_edge_ratio_ = std::max(max_edge_ratio_, edge_ratio(c));
+      max_edge_ratio_ = std::max(max_edge_ratio_, edge_ratio(c, x.data()));
     }
+    rank();
   }
 
-  double min_quality() const {
-    return sj_.empty() ? kInfinity : *std::min_element(sj_.begin(), sj_.end());
-  }
+  double min_quality() const { return worst_count_ == 0 ? kInfinity : sj_[worst_[0]]; }
 
   // What a sweep changes, to undo it: each move's vertex and its cells' values before it, in
   // order, and the sums at the sweep's start (the same bits as a copy of the whole mesh's).
@@ -200,6 +213,7 @@ class Repair {
     undo_coords_.clear();
     undo_cells_.clear();
     failed_at_.assign(failed_at_.size(), 0);  // judged against positions undone
+    rank();
   }
 
   // One sweep over the worst cells' neighbourhood with these step lengths; appends the vertices
@@ -209,23 +223,10 @@ class Repair {
       failed_at_.assign(failed_at_.size(), 0);
       failed_steps_ = steps.data();
     }
-    // The worst cells, by (scaled Jacobian, number) ascending: one pass, the few kept sorted.
-    const std::size_t worst = std::min<std::size_t>(kRepairWorstCells, sj_.size());
-    const auto before = [this](std::int64_t a, std::int64_t b) {
-      return sj_[a] < sj_[b] || (sj_[a] == sj_[b] && a < b);
-    };
-    std::array<std::int64_t, kRepairWorstCells> cells{};
-    std::size_t kept = 0;
-    for (std::int64_t c = 0; c < static_cast<std::int64_t>(sj_.size()); ++c) {
-      if (kept == worst && !before(c, cells[kept - 1])) continue;
-      std::size_t at = kept < worst ? kept++ : kept - 1;
-      for (; at > 0 && before(c, cells[at - 1]); --at) cells[at] = cells[at - 1];
-      cells[at] = c;
-    }
     // The worst cells' vertices and the vertices of the cells around those, ascending.
     candidates_.clear();
-    for (std::size_t w = 0; w < worst; ++w)
-      for (std::int64_t v : cell_vertices(cells[w]))
+    for (std::size_t w = 0; w < worst_count_; ++w)
+      for (std::int64_t v : cell_vertices(worst_[w]))
         for (std::int64_t c : star(v))
           for (std::int64_t u : cell_vertices(c))
             if (!candidate_[u] && movable(u)) {
@@ -237,9 +238,29 @@ class Repair {
       candidate_[v] = 0;
       if (improve(v, steps)) moved.push_back(v);
     }
+    rank();
   }
 
  private:
+  // Finds the worst cells, by (scaled Jacobian, number) ascending, in one pass, the few kept
+  // sorted: for min_quality() and the next sweep.
+  void rank() {
+    const std::size_t worst = std::min<std::size_t>(kRepairWorstCells, sj_.size());
+    const auto before = [this](std::int64_t a, std::int64_t b) {
+      return sj_[a] < sj_[b] || (sj_[a] == sj_[b] && a < b);
+    };
+    std::size_t kept = 0;
+    double bar = kInfinity;  // once `worst` are kept, a later cell must be below the last
+    for (std::int64_t c = 0; c < static_cast<std::int64_t>(sj_.size()); ++c) {
+      if (kept == worst && !(sj_[c] < bar)) continue;
+      std::size_t at = kept < worst ? kept++ : kept - 1;
+      for (; at > 0 && before(c, worst_[at - 1]); --at) worst_[at] = worst_[at - 1];
+      worst_[at] = c;
+      if (kept == worst) bar = sj_[worst_[kept - 1]];
+    }
+    worst_count_ = worst;
+  }
+
   std::span<const std::int64_t> cell_vertices(std::int64_t c) const {
     return {m_.vertices.data() + m_.offsets[c],
             static_cast<std::size_t>(m_.offsets[c + 1] - m_.offsets[c])};
@@ -287,20 +308,17 @@ class Repair {
                       : cell_scaled_jacobian_above(m_.types[c], x, bar, corners);
   }
   // Cell c's scaled Jacobian, its corners' values kept in corner_[c].
-  double evaluate(std::int64_t c) {
-    const std::array<double, 3 * 8> x = cell_coords(c);
+  double evaluate(std::int64_t c, const double* x) {
     const CellType type = m_.types[c];
     double* corners = corner_[c].data();
-    const int n = m_.surface ? surface_cell_scaled_jacobian_corners(type, x.data(),
-                                                                    normals_[c].data(), corners)
-                             : cell_scaled_jacobian_corners(type, x.data(), corners);
+    const int n = m_.surface
+                      ? surface_cell_scaled_jacobian_corners(type, x, normals_[c].data(), corners)
+                      : cell_scaled_jacobian_corners(type, x, corners);
     corner_count_[static_cast<int>(type)] = n;
     return *std::min_element(corners, corners + n);
   }
-  double edge_ratio(std::int64_t c) const {
-    const std::array<double, 3 * 8> x = cell_coords(c);
-    return m_.surface ? surface_cell_edge_ratio(m_.types[c], x.data())
-                      : cell_edge_ratio(m_.types[c], x.data());
+  double edge_ratio(std::int64_t c, const double* x) const {
+    return m_.surface ? surface_cell_edge_ratio(m_.types[c], x) : cell_edge_ratio(m_.types[c], x);
   }
   double inverse_mean_ratio(std::int64_t c, const double* x) const {
     return m_.surface ? surface_cell_inverse_mean_ratio(m_.types[c], x, normals_[c].data())
@@ -575,12 +593,13 @@ class Repair {
     moved_at_[v] = ++moves_;
     for (std::int64_t c : cells) {
       undo_cells_.push_back({c, sj_[c], imr_ceiling() ? imr_[c] : 0.0, corner_[c]});
+      const std::array<double, 3 * 8> x = cell_coords(c);
       sum_ -= sj_[c];
-      sj_[c] = evaluate(c);
+      sj_[c] = evaluate(c, x.data());
       sum_ += sj_[c];
       if (imr_ceiling()) {
         imr_sum_ -= imr_[c];
-        imr_[c] = inverse_mean_ratio(c, cell_coords(c).data());
+        imr_[c] = inverse_mean_ratio(c, x.data());
         imr_sum_ += imr_[c];
       }
     }
@@ -600,6 +619,8 @@ class Repair {
   StarCache cache_;                         // improve()'s: of the vertex it moves
   std::vector<std::uint32_t> worst_first_;  // improve()'s: its star's cells, worst first
   std::vector<std::int64_t> candidates_;    // sweep()'s: the vertices it tries
+  std::array<std::int64_t, kRepairWorstCells> worst_{};  // rank()'s: the worst cells
+  std::size_t worst_count_ = 0;
   std::vector<std::uint8_t> candidate_ = std::vector<std::uint8_t>(m_.vertex_id.size());
   // Moves counted; per vertex, the count at its last move, and (if not 0) the count + 1 when
   // its search with failed_steps_ last found nothing.
