@@ -1,6 +1,7 @@
 #include "geometry/quality.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -83,19 +84,37 @@ struct Measures {
   double max_cosine = -kInfinity, min_cosine = kInfinity;
 };
 
-// Longest over shortest edge; every edge lies on a facet (2D: is one), so the facets' cycles
-// visit them all.
-template <CellType Type, typename X>
-double edge_ratio(const X& x) {
-  double shortest = kInfinity, longest = 0.0;
+// The edges of `Type`, each once, as pairs of vertex numbers: every edge lies on a facet (2D: is
+// one), so the facets' cycles visit them all, a 3D cell's twice.
+template <CellType Type>
+constexpr auto cell_edges() {
+  struct {
+    std::array<std::array<int, 2>, 24> edge{};
+    int size = 0;
+  } edges;
   for (int f = 0; f < facts(Type).num_facets; ++f) {
     const FacetVertices& facet = facts(Type).facets[f];
     for (int i = 0; i < facet.size; ++i) {
       const int a = facet.vertices[i], b = facet.vertices[(i + 1) % facet.size];
-      const double length = (x.col(b) - x.col(a)).norm();
-      shortest = std::min(shortest, length);
-      longest = std::max(longest, length);
+      bool seen = false;
+      for (int e = 0; e < edges.size; ++e)
+        seen = seen || (edges.edge[e][0] == std::min(a, b) && edges.edge[e][1] == std::max(a, b));
+      if (!seen) edges.edge[edges.size++] = {std::min(a, b), std::max(a, b)};
     }
+  }
+  return edges;
+}
+
+// Longest over shortest edge; each edge's length once (a facet's cycle takes an edge the other
+// way round than its neighbour's: the same length, bit for bit, as x_a - x_b = -(x_b - x_a)).
+template <CellType Type, typename X>
+double edge_ratio(const X& x) {
+  static constexpr auto edges = cell_edges<Type>();
+  double shortest = kInfinity, longest = 0.0;
+  for (int e = 0; e < edges.size; ++e) {
+    const double length = (x.col(edges.edge[e][1]) - x.col(edges.edge[e][0])).norm();
+    shortest = std::min(shortest, length);
+    longest = std::max(longest, length);
   }
   return shortest > 0.0 ? longest / shortest : kInfinity;
 }
@@ -194,6 +213,18 @@ double scaled_jacobian(const X& x, Det det = {}, double bar = -kInfinity,
     (std::make_integer_sequence<int, facts(Type).num_corners>{});
   }
   return lowest / ideal;
+}
+
+// Each corner's value of scaled_jacobian (corners as there), to out[K]; returns their count.
+template <CellType Type, typename X, typename Det = Determinant>
+int scaled_jacobian_corners(const X& x, Det det, double* out) {
+  constexpr int n =
+      facts(Type).shape == CellShape::Simplex ? CellTraits<Type>::dim + 1 : facts(Type).num_corners;
+  [&]<int... K>(std::integer_sequence<int, K...>) {
+    ((out[K] = scaled_jacobian<Type>(x, det, -kInfinity, 1u << K)), ...);
+  }
+  (std::make_integer_sequence<int, n>{});
+  return n;
 }
 
 // W⁻¹ at each corner frame of the optimal cell of `Type` (quality.hpp, inverse mean ratio),
@@ -530,6 +561,14 @@ double surface_cell_scaled_jacobian_above(CellType type, const double* coords, c
       });
 }
 
+int surface_cell_scaled_jacobian_corners(CellType type, const double* coords, const double* normal,
+                                         double* out) {
+  return of_one_surface_cell<int>(type, coords, normal,
+                                  [out]<CellType Type>(const auto& x, const NormalArea& area) {
+                                    return scaled_jacobian_corners<Type>(x, area, out);
+                                  });
+}
+
 double surface_cell_inverse_mean_ratio(CellType type, const double* coords, const double* normal) {
   return of_one_surface_cell<double>(type, coords, normal,
                                      []<CellType Type>(const auto& x, const NormalArea& area) {
@@ -597,6 +636,17 @@ double cell_scaled_jacobian_above(CellType type, const double* coords, double ba
   return of_one_cell(type, coords, [bar, corners]<CellType Type>(const auto& x) {
     return scaled_jacobian<Type>(x, Determinant{}, bar, corners);
   });
+}
+
+int cell_scaled_jacobian_corners(CellType type, const double* coords, double* out) {
+  int n = 0;
+  visit_cell_type(type, [&]<CellType Type>(CellTag<Type>) {
+    using Traits = CellTraits<Type>;
+    n = scaled_jacobian_corners<Type>(
+        Eigen::Map<const typename Traits::Coordinates>(coords, Traits::dim, Traits::vertices),
+        Determinant{}, out);
+  });
+  return n;
 }
 
 std::uint32_t scaled_jacobian_corners_at(CellType type, int vertex) {

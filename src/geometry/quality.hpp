@@ -82,6 +82,12 @@ double cell_scaled_jacobian(CellType type, const double* coords);
 inline constexpr std::uint32_t kAllCorners = ~std::uint32_t{0};
 double cell_scaled_jacobian_above(CellType type, const double* coords, double bar,
                                   std::uint32_t corners = kAllCorners);
+// The value over each corner alone, corner K's to out[K] (at most kMaxScaledJacobianCorners);
+// returns their count. The least of them is the cell's value, and the least over some corners
+// the value over those corners, bit for bit: a search can keep a cell's corners and re-evaluate
+// only those a move changes.
+inline constexpr int kMaxScaledJacobianCorners = 8;
+int cell_scaled_jacobian_corners(CellType type, const double* coords, double* out);
 // The corners whose value depends on the cell's vertex `vertex` (canonical index): its own and
 // those with an edge to it (a simplex: all).
 std::uint32_t scaled_jacobian_corners_at(CellType type, int vertex);
@@ -127,6 +133,8 @@ SurfaceCellMeasures surface_cell_measures(CellType type, const double* coords,
 double surface_cell_scaled_jacobian(CellType type, const double* coords, const double* normal);
 double surface_cell_scaled_jacobian_above(CellType type, const double* coords, const double* normal,
                                           double bar, std::uint32_t corners = kAllCorners);
+int surface_cell_scaled_jacobian_corners(CellType type, const double* coords, const double* normal,
+                                         double* out);
 double surface_cell_inverse_mean_ratio(CellType type, const double* coords, const double* normal);
 double surface_cell_edge_ratio(CellType type, const double* coords);
 

@@ -375,6 +375,50 @@ TEST(CellQuality, ScaledJacobianSplitsIntoTheCornersAVertexMovesAndTheOthers) {
   EXPECT_GT(fixed_parts, 100);  // Q1 cells, wedges and pyramids have corners a vertex leaves be
 }
 
+// The corners' values one by one: their minimum over any set of corners is the value over
+// those corners bit for bit (all of them: the cell's), in the plane, in space and for surface
+// cells, inverted corners included; what the worst-cell repair keeps per cell.
+TEST(CellQuality, ScaledJacobianCornersGiveTheValueOverAnyCorners) {
+  const double inf = std::numeric_limits<double>::infinity();
+  auto least = [inf](const double* values, int n, std::uint32_t corners) {
+    double v = inf;
+    for (int k = 0; k < n; ++k)
+      if ((corners >> k) & 1) v = std::min(v, values[k]);
+    return v;
+  };
+  int inverted = 0;
+  for (CellType type : kEveryType)
+    for (const std::vector<double>& x : jittered_cells(type, 0.7, 7)) {
+      double values[kMaxScaledJacobianCorners];
+      const int n = cell_scaled_jacobian_corners(type, x.data(), values);
+      ASSERT_LE(n, kMaxScaledJacobianCorners);
+      EXPECT_EQ(n, facts(type).shape == CellShape::Simplex ? dimension(type) + 1
+                                                           : facts(type).num_corners);
+      EXPECT_EQ(least(values, n, kAllCorners), cell_scaled_jacobian(type, x.data())) << name(type);
+      for (std::uint32_t corners = 0; corners < (1u << n); corners += 3)
+        EXPECT_EQ(least(values, n, corners),
+                  cell_scaled_jacobian_above(type, x.data(), -inf, corners))
+            << name(type) << " corners " << corners;
+      inverted += least(values, n, kAllCorners) <= 0.0;
+    }
+  EXPECT_GT(inverted, 0);
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  for (const auto& [type, xy] : planar_cells()) {
+    const std::vector<double> x = into_space(xy, turn);
+    const Eigen::Vector3d up = turn * Eigen::Vector3d(0, 0, 1);
+    double values[kMaxScaledJacobianCorners];
+    const int n = surface_cell_scaled_jacobian_corners(type, x.data(), up.data(), values);
+    EXPECT_EQ(least(values, n, kAllCorners),
+              surface_cell_scaled_jacobian(type, x.data(), up.data()))
+        << "surface " << name(type);
+    for (std::uint32_t corners = 0; corners < (1u << n); ++corners)
+      EXPECT_EQ(least(values, n, corners),
+                surface_cell_scaled_jacobian_above(type, x.data(), up.data(), -inf, corners))
+          << "surface " << name(type) << " corners " << corners;
+  }
+}
+
 // A cell's edge ratio is the longest over the shortest edge_length between the vertices of its
 // facets' edges, bit for bit, in 2D, in 3D and for surface cells in space: what the worst-cell
 // repair relies on when it updates a cell's edge ratio from the edges at the vertex it moves.
@@ -395,7 +439,7 @@ TEST(CellQuality, EdgeRatioIsTheLongestOverTheShortestEdgeLength) {
   };
   int cells = 0;
   for (CellType type : kEveryType)
-    for (const std::vector<double>& x : jittered_cells(type, 0.45, 5)) {
+    for (const std::vector<double>& x : jittered_cells(type, 0.45, 7)) {
       EXPECT_EQ(cell_edge_ratio(type, x.data()), from_lengths(type, x, dimension(type)))
           << name(type);
       ++cells;
