@@ -426,25 +426,4 @@ DistributedNodeMesh distribute_node_mesh(const InputMesh& curved, const std::str
   return {std::move(plex), std::move(curved_view), std::move(corners), nodes.points};
 }
 
-std::vector<double> points_at_vertices(const MeshView& view, std::span<const double> points, int d,
-                                       MPI_Comm comm) {
-  std::vector<double> out(static_cast<std::size_t>(d * view.num_vertices));
-  if (mpi_size(comm) == 1) {
-    for (PetscInt v = 0; v < view.num_vertices; ++v)
-      std::copy_n(points.begin() + d * view.input_vertex[v], d, out.begin() + d * v);
-    return out;
-  }
-  std::vector<PetscSFNode> remote(out.size());
-  for (PetscInt v = 0; v < view.num_vertices; ++v)
-    for (int j = 0; j < d; ++j) remote[d * v + j] = {0, d * view.input_vertex[v] + j};
-  OwnedSF sf;
-  NM_PETSC(PetscSFCreate(comm, sf.out()));
-  NM_PETSC(PetscSFSetGraph(sf, static_cast<PetscInt>(points.size()),
-                           static_cast<PetscInt>(out.size()), nullptr, PETSC_COPY_VALUES,
-                           remote.data(), PETSC_COPY_VALUES));
-  NM_PETSC(PetscSFBcastBegin(sf, MPI_DOUBLE, points.data(), out.data(), MPI_REPLACE));
-  NM_PETSC(PetscSFBcastEnd(sf, MPI_DOUBLE, points.data(), out.data(), MPI_REPLACE));
-  return out;
-}
-
 }  // namespace neomesh
