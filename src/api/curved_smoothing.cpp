@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "geometry/curved_quality.hpp"
 #include "geometry/node_mesh.hpp"
+#include "mesh/from_input_vertices.hpp"
 #include "mesh/gather.hpp"
 #include "solver/quasi_newton.hpp"
 #include "solver/worst_cells.hpp"
@@ -54,7 +55,8 @@ void Optimizer::Impl::finish_curved(Result& result) {
   // the mesh's own partition (another than the node mesh's).
   const std::vector<double> points =
       gather_points(curved->nodes.view(), local_x, curved->points, mesh.comm());
-  std::vector<double> local = points_at_vertices(view, points, d, mesh.comm());
+  std::vector<double> local =
+      FromInputVertices(view, static_cast<PetscInt>(points.size()) / d, mesh.comm())(points, d);
   for (PetscInt v = 0; v < view.num_vertices; ++v)
     if (!view.owned[v]) std::fill_n(local.begin() + d * v, d, 0.0);
   const OwnedVec corners = plex.dofs().create_global_vector();

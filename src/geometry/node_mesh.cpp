@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
 
 #include "core/error.hpp"
 #include "geometry/curved_cell.hpp"
 #include "mesh/gather.hpp"
+#include "mesh/nodes_by_corners.hpp"
 
 namespace neomesh {
 
@@ -37,21 +37,6 @@ std::vector<int> carrier(const Vector<CurvedTraits<Type>::dim>& p) {
     if (in) corners.push_back(k);
   }
   return corners;
-}
-
-// A face of the mesh by its corner points, as every cell holding it names it.
-using FaceKey = std::array<PetscInt, 8>;
-template <typename Corners>
-FaceKey face_key(const Corners& corners) {
-  FaceKey key;
-  key.fill(-1);
-  const int size = static_cast<int>(corners.size());
-  std::copy(corners.begin(), corners.end(), key.begin());
-  // By insertion, as sort_facet_key (cell_type.hpp): GCC 12 warns wrongly about std::sort on
-  // part of an array.
-  for (int k = 1; k < size; ++k)
-    for (int i = k; i > 0 && key[i - 1] > key[i]; --i) std::swap(key[i - 1], key[i]);
-  return key;
 }
 
 // The sub-cells of a simplex in node numbers (either orientation; fixed below); the triangle's
@@ -101,12 +86,8 @@ class Builder {
     typename Traits::Nodes nodes;
     for (int i = 0; i < Traits::nodes; ++i)
       for (int j = 0; j < dim; ++j) nodes(j, i) = x_[points[i] * d_ + j];
-    // Every node's face, for the facets' subdivision.
-    for (int i = Traits::corners; i < Traits::nodes; ++i) {
-      std::vector<PetscInt> corners;
-      for (int k : carrier<Type>(reference_node<Type>(i))) corners.push_back(points[k]);
-      face_node_.emplace(face_key(corners), points[i]);
-    }
+    // The nodes of its edges and faces, for the facets' subdivision.
+    face_node_.add_cell(Type, points);
     const int tag = curved_.cell_tags[c];
     if constexpr (Traits::simplex) {
       const auto add = [&](const auto& sub) {
@@ -192,21 +173,19 @@ class Builder {
     std::vector<PetscInt> corners;
     for (int k : carrier<Type>(p)) corners.push_back(points[k]);
     const bool shared = static_cast<int>(corners.size()) < CurvedTraits<Type>::corners;
-    const FaceKey key = face_key(corners);
     if (shared)
-      if (const auto it = face_node_.find(key); it != face_node_.end()) return it->second;
+      if (const PetscInt v = face_node_.find(corners); v >= 0) return v;
     const PetscInt v = out_.mesh.num_vertices();
     const auto at = curved_map<Type>(nodes, p);
     for (int j = 0; j < d_; ++j) out_.mesh.coords.push_back(at[j]);
-    if (shared) face_node_.emplace(key, v);
+    if (shared) face_node_.add(corners, v);
     return v;
   }
 
   PetscInt node_of(std::initializer_list<PetscInt> corners) const {
-    const auto it = face_node_.find(face_key(std::vector<PetscInt>(corners)));
-    if (it == face_node_.end())
-      fail("internal error: a boundary facet of a curved mesh that no cell has");
-    return it->second;
+    const PetscInt node = face_node_.find({corners.begin(), corners.size()});
+    if (node < 0) fail("internal error: a boundary facet of a curved mesh that no cell has");
+    return node;
   }
 
   // Facets in physical groups: an edge into its two halves, a triangle into 4, a
@@ -231,7 +210,7 @@ class Builder {
         for (const auto& s : subs) out.add(s, 3, tag);
       } else {
         // As a cycle: in the order given if its sides are edges, else in tensor order.
-        const bool cycle = face_node_.contains(face_key(std::array{v[1], v[2]}));
+        const bool cycle = face_node_.find(std::array{v[1], v[2]}) >= 0;
         const std::array<PetscInt, 4> q =
             cycle ? std::array{v[0], v[1], v[2], v[3]} : std::array{v[0], v[1], v[3], v[2]};
         const PetscInt centre = node_of({q[0], q[1], q[2], q[3]});
@@ -250,7 +229,7 @@ class Builder {
   const std::vector<double> x_;
   const int d_;
   NodeMesh out_;
-  std::map<FaceKey, PetscInt> face_node_;  // by its face's corner points
+  NodesByCorners face_node_;  // the cells' edge and face nodes, and the virtual face centres
 };
 
 // A process' curved cells: those whose sub-cells its part of the node mesh has, in increasing
@@ -424,27 +403,6 @@ DistributedNodeMesh distribute_node_mesh(const InputMesh& curved, const std::str
   MeshView corners = view_of_cells(plex.view(), cells, true);
   MPI_Bcast(&nodes.points, 1, MPIU_INT, 0, comm);
   return {std::move(plex), std::move(curved_view), std::move(corners), nodes.points};
-}
-
-std::vector<double> points_at_vertices(const MeshView& view, std::span<const double> points, int d,
-                                       MPI_Comm comm) {
-  std::vector<double> out(static_cast<std::size_t>(d * view.num_vertices));
-  if (mpi_size(comm) == 1) {
-    for (PetscInt v = 0; v < view.num_vertices; ++v)
-      std::copy_n(points.begin() + d * view.input_vertex[v], d, out.begin() + d * v);
-    return out;
-  }
-  std::vector<PetscSFNode> remote(out.size());
-  for (PetscInt v = 0; v < view.num_vertices; ++v)
-    for (int j = 0; j < d; ++j) remote[d * v + j] = {0, d * view.input_vertex[v] + j};
-  OwnedSF sf;
-  NM_PETSC(PetscSFCreate(comm, sf.out()));
-  NM_PETSC(PetscSFSetGraph(sf, static_cast<PetscInt>(points.size()),
-                           static_cast<PetscInt>(out.size()), nullptr, PETSC_COPY_VALUES,
-                           remote.data(), PETSC_COPY_VALUES));
-  NM_PETSC(PetscSFBcastBegin(sf, MPI_DOUBLE, points.data(), out.data(), MPI_REPLACE));
-  NM_PETSC(PetscSFBcastEnd(sf, MPI_DOUBLE, points.data(), out.data(), MPI_REPLACE));
-  return out;
 }
 
 }  // namespace neomesh

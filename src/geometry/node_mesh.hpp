@@ -63,12 +63,6 @@ struct DistributedNodeMesh {
 DistributedNodeMesh distribute_node_mesh(const InputMesh& curved, const std::string& name,
                                          MPI_Comm comm);
 
-// Collective: `points` (rank 0: `d` values per point of the curved mesh, in input numbering, as
-// gather_points gives them) at the local vertices of `view`, a mesh whose vertices are the
-// curved mesh's first points (its corners, or the node mesh): d values per local vertex.
-std::vector<double> points_at_vertices(const MeshView& view, std::span<const double> points, int d,
-                                       MPI_Comm comm);
-
 // Collective: the curved mesh's points (`points` of them, node_mesh's first vertices) at
 // `coords` (nodes.dim values per local vertex of `nodes`) on rank 0, in input numbering, each
 // from the process that owns it; empty elsewhere.

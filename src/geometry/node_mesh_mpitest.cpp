@@ -10,6 +10,7 @@
 #include "generate/generate.hpp"
 #include "geometry/curved_quality.hpp"
 #include "geometry/node_mesh.hpp"
+#include "mesh/from_input_vertices.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/raise_order.hpp"
 
@@ -71,7 +72,8 @@ void expect_the_serial_mesh(CellType type, int n) {
   if (mpi_rank(comm) == 0) {
     EXPECT_EQ(points, curved_point_coordinates(input));
   }
-  const std::vector<double> back = points_at_vertices(view, points, d, comm);
+  const std::vector<double> back =
+      FromInputVertices(view, static_cast<PetscInt>(points.size()) / d, comm)(points, d);
   for (PetscInt v = 0; v < view.num_vertices; ++v)
     if (view.input_vertex[v] < nodes.points) {
       for (int j = 0; j < d; ++j) EXPECT_EQ(back[d * v + j], view.coords[d * v + j]);

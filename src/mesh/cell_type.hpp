@@ -46,11 +46,11 @@ struct FacetVertices {
   std::array<std::uint8_t, 4> vertices;
 };
 
-// A facet's vertex numbers as a key that two cells sharing the facet build alike: the first
+// A facet's (or edge's) vertex numbers as a key that two cells sharing it build alike: the first
 // `size` entries sorted ascending (the rest left as they are, e.g. -1). By insertion: GCC 12
 // warns wrongly about std::sort on part of an array.
-template <typename T>
-void sort_facet_key(std::array<T, 4>& key, int size) {
+template <typename T, std::size_t N>
+void sort_facet_key(std::array<T, N>& key, int size) {
   for (int k = 1; k < size; ++k)
     for (int i = k; i > 0 && key[i - 1] > key[i]; --i) std::swap(key[i - 1], key[i]);
 }

@@ -113,19 +113,7 @@ CurvedFacets::CurvedFacets(const InputMesh& mesh) : mesh_(mesh) {
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
     PetscInt p[kMaxCurvedNodes];
     curved_cell_points(mesh, c, p);
-    const CurvedFacts& f = facts(mesh.high_order.types[c]);
-    const int corners = num_vertices(f.linear);
-    for (std::size_t e = 0; e < f.edges.size(); ++e) {
-      std::array<PetscInt, 2> key = {p[f.edges[e][0]], p[f.edges[e][1]]};
-      std::sort(key.begin(), key.end());
-      edge_.emplace(key, p[corners + e]);
-    }
-    for (std::size_t j = 0; j < f.faces.size(); ++j) {
-      std::array<PetscInt, 4> key;
-      for (int i = 0; i < 4; ++i) key[i] = p[f.faces[j][i]];
-      std::sort(key.begin(), key.end());
-      face_.emplace(key, p[corners + f.edges.size() + j]);
-    }
+    nodes_.add_cell(mesh.high_order.types[c], p);
   }
 }
 
@@ -134,18 +122,15 @@ int CurvedFacets::points(PetscInt k, PetscInt* out) const {
   const PetscInt* v = facets.vertices.data() + facets.offsets[k];
   const int n = static_cast<int>(facets.offsets[k + 1] - facets.offsets[k]);
   std::copy(v, v + n, out);
-  if (edge_.empty()) return n;
+  if (nodes_.empty()) return n;
   int count = n;
   for (int i = 0; i < (n == 2 ? 1 : n); ++i) {
-    const auto it = edge_.find({std::min(v[i], v[(i + 1) % n]), std::max(v[i], v[(i + 1) % n])});
-    if (it == edge_.end()) return n;
-    out[count++] = it->second;
+    const PetscInt node = nodes_.find(std::array{v[i], v[(i + 1) % n]});
+    if (node < 0) return n;
+    out[count++] = node;
   }
-  if (n == 4) {
-    std::array<PetscInt, 4> key = {v[0], v[1], v[2], v[3]};
-    std::sort(key.begin(), key.end());
-    if (const auto it = face_.find(key); it != face_.end()) out[count++] = it->second;
-  }
+  if (n == 4)
+    if (const PetscInt node = nodes_.find(std::span(v, 4)); node >= 0) out[count++] = node;
   return count;
 }
 

@@ -5,7 +5,6 @@
 
 #include <array>
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <span>
 #include <string>
@@ -16,6 +15,7 @@
 #include "mesh/cell_type.hpp"
 #include "mesh/curved_type.hpp"
 #include "mesh/mesh_data.hpp"
+#include "mesh/nodes_by_corners.hpp"
 #include "mesh/plane_embedding.hpp"
 
 namespace neomesh {
@@ -190,8 +190,7 @@ class CurvedFacets {
 
  private:
   const InputMesh& mesh_;
-  std::map<std::array<PetscInt, 2>, PetscInt> edge_;  // sorted corners → point
-  std::map<std::array<PetscInt, 4>, PetscInt> face_;
+  NodesByCorners nodes_;
 };
 
 // The nodes moved to `x`, dim values per node (a 2D mesh's in `plane`, null for z = 0), in space.

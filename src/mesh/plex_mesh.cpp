@@ -6,6 +6,7 @@
 #include "core/collective_error.hpp"
 #include "mesh/boundary_surface.hpp"
 #include "mesh/cell_order.hpp"
+#include "mesh/from_input_vertices.hpp"
 #include "mesh/input_topology.hpp"
 #include "mesh/mesh_impl.hpp"
 #include "mesh/plex_builder.hpp"
@@ -109,35 +110,14 @@ std::vector<std::uint8_t> ghost_points(DM dm) {
 
 // Rank 0 knows the boundary by input vertex; each rank fetches its local vertices' share.
 void build_boundary(const Impl& m, const InputTopology& root, MeshView& view) {
-  const PetscInt nv = view.num_vertices;
   // A surface's parts are its cell groups, as its cells are its boundary facets.
   const int part_dim = m.surface ? m.dim : m.dim - 1;
   for (const PhysicalGroup& g : m.groups)
     if (g.dim == part_dim || g.dim == 0) view.parts.push_back({g.name, g.tag});
-  if (mpi_size(m.comm) == 1) {  // all on this rank: a star forest of every vertex costs more
-    auto take = [&](const auto& from, auto& to) {
-      to.resize(nv);
-      for (PetscInt v = 0; v < nv; ++v) to[v] = from[view.input_vertex[v]];
-    };
-    take(root.on_boundary, view.on_boundary);
-    take(root.boundary_part, view.boundary_part);
-    take(root.part_count, view.part_count);
-    return;
-  }
-  std::vector<PetscSFNode> remote(nv);
-  for (PetscInt v = 0; v < nv; ++v) remote[v] = {0, view.input_vertex[v]};
-  OwnedSF sf;
-  NM_PETSC(PetscSFCreate(m.comm, sf.out()));
-  NM_PETSC(PetscSFSetGraph(sf, static_cast<PetscInt>(root.on_boundary.size()), nv, nullptr,
-                           PETSC_COPY_VALUES, remote.data(), PETSC_COPY_VALUES));
-  auto fetch = [&](const auto& from, auto& to, MPI_Datatype type) {
-    to.resize(nv);
-    NM_PETSC(PetscSFBcastBegin(sf, type, from.data(), to.data(), MPI_REPLACE));
-    NM_PETSC(PetscSFBcastEnd(sf, type, from.data(), to.data(), MPI_REPLACE));
-  };
-  fetch(root.on_boundary, view.on_boundary, MPI_UNSIGNED_CHAR);
-  fetch(root.boundary_part, view.boundary_part, MPI_INT);
-  fetch(root.part_count, view.part_count, MPI_UNSIGNED_CHAR);
+  const FromInputVertices fetch(view, static_cast<PetscInt>(root.on_boundary.size()), m.comm);
+  view.on_boundary = fetch(root.on_boundary);
+  view.boundary_part = fetch(root.boundary_part);
+  view.part_count = fetch(root.part_count);
 }
 
 void build_view(Impl& m, const std::vector<PetscInt>& original, PetscInt root_vStart,

@@ -1,10 +1,9 @@
 #include "mesh/raise_order.hpp"
 
-#include <algorithm>
 #include <array>
-#include <map>
 
 #include "core/error.hpp"
+#include "mesh/nodes_by_corners.hpp"
 
 namespace neomesh {
 
@@ -45,8 +44,7 @@ void raise_to_second_order(InputMesh& mesh) {
     }
     return node;
   };
-  std::map<std::array<PetscInt, 2>, PetscInt> edge_node;
-  std::map<std::array<PetscInt, 4>, PetscInt> face_node;
+  NodesByCorners shared;  // the edges' and faces' nodes made so far
   std::array<PetscInt, kMaxCurvedNodes> p{};
   std::vector<PetscInt> nodes;
   for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
@@ -57,19 +55,15 @@ void raise_to_second_order(InputMesh& mesh) {
     const PetscInt* v = mesh.cell_vertices.data() + mesh.cell_offsets[c];
     for (int i = 0; i < corners; ++i) p[i] = v[facts(linear).gmsh_order[i]];
     nodes.clear();
+    // An edge's or face's node is made by the first cell that reaches it: the next number.
     for (const CurvedEdge& e : f.edges) {
-      std::array<PetscInt, 2> key = {p[e[0]], p[e[1]]};
-      std::sort(key.begin(), key.end());
-      auto [it, added] = edge_node.try_emplace(key, -1);
-      if (added) it->second = add_node(p.data(), e);
-      nodes.push_back(it->second);
+      const PetscInt node = shared.add(std::array{p[e[0]], p[e[1]]}, h.num_nodes());
+      nodes.push_back(node == h.num_nodes() ? add_node(p.data(), e) : node);
     }
-    for (const CurvedFace& face : f.faces) {
-      std::array<PetscInt, 4> key = {p[face[0]], p[face[1]], p[face[2]], p[face[3]]};
-      std::sort(key.begin(), key.end());
-      auto [it, added] = face_node.try_emplace(key, -1);
-      if (added) it->second = add_node(p.data(), face);
-      nodes.push_back(it->second);
+    for (const CurvedFace& q : f.faces) {
+      const PetscInt node =
+          shared.add(std::array{p[q[0]], p[q[1]], p[q[2]], p[q[3]]}, h.num_nodes());
+      nodes.push_back(node == h.num_nodes() ? add_node(p.data(), q) : node);
     }
     if (corners + static_cast<int>(f.edges.size() + f.faces.size()) < f.nodes) {
       std::vector<int> all(corners);
