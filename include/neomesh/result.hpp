@@ -17,6 +17,9 @@ struct IterationRecord {
   int k = 0;             // 1-based, as the thesis prints it
   int armijo_steps = 0;  // halvings: σ = 0.5^armijo_steps
   int trials = 0;  // energies the line search evaluated (SolverOptions::Advanced::max_trial_move)
+  // Trials the barrier of a curved mesh rejected: a cell certified valid where the run started
+  // was no longer certified valid there (docs/method.md §12).
+  int inadmissible_trials = 0;
   double defect = 0.0;          // ‖g_k‖ over free dofs at the start of the iteration
   double direction_norm = 0.0;  // ‖δ‖ before scaling by σ
   double energy = 0.0;          // F after the step
@@ -51,6 +54,8 @@ enum class StopReason {
   MaxIterations,
   LineSearchFailed,  // no step size in max_halvings halvings gave a finite, decreasing F
   TimeLimit,         // SolverOptions::time_limit ran out
+  OnBarrier,         // curved cells: the certificate cut the steps; the energy's minimum lies
+                     // beyond the certified-valid meshes
 };
 // "Newton defect below the absolute tolerance", ...
 std::string describe(StopReason reason);

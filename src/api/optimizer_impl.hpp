@@ -64,6 +64,9 @@ struct Optimizer::Impl {
   // The worst-cell phase on the curved optimum at x: result.corner_phase, by the least curved
   // scaled Jacobian; x and result's run are the optimum's again unless that rose.
   void lift_curved_corners(const SmoothOptions& options, const Observer& observer, Result& result);
+  // The solver options of a curved mesh at x: method()'s, with the barrier that keeps the cells
+  // certified valid at x so (QuasiNewtonOptions::admissible).
+  QuasiNewtonOptions curved_method(const SolverOptions& solver);
   // The curved quality of the cells at x (collective: every process gets the summary).
   CurvedQualitySummary curved_quality_at_x();
   // Moves the mesh's corners and high-order nodes to x, and sets result's quality_after,

@@ -58,6 +58,17 @@ CurvedQualitySummary summarize(std::span<const CurvedScaledJacobian> q,
   return s;
 }
 
+// The nodes of cell c of `block` (a block of curved cells of type Type) at `coords`.
+template <CurvedType Type>
+typename CurvedTraits<Type>::Nodes block_nodes(const CellBlock& block, PetscInt c,
+                                               std::span<const double> coords) {
+  constexpr int d = CurvedTraits<Type>::dim;
+  typename CurvedTraits<Type>::Nodes x;
+  for (int i = 0; i < CurvedTraits<Type>::nodes; ++i)
+    for (int j = 0; j < d; ++j) x(j, i) = coords[d * block.cell(c)[i] + j];
+  return x;
+}
+
 // Collective: the processes' summaries as one.
 CurvedQualitySummary reduce(const CurvedQualitySummary& local, MPI_Comm comm) {
   constexpr int kTypes = static_cast<int>(kCurvedTypes.size());
@@ -110,23 +121,37 @@ CurvedQualitySummary curved_quality(const MeshView& cells, std::span<const doubl
                                     MPI_Comm comm) {
   std::vector<CurvedScaledJacobian> q(cells.num_cells);
   std::vector<CurvedType> types(cells.num_cells);
-  const int d = cells.dim;
   for (const CellBlock& block : cells.blocks) {
     if (!block.curved) fail("internal error: the curved quality of a straight cell");
     std::fill_n(types.begin() + block.first_cell, block.size(), *block.curved);
     visit_curved_type(*block.curved, [&]<CurvedType Type>(CurvedTag<Type>) {
 #pragma omp parallel for schedule(dynamic, 64)
       for (PetscInt c = 0; c < block.size(); ++c) {
-        typename CurvedTraits<Type>::Nodes x;
-        for (int i = 0; i < CurvedTraits<Type>::nodes; ++i)
-          for (int j = 0; j < d; ++j) x(j, i) = coords[d * block.cell(c)[i] + j];
-        q[block.first_cell + c] = curved_scaled_jacobian<Type>(x);
+        q[block.first_cell + c] = curved_scaled_jacobian<Type>(block_nodes<Type>(block, c, coords));
       }
     });
   }
   PetscInt local = cells.num_cells, total = 0;
   MPI_Allreduce(&local, &total, 1, MPIU_INT, MPI_SUM, comm);
   return reduce(summarize(q, types, static_cast<double>(total)), comm);
+}
+
+std::vector<char> certified_valid(const MeshView& cells, std::span<const double> coords,
+                                  std::span<const char> only) {
+  std::vector<char> valid(cells.num_cells, 0);
+  for (const CellBlock& block : cells.blocks) {
+    if (!block.curved) fail("internal error: the certificate of a straight cell");
+    visit_curved_type(*block.curved, [&]<CurvedType Type>(CurvedTag<Type>) {
+#pragma omp parallel for schedule(dynamic, 64)
+      for (PetscInt c = 0; c < block.size(); ++c) {
+        const PetscInt cell = block.first_cell + c;
+        if (!only.empty() && !only[cell]) continue;
+        valid[cell] =
+            certify_jacobian<Type>(block_nodes<Type>(block, c, coords)).validity == Validity::Valid;
+      }
+    });
+  }
+  return valid;
 }
 
 }  // namespace neomesh

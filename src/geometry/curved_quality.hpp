@@ -28,6 +28,11 @@ CurvedQualitySummary curved_quality_on_root(const InputMesh& mesh, MPI_Comm comm
 CurvedQualitySummary curved_quality(const MeshView& cells, std::span<const double> coords,
                                     MPI_Comm comm);
 
+// Per cell of `cells` (curved cells, as above) at `coords`: whether the certificate finds it
+// Valid. Cells where `only` is false are not examined (false); `only` empty: every cell.
+std::vector<char> certified_valid(const MeshView& cells, std::span<const double> coords,
+                                  std::span<const char> only = {});
+
 // The curved scaled Jacobian of cell `c` of a curved mesh whose points (curved_point_coordinates)
 // are `x`.
 CurvedScaledJacobian curved_cell_quality(const InputMesh& mesh, const std::vector<double>& x,

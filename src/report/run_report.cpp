@@ -32,6 +32,7 @@ nlohmann::json to_json(const IterationRecord& r) {
   nlohmann::json row = {{"k", r.k},
                         {"armijo_steps", r.armijo_steps},
                         {"trials", r.trials},
+                        {"inadmissible_trials", r.inadmissible_trials},
                         {"defect", number(r.defect)},
                         {"direction_norm", number(r.direction_norm)},
                         {"energy", number(r.energy)},

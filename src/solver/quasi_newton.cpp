@@ -61,6 +61,8 @@ std::string describe(StopReason reason) {
       return "line search failed: no step along the direction decreases the energy";
     case StopReason::TimeLimit:
       return "time limit reached: the mesh is the best one so far";
+    case StopReason::OnBarrier:
+      return "on the barrier: steps towards the energy's minimum leave the certified-valid cells";
   }
   return "?";
 }
@@ -111,6 +113,7 @@ struct QuasiNewton::Impl {
   // restart() asked for L at the current x; the next step assembles it (x has not moved).
   bool laplacian_pending = false;
   std::optional<StopReason> stop;
+  int barrier_cuts = 0;  // iterations in a row whose step the barrier cut
   // F and the defect at the start of the solve and after each step since, for the stall's half
   // of the practical criterion; a restart begins them anew (F may be another problem's).
   double start_energy = 0.0;
@@ -375,11 +378,16 @@ struct QuasiNewton::Impl {
       rec.armijo_steps = halvings;
       if (!std::isfinite(new_energy)) continue;
       // Below round-off the test compares noise (docs/method.md §4): take the step.
-      if (sigma * predicted <= options.energy_roundoff) {
-        rec.roundoff_step = true;
-        return true;
+      const bool roundoff = sigma * predicted <= options.energy_roundoff;
+      if (!roundoff && energy - new_energy < options.advanced.armijo_beta * sigma * predicted)
+        continue;
+      // The barrier last: it costs more than F (a certificate per cell).
+      if (options.admissible && !options.admissible(trial)) {
+        ++rec.inadmissible_trials;
+        continue;
       }
-      if (energy - new_energy >= options.advanced.armijo_beta * sigma * predicted) return true;
+      rec.roundoff_step = roundoff;
+      return true;
     }
     return false;
   }
@@ -447,8 +455,9 @@ struct QuasiNewton::Impl {
       rec.direction_norm = norm(delta);
       decreased = line_search(x, rec, new_energy, sigma);
     }
+    barrier_cuts = rec.inadmissible_trials > 0 ? barrier_cuts + 1 : 0;
     if (!decreased) {
-      stop = StopReason::LineSearchFailed;
+      stop = rec.inadmissible_trials > 0 ? StopReason::OnBarrier : StopReason::LineSearchFailed;
       rec.energy = energy;
       rec.seconds = MPI_Wtime() - start_time;
       return rec;
@@ -479,6 +488,7 @@ struct QuasiNewton::Impl {
         ((energy_change < options.energy_rtol && rec.max_move < options.move_rtol) ||
          (full_newton_step && rec.max_move < options.newton_move_rtol) || settled()))
       stop = StopReason::Practical;
+    if (barrier_cuts >= kBarrierIterations) stop = StopReason::OnBarrier;
     rec.seconds = MPI_Wtime() - start_time;
     return rec;
   }
@@ -513,6 +523,7 @@ void QuasiNewton::restart(Vec x, const Functional& functional) {
   // Warm, x is near the minimum already: antigradient steps would only lose Newton's pace.
   impl_->antigradient_left = impl_->options.warm_alpha ? 0 : impl_->options.advanced.kmin;
   impl_->stop.reset();
+  impl_->barrier_cuts = 0;
 }
 
 std::optional<StopReason> QuasiNewton::stop_reason() const {

@@ -33,7 +33,15 @@ struct QuasiNewtonOptions : SolverOptions {
   // α starts here instead of at initial_alpha() unless advanced.alpha0 is set, and no
   // antigradient steps are taken. Above the thesis' α₀ it is proven as the automatic α₀ = 1 is.
   std::optional<double> warm_alpha;
+  // Collective, if set: whether the line search may take a trial point (curved meshes: no cell
+  // certified valid where the run started is uncertified there, docs/method.md §12). A trial it
+  // refuses is halved as one of non-finite energy is.
+  std::function<bool(Vec)> admissible;
 };
+
+// Iterations in a row whose step the barrier (QuasiNewtonOptions::admissible) cut, after which
+// the method stops on it: the energy's minimum lies beyond it, and the steps only crawl along it.
+inline constexpr int kBarrierIterations = 3;
 
 // Whether MPI_Wtime() is past `deadline` (never for +∞), by the first rank's clock. Collective
 // unless the deadline is +∞.
