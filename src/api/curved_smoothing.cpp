@@ -10,6 +10,7 @@
 #include "geometry/node_mesh.hpp"
 #include "mesh/from_input_vertices.hpp"
 #include "mesh/gather.hpp"
+#include "solver/curved_repair.hpp"
 #include "solver/quasi_newton.hpp"
 #include "solver/worst_cells.hpp"
 #include "targets/input_targets.hpp"
@@ -132,6 +133,13 @@ Result Optimizer::Impl::smooth_curved(const SmoothOptions& options, const Observ
   // A valid input is returned where the optimum is worse (below), which costs nothing; the lift
   // cost sphereCylinder_22492 twice the time and still ended below the input.
   if (tangled) lift_curved_corners(options, observer, result);
+  if (options.quality_guard && options.repair_worst_cells && result.reason != StopReason::TimeLimit) {
+    const WorstCellRepair r = repair_worst_curved_cells(view(), dofs(), repair_freedom(), x);
+    result.worst_cell_repair = {.min_scaled_jacobian_before = r.min_before,
+                                .min_scaled_jacobian_after = r.min_after,
+                                .vertices_moved = r.vertices_moved,
+                                .sweeps = r.sweeps};
+  }
 
   // The barrier sees det J at sample points only; the certificate decides (§11). With the quality
   // guard, the worst cell may not get worse either.

@@ -517,6 +517,8 @@ RepairFreedom Optimizer::Impl::repair_freedom() const {
   // cells the optimum distorted (FEAT3's rotor, in the gap between the screws) are free.
   // Collective (a surface's reference normals are summed over ranks): a rank without cells
   // takes part too.
+  // A curved mesh's nodes all move (curved_repair.hpp): its cells' designs are their corners'.
+  if (curved) return f;
   int design = !input_share.empty();
   MPI_Allreduce(MPI_IN_PLACE, &design, 1, MPI_INT, MPI_MAX, mesh.comm());
   if (design) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <memory>
@@ -86,11 +87,68 @@ std::vector<Geometry> geometries(const InputMesh& mesh,
 
 }  // namespace
 
+namespace {
+
+// Carries the boundary's move onto its geometry (`before` → the points now, on the points
+// flagged in `boundary`) into the interior: each other point moves by the inverse-distance
+// weighted mean (weights 1/r⁴) of the boundary points' moves, faded out by (1 − t)² with t its
+// distance from the nearest boundary point over twice that point's spacing (its distance to the
+// nearest other boundary point, doubled: about a boundary edge). Bending a boundary edge by its
+// sagitta folds the thin cells of a boundary layer behind it, whose thickness is a fraction of
+// that; carried so, each layer bends with the boundary as a whole and the cells away from it,
+// as large as the boundary edges, take up the difference.
+void carry_into_interior(InputMesh& mesh, const std::vector<double>& before,
+                         const std::vector<char>& boundary) {
+  const int d = mesh.coord_dim();
+  std::vector<double> x = curved_point_coordinates(mesh);
+  const auto n = static_cast<PetscInt>(boundary.size());
+  std::vector<PetscInt> on;
+  bool moved = false;
+  for (PetscInt i = 0; i < n; ++i)
+    if (boundary[i]) {
+      on.push_back(i);
+      for (int j = 0; j < d; ++j) moved = moved || x[d * i + j] != before[d * i + j];
+    }
+  if (!moved || on.empty()) return;
+  const auto distance2 = [&](PetscInt a, PetscInt b) {
+    double r2 = 0.0;
+    for (int j = 0; j < d; ++j) r2 += (before[d * a + j] - before[d * b + j]) * (before[d * a + j] - before[d * b + j]);
+    return r2;
+  };
+  std::vector<double> spacing(on.size(), std::numeric_limits<double>::infinity());
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < on.size(); ++k)
+    for (std::size_t l = 0; l < on.size(); ++l)
+      if (l != k) spacing[k] = std::min(spacing[k], 2.0 * std::sqrt(distance2(on[k], on[l])));
+#pragma omp parallel for schedule(dynamic, 64)
+  for (PetscInt i = 0; i < n; ++i) {
+    if (boundary[i]) continue;
+    std::array<double, 3> sum{};
+    double weights = 0.0, nearest = std::numeric_limits<double>::infinity();
+    std::size_t closest = 0;
+    for (std::size_t k = 0; k < on.size(); ++k) {
+      const double r2 = distance2(i, on[k]);
+      if (r2 < nearest) nearest = r2, closest = k;
+      const double w = 1.0 / (r2 * r2);
+      weights += w;
+      for (int j = 0; j < d; ++j) sum[j] += w * (x[d * on[k] + j] - before[d * on[k] + j]);
+    }
+    const double t = std::sqrt(nearest) / (2.0 * spacing[closest]);
+    if (!(t < 1.0) || !(weights > 0.0) || !std::isfinite(weights)) continue;
+    const double fade = (1.0 - t) * (1.0 - t);
+    for (int j = 0; j < d; ++j) x[d * i + j] = before[d * i + j] + fade * sum[j] / weights;
+  }
+  set_curved_point_coordinates(mesh, x);
+}
+
+}  // namespace
+
 CurvedBoundarySummary place_boundary_nodes(
     InputMesh& mesh, const std::vector<std::pair<std::string, std::string>>& shapes) {
   if (!mesh.curved()) fail("place_boundary_nodes: the mesh has no second-order nodes");
   if (mesh.plane) fail("curving a 2D mesh that lies off the plane z = 0 is not supported");
   const std::vector<Geometry> geometry = geometries(mesh, shapes);
+  const std::vector<double> before = curved_point_coordinates(mesh);
   const int cd = mesh.coord_dim();
   const auto vertex = [&](PetscInt v) {
     Point p = Point::Zero();
@@ -200,6 +258,10 @@ CurvedBoundarySummary place_boundary_nodes(
       place(face_node.at(key), f);
     }
   }
+  std::vector<char> boundary(mesh.num_points(), 0);
+  for (PetscInt v = 0; v < nv; ++v) boundary[v] = moved[v];
+  for (PetscInt node : placed) boundary[nv + node] = 1;
+  carry_into_interior(mesh, before, boundary);
   return summary;
 }
 

@@ -13,6 +13,7 @@
 #include "geometry/surface_frame.hpp"
 #include "mesh/cell_type.hpp"
 #include "mesh/gather.hpp"
+#include "solver/whole_mesh.hpp"
 
 namespace neomesh {
 
@@ -33,97 +34,6 @@ constexpr double kGain = 1e-9;
 // each vertex of its cells: the scaled Jacobian measures angles, so without it a vertex sliding
 // along the boundary could collapse an edge of a cell and still "improve" it.
 constexpr double kMinDistanceFraction = 0.5;
-
-// The whole mesh on rank 0, vertices and cells in input order.
-struct WholeMesh {
-  int dim = 0;
-  bool surface = false;                 // triangles and quadrilaterals in space (MeshView)
-  std::vector<std::int64_t> vertex_id;  // input number per vertex (ascending)
-  std::vector<double> coords;           // dim per vertex
-  std::vector<std::uint8_t> fixed;      // per coordinate
-  std::vector<int> geometry;            // per vertex: what it slides on, or -1
-  std::vector<CellType> types;          // per cell (ascending input number)
-  std::vector<std::int64_t> offsets;    // cell c's vertices: vertices[offsets[c], offsets[c+1])
-  std::vector<std::int64_t> vertices;   // indices into vertex_id
-};
-
-// Gathers owned vertices and all cells to rank 0 by input number.
-WholeMesh gather_whole_mesh(const MeshView& view, std::span<const double> local,
-                            const RepairFreedom& freedom, MPI_Comm comm) {
-  const int d = view.dim;
-  std::vector<std::int64_t> ids;
-  std::vector<double> coords;
-  std::vector<int> flags, geometry;
-  for (PetscInt v = 0; v < view.num_vertices; ++v) {
-    if (!view.owned[v]) continue;
-    ids.push_back(view.input_vertex[v]);
-    for (int a = 0; a < d; ++a) {  // (not insert(): a call per vertex)
-      coords.push_back(local[d * v + a]);
-      flags.push_back(freedom.fixed[d * v + a]);
-    }
-    geometry.push_back(freedom.geometry[v]);
-  }
-  std::vector<std::int64_t> cell_ids, cell_vertices;
-  std::vector<int> types;
-  for (const CellBlock& block : view.blocks)
-    for (PetscInt c = 0; c < block.size(); ++c) {
-      cell_ids.push_back(view.global_cell[block.first_cell + c]);
-      types.push_back(static_cast<int>(block.type));
-      const PetscInt* vertex = block.cell(c);
-      for (int i = 0; i < facts(block.type).vertices; ++i)
-        cell_vertices.push_back(view.input_vertex[vertex[i]]);
-    }
-  const auto all_ids = gatherv(comm, ids, MPI_INT64_T);
-  const auto all_coords = gatherv(comm, coords, MPI_DOUBLE);
-  const auto all_flags = gatherv(comm, flags, MPI_INT);
-  const auto all_geometry = gatherv(comm, geometry, MPI_INT);
-  const auto all_cell_ids = gatherv(comm, cell_ids, MPI_INT64_T);
-  const auto all_types = gatherv(comm, types, MPI_INT);
-  const auto all_cell_vertices = gatherv(comm, cell_vertices, MPI_INT64_T);
-
-  WholeMesh m;
-  m.dim = d;
-  m.surface = view.surface;
-  if (mpi_rank(comm) != 0) return m;
-  std::vector<std::size_t> order(all_ids.size());
-  std::iota(order.begin(), order.end(), 0);
-  // (On one process the input's order already: nothing to sort.)
-  if (!std::is_sorted(all_ids.begin(), all_ids.end()))
-    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return all_ids[a] < all_ids[b]; });
-  for (std::size_t k : order) {
-    m.vertex_id.push_back(all_ids[k]);
-    for (int a = 0; a < d; ++a) {
-      m.coords.push_back(all_coords[d * k + a]);
-      m.fixed.push_back(static_cast<std::uint8_t>(all_flags[d * k + a]));
-    }
-    m.geometry.push_back(all_geometry[k]);
-  }
-  // The input numbers, ascending and distinct, are mostly 0, 1, 2, ...: a vertex's index is then
-  // its number less the first.
-  const bool consecutive =
-      m.vertex_id.empty() ||
-      m.vertex_id.back() - m.vertex_id.front() == static_cast<std::int64_t>(m.vertex_id.size()) - 1;
-  auto index_of = [&m, consecutive](std::int64_t id) -> std::int64_t {
-    if (consecutive) return id - m.vertex_id.front();
-    return std::lower_bound(m.vertex_id.begin(), m.vertex_id.end(), id) - m.vertex_id.begin();
-  };
-  std::vector<std::int64_t> first(all_cell_ids.size() + 1, 0);
-  for (std::size_t c = 0; c < all_cell_ids.size(); ++c)
-    first[c + 1] = first[c] + facts(static_cast<CellType>(all_types[c])).vertices;
-  std::vector<std::size_t> cells(all_cell_ids.size());
-  std::iota(cells.begin(), cells.end(), 0);
-  if (!std::is_sorted(all_cell_ids.begin(), all_cell_ids.end()))
-    std::sort(cells.begin(), cells.end(),
-              [&](auto a, auto b) { return all_cell_ids[a] < all_cell_ids[b]; });
-  m.offsets.push_back(0);
-  for (std::size_t c : cells) {
-    m.types.push_back(static_cast<CellType>(all_types[c]));
-    for (std::int64_t k = first[c]; k < first[c + 1]; ++k)
-      m.vertices.push_back(index_of(all_cell_vertices[k]));
-    m.offsets.push_back(static_cast<std::int64_t>(m.vertices.size()));
-  }
-  return m;
-}
 
 // Unit directions of the search: 16 in the plane, the 26 towards a cube's neighbours in 3D.
 std::vector<std::vector<double>> directions(int dim) {
@@ -701,32 +611,11 @@ WorstCellRepair repair_worst_cells(const MeshView& view, const DofMap& dofs,
       moved_coords.insert(moved_coords.end(), mesh.coords.begin() + d * v,
                           mesh.coords.begin() + d * (v + 1));
     }
-    summary.vertices_moved = static_cast<std::int64_t>(moved_ids.size());
   }
   MPI_Bcast(&summary.min_before, 1, MPI_DOUBLE, 0, comm);
   MPI_Bcast(&summary.min_after, 1, MPI_DOUBLE, 0, comm);
-  MPI_Bcast(&summary.vertices_moved, 1, MPI_INT64_T, 0, comm);
   MPI_Bcast(&summary.sweeps, 1, MPI_INT, 0, comm);
-  if (summary.vertices_moved == 0) return summary;
-  moved_ids.resize(summary.vertices_moved);
-  moved_coords.resize(d * summary.vertices_moved);
-  MPI_Bcast(moved_ids.data(), static_cast<int>(moved_ids.size()), MPI_INT64_T, 0, comm);
-  MPI_Bcast(moved_coords.data(), static_cast<int>(moved_coords.size()), MPI_DOUBLE, 0, comm);
-
-  // Each rank writes its owned vertices among the moved ones (moved_ids is ascending).
-  PetscInt first = 0;
-  NM_PETSC(VecGetOwnershipRange(x, &first, nullptr));
-  PetscScalar* values = nullptr;
-  NM_PETSC(VecGetArray(x, &values));
-  for (PetscInt v = 0; v < view.num_vertices; ++v) {
-    if (!view.owned[v]) continue;
-    const auto it = std::lower_bound(moved_ids.begin(), moved_ids.end(), view.input_vertex[v]);
-    if (it == moved_ids.end() || *it != view.input_vertex[v]) continue;
-    const std::size_t k = static_cast<std::size_t>(it - moved_ids.begin());
-    for (int a = 0; a < d; ++a)
-      values[dofs.global_dof()[d * v + a] - first] = moved_coords[d * k + a];
-  }
-  NM_PETSC(VecRestoreArray(x, &values));
+  summary.vertices_moved = scatter_moved(view, dofs, moved_ids, moved_coords, x);
   return summary;
 }
 
