@@ -2,6 +2,8 @@
 // (docs/method.md §12, "The solver").
 #include <mpi.h>
 
+#include <algorithm>
+#include <memory>
 #include <numeric>
 
 #include "api/optimizer_impl.hpp"
@@ -74,6 +76,23 @@ void Optimizer::Impl::finish_curved(Result& result) {
   result.volume_change = (volume - mesh_volume) / mesh_volume;
 }
 
+QuasiNewtonOptions Optimizer::Impl::curved_method(const SolverOptions& solver) {
+  QuasiNewtonOptions o = method(solver);
+  // The energy sees det J at its sample points only; between them a step may fold a cell that
+  // the certificate passed (§11). Cells certified valid here must stay so at every point taken.
+  std::vector<double> local(dofs().num_local_dofs());
+  dofs().global_to_local(x, local);
+  auto valid = std::make_shared<const std::vector<char>>(certified_valid(curved->cells, local));
+  o.admissible = [this, valid, local = std::move(local)](Vec trial) mutable {
+    dofs().global_to_local(trial, local);
+    const std::vector<char> still = certified_valid(curved->cells, local, *valid);
+    int lost = !std::equal(still.begin(), still.end(), valid->begin());
+    MPI_Allreduce(MPI_IN_PLACE, &lost, 1, MPI_INT, MPI_MAX, mesh.comm());
+    return lost == 0;
+  };
+  return o;
+}
+
 void Optimizer::Impl::lift_curved_corners(const SmoothOptions& options, const Observer& observer,
                                           Result& result) {
   // The thesis' energy samples the Gauss points only, and its barrier keeps det J > 0 at the
@@ -84,8 +103,9 @@ void Optimizer::Impl::lift_curved_corners(const SmoothOptions& options, const Ob
   const OwnedVec optimum = copy_of(x);
   const SolverRun run = result;
   const auto least = [this](Vec) { return curved_quality_at_x().scaled_jacobian.min; };
-  result.corner_phase = lift_flat_corners(*functional, view(), dofs(), x, method(options.solver),
-                                          cell_size, result, observer.iteration, least);
+  result.corner_phase =
+      lift_flat_corners(*functional, view(), dofs(), x, curved_method(options.solver), cell_size,
+                        result, observer.iteration, least);
   CornerPhaseSummary* phase = result.corner_phase ? &*result.corner_phase : nullptr;
   if (phase && !phase->gave_up &&
       !(phase->min_scaled_jacobian_after > phase->min_scaled_jacobian_before)) {
@@ -129,20 +149,15 @@ Result Optimizer::Impl::smooth_curved(const SmoothOptions& options, const Observ
   // Cells folded at a sample point of the untangling energy (the corners and Gauss points).
   if (options.untangle) result.untangling = untangle(method(options.solver), observer);
   static_cast<SolverRun&>(result) =
-      minimize(*functional, x, method(options.solver), cell_size, observer.iteration);
+      minimize(*functional, x, curved_method(options.solver), cell_size, observer.iteration);
   // A valid input is returned where the optimum is worse (below), which costs nothing; the lift
   // cost sphereCylinder_22492 twice the time and still ended below the input.
   if (tangled) lift_curved_corners(options, observer, result);
-  if (options.quality_guard && options.repair_worst_cells && result.reason != StopReason::TimeLimit) {
-    const WorstCellRepair r = repair_worst_curved_cells(view(), dofs(), repair_freedom(), x);
-    result.worst_cell_repair = {.min_scaled_jacobian_before = r.min_before,
-                                .min_scaled_jacobian_after = r.min_after,
-                                .vertices_moved = r.vertices_moved,
-                                .sweeps = r.sweeps};
-  }
 
-  // The barrier sees det J at sample points only; the certificate decides (§11). With the quality
-  // guard, the worst cell may not get worse either.
+  // The certificate decides (§11). The worst cells of the optimum are repaired, which may also
+  // lift cells it left uncertified; with the quality guard, the worst cell may not get worse
+  // than the input's either: a valid input is kept (its own worst cells repaired) where the
+  // repaired optimum's is worse.
   CurvedSmoothingSummary& summary = result.curved.emplace();
   summary.cells = mesh.plex().global_num_cells();
   summary.nodes = curved->points;
@@ -150,19 +165,32 @@ Result Optimizer::Impl::smooth_curved(const SmoothOptions& options, const Observ
   const CurvedQualitySummary optimum = curved_quality_at_x();
   summary.min_scaled_jacobian_optimum = optimum.scaled_jacobian.min;
   summary.not_valid_optimum = optimum.not_valid;
-  if (tangled && optimum.not_valid > 0)
+  const bool repair =
+      options.quality_guard && options.repair_worst_cells && result.reason != StopReason::TimeLimit;
+  const auto repair_worst = [&] {
+    const WorstCellRepair r = repair_worst_curved_cells(view(), dofs(), repair_freedom(), x);
+    result.worst_cell_repair = {.min_scaled_jacobian_before = r.min_before,
+                                .min_scaled_jacobian_after = r.min_after,
+                                .vertices_moved = r.vertices_moved,
+                                .sweeps = r.sweeps};
+    return r.vertices_moved > 0 ? curved_quality_at_x() : optimum;
+  };
+  const CurvedQualitySummary repaired = repair ? repair_worst() : optimum;
+  if (tangled && repaired.not_valid > 0)
     fail(
-        "{}: {} of its {} second-order cells are still not certified valid after untangling "
-        "and smoothing ({} before): det J ≤ 0 between the points the energy samples",
-        mesh.name(), optimum.not_valid, summary.cells, before.not_valid);
+        "{}: {} of its {} second-order cells are still not certified valid after untangling, "
+        "smoothing and repairing the worst cells ({} before): det J ≤ 0 between the points the "
+        "energy samples",
+        mesh.name(), repaired.not_valid, summary.cells, before.not_valid);
   summary.input_returned =
       !tangled &&
-      (optimum.not_valid > 0 ||
-       (options.quality_guard && optimum.scaled_jacobian.min < before.scaled_jacobian.min));
+      (repaired.not_valid > 0 ||
+       (options.quality_guard && repaired.scaled_jacobian.min < before.scaled_jacobian.min));
   if (summary.input_returned) {
     NM_PETSC(VecCopy(input, x));
-    result.final_energy = functional->value(x);
+    if (repair) repair_worst();
   }
+  result.final_energy = functional->value(x);
   finish_curved(result);
   result.seconds = MPI_Wtime() - started;
   return result;

@@ -112,7 +112,8 @@ void carry_into_interior(InputMesh& mesh, const std::vector<double>& before,
   if (!moved || on.empty()) return;
   const auto distance2 = [&](PetscInt a, PetscInt b) {
     double r2 = 0.0;
-    for (int j = 0; j < d; ++j) r2 += (before[d * a + j] - before[d * b + j]) * (before[d * a + j] - before[d * b + j]);
+    for (int j = 0; j < d; ++j)
+      r2 += (before[d * a + j] - before[d * b + j]) * (before[d * a + j] - before[d * b + j]);
     return r2;
   };
   std::vector<double> spacing(on.size(), std::numeric_limits<double>::infinity());

@@ -26,6 +26,8 @@ constexpr double kFineSteps[] = {0.01, 0.003, 0.001};
 constexpr double kGain = 1e-9;
 constexpr double kMinDistanceFraction = 0.5;
 constexpr int kWorstCells = 6;
+// How far below every valid cell measure() puts a cell not certified valid (q ≥ −2 for all).
+constexpr double kNotValid = 3.0;
 
 // 16 unit directions in the plane, the 26 towards a cube's neighbours in space.
 std::vector<std::array<double, 3>> directions(int dim) {
@@ -117,8 +119,9 @@ class CurvedRepair {
     return std::find(f, f + m_.dim, 0) != f + m_.dim;
   }
 
-  // Cell c's least curved scaled Jacobian (its sampled bound, as the quality tables give it),
-  // −∞ unless the certificate finds it Valid; the coefficients it computed are spent.
+  // Cell c's least curved scaled Jacobian (its sampled bound, as the quality tables give it); a
+  // cell the certificate does not find Valid ranks below all that it does, by how far its
+  // sampled value is below 0; the coefficients computed are spent.
   double measure(std::int64_t c) {
     return visit_curved_type(type(c), [&]<CurvedType Type>(CurvedTag<Type>) {
       typename CurvedTraits<Type>::Nodes x;
@@ -129,7 +132,7 @@ class CurvedRepair {
       }
       const CurvedScaledJacobian q = curved_scaled_jacobian<Type>(x);
       spent_ += static_cast<std::int64_t>(q.certificate.subcells) * jacobian_bezier_size(Type);
-      return q.certificate.validity == Validity::Valid ? q.upper : -kInfinity;
+      return q.certificate.validity == Validity::Valid ? q.upper : q.scaled_jacobian - kNotValid;
     });
   }
 
@@ -138,8 +141,9 @@ class CurvedRepair {
     std::vector<std::int64_t> cells(q_.size());
     std::iota(cells.begin(), cells.end(), 0);
     const std::size_t n = std::min<std::size_t>(kWorstCells, cells.size());
-    std::partial_sort(cells.begin(), cells.begin() + n, cells.end(),
-                      [this](auto a, auto b) { return q_[a] < q_[b] || (q_[a] == q_[b] && a < b); });
+    std::partial_sort(cells.begin(), cells.begin() + n, cells.end(), [this](auto a, auto b) {
+      return q_[a] < q_[b] || (q_[a] == q_[b] && a < b);
+    });
     worst_.assign(cells.begin(), cells.begin() + n);
   }
 

@@ -484,7 +484,9 @@ struct QuasiNewton::Impl {
                                   !rec.delta_truncated && rec.armijo_steps == 0 && rec.alpha >= 1.0;
     energies.push_back(energy);
     defects.push_back(rec.defect);
-    if (options.practical &&
+    // A step the barrier cut short moves little because of the barrier, not because the minimum
+    // is near: it does not count as the energy and vertices settling.
+    if (options.practical && rec.inadmissible_trials == 0 &&
         ((energy_change < options.energy_rtol && rec.max_move < options.move_rtol) ||
          (full_newton_step && rec.max_move < options.newton_move_rtol) || settled()))
       stop = StopReason::Practical;

@@ -43,8 +43,7 @@ WholeMesh gather_whole_mesh(const MeshView& view, std::span<const double> local,
       types.push_back(block.curved ? kCurved + static_cast<int>(*block.curved)
                                    : static_cast<int>(block.type));
       const PetscInt* vertex = block.cell(c);
-      for (int i = 0; i < block.nodes(); ++i)
-        cell_vertices.push_back(view.input_vertex[vertex[i]]);
+      for (int i = 0; i < block.nodes(); ++i) cell_vertices.push_back(view.input_vertex[vertex[i]]);
     }
   const auto all_ids = gatherv(comm, ids, MPI_INT64_T);
   const auto all_coords = gatherv(comm, coords, MPI_DOUBLE);
@@ -101,9 +100,8 @@ WholeMesh gather_whole_mesh(const MeshView& view, std::span<const double> local,
   return m;
 }
 
-
-std::int64_t scatter_moved(const MeshView& view, const DofMap& dofs,
-                           std::vector<std::int64_t> ids, std::vector<double> coords, Vec x) {
+std::int64_t scatter_moved(const MeshView& view, const DofMap& dofs, std::vector<std::int64_t> ids,
+                           std::vector<double> coords, Vec x) {
   const MPI_Comm comm = dofs.comm();
   const int d = view.dim;
   std::int64_t count = static_cast<std::int64_t>(ids.size());

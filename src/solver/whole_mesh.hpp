@@ -37,7 +37,7 @@ WholeMesh gather_whole_mesh(const MeshView& view, std::span<const double> local,
 // Collective: writes the coordinates `coords` (dim per vertex) of the vertices with input
 // numbers `ids` (ascending), given on rank 0, into x on the ranks that own them. Returns how
 // many vertices that was.
-std::int64_t scatter_moved(const MeshView& view, const DofMap& dofs,
-                           std::vector<std::int64_t> ids, std::vector<double> coords, Vec x);
+std::int64_t scatter_moved(const MeshView& view, const DofMap& dofs, std::vector<std::int64_t> ids,
+                           std::vector<double> coords, Vec x);
 
 }  // namespace neomesh
