@@ -90,7 +90,8 @@ std::vector<Geometry> geometries(const InputMesh& mesh,
 namespace {
 
 // Carries the boundary's move onto its geometry (`before` → the points now, on the points
-// flagged in `boundary`) into the interior: each other point moves by the inverse-distance
+// flagged in `boundary`) into the interior: each other high-order node (the vertices inside are
+// the mesher's design, and the targets' corners, and stay) moves by the inverse-distance
 // weighted mean (weights 1/r⁴) of the boundary points' moves, faded out by (1 − t)² with t its
 // distance from the nearest boundary point over twice that point's spacing (its distance to the
 // nearest other boundary point, doubled: about a boundary edge). Bending a boundary edge by its
@@ -102,6 +103,7 @@ void carry_into_interior(InputMesh& mesh, const std::vector<double>& before,
   const int d = mesh.coord_dim();
   std::vector<double> x = curved_point_coordinates(mesh);
   const auto n = static_cast<PetscInt>(boundary.size());
+  const PetscInt nv = mesh.num_vertices();
   std::vector<PetscInt> on;
   bool moved = false;
   for (PetscInt i = 0; i < n; ++i)
@@ -123,7 +125,7 @@ void carry_into_interior(InputMesh& mesh, const std::vector<double>& before,
       if (l != k) spacing[k] = std::min(spacing[k], 2.0 * std::sqrt(distance2(on[k], on[l])));
 #pragma omp parallel for schedule(dynamic, 64)
   for (PetscInt i = 0; i < n; ++i) {
-    if (boundary[i]) continue;
+    if (boundary[i] || i < nv) continue;
     std::array<double, 3> sum{};
     double weights = 0.0, nearest = std::numeric_limits<double>::infinity();
     std::size_t closest = 0;
