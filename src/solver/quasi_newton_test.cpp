@@ -370,5 +370,57 @@ INSTANTIATE_TEST_SUITE_P(
                       QualitativeCase{"triangle_curved", [] { return triangle_curved(3); }, 40}),
     [](const auto& info) { return std::string(info.param.name); });
 
+// The barrier (QuasiNewtonOptions::admissible, curved meshes' certificate): a trial point it
+// refuses is halved, and never taken.
+TEST(SquareMidpoint, ABarrierThatRefusesEveryPointStopsTheRunWhereItStarted) {
+  ThesisProblem p(square_midpoint(8));
+  QuasiNewtonOptions o = p.thesis_options();
+  o.admissible = [](Vec) { return false; };
+  const OwnedVec start = copy_of(p.x);
+  const SolverRun r = p.minimize(o);
+  EXPECT_EQ(r.reason, StopReason::OnBarrier);
+  ASSERT_EQ(r.history.size(), 1u);
+  EXPECT_GT(r.history[0].inadmissible_trials, 0);
+  EXPECT_EQ(r.final_energy, r.initial_energy);
+  NM_PETSC(VecAXPY(start, -1.0, p.x));
+  double moved = 0.0;
+  NM_PETSC(VecNorm(start, NORM_INFINITY, &moved));
+  EXPECT_EQ(moved, 0.0);
+}
+
+TEST(SquareMidpoint, ABarrierShortOfTheMinimumIsPressedAgainstAndNeverCrossed) {
+  // Admissible: no vertex farther from where it started than half the minimum's farthest (the
+  // unbarred run's). The run descends to the barrier, whose cuts then stop it there.
+  const auto farthest_from = [](Vec a, Vec b) {
+    const OwnedVec d = copy_of(a);
+    NM_PETSC(VecAXPY(d, -1.0, b));
+    double farthest = 0.0;
+    NM_PETSC(VecNorm(d, NORM_INFINITY, &farthest));
+    return farthest;
+  };
+  ThesisProblem free(square_midpoint(8));
+  const OwnedVec start = copy_of(free.x);
+  free.minimize(free.thesis_options());
+  const double reach = 0.5 * farthest_from(free.x, start);
+
+  ThesisProblem p(square_midpoint(8));
+  QuasiNewtonOptions o = p.thesis_options();
+  int refused = 0;
+  o.admissible = [&](Vec trial) {
+    const bool inside = farthest_from(trial, start) <= reach;
+    refused += !inside;
+    return inside;
+  };
+  const SolverRun r = p.minimize(o);
+  int counted = 0;
+  for (const IterationRecord& rec : r.history) counted += rec.inadmissible_trials;
+  EXPECT_GT(refused, 0);
+  EXPECT_EQ(counted, refused);
+  EXPECT_EQ(r.reason, StopReason::OnBarrier);
+  EXPECT_LT(r.final_energy, r.initial_energy);
+  EXPECT_LE(farthest_from(p.x, start), reach);
+  EXPECT_GT(farthest_from(p.x, start), 0.9 * reach);  // pressed against it
+}
+
 }  // namespace
 }  // namespace neomesh
