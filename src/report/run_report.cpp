@@ -286,10 +286,12 @@ std::string corner_phase_summary(const RunRecord& r) {
 std::string worst_cell_repair_summary(const RunRecord& r) {
   if (!r.result.worst_cell_repair || r.result.worst_cell_repair->vertices_moved == 0) return {};
   const WorstCellRepairSummary& repair = *r.result.worst_cell_repair;
+  const bool curved = r.result.curved.has_value();
   return fmt::format(
-      "worst cells: {} interior vertices moved to lift the worst cells around them (min scaled "
-      "Jacobian {:.4f} -> {:.4f})\n",
-      repair.vertices_moved, repair.min_scaled_jacobian_before, repair.min_scaled_jacobian_after);
+      "worst cells: {} {} moved to lift the worst cells around them (min {}scaled Jacobian "
+      "{:.4f} -> {:.4f})\n",
+      repair.vertices_moved, curved ? "nodes" : "interior vertices", curved ? "curved " : "",
+      repair.min_scaled_jacobian_before, repair.min_scaled_jacobian_after);
 }
 
 // What the quality guard did, if anything.
@@ -400,7 +402,8 @@ const std::vector<ReportPart>& report_parts() {
        optional_part<&Result::corner_phase>, corner_phase_summary},
       {"worst_cell_repair", S::Run,
        "the local repair of the worst cells (unless switched off): the min scaled Jacobian "
-       "before and after, vertices moved, sweeps",
+       "before and after (of a curved mesh: the least curved scaled Jacobian, below −2 while a "
+       "cell is not certified valid), vertices (nodes) moved, sweeps",
        optional_part<&Result::worst_cell_repair>, worst_cell_repair_summary},
       {"quality_guard", S::Run,
        "the quality guard (unless switched off; adapt: not for a metric): the threshold, vertices "
