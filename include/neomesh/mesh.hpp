@@ -171,8 +171,9 @@ class Mesh {
   void write_mesh_only(const std::filesystem::path& path) const;
 
  private:
-  friend class Optimizer;  // works on the implementation
-  friend class SizeField;  // a metric per vertex is interpolated over the mesh
+  friend class Optimizer;    // works on the implementation
+  friend class SizeField;    // a metric per vertex is interpolated over the mesh
+  friend struct MeshAccess;  // src/report/render.cpp draws a curved mesh's high-order nodes
   friend Mesh curve_mesh(const std::vector<std::filesystem::path>& inputs,
                          const CurveOptions& options, CurveSummary* summary, MPI_Comm comm);
   // The implementation; the non-const one may move the vertices, so it drops the quality cache.

@@ -14,7 +14,11 @@
 
 #include "core/collective_error.hpp"
 #include "core/error.hpp"
+#include "geometry/curved_quality.hpp"
 #include "mesh/cell_type.hpp"
+#include "mesh/gather.hpp"
+#include "mesh/input_mesh.hpp"
+#include "mesh/plex_mesh.hpp"
 #include "report/canvas.hpp"
 
 namespace neomesh {
@@ -505,6 +509,89 @@ void draw_colour_bar(cairo_t* cr, const Layout& l, const Legend& g) {
   draw_text(cr, g.count, x, y, 0.85 * l.font);
 }
 
+ColourBarRange draw_picture(std::span<const Outline> cells, std::span<const double> coords,
+                            const Projection* projection, std::span<const double> cell_values,
+                            const std::filesystem::path& out, const RenderOptions& options) {
+  const bool in_space = projection != nullptr;
+  picture_format(out);  // an unknown extension fails before any work
+  const ColourScale scale = colour_scale(cell_values, options);
+  const Legend g = legend(scale, options, cell_values);
+  // Framed: what is drawn (a cut shows part of a 3D mesh).
+  std::vector<double> framed;
+  if (in_space)
+    for (std::int64_t v : projection->vertices)
+      framed.insert(framed.end(), {coords[2 * v], coords[2 * v + 1]});
+  const Layout l = layout(in_space ? std::span<const double>(framed) : coords, options, g);
+
+  Canvas canvas(out, l.width, l.height);
+  cairo_t* cr = canvas.cr();
+  if (!options.title.empty()) {
+    set_colour(cr, kInk);
+    draw_text(cr, options.title, l.margin, l.title_y, l.title_font, Anchor::Left, true);
+  }
+  // With a window, the cells that reach into it, clipped at its frame.
+  const std::vector<Outline> shown =
+      options.window ? inside(cells, l, coords) : std::vector<Outline>(cells.begin(), cells.end());
+  cairo_save(cr);
+  cairo_rectangle(cr, l.frame[0], l.frame[1], l.frame[2], l.frame[3]);
+  cairo_clip(cr);
+  const double cell_pixels = mean_cell_pixels(shown, l, coords);
+  const bool edges = options.draw_edges && cell_pixels >= kMinCellPixelsForEdges;
+  if (in_space) {
+    draw_faces(cr, shown, l, coords, cell_values, scale, cell_pixels, edges);
+  } else {
+    draw_cells(cr, shown, l, coords, cell_values, scale);
+    if (edges) draw_edges(cr, shown, l, coords, cell_pixels);
+  }
+  cairo_restore(cr);
+  draw_colour_bar(cr, l, g);
+  canvas.finish();
+  return {scale.value_at(0), scale.value_at(1)};
+}
+
+// A curved (second-order) 2D mesh's cells as outlines: each edge drawn as kCurvedEdgeSegments
+// straight segments of its quadratic curve through its corners and mid-edge node. The points
+// are appended to `coords` (2 per point; the input's points first), the outlines' vertex lists
+// kept in `polygons`. Throws Error unless the mesh is one of triangle6 and quadrilateral8/9 in
+// the plane whose cells match `arrays` (Mesh::gather's: the same cells by number).
+constexpr int kCurvedEdgeSegments = 16;
+
+std::vector<Outline> curved_outlines(const InputMesh& mesh, const MeshArrays& arrays,
+                                     std::vector<double>& coords,
+                                     std::vector<std::int64_t>& polygons) {
+  if (mesh.dim != 2 || mesh.coord_dim() != 2 || mesh.num_cells() != std::ssize(arrays.types))
+    fail("render: internal error: the curved mesh does not match its cells");
+  coords = curved_point_coordinates(mesh);
+  std::vector<std::size_t> first = {0};
+  std::array<PetscInt, kMaxCurvedNodes> p{};
+  const auto point = [&](PetscInt q, int j) { return coords[2 * q + j]; };
+  for (PetscInt c = 0; c < mesh.num_cells(); ++c) {
+    curved_cell_points(mesh, c, p.data());
+    const CurvedFacts& f = facts(mesh.high_order.types[c]);
+    const int corners = num_vertices(f.linear);
+    // Gmsh lists a triangle's and a quadrilateral's edges around it, corner k to corner k + 1.
+    for (std::size_t e = 0; e < f.edges.size(); ++e) {
+      const PetscInt a = p[f.edges[e][0]], b = p[f.edges[e][1]], m = p[corners + e];
+      polygons.push_back(a);
+      for (int k = 1; k < kCurvedEdgeSegments; ++k) {
+        const double t = static_cast<double>(k) / kCurvedEdgeSegments;
+        const double wa = (1 - t) * (1 - 2 * t), wm = 4 * t * (1 - t), wb = t * (2 * t - 1);
+        polygons.push_back(std::ssize(coords) / 2);
+        for (int j = 0; j < 2; ++j)
+          coords.push_back(wa * point(a, j) + wm * point(m, j) + wb * point(b, j));
+      }
+    }
+    first.push_back(polygons.size());
+  }
+  std::vector<Outline> out;
+  out.reserve(arrays.types.size());
+  for (CellType type : {CellType::Triangle, CellType::Quadrilateral})
+    for (std::size_t c = 0; c < arrays.types.size(); ++c)
+      if (arrays.types[c] == type)
+        out.push_back({std::span(polygons).subspan(first[c], first[c + 1] - first[c]), c});
+  return out;
+}
+
 }  // namespace
 
 ColourBarRange render_mesh(const MeshArrays& mesh, std::span<const double> cell_values,
@@ -538,48 +625,39 @@ ColourBarRange render_mesh(const MeshArrays& mesh, std::span<const double> cell_
         "cells",
         mesh.coordinates.size(), cell_values.size(), mesh.coordinates.size() / d,
         mesh.types.size());
-  picture_format(out);  // an unknown extension fails before any work
-  const ColourScale scale = colour_scale(cell_values, options);
-  const Legend g = legend(scale, options, cell_values);
-  // Framed: what is drawn (a cut shows part of a 3D mesh).
-  std::vector<double> framed;
-  if (in_space)
-    for (std::int64_t v : projection.vertices)
-      framed.insert(framed.end(), {coords[2 * v], coords[2 * v + 1]});
-  const Layout l = layout(in_space ? std::span<const double>(framed) : coords, options, g);
-
-  Canvas canvas(out, l.width, l.height);
-  cairo_t* cr = canvas.cr();
-  if (!options.title.empty()) {
-    set_colour(cr, kInk);
-    draw_text(cr, options.title, l.margin, l.title_y, l.title_font, Anchor::Left, true);
-  }
-  // With a window, the cells that reach into it, clipped at its frame.
-  const std::vector<Outline> shown = options.window ? inside(cells, l, coords) : cells;
-  cairo_save(cr);
-  cairo_rectangle(cr, l.frame[0], l.frame[1], l.frame[2], l.frame[3]);
-  cairo_clip(cr);
-  const double cell_pixels = mean_cell_pixels(shown, l, coords);
-  const bool edges = options.draw_edges && cell_pixels >= kMinCellPixelsForEdges;
-  if (in_space) {
-    draw_faces(cr, shown, l, coords, cell_values, scale, cell_pixels, edges);
-  } else {
-    draw_cells(cr, shown, l, coords, cell_values, scale);
-    if (edges) draw_edges(cr, shown, l, coords, cell_pixels);
-  }
-  cairo_restore(cr);
-  draw_colour_bar(cr, l, g);
-  canvas.finish();
-  return {scale.value_at(0), scale.value_at(1)};
+  return draw_picture(cells, coords, in_space ? &projection : nullptr, cell_values, out, options);
 }
+
+// The whole curved mesh, high-order nodes and all, which Mesh's interface does not give.
+struct MeshAccess {
+  static InputMesh gather_curved(const Mesh& mesh) { return gather_mesh(mesh.plex(), {}).mesh; }
+};
 
 ColourBarRange render_mesh(const Mesh& mesh, std::span<const double> cell_values,
                            const std::filesystem::path& out, const RenderOptions& options) {
   picture_format(out);  // an unknown extension fails before the gather
   const MeshArrays whole = mesh.gather({{"value", {cell_values.begin(), cell_values.end()}}});
+  // A curved 2D mesh: its edges curved, and its cells the certificate does not find valid in
+  // red (the values, a straight cell's, do not see a fold between the corners).
+  const bool curved = mesh.curved() && whole.coordinate_dim == 2;
+  const InputMesh input = curved ? MeshAccess::gather_curved(mesh) : InputMesh{};
   ColourBarRange range;
-  on_root(mesh.comm(),
-          [&] { range = render_mesh(whole, whole.cell_fields.front().values, out, options); });
+  on_root(mesh.comm(), [&] {
+    if (!curved) {
+      range = render_mesh(whole, whole.cell_fields.front().values, out, options);
+      return;
+    }
+    std::vector<double> values = whole.cell_fields.front().values, coords;
+    const std::vector<double> x = curved_point_coordinates(input);
+    for (PetscInt c = 0; c < input.num_cells(); ++c)
+      if (curved_cell_quality(input, x, c).certificate.validity != Validity::Valid)
+        values[c] = std::numeric_limits<double>::quiet_NaN();
+    std::vector<std::int64_t> polygons;
+    const std::vector<Outline> cells = curved_outlines(input, whole, coords, polygons);
+    RenderOptions o = options;
+    o.invalid_label = "not certified valid";
+    range = draw_picture(cells, coords, nullptr, values, out, o);
+  });
   return range;
 }
 

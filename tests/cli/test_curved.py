@@ -607,3 +607,37 @@ def test_boundary_nodes_slide_on_a_given_circle_exactly(tmp):
     on_rim = np.abs(radius - 1) < 1e-3
     assert on_rim.sum() == 48 and np.abs(radius[on_rim] - 1).max() < 1e-14
     assert radius.max() < 1 + 1e-14
+
+
+
+def picture_pixels(path):
+    """A PNG picture's mesh part (the left 70 %: not the colour bar): its pixels in colour (the
+    viridis fill) and in red (cells drawn as invalid)."""
+    image = pytest.importorskip("matplotlib.image").imread(path)[:, :, :3]
+    image = image[:, :int(0.7 * image.shape[1])]
+    coloured = image.max(axis=2) - image.min(axis=2) > 0.2
+    red = (image[:, :, 0] > 0.75) & (image[:, :, 1] < 0.25) & (image[:, :, 2] < 0.25)
+    return coloured.sum(), red.sum()
+
+
+def test_render_draws_a_curved_mesh_with_its_edges_curved(tmp):
+    # A quarter annulus raised onto its circles: its cells cover the annulus, the straight
+    # mesh's only the polygon of its chords, whose outer ones cut off more than the inner add.
+    straight, curved = os.path.join(tmp, "annulus.msh"), os.path.join(tmp, "curved.msh")
+    neomesh("generate", "annulus-quad", "--level", "2", "-o", straight)
+    neomesh("curve", straight, "-o", curved, "--shape", "inner=circle:0,0,1",
+            "--shape", "outer=circle:0,0,2")
+    pictures = [os.path.join(tmp, f"{name}.png") for name in ("straight", "curved")]
+    for mesh, picture in zip((straight, curved), pictures):
+        neomesh("render", mesh, "-o", picture, "--width", "600")
+    (flat, _), (round_, red) = (picture_pixels(p) for p in pictures)
+    assert round_ > 1.01 * flat and red == 0
+
+
+@needs_corpus
+def test_render_draws_the_cells_not_certified_valid_in_red(tmp):
+    # triPatch_0_0: 6 triangle6, one folded by a mid-edge node between its valid corners.
+    path = os.path.join(MESQUITE_2D, "triPatch_0_0.vtk")
+    picture = os.path.join(tmp, "curved.png")
+    neomesh("render", path, "-o", picture, "--width", "600")
+    assert picture_pixels(picture)[1] > 500
