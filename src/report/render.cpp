@@ -639,7 +639,7 @@ ColourBarRange render_mesh(const Mesh& mesh, std::span<const double> cell_values
   const MeshArrays whole = mesh.gather({{"value", {cell_values.begin(), cell_values.end()}}});
   // A curved 2D mesh: its edges curved, and its cells the certificate does not find valid in
   // red (the values, a straight cell's, do not see a fold between the corners).
-  const bool curved = mesh.curved() && whole.coordinate_dim == 2;
+  const bool curved = mesh.curved() && mesh.coordinate_dim() == 2;
   const InputMesh input = curved ? MeshAccess::gather_curved(mesh) : InputMesh{};
   ColourBarRange range;
   on_root(mesh.comm(), [&] {
