@@ -55,8 +55,9 @@ struct Optimizer::Impl {
   }
 
   // Smoothing a mesh of second-order cells (docs/method.md §12, "The solver"): its own list of
-  // phases — set up the node mesh, the targets, untangle, minimize, lift flat corners, judge by
-  // the certificate and the curved scaled Jacobian, finish.
+  // phases — set up the node mesh, the targets, untangle, minimize inside the certified-valid
+  // cells, lift flat corners, judge by the certificate and the curved scaled Jacobian, repair the
+  // worst cells, finish.
   Result smooth_curved(const SmoothOptions& options, const Observer& observer);
   // The node mesh of the mesh's curved cells, the boundary and the constraints on it; x at its
   // vertices.
