@@ -155,7 +155,8 @@ Subcommand add_render(CLI::App& app) {
       "Draw a mesh as a .png or .svg picture. Every cell is coloured by a quality metric,\n"
       "its energy or its volume ratio Q, with a colour bar; inverted cells are drawn in red\n"
       "and counted. A 3D mesh is drawn as its boundary in perspective, shaded, a surface\n"
-      "mesh as its cells (their back side darker); --cut opens it to show the cells inside.");
+      "mesh as its cells (their back side darker); --cut opens it to show the cells inside.\n"
+      "A curved 2D mesh is drawn with its edges curved, cells not certified valid in red.");
   cmd->add_option("mesh", options->inputs, input_mesh_help("mesh file"))->required();
   cmd->add_option("-o,--output", options->output, "picture file (.png or .svg)")->required();
   std::vector<std::string> fields;
