@@ -142,6 +142,7 @@ void run_render(const RenderCommandOptions& o) {
   if (!o.window.empty()) options.window = {o.window[0], o.window[1], o.window[2], o.window[3]};
   if (!o.view.empty()) options.azimuth = o.view[0], options.elevation = o.view[1];
   options.cut = cut;
+  options.curved_scaled_jacobian = o.field == "scaled_jacobian";
   render_mesh(mesh, field_values(mesh, o), o.output, options);
   say("wrote {}: {} of {} cells\n", o.output, o.field, mesh.num_cells());
 }
@@ -156,7 +157,8 @@ Subcommand add_render(CLI::App& app) {
       "its energy or its volume ratio Q, with a colour bar; inverted cells are drawn in red\n"
       "and counted. A 3D mesh is drawn as its boundary in perspective, shaded, a surface\n"
       "mesh as its cells (their back side darker); --cut opens it to show the cells inside.\n"
-      "A curved 2D mesh is drawn with its edges curved, cells not certified valid in red.");
+      "A curved 2D mesh is drawn with its edges curved, cells not certified valid in red,\n"
+      "its scaled Jacobian the least over each curved cell.");
   cmd->add_option("mesh", options->inputs, input_mesh_help("mesh file"))->required();
   cmd->add_option("-o,--output", options->output, "picture file (.png or .svg)")->required();
   std::vector<std::string> fields;

@@ -649,9 +649,13 @@ ColourBarRange render_mesh(const Mesh& mesh, std::span<const double> cell_values
     }
     std::vector<double> values = whole.cell_fields.front().values, coords;
     const std::vector<double> x = curved_point_coordinates(input);
-    for (PetscInt c = 0; c < input.num_cells(); ++c)
-      if (curved_cell_quality(input, x, c).certificate.validity != Validity::Valid)
+    for (PetscInt c = 0; c < input.num_cells(); ++c) {
+      const CurvedScaledJacobian q = curved_cell_quality(input, x, c);
+      if (q.certificate.validity != Validity::Valid)
         values[c] = std::numeric_limits<double>::quiet_NaN();
+      else if (options.curved_scaled_jacobian)
+        values[c] = q.upper;
+    }
     std::vector<std::int64_t> polygons;
     const std::vector<Outline> cells = curved_outlines(input, whole, coords, polygons);
     RenderOptions o = options;

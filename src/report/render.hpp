@@ -24,6 +24,9 @@ struct RenderOptions {
   bool draw_edges = true;          // skipped anyway when cells are too small to show them
   // What non-finite values mean, for the legend ("3 inverted").
   std::string invalid_label = "inverted";
+  // A curved 2D mesh's cells coloured by their curved scaled Jacobian (the least over the cell,
+  // geometry/curved_cell.hpp) instead of the values given, which are its corner cells'.
+  bool curved_scaled_jacobian = false;
   // The part drawn, {x_min, x_max, y_min, y_max} (a zoom; cells are clipped at its frame);
   // default: the whole mesh. A mesh in the plane only.
   std::optional<std::array<double, 4>> window;
