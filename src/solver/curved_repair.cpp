@@ -4,50 +4,21 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <numeric>
+#include <optional>
 #include <vector>
 
 #include "geometry/curved_cell.hpp"
 #include "geometry/quality.hpp"
-#include "solver/whole_mesh.hpp"
+#include "solver/repair_search.hpp"
 
 namespace neomesh {
 
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// As worst_cell_repair.cpp's search: step lengths in units of the node's shortest distance to
-// another node of its cells, the longest first, the finer ones once these stall; a move must
-// raise the worst cell around the node by more than kGain and keep the node at least
-// kMinDistanceFraction of its distance at the start from each node of its cells.
-constexpr double kSteps[] = {0.3, 0.1, 0.03, 0.01};
-constexpr double kFineSteps[] = {0.01, 0.003, 0.001};
-constexpr double kGain = 1e-9;
-constexpr double kMinDistanceFraction = 0.5;
-constexpr int kWorstCells = 6;
 // How far below every valid cell measure() puts a cell not certified valid (q ≥ −2 for all).
 constexpr double kNotValid = 3.0;
-
-// 16 unit directions in the plane, the 26 towards a cube's neighbours in space.
-std::vector<std::array<double, 3>> directions(int dim) {
-  std::vector<std::array<double, 3>> dirs;
-  if (dim == 2) {
-    for (int k = 0; k < 16; ++k) {
-      const double a = 2.0 * std::numbers::pi * k / 16;
-      dirs.push_back({std::cos(a), std::sin(a), 0.0});
-    }
-    return dirs;
-  }
-  for (int i = -1; i <= 1; ++i)
-    for (int j = -1; j <= 1; ++j)
-      for (int k = -1; k <= 1; ++k) {
-        if (i == 0 && j == 0 && k == 0) continue;
-        const double n = std::sqrt(double(i * i + j * j + k * k));
-        dirs.push_back({i / n, j / n, k / n});
-      }
-  return dirs;
-}
 
 // The search on rank 0, over the nodes of the whole mesh.
 class CurvedRepair {
@@ -73,6 +44,9 @@ class CurvedRepair {
 
   double min_quality() const { return worst_.empty() ? kInfinity : q_[worst_[0]]; }
   bool spent() const { return spent_ >= budget_; }
+  // No sweep after the coefficients allowed are spent, nor on an optimal worst cell (the curved
+  // scaled Jacobian is at most 1).
+  bool done() const { return spent() || !(min_quality() < 1.0 - kRepairGain); }
 
   void begin_sweep() { undo_.clear(); }
   void undo_sweep() {
@@ -140,14 +114,14 @@ class CurvedRepair {
   void rank() {
     std::vector<std::int64_t> cells(q_.size());
     std::iota(cells.begin(), cells.end(), 0);
-    const std::size_t n = std::min<std::size_t>(kWorstCells, cells.size());
+    const std::size_t n = std::min<std::size_t>(kRepairWorstCells, cells.size());
     std::partial_sort(cells.begin(), cells.begin() + n, cells.end(), [this](auto a, auto b) {
       return q_[a] < q_[b] || (q_[a] == q_[b] && a < b);
     });
     worst_.assign(cells.begin(), cells.begin() + n);
   }
 
-  // Whether v, where it is now, keeps kMinDistanceFraction of its start distance from every
+  // Whether v, where it is now, keeps kRepairMinDistanceFraction of its start distance from every
   // node of its cells.
   bool admissible(std::int64_t v) const {
     const int d = m_.dim;
@@ -156,7 +130,7 @@ class CurvedRepair {
         if (u == v) continue;
         const double now = edge_length(m_.coords.data() + d * u, m_.coords.data() + d * v, d);
         const double then = edge_length(start_.data() + d * u, start_.data() + d * v, d);
-        if (!(now >= kMinDistanceFraction * then)) return false;
+        if (!(now >= kRepairMinDistanceFraction * then)) return false;
       }
     return true;
   }
@@ -198,7 +172,7 @@ class CurvedRepair {
           p[a] = from[a] + (m_.fixed[d * v + a] ? 0.0 : step * h * dir[a]);
         if (m_.geometry[v] >= 0) project_(m_.geometry[v], p);
         if (!admissible(v)) continue;
-        const std::optional<double> q = around(v, best + kGain);
+        const std::optional<double> q = around(v, best + kRepairGain);
         if (!q) continue;
         best = *q;
         std::copy_n(p.begin(), d, best_x.begin());
@@ -206,7 +180,7 @@ class CurvedRepair {
       }
       if (found) break;
     }
-    if (!found || !(best > base + kGain)) {
+    if (!found || !(best > base + kRepairGain)) {
       std::copy_n(from.begin(), d, p.begin());
       return false;
     }
@@ -229,7 +203,7 @@ class CurvedRepair {
   };
   std::vector<Undo> undo_;  // the sweep's moves, in order
   std::int64_t budget_ = kCurvedRepairAllowance, spent_ = 0;
-  std::vector<std::array<double, 3>> dirs_ = directions(m_.dim);
+  std::vector<std::array<double, 3>> dirs_ = repair_directions(m_.dim);
 };
 
 }  // namespace
@@ -247,55 +221,8 @@ int jacobian_bezier_size(CurvedType type) {
 
 WorstCellRepair repair_worst_curved_cells(const MeshView& view, const DofMap& dofs,
                                           const RepairFreedom& freedom, Vec x) {
-  const MPI_Comm comm = dofs.comm();
-  const int d = view.dim;
-  std::vector<double> local(dofs.num_local_dofs());
-  dofs.global_to_local(x, local);
-  WholeMesh mesh = gather_whole_mesh(view, local, freedom, comm);
-
-  WorstCellRepair summary;
-  std::vector<std::int64_t> moved_ids;
-  std::vector<double> moved_coords;
-  if (mpi_rank(comm) == 0) {
-    CurvedRepair repair(mesh, freedom);
-    summary.min_before = repair.min_quality();
-    std::vector<std::uint8_t> moved(mesh.vertex_id.size(), 0);
-    std::vector<std::int64_t> moved_now;
-    // As the straight repair: until a sweep with the shorter steps no longer lifts the worst
-    // cell, that sweep undone (its moves only trade cells around a node for others), or until
-    // the coefficients allowed are spent.
-    std::span<const double> steps = kSteps;
-    // (Nothing lifts a worst cell that is already optimal: the curved scaled Jacobian is at
-    // most 1.)
-    for (double worst = summary.min_before;
-         summary.sweeps < kRepairMaxSweeps && !repair.spent() && worst < 1.0 - kGain;) {
-      repair.begin_sweep();
-      moved_now.clear();
-      repair.sweep(steps, moved_now);
-      ++summary.sweeps;
-      const double now = repair.min_quality();
-      if (moved_now.empty() || !(now > worst + kGain)) {
-        repair.undo_sweep();
-        if (steps.data() == kFineSteps) break;
-        steps = kFineSteps;
-        continue;
-      }
-      for (std::int64_t v : moved_now) moved[v] = 1;
-      worst = now;
-    }
-    summary.min_after = repair.min_quality();
-    for (std::int64_t v = 0; v < static_cast<std::int64_t>(moved.size()); ++v) {
-      if (!moved[v]) continue;
-      moved_ids.push_back(mesh.vertex_id[v]);
-      moved_coords.insert(moved_coords.end(), mesh.coords.begin() + d * v,
-                          mesh.coords.begin() + d * (v + 1));
-    }
-  }
-  MPI_Bcast(&summary.min_before, 1, MPI_DOUBLE, 0, comm);
-  MPI_Bcast(&summary.min_after, 1, MPI_DOUBLE, 0, comm);
-  MPI_Bcast(&summary.sweeps, 1, MPI_INT, 0, comm);
-  summary.vertices_moved = scatter_moved(view, dofs, moved_ids, moved_coords, x);
-  return summary;
+  return repair_in_sweeps(view, dofs, freedom, x,
+                          [&](WholeMesh& mesh) { return CurvedRepair(mesh, freedom); });
 }
 
 }  // namespace neomesh

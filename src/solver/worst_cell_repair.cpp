@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <numeric>
 #include <optional>
 #include <vector>
@@ -13,48 +12,13 @@
 #include "geometry/surface_frame.hpp"
 #include "mesh/cell_type.hpp"
 #include "mesh/gather.hpp"
-#include "solver/whole_mesh.hpp"
+#include "solver/repair_search.hpp"
 
 namespace neomesh {
 
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// Step lengths of the search, in units of the vertex's shortest edge: the longest first; a
-// shorter one is tried only when no direction of a longer one improved. Shorter steps only
-// once these no longer lift the worst cell, and then without the long ones: tried by every
-// vertex from the start, they cost 1.7x the time on Gmsh's twisted hex block for nothing
-// (bench/hex_meshes.py); after the stall they take Mesquite's biased 1000-hex block from
-// 0.994 to 0.997.
-constexpr double kSteps[] = {0.3, 0.1, 0.03, 0.01};
-constexpr double kFineSteps[] = {0.01, 0.003, 0.001};
-// A move must raise the worst cell around the vertex by more than this.
-constexpr double kGain = 1e-9;
-// ... and keep the vertex at least this fraction of its distance at the repair's start from
-// each vertex of its cells: the scaled Jacobian measures angles, so without it a vertex sliding
-// along the boundary could collapse an edge of a cell and still "improve" it.
-constexpr double kMinDistanceFraction = 0.5;
-
-// Unit directions of the search: 16 in the plane, the 26 towards a cube's neighbours in 3D.
-std::vector<std::vector<double>> directions(int dim) {
-  std::vector<std::vector<double>> dirs;
-  if (dim == 2) {
-    for (int k = 0; k < 16; ++k) {
-      const double a = 2.0 * std::numbers::pi * k / 16;
-      dirs.push_back({std::cos(a), std::sin(a)});
-    }
-    return dirs;
-  }
-  for (int i = -1; i <= 1; ++i)
-    for (int j = -1; j <= 1; ++j)
-      for (int k = -1; k <= 1; ++k) {
-        if (i == 0 && j == 0 && k == 0) continue;
-        const double n = std::sqrt(double(i * i + j * j + k * k));
-        dirs.push_back({i / n, j / n, k / n});
-      }
-  return dirs;
-}
-
 // The search on rank 0. Returns the indices of the moved vertices.
 class Repair {
  public:
@@ -99,6 +63,7 @@ class Repair {
   }
 
   double min_quality() const { return worst_count_ == 0 ? kInfinity : sj_[worst_[0]]; }
+  bool done() const { return false; }  // until the sweeps stall
 
   // What a sweep changes, to undo it: each move's vertex and its cells' values before it, in
   // order, and the sums at the sweep's start (the same bits as a copy of the whole mesh's).
@@ -276,7 +241,7 @@ class Repair {
     std::vector<std::int32_t> edges_first, edges;  // cell i's edges at v: their other ends in
                                                    // `neighbours`, edges[edges_first[i], [i+1])
     std::vector<std::int64_t> neighbours;          // the other vertices of v's cells
-    std::vector<double> min_distance;              // kMinDistanceFraction × at the start
+    std::vector<double> min_distance;              // kRepairMinDistanceFraction × at the start
     std::vector<double> distance;                  // admissible()'s: from v, per neighbour
     std::int64_t admissible_for = -1;              // the vertex gather_edges() gathered for
   };
@@ -330,7 +295,7 @@ class Repair {
       if (at != cache_.neighbours.end())
         return static_cast<std::int32_t>(at - cache_.neighbours.begin());
       cache_.neighbours.push_back(u);
-      cache_.min_distance.push_back(kMinDistanceFraction * distance(start_, u, v));
+      cache_.min_distance.push_back(kRepairMinDistanceFraction * distance(start_, u, v));
       return static_cast<std::int32_t>(cache_.neighbours.size() - 1);
     };
     for (std::size_t i = 0; i < cells.size(); ++i) {
@@ -393,11 +358,11 @@ class Repair {
     return q;
   }
 
-  // Whether v is at least kMinDistanceFraction of its distance at the repair's start from each
-  // vertex of its cells, and their edge ratios at most the mesh's largest at the start: from the
-  // star's cache, each distance once, the edge ratios from the edges at v (an interior vertex of
-  // hexahedra: 26 distances instead of 56, and no 8 whole edge ratios; with no check where v
-  // is, the repair's instructions on the annulus hexes of bench/peers.py 1.05e9 -> 0.83e9).
+  // Whether v is at least kRepairMinDistanceFraction of its distance at the repair's start from
+  // each vertex of its cells, and their edge ratios at most the mesh's largest at the start: from
+  // the star's cache, each distance once, the edge ratios from the edges at v (an interior vertex
+  // of hexahedra: 26 distances instead of 56, and no 8 whole edge ratios; with no check where v is,
+  // the repair's instructions on the annulus hexes of bench/peers.py 1.05e9 -> 0.83e9).
   bool admissible(std::int64_t v) {
     if (cache_.admissible_for != v) gather_edges(v);
     const int d = m_.dim;
@@ -439,7 +404,7 @@ class Repair {
     // there, no trial can beat it, and a vertex whose worst cell's worst corner is one of those
     // makes no trial (the annulus hexes of bench/peers.py: 10,000 of 17,000 searches).
     const double ceiling = gather_corners(v);
-    if (!(ceiling > base.worst + kGain)) {
+    if (!(ceiling > base.worst + kRepairGain)) {
       failed_at_[v] = moves_ + 1;
       return false;
     }
@@ -465,11 +430,11 @@ class Repair {
     std::array<double, 3> best_move{}, by{};
     const std::span<const double> from_d(from.data(), d), by_d(by.data(), d);
     for (double step : steps) {
-      for (const std::vector<double>& dir : dirs_) {
-        if (!(ceiling > best + kGain)) break;
+      for (const std::array<double, 3>& dir : dirs_) {
+        if (!(ceiling > best + kRepairGain)) break;
         for (int a = 0; a < d; ++a) by[a] = step * h * dir[a];
         move(v, from_d, by_d);
-        const std::optional<Star> q = around(v, best + kGain, worst_first_);
+        const std::optional<Star> q = around(v, best + kRepairGain, worst_first_);
         if (!q) continue;
         // A move that lowers the mean may not take it below the floor.
         if (!(q->sum >= base.sum || sum_ - base.sum + q->sum >= min_sum_)) {
@@ -562,7 +527,7 @@ class Repair {
   double min_sum_ = 0.0;             // the floor of sum_ for a move that lowers it
   double max_edge_ratio_ = 0.0;      // the mesh's largest at the repair's start
   const std::vector<double> start_;  // the coordinates at the repair's start
-  std::vector<std::vector<double>> dirs_ = directions(m_.dim);
+  std::vector<std::array<double, 3>> dirs_ = repair_directions(m_.dim);
 };
 
 }  // namespace
@@ -570,53 +535,9 @@ class Repair {
 WorstCellRepair repair_worst_cells(const MeshView& view, const DofMap& dofs,
                                    const RepairFreedom& freedom, Vec x, double min_mean,
                                    double max_mean_imr) {
-  const MPI_Comm comm = dofs.comm();
-  const int d = view.dim;
-  std::vector<double> local(dofs.num_local_dofs());
-  dofs.global_to_local(x, local);
-  WholeMesh mesh = gather_whole_mesh(view, local, freedom, comm);
-
-  WorstCellRepair summary;
-  std::vector<std::int64_t> moved_ids;
-  std::vector<double> moved_coords;
-  if (mpi_rank(comm) == 0) {
-    Repair repair(mesh, freedom, min_mean, max_mean_imr);
-    summary.min_before = repair.min_quality();
-    std::vector<std::uint8_t> moved(mesh.vertex_id.size(), 0);  // per vertex
-    std::vector<std::int64_t> moved_now;                        // by the sweep
-    // Until a sweep with the shorter steps no longer lifts the worst cell (moves elsewhere may go
-    // on improving a little for long). That last sweep is undone: its moves lift cells around a
-    // vertex at the cost of others and so only lower the mean (FEAT3's heat-v77-tria: 11 vertices
-    // moved, the worst cell unchanged, the mean scaled Jacobian 0.735 -> 0.719).
-    std::span<const double> steps = kSteps;
-    for (double worst = summary.min_before; summary.sweeps < kRepairMaxSweeps;) {
-      repair.begin_sweep();
-      moved_now.clear();
-      repair.sweep(steps, moved_now);
-      ++summary.sweeps;
-      const double now = repair.min_quality();
-      if (moved_now.empty() || !(now > worst + kGain)) {
-        repair.undo_sweep();
-        if (steps.data() == kFineSteps) break;
-        steps = kFineSteps;  // the same sweep again, with shorter steps
-        continue;
-      }
-      for (std::int64_t v : moved_now) moved[v] = 1;
-      worst = now;
-    }
-    summary.min_after = repair.min_quality();
-    for (std::int64_t v = 0; v < static_cast<std::int64_t>(moved.size()); ++v) {
-      if (!moved[v]) continue;
-      moved_ids.push_back(mesh.vertex_id[v]);
-      moved_coords.insert(moved_coords.end(), mesh.coords.begin() + d * v,
-                          mesh.coords.begin() + d * (v + 1));
-    }
-  }
-  MPI_Bcast(&summary.min_before, 1, MPI_DOUBLE, 0, comm);
-  MPI_Bcast(&summary.min_after, 1, MPI_DOUBLE, 0, comm);
-  MPI_Bcast(&summary.sweeps, 1, MPI_INT, 0, comm);
-  summary.vertices_moved = scatter_moved(view, dofs, moved_ids, moved_coords, x);
-  return summary;
+  return repair_in_sweeps(view, dofs, freedom, x, [&](WholeMesh& mesh) {
+    return Repair(mesh, freedom, min_mean, max_mean_imr);
+  });
 }
 
 }  // namespace neomesh

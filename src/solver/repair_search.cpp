@@ -1,6 +1,8 @@
-#include "solver/whole_mesh.hpp"
+#include "solver/repair_search.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <numeric>
 
 #include "mesh/gather.hpp"
@@ -126,6 +128,25 @@ std::int64_t scatter_moved(const MeshView& view, const DofMap& dofs, std::vector
   }
   NM_PETSC(VecRestoreArray(x, &values));
   return count;
+}
+
+std::vector<std::array<double, 3>> repair_directions(int dim) {
+  std::vector<std::array<double, 3>> dirs;
+  if (dim == 2) {
+    for (int k = 0; k < 16; ++k) {
+      const double a = 2.0 * std::numbers::pi * k / 16;
+      dirs.push_back({std::cos(a), std::sin(a), 0.0});
+    }
+    return dirs;
+  }
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      for (int k = -1; k <= 1; ++k) {
+        if (i == 0 && j == 0 && k == 0) continue;
+        const double n = std::sqrt(double(i * i + j * j + k * k));
+        dirs.push_back({i / n, j / n, k / n});
+      }
+  return dirs;
 }
 
 }  // namespace neomesh
