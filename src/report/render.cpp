@@ -175,7 +175,20 @@ struct Outline {
   double shade = 1.0;  // its colour's brightness (3D: how squarely it faces the light)
 };
 
-// The cells in the order they are drawn: triangles first, then quadrilaterals, each by number.
+// Cell c's outline is vertices[first[c], first[c + 1]); the cells in the order they are drawn:
+// triangles first, then quadrilaterals, each by number.
+std::vector<Outline> in_drawing_order(std::span<const CellType> types,
+                                      std::span<const std::int64_t> vertices,
+                                      std::span<const std::size_t> first) {
+  std::vector<Outline> out;
+  out.reserve(types.size());
+  for (CellType type : {CellType::Triangle, CellType::Quadrilateral})
+    for (std::size_t c = 0; c < types.size(); ++c)
+      if (types[c] == type) out.push_back({vertices.subspan(first[c], first[c + 1] - first[c]), c});
+  return out;
+}
+
+// The cells of a mesh of triangles and quadrilaterals, in drawing order (in_drawing_order).
 // Throws Error unless the arrays make a mesh of triangles and quadrilaterals (in the plane or,
 // a surface mesh, in space).
 std::vector<Outline> outlines(const MeshArrays& mesh) {
@@ -194,13 +207,7 @@ std::vector<Outline> outlines(const MeshArrays& mesh) {
   for (std::int64_t v : mesh.cells)
     if (v < 0 || v >= vertex_count)
       fail("render: a cell names vertex {}, but there are {} vertices", v, vertex_count);
-  std::vector<Outline> out;
-  out.reserve(mesh.types.size());
-  for (CellType type : {CellType::Triangle, CellType::Quadrilateral})
-    for (std::size_t c = 0; c < mesh.types.size(); ++c)
-      if (mesh.types[c] == type)
-        out.push_back({std::span(mesh.cells).subspan(first[c], first[c + 1] - first[c]), c});
-  return out;
+  return in_drawing_order(mesh.types, mesh.cells, first);
 }
 
 void trace_cell(cairo_t* cr, const Layout& l, std::span<const double> coords, const Outline& cell) {
@@ -550,10 +557,11 @@ ColourBarRange draw_picture(std::span<const Outline> cells, std::span<const doub
 }
 
 // A curved (second-order) 2D mesh's cells as outlines: each edge drawn as kCurvedEdgeSegments
-// straight segments of its quadratic curve through its corners and mid-edge node. The points
-// are appended to `coords` (2 per point; the input's points first), the outlines' vertex lists
-// kept in `polygons`. Throws Error unless the mesh is one of triangle6 and quadrilateral8/9 in
-// the plane whose cells match `arrays` (Mesh::gather's: the same cells by number).
+// straight segments of its quadratic curve through its corners and mid-edge node. `coords` holds
+// the mesh's points (curved_point_coordinates) and gets the segments' points appended, the
+// outlines' vertex lists are kept in `polygons`. Throws Error unless the mesh is one of triangle6
+// and quadrilateral8/9 in the plane whose cells match `arrays` (Mesh::gather's: the same cells by
+// number).
 constexpr int kCurvedEdgeSegments = 16;
 
 std::vector<Outline> curved_outlines(const InputMesh& mesh, const MeshArrays& arrays,
@@ -561,7 +569,6 @@ std::vector<Outline> curved_outlines(const InputMesh& mesh, const MeshArrays& ar
                                      std::vector<std::int64_t>& polygons) {
   if (mesh.dim != 2 || mesh.coord_dim() != 2 || mesh.num_cells() != std::ssize(arrays.types))
     fail("render: internal error: the curved mesh does not match its cells");
-  coords = curved_point_coordinates(mesh);
   std::vector<std::size_t> first = {0};
   std::array<PetscInt, kMaxCurvedNodes> p{};
   const auto point = [&](PetscInt q, int j) { return coords[2 * q + j]; };
@@ -583,13 +590,7 @@ std::vector<Outline> curved_outlines(const InputMesh& mesh, const MeshArrays& ar
     }
     first.push_back(polygons.size());
   }
-  std::vector<Outline> out;
-  out.reserve(arrays.types.size());
-  for (CellType type : {CellType::Triangle, CellType::Quadrilateral})
-    for (std::size_t c = 0; c < arrays.types.size(); ++c)
-      if (arrays.types[c] == type)
-        out.push_back({std::span(polygons).subspan(first[c], first[c + 1] - first[c]), c});
-  return out;
+  return in_drawing_order(arrays.types, polygons, first);
 }
 
 }  // namespace
@@ -647,10 +648,10 @@ ColourBarRange render_mesh(const Mesh& mesh, std::span<const double> cell_values
       range = render_mesh(whole, whole.cell_fields.front().values, out, options);
       return;
     }
-    std::vector<double> values = whole.cell_fields.front().values, coords;
-    const std::vector<double> x = curved_point_coordinates(input);
+    std::vector<double> values = whole.cell_fields.front().values;
+    std::vector<double> coords = curved_point_coordinates(input);
     for (PetscInt c = 0; c < input.num_cells(); ++c) {
-      const CurvedScaledJacobian q = curved_cell_quality(input, x, c);
+      const CurvedScaledJacobian q = curved_cell_quality(input, coords, c);
       if (q.certificate.validity != Validity::Valid)
         values[c] = std::numeric_limits<double>::quiet_NaN();
       else if (options.curved_scaled_jacobian)
